@@ -1,0 +1,159 @@
+/* Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0. */
+/*
+ * mjformation plugin ABI, version 1.
+ *
+ * MuJoCo 2.2.2 (Debian 12) predates MuJoCo's native engine plugins (mjpPlugin, MuJoCo >= 2.3),
+ * so mjformation defines its own C ABI with the same shape: a descriptor with a name, a kind,
+ * declared attributes with defaults, and create / compute / reset / destroy callbacks.
+ *
+ * A shared library exports one C function, MJF_ENTRY_SYMBOL, returning an array of descriptors
+ * (a plugin family, e.g. all guidance laws, is one library). The host (runner/plugin_host.*)
+ * finds libraries on a search path, dlopen()s them, refuses an ABI mismatch, checks attributes
+ * against the declaration, and calls the callbacks from its own stepping loop
+ * (mj_step1 / plugins / mj_step2). No plugin may keep global mutable state: several
+ * simulations run in one process, each on its own thread.
+ *
+ * Units are SI. World frame is ENU-like: z up, gravity -z. Vehicle index 0 is the leader,
+ * 1..N are the followers (the paper's numbering).
+ */
+#ifndef MJFORMATION_PLUGIN_H_
+#define MJFORMATION_PLUGIN_H_
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Bump on any change of the structs or callbacks below. */
+#define MJF_ABI_VERSION 1u
+
+/* Name of the exported entry point: const mjfPlugin* const* mjf_plugin_entry(int* count). */
+#define MJF_ENTRY_SYMBOL "mjf_plugin_entry"
+
+struct mjModel_;
+struct mjData_;
+
+typedef enum mjfKind_ {
+  MJF_KIND_GUIDANCE = 1,  /* one instance per vehicle: own trajectory -> setpoint (leader, hover) */
+  MJF_KIND_FORMATION = 2, /* one instance per swarm: neighbours' states -> follower setpoints */
+  MJF_KIND_ATTITUDE = 3   /* one instance per vehicle: setpoint -> actuator controls */
+} mjfKind;
+
+/* A declared attribute. Values reach create() as strings (like mjpPlugin attributes). */
+typedef struct mjfAttribute_ {
+  const char* key;           /* short lowercase key, e.g. "rho" */
+  const char* default_value; /* NULL: the attribute is required */
+  const char* doc;           /* one line: meaning and unit */
+} mjfAttribute;
+
+/* What the vehicle's sensors report (never qpos): see mjcf/README.md for the sensor names. */
+typedef struct mjfVehicleState_ {
+  double pos[3];  /* m, world frame */
+  double vel[3];  /* m/s, world frame */
+  double quat[4]; /* w x y z, body -> world */
+  double gyro[3]; /* rad/s, body frame */
+} mjfVehicleState;
+
+/* The typed per-vehicle setpoint bus. Guidance and formation plugins write it; attitude plugins
+ * read it. The host clears the diagnostic fields to NaN before each formation tick. */
+typedef struct mjfSetpoint_ {
+  double acc[3];     /* desired acceleration, m/s^2, world frame (x, y horizontal command; z feedforward) */
+  double pos[3];     /* reference position, m (z: altitude setpoint) */
+  double vel[3];     /* reference velocity, m/s */
+  double yaw;        /* yaw setpoint, rad */
+  double sliding[2]; /* diagnostic: sliding variable s_i for x and y (NaN when not applicable) */
+} mjfSetpoint;
+
+/* One actuator an attitude plugin drives, resolved by the host from the composed model. */
+typedef struct mjfActuatorInfo_ {
+  double site_pos[3];    /* m, body frame position of the actuator's site (0 for joint actuators) */
+  double gear[6];        /* actuator gear: force (0..2) and torque (3..5) per unit control */
+  double ctrl_min;       /* ctrlrange (or -inf/inf when unlimited) */
+  double ctrl_max;
+  double time_constant;  /* s, first-order actuator lag (dyntype filter), 0 when none */
+} mjfActuatorInfo;
+
+/* What an attitude or guidance plugin knows of its vehicle. */
+typedef struct mjfVehicleInfo_ {
+  double mass;       /* kg, whole vehicle */
+  double inertia[3]; /* kg m^2, principal moments of the vehicle's root body */
+  double gravity;    /* m/s^2, magnitude */
+  int n_actuators;   /* equals the plugin's n_actuators */
+  const mjfActuatorInfo* actuators;
+} mjfVehicleInfo;
+
+/* Directed follower graph (paper section 2): follower indices 0..n-1 here (paper's i = index+1). */
+typedef struct mjfGraph_ {
+  int n_followers;
+  const double* leader_weight; /* [n_followers] a_i0 */
+  int n_edges;
+  const int* edge_from;       /* j: follower i receives j's state (edge j -> i) */
+  const int* edge_to;         /* i */
+  const double* edge_weight;  /* a_ij > 0 */
+} mjfGraph;
+
+/* Desired formation (Definition 1): offsets f_i(t) of each follower from the leader. */
+typedef struct mjfShape_ {
+  int n_followers;
+  const void* self;
+  /* Fills out[6*i + k] for follower i, k = (px, py, vx, vy, ax, ay) at time t. */
+  void (*evaluate)(const void* self, double t, double* out);
+} mjfShape;
+
+typedef struct mjfCreateContext_ {
+  /* Attributes: every declared key, in declaration order, with defaults filled in. */
+  int n_attributes;
+  const char* const* keys;
+  const char* const* values;
+  double timestep;   /* s, physics step */
+  int vehicle;       /* per-vehicle plugins: the vehicle index; -1 for formation plugins */
+  int n_vehicles;    /* 1 + number of followers */
+  const mjfVehicleInfo* vehicle_info; /* per-vehicle plugins; NULL for formation plugins */
+  const double* initial_pos;          /* [3] per-vehicle plugins: the vehicle's initial position */
+  const mjfGraph* graph;              /* formation plugins; NULL otherwise */
+  const mjfShape* shape;              /* formation plugins; NULL otherwise */
+  const struct mjModel_* model;       /* raw access, may be NULL (unit tests) */
+  char* error;       /* create() writes a one-line reason here when it returns NULL */
+  size_t error_size;
+} mjfCreateContext;
+
+typedef struct mjfStepContext_ {
+  double time;  /* s, simulation time at this step (before it is taken) */
+  int64_t step; /* physics step index: time = step * timestep exactly in intent */
+  double timestep;
+  int n_vehicles;
+  const mjfVehicleState* states; /* [n_vehicles], 0 = leader */
+  mjfSetpoint* setpoints;        /* [n_vehicles], the bus */
+  double* controls;              /* attitude plugins: [n_actuators] for this vehicle; NULL otherwise */
+  const struct mjModel_* model;  /* raw access, may be NULL */
+  const struct mjData_* data;
+} mjfStepContext;
+
+/* Optional reporting of scalar results into summary.json (e.g. "delta", "error_bound"). */
+typedef void (*mjfReportFn)(void* user, const char* key, double value);
+
+typedef struct mjfPlugin_ {
+  uint32_t abi_version; /* MJF_ABI_VERSION the plugin was compiled against */
+  const char* name;     /* unique, lowercase: "smc_discrete" */
+  mjfKind kind;
+  const char* doc;      /* one line */
+  int n_attributes;
+  const mjfAttribute* attributes;
+  int n_actuators;                /* attitude plugins: actuators driven, per vehicle */
+  const char* const* actuators;   /* their names without the vehicle prefix, e.g. "rotor0" */
+  void* (*create)(const mjfCreateContext* ctx);         /* NULL + ctx->error on bad config */
+  int (*compute)(void* instance, const mjfStepContext* ctx); /* 0 ok; nonzero: stop the run */
+  void (*reset)(void* instance);
+  void (*destroy)(void* instance);
+  void (*report)(void* instance, mjfReportFn emit, void* user); /* may be NULL */
+} mjfPlugin;
+
+typedef const mjfPlugin* const* (*mjfEntryFn)(int* count);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* MJFORMATION_PLUGIN_H_ */

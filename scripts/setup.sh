@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages mjformation needs, only those missing. Idempotent.
+set -euo pipefail
+PACKAGES=(
+  build-essential cmake pkg-config git
+  libmujoco-dev libmujoco-samples libeigen3-dev libosmesa6-dev
+  libtomlplusplus-dev libcli11-dev nlohmann-json3-dev libfmt-dev libpng-dev
+  libgtest-dev libgmock-dev libbenchmark-dev ffmpeg
+  python3 python3-numpy python3-matplotlib python3-pytest
+)
+missing=()
+for p in "${PACKAGES[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+if ((${#missing[@]})); then
+  echo "setup: installing ${missing[*]}"
+  SUDO=""
+  if [ "$(id -u)" != 0 ]; then SUDO=sudo; fi
+  export DEBIAN_FRONTEND=noninteractive
+  $SUDO apt-get update -qq
+  $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+else
+  echo "setup: all packages present"
+fi
