@@ -58,6 +58,8 @@ typedef struct mjfVehicleState_ {
 
 /* The typed per-vehicle setpoint bus. Guidance and formation plugins write it; attitude plugins
  * read it. The host clears the diagnostic fields to NaN before each formation tick. */
+/* Before each formation tick the host fills every follower's pos[2] (altitude setpoint), vel[2],
+ * acc[2] (0) and yaw (0) and sets sliding to NaN; formation plugins write only x and y. */
 typedef struct mjfSetpoint_ {
   double acc[3];     /* desired acceleration, m/s^2, world frame (x, y horizontal command; z feedforward) */
   double pos[3];     /* reference position, m (z: altitude setpoint) */
@@ -68,7 +70,8 @@ typedef struct mjfSetpoint_ {
 
 /* One actuator an attitude plugin drives, resolved by the host from the composed model. */
 typedef struct mjfActuatorInfo_ {
-  double site_pos[3];    /* m, body frame position of the actuator's site (0 for joint actuators) */
+  double site_pos[3];    /* m, actuator site relative to the vehicle's centre of mass, body-frame axes
+                            (0 for joint actuators) */
   double gear[6];        /* actuator gear: force (0..2) and torque (3..5) per unit control */
   double ctrl_min;       /* ctrlrange (or -inf/inf when unlimited) */
   double ctrl_max;
