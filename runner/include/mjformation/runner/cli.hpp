@@ -1,0 +1,43 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// The command-line interface, as a library so tests drive exactly what users run.
+#ifndef MJFORMATION_RUNNER_CLI_HPP_
+#define MJFORMATION_RUNNER_CLI_HPP_
+
+#include <CLI/CLI.hpp>
+#include <string>
+#include <vector>
+
+namespace mjf::runner {
+
+struct CliCommands {
+  CLI::App* run = nullptr;
+  CLI::App* check = nullptr;
+  CLI::App* plugins = nullptr;
+  CLI::App* bench = nullptr;
+  std::string experiment;
+  std::string out;
+  std::vector<std::string> overrides;
+  std::vector<std::string> plugin_path;
+  bool overwrite = false;
+  bool no_render = false;
+  bool quiet = false;
+  // bench
+  std::vector<int> bench_followers;
+  double bench_duration = 0;
+  int bench_repeats = 1;
+  std::string bench_json;
+};
+
+void AddCommands(CLI::App& app, CliCommands* commands);
+// Runs the chosen subcommand; returns the process exit code:
+// 0 ok, 1 bad input (nothing run), 2 usage, 3 the run stopped early (partial results kept).
+int Dispatch(const CLI::App& app, const CliCommands& commands);
+
+// `mjformation bench` (runner/src/bench.cc).
+void AddBenchCommand(CLI::App& app, CliCommands* commands);
+int BenchCommand(const CliCommands& commands);
+
+}  // namespace mjf::runner
+
+#endif  // MJFORMATION_RUNNER_CLI_HPP_

@@ -1,0 +1,476 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+#include "mjformation/runner/config.hpp"
+
+#include <toml++/toml.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "mjformation/runner/paths.hpp"
+
+namespace mjf::runner {
+namespace {
+
+// Formats "FILE:LINE: [section] key: message".
+class Reporter {
+ public:
+  explicit Reporter(std::string path) : path_(std::move(path)) {}
+  [[noreturn]] void Fail(const toml::node* node, const std::string& where,
+                         const std::string& message) const {
+    std::ostringstream out;
+    out << path_;
+    if (node && node->source().begin.line > 0) out << ":" << node->source().begin.line;
+    out << ": " << where << ": " << message;
+    throw ConfigError(out.str());
+  }
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+};
+
+const char* TypeName(const toml::node& node) {
+  switch (node.type()) {
+    case toml::node_type::table:
+      return "a table";
+    case toml::node_type::array:
+      return "an array";
+    case toml::node_type::string:
+      return "a string";
+    case toml::node_type::integer:
+      return "an integer";
+    case toml::node_type::floating_point:
+      return "a number";
+    case toml::node_type::boolean:
+      return "a boolean";
+    default:
+      return "a date/time";
+  }
+}
+
+// Typed access to one table with unknown-key detection.
+class Section {
+ public:
+  Section(const Reporter& reporter, const toml::table* table, std::string name)
+      : reporter_(reporter), table_(table), name_(std::move(name)) {}
+
+  bool Has(const std::string& key) const { return table_ && table_->contains(key); }
+  const toml::node* Node(const std::string& key) const {
+    return table_ ? table_->get(key) : nullptr;
+  }
+  std::string Where(const std::string& key) const { return "[" + name_ + "] " + key; }
+  [[noreturn]] void Fail(const std::string& key, const std::string& message) const {
+    reporter_.Fail(Node(key) ? Node(key) : table_, Where(key), message);
+  }
+
+  double Number(const std::string& key, double fallback) {
+    used_.insert(key);
+    const toml::node* node = Node(key);
+    if (!node) return fallback;
+    return AsNumber(*node, key);
+  }
+  double AsNumber(const toml::node& node, const std::string& key) const {
+    if (auto v = node.value_exact<double>()) {
+      if (!std::isfinite(*v)) Fail(key, "expected a finite number");
+      return *v;
+    }
+    if (auto v = node.value_exact<int64_t>()) return static_cast<double>(*v);
+    reporter_.Fail(&node, Where(key), std::string("expected a number, got ") + TypeName(node));
+  }
+  int64_t Integer(const std::string& key, int64_t fallback) {
+    used_.insert(key);
+    const toml::node* node = Node(key);
+    if (!node) return fallback;
+    if (auto v = node->value_exact<int64_t>()) return *v;
+    Fail(key, std::string("expected an integer, got ") + TypeName(*node));
+  }
+  bool Bool(const std::string& key, bool fallback) {
+    used_.insert(key);
+    const toml::node* node = Node(key);
+    if (!node) return fallback;
+    if (auto v = node->value_exact<bool>()) return *v;
+    Fail(key, std::string("expected true or false, got ") + TypeName(*node));
+  }
+  std::string String(const std::string& key, const std::string& fallback) {
+    used_.insert(key);
+    const toml::node* node = Node(key);
+    if (!node) return fallback;
+    if (auto v = node->value_exact<std::string>()) return *v;
+    Fail(key, std::string("expected a string, got ") + TypeName(*node));
+  }
+  const toml::array* Array(const std::string& key) {
+    used_.insert(key);
+    const toml::node* node = Node(key);
+    if (!node) return nullptr;
+    if (const toml::array* a = node->as_array()) return a;
+    Fail(key, std::string("expected an array, got ") + TypeName(*node));
+  }
+  std::vector<double> Numbers(const std::string& key, std::vector<double> fallback,
+                              int expected_size = -1) {
+    const toml::array* a = Array(key);
+    if (!a) return fallback;
+    std::vector<double> out;
+    for (const toml::node& item : *a) out.push_back(AsNumber(item, key));
+    if (expected_size >= 0 && static_cast<int>(out.size()) != expected_size) {
+      Fail(key, "expected " + std::to_string(expected_size) + " numbers, got " +
+                    std::to_string(out.size()));
+    }
+    return out;
+  }
+  void MarkUsed(const std::string& key) { used_.insert(key); }
+
+  // Refuses keys this section does not define, listing the ones it does.
+  void RejectUnknown() const {
+    if (!table_) return;
+    for (auto&& [key, node] : *table_) {
+      const std::string k(key.str());
+      if (used_.count(k)) continue;
+      std::string known;
+      for (const auto& u : used_) known += (known.empty() ? "" : ", ") + u;
+      reporter_.Fail(&node, Where(k), "unknown key (this section knows: " + known + ")");
+    }
+  }
+  const toml::table* table() const { return table_; }
+
+ private:
+  const Reporter& reporter_;
+  const toml::table* table_;
+  std::string name_;
+  std::set<std::string> used_;
+};
+
+// TOML value -> the ABI's attribute string ("3 1" for arrays of numbers).
+std::string AttributeText(const Reporter& reporter, const toml::node& node,
+                          const std::string& where) {
+  char buf[64];
+  if (auto v = node.value_exact<double>()) {
+    std::snprintf(buf, sizeof(buf), "%.17g", *v);
+    return buf;
+  }
+  if (auto v = node.value_exact<int64_t>()) return std::to_string(*v);
+  if (auto v = node.value_exact<bool>()) return *v ? "true" : "false";
+  if (auto v = node.value_exact<std::string>()) return *v;
+  if (const toml::array* a = node.as_array()) {
+    std::string out;
+    for (const toml::node& item : *a) {
+      if (item.is_array() || item.is_table()) {
+        reporter.Fail(&item, where, "nested arrays are not plugin attributes");
+      }
+      out += (out.empty() ? "" : " ") + AttributeText(reporter, item, where);
+    }
+    return out;
+  }
+  reporter.Fail(&node, where, std::string("a plugin attribute cannot be ") + TypeName(node));
+}
+
+PluginSection ReadPluginSection(const Reporter& reporter, const toml::table& root,
+                                const std::string& name, const std::string& default_plugin,
+                                const std::set<std::string>& reserved) {
+  PluginSection out;
+  out.section = name;
+  const toml::node* node = root.get(name);
+  if (node && !node->is_table()) {
+    reporter.Fail(node, "[" + name + "]", "expected a table");
+  }
+  const toml::table* table = node ? node->as_table() : nullptr;
+  out.plugin = default_plugin;
+  if (table) {
+    if (const toml::node* p = table->get("plugin")) {
+      auto v = p->value_exact<std::string>();
+      if (!v) reporter.Fail(p, "[" + name + "] plugin", "expected a string (a plugin name)");
+      out.plugin = *v;
+      out.line = static_cast<int>(p->source().begin.line);
+    }
+    for (auto&& [key, value] : *table) {
+      const std::string k(key.str());
+      if (k == "plugin" || reserved.count(k)) continue;
+      out.attributes[k] = {AttributeText(reporter, value, "[" + name + "] " + k),
+                           static_cast<int>(value.source().begin.line)};
+    }
+  }
+  if (out.plugin.empty()) {
+    reporter.Fail(table, "[" + name + "] plugin", "missing: name the plugin to use");
+  }
+  return out;
+}
+
+// Applies "section.key=value" overrides by parsing the value as TOML.
+void ApplyOverrides(toml::table& root, const std::vector<std::string>& overrides) {
+  for (const std::string& item : overrides) {
+    const auto eq = item.find('=');
+    if (eq == std::string::npos) {
+      throw ConfigError("override '" + item + "': expected section.key=value");
+    }
+    std::string path = item.substr(0, eq);
+    const std::string value = item.substr(eq + 1);
+    toml::table parsed;
+    try {
+      parsed = toml::parse("v = " + value);
+    } catch (const toml::parse_error& e) {
+      throw ConfigError("override '" + item + "': value is not TOML (" +
+                        std::string(e.description()) + "); quote strings: key=\"text\"");
+    }
+    toml::table* table = &root;
+    std::size_t start = 0;
+    for (std::size_t dot; (dot = path.find('.', start)) != std::string::npos; start = dot + 1) {
+      const std::string part = path.substr(start, dot - start);
+      if (!table->contains(part)) table->insert(part, toml::table{});
+      table = (*table)[part].as_table();
+      if (!table) throw ConfigError("override '" + item + "': '" + part + "' is not a table");
+    }
+    const std::string key = path.substr(start);
+    if (key.empty() || start == 0) {
+      throw ConfigError("override '" + item + "': expected section.key=value");
+    }
+    table->insert_or_assign(key, *parsed.get("v"));
+  }
+}
+
+}  // namespace
+
+ExperimentConfig ParseExperiment(const std::string& text, const std::string& path,
+                                 const std::vector<std::string>& overrides) {
+  Reporter reporter(path);
+  toml::table root;
+  try {
+    root = toml::parse(text, path);
+  } catch (const toml::parse_error& e) {
+    std::ostringstream out;
+    out << path << ":" << e.source().begin.line << ":" << e.source().begin.column
+        << ": TOML syntax error: " << e.description();
+    throw ConfigError(out.str());
+  }
+  ApplyOverrides(root, overrides);
+
+  const std::set<std::string> known_sections = {"run",       "vehicles", "topology", "leader",
+                                                "formation", "attitude", "render"};
+  for (auto&& [key, node] : root) {
+    if (!known_sections.count(std::string(key.str()))) {
+      reporter.Fail(&node, "[" + std::string(key.str()) + "]",
+                    "unknown section (known: run, vehicles, topology, leader, formation, "
+                    "attitude, render)");
+    }
+    if (!node.is_table()) {
+      reporter.Fail(&node, std::string(key.str()), "expected a [section] table");
+    }
+  }
+  auto table_of = [&](const char* name) { return root.get_as<toml::table>(name); };
+
+  ExperimentConfig c;
+  c.source_path = path;
+  c.source_text = text;
+  c.overrides = overrides;
+  if (!overrides.empty()) {
+    std::ostringstream merged;
+    merged << root;
+    c.effective_text = merged.str() + "\n";
+  }
+
+  Section run(reporter, table_of("run"), "run");
+  c.name = run.String("name", "");
+  c.duration = run.Number("duration", c.duration);
+  c.timestep = run.Number("timestep", c.timestep);
+  const int64_t seed = run.Integer("seed", 1);
+  if (seed < 0) run.Fail("seed", "must be >= 0");
+  c.seed = static_cast<uint64_t>(seed);
+  c.record_rate = run.Number("record_rate", c.record_rate);
+  {
+    auto w = run.Numbers("metric_window", {c.metric_window[0], c.metric_window[1]}, 2);
+    c.metric_window = {w[0], w[1]};
+  }
+  c.paper_experiment = static_cast<int>(run.Integer("paper_experiment", 0));
+  c.reaching_band = run.Number("reaching_band", 0.0);
+  if (const toml::array* a = run.Array("plugin_path")) {
+    for (const toml::node& item : *a) {
+      auto v = item.value_exact<std::string>();
+      if (!v) reporter.Fail(&item, "[run] plugin_path", "expected strings (folders)");
+      c.plugin_path.push_back(ResolveRelative(*v, path));
+    }
+  }
+  run.RejectUnknown();
+  if (c.duration <= 0) run.Fail("duration", "must be > 0 s");
+  if (c.timestep <= 0 || c.timestep > 0.01) run.Fail("timestep", "must be in (0, 0.01] s");
+  if (c.record_rate <= 0 || c.record_rate > 1.0 / c.timestep) {
+    run.Fail("record_rate", "must be in (0, 1/timestep] Hz");
+  }
+  if (!(c.metric_window[0] < c.metric_window[1])) {
+    run.Fail("metric_window", "expected [start, end] with start < end");
+  }
+  if (c.paper_experiment < 0 || c.paper_experiment > 3) {
+    run.Fail("paper_experiment", "must be 1, 2 or 3 (or 0: none)");
+  }
+  if (c.name.empty()) {
+    // Default name: the file's stem.
+    std::string stem = path.substr(path.find_last_of('/') + 1);
+    c.name = stem.substr(0, stem.rfind('.'));
+  }
+
+  Section vehicles(reporter, table_of("vehicles"), "vehicles");
+  c.model = vehicles.String("model", c.model);
+  c.model_path = ResolveModel(c.model, path);
+  c.scene_path = ResolveModel(vehicles.String("scene", "scene"), path);
+  c.followers = static_cast<int>(vehicles.Integer("followers", c.followers));
+  c.altitude = vehicles.Number("altitude", c.altitude);
+  {
+    auto s = vehicles.Numbers("leader_start", {c.leader_start[0], c.leader_start[1]}, 2);
+    c.leader_start = {s[0], s[1]};
+  }
+  if (const toml::array* a = vehicles.Array("follower_start")) {
+    for (const toml::node& item : *a) {
+      const toml::array* xy = item.as_array();
+      if (!xy || xy->size() != 2) {
+        reporter.Fail(&item, "[vehicles] follower_start", "expected [[x, y], ...] in m");
+      }
+      c.follower_start.push_back({vehicles.AsNumber(*xy->get(0), "follower_start"),
+                                  vehicles.AsNumber(*xy->get(1), "follower_start")});
+    }
+  }
+  c.start_jitter = vehicles.Number("start_jitter", 0.0);
+  c.rotor_model = vehicles.String("rotor_model", c.rotor_model);
+  vehicles.RejectUnknown();
+  if (c.followers < 1 || c.followers > 100000) vehicles.Fail("followers", "must be in [1, 100000]");
+  if (!c.follower_start.empty() && static_cast<int>(c.follower_start.size()) != c.followers) {
+    vehicles.Fail("follower_start", "has " + std::to_string(c.follower_start.size()) +
+                                        " entries for " + std::to_string(c.followers) +
+                                        " followers");
+  }
+  if (c.altitude <= 0) vehicles.Fail("altitude", "must be > 0 m");
+  if (c.start_jitter < 0) vehicles.Fail("start_jitter", "must be >= 0 m");
+  if (c.rotor_model != "actuator" && c.rotor_model != "wrench") {
+    vehicles.Fail("rotor_model", "must be \"actuator\" or \"wrench\"");
+  }
+
+  Section topology(reporter, table_of("topology"), "topology");
+  c.leader_weight.assign(c.followers, 0.0);
+  if (const toml::array* a = topology.Array("leader_links")) {
+    for (const toml::node& item : *a) {
+      auto v = item.value_exact<int64_t>();
+      if (!v || *v < 1 || *v > c.followers) {
+        reporter.Fail(&item, "[topology] leader_links",
+                      "expected follower numbers 1.." + std::to_string(c.followers));
+      }
+      c.leader_weight[*v - 1] = 1.0;
+    }
+  } else if (table_of("topology")) {
+    topology.Fail("leader_links", "missing: which followers receive the leader's state");
+  }
+  if (const toml::array* a = topology.Array("leader_weights")) {
+    if (static_cast<int>(a->size()) != c.followers) {
+      topology.Fail("leader_weights", "expected one weight a_i0 per follower");
+    }
+    for (int i = 0; i < c.followers; ++i) {
+      c.leader_weight[i] = topology.AsNumber(*a->get(i), "leader_weights");
+    }
+  }
+  const std::string generator = topology.String("generate", "");
+  if (const toml::array* a = topology.Array("edges")) {
+    for (const toml::node& item : *a) {
+      const toml::array* e = item.as_array();
+      if (!e || e->size() < 2 || e->size() > 3) {
+        reporter.Fail(&item, "[topology] edges",
+                      "expected [from, to] or [from, to, weight] (follower `to` receives "
+                      "`from`'s state)");
+      }
+      auto from = e->get(0)->value_exact<int64_t>();
+      auto to = e->get(1)->value_exact<int64_t>();
+      if (!from || !to || *from < 1 || *to < 1 || *from > c.followers || *to > c.followers) {
+        reporter.Fail(&item, "[topology] edges",
+                      "follower numbers must be integers in 1.." + std::to_string(c.followers));
+      }
+      ExperimentConfig::Edge edge{static_cast<int>(*from - 1), static_cast<int>(*to - 1), 1.0};
+      if (e->size() == 3) edge.weight = topology.AsNumber(*e->get(2), "edges");
+      c.edges.push_back(edge);
+    }
+  }
+  if (!generator.empty()) {
+    // Generated graphs for large N: "chain" (1 -> 2 -> ... -> N) or "ring" (chain + N -> 1).
+    if (generator != "chain" && generator != "ring") {
+      topology.Fail("generate", "must be \"chain\" or \"ring\"");
+    }
+    if (!c.edges.empty()) topology.Fail("generate", "give either edges or generate, not both");
+    for (int i = 1; i < c.followers; ++i) c.edges.push_back({i - 1, i, 1.0});
+    if (generator == "ring" && c.followers > 2) c.edges.push_back({c.followers - 1, 0, 1.0});
+  }
+  topology.RejectUnknown();
+  if (!table_of("topology")) {
+    // Default: the leader talks to follower 1 and the followers form a chain 1 -> 2 -> ... -> N.
+    c.leader_weight[0] = 1.0;
+    for (int i = 1; i < c.followers; ++i) c.edges.push_back({i - 1, i, 1.0});
+  }
+
+  c.leader = ReadPluginSection(reporter, root, "leader", "circle", {});
+  c.formation = ReadPluginSection(reporter, root, "formation", "", {"shape"});
+  c.attitude = ReadPluginSection(reporter, root, "attitude", "pd_cascade", {});
+
+  const toml::table* formation_table = table_of("formation");
+  const toml::node* shape_node = formation_table ? formation_table->get("shape") : nullptr;
+  if (shape_node && !shape_node->is_table()) {
+    reporter.Fail(shape_node, "[formation.shape]", "expected a table");
+  }
+  Section shape(reporter, shape_node ? shape_node->as_table() : nullptr, "formation.shape");
+  c.shape.type = shape.String("type", shape_node ? "circle" : "none");
+  c.shape.radius = shape.Number("radius", c.shape.radius);
+  c.shape.omega = shape.Number("omega", c.shape.omega);
+  c.shape.phase0 = shape.Number("phase0", c.shape.phase0);
+  c.shape.phase_step = shape.Number("phase_step", -1.0);
+  shape.RejectUnknown();
+  if (c.shape.type != "circle" && c.shape.type != "none") {
+    shape.Fail("type", "must be \"circle\" or \"none\"");
+  }
+  if (c.shape.type == "circle" && c.shape.radius <= 0) shape.Fail("radius", "must be > 0 m");
+
+  Section render(reporter, table_of("render"), "render");
+  c.render.snapshots = render.Numbers("snapshots", {});
+  c.render.width = static_cast<int>(render.Integer("width", c.render.width));
+  c.render.height = static_cast<int>(render.Integer("height", c.render.height));
+  c.render.camera = render.String("camera", c.render.camera);
+  c.render.distance = render.Number("distance", c.render.distance);
+  c.render.azimuth = render.Number("azimuth", c.render.azimuth);
+  c.render.elevation = render.Number("elevation", c.render.elevation);
+  {
+    auto l = render.Numbers("lookat", {0, 0, 0}, 3);
+    c.render.lookat = {l[0], l[1], l[2]};
+  }
+  c.render.shadows = render.Bool("shadows", c.render.shadows);
+  c.render.trail_seconds = render.Number("trail_seconds", c.render.trail_seconds);
+  c.render.video = render.Bool("video", c.render.video);
+  c.render.video_fps = render.Number("video_fps", c.render.video_fps);
+  c.render.video_width = static_cast<int>(render.Integer("video_width", c.render.video_width));
+  c.render.video_height = static_cast<int>(render.Integer("video_height", c.render.video_height));
+  render.RejectUnknown();
+  for (double t : c.render.snapshots) {
+    if (t < 0 || t > c.duration + 1e-9) {
+      render.Fail("snapshots", "times must lie in [0, duration]");
+    }
+  }
+  if (c.render.width < 16 || c.render.height < 16 || c.render.width > 4096 ||
+      c.render.height > 4096) {
+    render.Fail("width", "width and height must be in [16, 4096] pixels");
+  }
+  if (c.render.camera != "follow" && c.render.camera != "leader" && c.render.camera != "fixed") {
+    render.Fail("camera", "must be \"follow\" (formation), \"leader\" or \"fixed\"");
+  }
+  if (c.render.video_fps <= 0 || c.render.video_fps > 120) {
+    render.Fail("video_fps", "must be in (0, 120]");
+  }
+  if (c.render.video_width < 16 || c.render.video_height < 16 || c.render.video_width > 4096 ||
+      c.render.video_height > 4096 || c.render.video_width % 2 || c.render.video_height % 2) {
+    render.Fail("video_width", "video size must be even and in [16, 4096] pixels");
+  }
+  if (c.render.trail_seconds < 0) render.Fail("trail_seconds", "must be >= 0 s");
+  return c;
+}
+
+ExperimentConfig LoadExperiment(const std::string& path,
+                                const std::vector<std::string>& overrides) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ConfigError(path + ": cannot open the experiment file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return ParseExperiment(text.str(), path, overrides);
+}
+
+}  // namespace mjf::runner

@@ -1,0 +1,167 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+#include "mjformation/runner/output.hpp"
+
+#include <dirent.h>
+#include <errno.h>
+#include <fmt/format.h>
+#include <openssl/evp.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "mjformation/runner/simulation.hpp"
+
+namespace mjf::runner {
+namespace {
+
+void MakeDirs(const std::string& path) {
+  std::string partial;
+  size_t start = 0;
+  while (start <= path.size()) {
+    const size_t slash = path.find('/', start);
+    partial = path.substr(0, slash);
+    if (!partial.empty() && mkdir(partial.c_str(), 0755) != 0 && errno != EEXIST) {
+      throw OutputError(partial + ": cannot create directory: " + std::strerror(errno));
+    }
+    if (slash == std::string::npos) break;
+    start = slash + 1;
+  }
+}
+
+bool IsEmptyDir(const std::string& path) {
+  DIR* d = opendir(path.c_str());
+  if (!d) return true;
+  bool empty = true;
+  while (dirent* e = readdir(d)) {
+    if (std::strcmp(e->d_name, ".") && std::strcmp(e->d_name, "..")) empty = false;
+  }
+  closedir(d);
+  return empty;
+}
+
+void RemoveTree(const std::string& path) {
+  DIR* d = opendir(path.c_str());
+  if (!d) return;
+  while (dirent* e = readdir(d)) {
+    if (!std::strcmp(e->d_name, ".") || !std::strcmp(e->d_name, "..")) continue;
+    const std::string child = path + "/" + e->d_name;
+    struct stat st;
+    if (lstat(child.c_str(), &st) == 0 && S_ISDIR(st.st_mode)) {
+      RemoveTree(child);
+      rmdir(child.c_str());
+    } else {
+      unlink(child.c_str());
+    }
+  }
+  closedir(d);
+}
+
+}  // namespace
+
+RunDirectory::RunDirectory(const std::string& path, bool overwrite) : path_(path) {
+  if (!IsEmptyDir(path)) {
+    if (!overwrite) {
+      throw OutputError(path +
+                        ": the run directory exists and is not empty; choose another "
+                        "--out or pass --overwrite to replace it");
+    }
+    RemoveTree(path);
+  }
+  MakeDirs(path + "/snapshots");
+}
+
+void RunDirectory::WriteText(const std::string& name, const std::string& text) const {
+  const std::string target = Path(name);
+  const std::string tmp = target + ".tmp";
+  std::FILE* f = std::fopen(tmp.c_str(), "wb");
+  if (!f) throw OutputError(tmp + ": cannot write: " + std::strerror(errno));
+  const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
+  if (std::fclose(f) != 0 || !ok || std::rename(tmp.c_str(), target.c_str()) != 0) {
+    throw OutputError(target + ": cannot write: " + std::strerror(errno));
+  }
+}
+
+TimeseriesWriter::TimeseriesWriter(const std::string& path, int n_vehicles) : path_(path) {
+  file_ = std::fopen(path.c_str(), "wb");
+  if (!file_) throw OutputError(path + ": cannot write: " + std::strerror(errno));
+  static const char* const kColumns[] = {"px",     "py",   "pz",    "vx",     "vy",
+                                         "vz",     "roll", "pitch", "yaw",    "ax_cmd",
+                                         "ay_cmd", "sx",   "sy",    "slot_x", "slot_y"};
+  buffer_ = "t,sigma_f";
+  for (int i = 0; i < n_vehicles; ++i) {
+    for (const char* c : kColumns) fmt::format_to(std::back_inserter(buffer_), ",uav{}_{}", i, c);
+  }
+  buffer_ += "\n";
+}
+
+TimeseriesWriter::~TimeseriesWriter() {
+  if (file_) Close();
+}
+
+void TimeseriesWriter::Write(const Simulation& sim, double sigma_f,
+                             const std::vector<double>& slots) {
+  auto out = std::back_inserter(buffer_);
+  auto number = [&](double v) {
+    if (std::isfinite(v)) {
+      fmt::format_to(out, ",{:.9g}", v);
+    } else {
+      buffer_ += ",";  // empty cell: not applicable
+    }
+  };
+  fmt::format_to(out, "{:.6f}", sim.time());
+  number(sigma_f);
+  for (int i = 0; i < sim.n_vehicles(); ++i) {
+    const mjfVehicleState& s = sim.states()[i];
+    const mjfSetpoint& sp = sim.setpoints()[i];
+    const auto euler = EulerZYX(s.quat);
+    for (double v : s.pos) number(v);
+    for (double v : s.vel) number(v);
+    for (double v : euler) number(v);
+    number(sp.acc[0]);
+    number(sp.acc[1]);
+    number(sp.sliding[0]);
+    number(sp.sliding[1]);
+    number(slots[2 * i]);
+    number(slots[2 * i + 1]);
+  }
+  buffer_ += "\n";
+  if (buffer_.size() > (1u << 20)) Flush();
+}
+
+void TimeseriesWriter::Flush() {
+  if (!buffer_.empty() && std::fwrite(buffer_.data(), 1, buffer_.size(), file_) != buffer_.size()) {
+    throw OutputError(path_ + ": write failed: " + std::strerror(errno));
+  }
+  buffer_.clear();
+}
+
+void TimeseriesWriter::Close() {
+  Flush();
+  std::fclose(file_);
+  file_ = nullptr;
+}
+
+std::string ConfigEcho(const ExperimentConfig& config) {
+  std::string echo = "# Experiment file " + config.source_path + " as run by mjformation.\n";
+  if (config.overrides.empty()) return echo + config.source_text;
+  // With --set overrides the merged table is what ran (comments of the original are lost).
+  for (const auto& o : config.overrides) echo += "# with --set " + o + "\n";
+  return echo + config.effective_text;
+}
+
+std::string Sha256Hex(const std::string& bytes) {
+  unsigned char digest[EVP_MAX_MD_SIZE];
+  unsigned int size = 0;
+  EVP_Digest(bytes.data(), bytes.size(), digest, &size, EVP_sha256(), nullptr);
+  std::string hex;
+  for (unsigned int i = 0; i < size; ++i) hex += fmt::format("{:02x}", digest[i]);
+  return hex;
+}
+
+nlohmann::ordered_json JsonNumber(double value) {
+  return std::isfinite(value) ? nlohmann::ordered_json(value) : nlohmann::ordered_json(nullptr);
+}
+
+}  // namespace mjf::runner

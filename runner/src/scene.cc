@@ -1,0 +1,185 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+#include "mjformation/runner/scene.hpp"
+
+#include <mujoco/mujoco.h>
+#include <tinyxml2.h>
+
+#include <cstdio>
+#include <cstring>
+#include <set>
+
+namespace mjf::runner {
+namespace {
+
+using tinyxml2::XMLDocument;
+using tinyxml2::XMLElement;
+
+// Attributes that hold the name of an element of the vehicle, so are prefixed per copy.
+// Class, material, mesh, texture and hfield names are shared by all copies and left alone.
+const char* const kNameAttributes[] = {
+    "name",     "joint", "site",  "body",    "objname",   "refname",    "tendon",
+    "actuator", "geom",  "body1", "body2",   "geom1",     "geom2",      "joint1",
+    "joint2",   "site1", "site2", "refsite", "cranksite", "slidersite", "jointinparent"};
+
+void Load(XMLDocument& doc, const std::string& path, const char* what) {
+  if (doc.LoadFile(path.c_str()) != tinyxml2::XML_SUCCESS) {
+    throw SceneError(path + ":" + std::to_string(doc.ErrorLineNum()) + ": cannot read the " + what +
+                     ": " + doc.ErrorStr());
+  }
+  if (!doc.RootElement() || std::strcmp(doc.RootElement()->Name(), "mujoco") != 0) {
+    throw SceneError(path + ": the " + std::string(what) + " is not MJCF (no <mujoco> root)");
+  }
+}
+
+XMLElement* ChildOrNew(XMLDocument& doc, XMLElement* parent, const char* tag) {
+  XMLElement* e = parent->FirstChildElement(tag);
+  if (!e) e = parent->InsertNewChildElement(tag);
+  (void)doc;
+  return e;
+}
+
+void CopyAttributes(const XMLElement* from, XMLElement* to) {
+  for (auto* a = from->FirstAttribute(); a; a = a->Next()) to->SetAttribute(a->Name(), a->Value());
+}
+
+void PrefixNames(XMLElement* e, const std::string& prefix) {
+  for (const char* attr : kNameAttributes) {
+    if (const char* v = e->Attribute(attr)) e->SetAttribute(attr, (prefix + v).c_str());
+  }
+  for (XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
+    PrefixNames(c, prefix);
+  }
+}
+
+std::string Directory(const std::string& path) {
+  const auto slash = path.find_last_of('/');
+  return slash == std::string::npos ? "." : path.substr(0, slash);
+}
+
+std::string FormatVec(const std::array<double, 3>& v) {
+  char buf[128];
+  std::snprintf(buf, sizeof(buf), "%.17g %.17g %.17g", v[0], v[1], v[2]);
+  return buf;
+}
+
+}  // namespace
+
+std::string VehiclePrefix(int vehicle) { return "uav" + std::to_string(vehicle) + "_"; }
+
+std::string ComposeScene(const SceneRequest& request) {
+  XMLDocument scene, vehicle;
+  Load(scene, request.scene_path, "scene model");
+  Load(vehicle, request.vehicle_path, "vehicle model");
+  XMLElement* root = scene.RootElement();
+  const XMLElement* vroot = vehicle.RootElement();
+  root->SetAttribute("model", "mjformation");
+
+  // The vehicle's top-level body: exactly one, named "vehicle".
+  const XMLElement* vworld = vroot->FirstChildElement("worldbody");
+  const XMLElement* body = nullptr;
+  for (const XMLElement* b = vworld ? vworld->FirstChildElement("body") : nullptr; b;
+       b = b->NextSiblingElement("body")) {
+    if (b->Attribute("name", "vehicle")) {
+      if (body) throw SceneError(request.vehicle_path + ": two top-level bodies named 'vehicle'");
+      body = b;
+    }
+  }
+  if (!body) {
+    throw SceneError(request.vehicle_path +
+                     ": no top-level <body name=\"vehicle\"> in <worldbody> (see "
+                     "docs/ARCHITECTURE.md, vehicle model contract)");
+  }
+
+  // Global sections: the vehicle's settings are merged into the scene's.
+  const std::string vdir = Directory(request.vehicle_path);
+  for (const XMLElement* s = vroot->FirstChildElement(); s; s = s->NextSiblingElement()) {
+    const std::string tag = s->Name();
+    if (tag == "compiler" || tag == "option" || tag == "size") {
+      XMLElement* target = ChildOrNew(scene, root, tag.c_str());
+      CopyAttributes(s, target);
+      for (const XMLElement* c = s->FirstChildElement(); c; c = c->NextSiblingElement()) {
+        XMLElement* t = ChildOrNew(scene, target, c->Name());
+        CopyAttributes(c, t);
+      }
+    } else if (tag == "default" || tag == "asset") {
+      XMLElement* target = ChildOrNew(scene, root, tag.c_str());
+      if (tag == "default") CopyAttributes(s, target);
+      std::set<std::string> existing;
+      for (XMLElement* c = target->FirstChildElement(); c; c = c->NextSiblingElement()) {
+        if (const char* n = c->Attribute("name")) existing.insert(std::string(c->Name()) + n);
+        if (const char* n = c->Attribute("class")) existing.insert(std::string(c->Name()) + n);
+      }
+      for (const XMLElement* c = s->FirstChildElement(); c; c = c->NextSiblingElement()) {
+        const char* n = c->Attribute(tag == "default" ? "class" : "name");
+        if (n && existing.count(std::string(c->Name()) + n)) continue;
+        XMLElement* copy = c->DeepClone(&scene)->ToElement();
+        // Asset files are found relative to the vehicle file, wherever the scene is written.
+        if (const char* file = copy->Attribute("file"); file && file[0] != '/') {
+          copy->SetAttribute("file", (vdir + "/" + file).c_str());
+        }
+        target->InsertEndChild(copy);
+      }
+    }
+  }
+  // mj_step1/mj_step2 (the split the controllers need to read sensors of the current state)
+  // integrates with semi-implicit Euler in MuJoCo 2.2.2 whatever the model says: say so here.
+  XMLElement* option = ChildOrNew(scene, root, "option");
+  char ts[64];
+  std::snprintf(ts, sizeof(ts), "%.17g", request.timestep);
+  option->SetAttribute("timestep", ts);
+  option->SetAttribute("integrator", "Euler");
+
+  XMLElement* visual = ChildOrNew(scene, root, "visual");
+  XMLElement* global = ChildOrNew(scene, visual, "global");
+  global->SetAttribute("offwidth",
+                       std::max(request.offscreen_width, global->IntAttribute("offwidth")));
+  global->SetAttribute("offheight",
+                       std::max(request.offscreen_height, global->IntAttribute("offheight")));
+
+  XMLElement* world = ChildOrNew(scene, root, "worldbody");
+  const int n_vehicles = static_cast<int>(request.positions.size());
+  for (int i = 0; i < n_vehicles; ++i) {
+    XMLElement* copy = body->DeepClone(&scene)->ToElement();
+    PrefixNames(copy, VehiclePrefix(i));
+    copy->SetAttribute("pos", FormatVec(request.positions[i]).c_str());
+    world->InsertEndChild(copy);
+  }
+  // Per-vehicle sections: actuators, sensors, contact pairs/excludes, tendons, equalities.
+  for (const char* tag : {"actuator", "sensor", "contact", "tendon", "equality"}) {
+    const XMLElement* s = vroot->FirstChildElement(tag);
+    if (!s) continue;
+    if (request.strip_actuators && std::strcmp(tag, "actuator") == 0) continue;
+    XMLElement* target = ChildOrNew(scene, root, tag);
+    for (int i = 0; i < n_vehicles; ++i) {
+      for (const XMLElement* c = s->FirstChildElement(); c; c = c->NextSiblingElement()) {
+        XMLElement* copy = c->DeepClone(&scene)->ToElement();
+        PrefixNames(copy, VehiclePrefix(i));
+        target->InsertEndChild(copy);
+      }
+    }
+  }
+  tinyxml2::XMLPrinter printer;
+  scene.Print(&printer);
+  return std::string("<!-- Composed by mjformation from ") + request.scene_path + " and " +
+         std::to_string(n_vehicles) + " copies of " + request.vehicle_path + " -->\n" +
+         printer.CStr();
+}
+
+mjModel_* CompileModel(const std::string& xml, const std::string& name) {
+  mjVFS vfs;
+  mj_defaultVFS(&vfs);
+  const char* file = "mjformation_scene.xml";
+  if (mj_makeEmptyFileVFS(&vfs, file, static_cast<int>(xml.size())) != 0) {
+    mj_deleteVFS(&vfs);
+    throw SceneError(name + ": cannot allocate the in-memory model file");
+  }
+  const int index = mj_findFileVFS(&vfs, file);
+  std::memcpy(vfs.filedata[index], xml.data(), xml.size());
+  char error[1024] = {0};
+  mjModel* m = mj_loadXML(file, &vfs, error, sizeof(error));
+  mj_deleteVFS(&vfs);
+  if (!m) throw SceneError(name + ": MuJoCo cannot load the model: " + error);
+  return m;
+}
+
+}  // namespace mjf::runner

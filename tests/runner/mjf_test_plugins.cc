@@ -1,0 +1,77 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+// Plugins for the runner's tests: a guidance plugin with a required attribute, and one that
+// goes non-finite after a given time (to test how a run that breaks mid-way is kept).
+#include <limits>
+#include <mjformation/plugin_util.hpp>
+
+namespace {
+
+struct Hold {
+  int vehicle;
+  double position[3];
+  double nan_after;  // s; negative: never
+};
+
+const mjfAttribute kRequiredAttributes[] = {{"value", nullptr, "a required number"}};
+const mjfAttribute kNanAttributes[] = {{"after", "1.0", "s: from this time on, command NaN"}};
+
+void* CreateHold(const mjfCreateContext* ctx, bool nan) {
+  return mjf::plugin::CreateOrExplain(ctx, [&]() -> void* {
+    mjf::plugin::Attributes attributes(ctx);
+    auto* h = new Hold{ctx->vehicle, {0, 0, 0}, -1};
+    if (nan) {
+      h->nan_after = attributes.Number("after");
+    } else {
+      attributes.Number("value");
+    }
+    for (int k = 0; k < 3; ++k) h->position[k] = ctx->initial_pos[k];
+    return h;
+  });
+}
+
+int ComputeHold(void* instance, const mjfStepContext* ctx) {
+  auto* h = static_cast<Hold*>(instance);
+  mjfSetpoint& sp = ctx->setpoints[h->vehicle];
+  const mjfVehicleState& s = ctx->states[h->vehicle];
+  const bool broken = h->nan_after >= 0 && ctx->time >= h->nan_after;
+  for (int k = 0; k < 2; ++k) {
+    sp.pos[k] = h->position[k];
+    sp.vel[k] = 0;
+    sp.acc[k] = broken ? std::numeric_limits<double>::quiet_NaN()
+                       : 2.0 * (h->position[k] - s.pos[k]) - 2.5 * s.vel[k];
+  }
+  return 0;
+}
+
+void Destroy(void* instance) { delete static_cast<Hold*>(instance); }
+
+const mjfPlugin kRequired = {MJF_ABI_VERSION,
+                             "test_required",
+                             MJF_KIND_GUIDANCE,
+                             "holds position; needs attribute 'value'",
+                             1,
+                             kRequiredAttributes,
+                             0,
+                             nullptr,
+                             [](const mjfCreateContext* c) { return CreateHold(c, false); },
+                             ComputeHold,
+                             nullptr,
+                             Destroy,
+                             nullptr};
+const mjfPlugin kNan = {MJF_ABI_VERSION,
+                        "test_nan",
+                        MJF_KIND_GUIDANCE,
+                        "holds position, then commands NaN",
+                        1,
+                        kNanAttributes,
+                        0,
+                        nullptr,
+                        [](const mjfCreateContext* c) { return CreateHold(c, true); },
+                        ComputeHold,
+                        nullptr,
+                        Destroy,
+                        nullptr};
+
+}  // namespace
+
+MJF_EXPORT_PLUGINS(&kRequired, &kNan)

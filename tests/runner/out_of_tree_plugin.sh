@@ -1,0 +1,59 @@
+#!/usr/bin/env bash
+# A plugin written in plain C, compiled outside the source tree against the INSTALLED header
+# only, loads from a config line and flies the leader. Usage: BUILD_DIR SOURCE_DIR WORK_DIR
+set -euo pipefail
+build=$1 src=$2 work=$3
+rm -rf "$work" && mkdir -p "$work/plugins"
+cmake --install "$build" --prefix "$work/prefix" >/dev/null
+cat > "$work/oot_hold.c" <<'C'
+#include <mjformation/plugin.h>
+#include <stdlib.h>
+typedef struct { int vehicle; double x, y; } Hold;
+static const mjfAttribute kAttributes[] = {{"gain", "1.5", "1/s^2: position gain"}};
+static void* Create(const mjfCreateContext* ctx) {
+  Hold* h = malloc(sizeof(Hold));
+  h->vehicle = ctx->vehicle; h->x = ctx->initial_pos[0]; h->y = ctx->initial_pos[1];
+  return h;
+}
+static int Compute(void* instance, const mjfStepContext* ctx) {
+  Hold* h = instance;
+  mjfSetpoint* sp = &ctx->setpoints[h->vehicle];
+  const mjfVehicleState* s = &ctx->states[h->vehicle];
+  sp->pos[0] = h->x; sp->pos[1] = h->y;
+  sp->acc[0] = 1.5 * (h->x - s->pos[0]) - 2.0 * s->vel[0];
+  sp->acc[1] = 1.5 * (h->y - s->pos[1]) - 2.0 * s->vel[1];
+  return 0;
+}
+static void Destroy(void* instance) { free(instance); }
+static const mjfPlugin kHold = {MJF_ABI_VERSION, "oot_hold", MJF_KIND_GUIDANCE,
+  "out-of-tree test plugin", 1, kAttributes, 0, NULL, Create, Compute, NULL, Destroy, NULL};
+static const mjfPlugin* const kPlugins[] = {&kHold};
+const mjfPlugin* const* mjf_plugin_entry(int* count) { *count = 1; return kPlugins; }
+C
+cc -std=c11 -Wall -Wextra -Werror -shared -fPIC -I"$work/prefix/include" \
+   -o "$work/plugins/liboot_hold.so" "$work/oot_hold.c"
+cat > "$work/exp.toml" <<'T'
+[run]
+name = "oot"
+duration = 1.0
+[vehicles]
+followers = 1
+altitude = 2.0
+leader_start = [0.0, 0.0]
+follower_start = [[3.0, 0.0]]
+[topology]
+leader_links = [1]
+[leader]
+plugin = "oot_hold"
+gain = 2.0
+[formation]
+plugin = "hover"
+[attitude]
+plugin = "pd_cascade"
+T
+"$work/prefix/bin/mjformation" plugins --plugin-path "$work/plugins" | grep -q "oot_hold"
+"$work/prefix/bin/mjformation" run "$work/exp.toml" --out "$work/run" \
+    --plugin-path "$work/plugins" --no-render -q
+grep -q '"complete": true' "$work/run/summary.json"
+grep -q '"name": "oot_hold"' "$work/run/summary.json"
+echo "out-of-tree plugin: built against $work/prefix/include, loaded and run: OK"
