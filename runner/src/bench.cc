@@ -1,18 +1,253 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
-// `mjformation bench`: not yet implemented; see issue 4.
+// `mjformation bench`: in one command, times (a) bare MuJoCo stepping of the composed scene with
+// fixed controls and (b) the full pipeline (plugins, recording, metrics; no rendering) for the
+// same scene and step count, and prints both and their ratio; repeats for several swarm sizes;
+// reports peak memory per point (each point runs in its own child process so its peak RSS is
+// its own) and, on request, offscreen rendering cost.
+#include <fmt/format.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <functional>
+#include <nlohmann/json.hpp>
+
+#include "mjformation/render.hpp"
 #include "mjformation/runner/cli.hpp"
+#include "mjformation/runner/output.hpp"
+#include "mjformation/runner/run.hpp"
+#include "mjformation/runner/scene.hpp"
+#include "mjformation/runner/simulation.hpp"
 
 namespace mjf::runner {
+namespace {
 
-void AddBenchCommand(CLI::App& app, CliCommands* commands) {
-  (void)app;
-  commands->bench = nullptr;
+using Clock = std::chrono::steady_clock;
+
+double Seconds(Clock::time_point since) {
+  return std::chrono::duration<double>(Clock::now() - since).count();
 }
 
-int BenchCommand(const CliCommands& commands) {
-  (void)commands;
-  return 2;
+double PeakRssMiB() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_maxrss / 1024.0;  // ru_maxrss is in KiB on Linux
+}
+
+// Runs `work` in a child process and returns what it printed as JSON (its peak RSS included).
+nlohmann::json InChild(const std::function<nlohmann::json()>& work) {
+  int fds[2];
+  if (pipe(fds) != 0) throw std::runtime_error("bench: pipe failed");
+  std::fflush(stdout);
+  const pid_t pid = fork();
+  if (pid < 0) throw std::runtime_error("bench: fork failed");
+  if (pid == 0) {
+    close(fds[0]);
+    nlohmann::json out;
+    try {
+      out = work();
+      out["peak_rss_mib"] = PeakRssMiB();
+    } catch (const std::exception& e) {
+      out = {{"error", e.what()}};
+    }
+    const std::string text = out.dump();
+    ssize_t written = write(fds[1], text.data(), text.size());
+    (void)written;
+    close(fds[1]);
+    _exit(0);
+  }
+  close(fds[1]);
+  std::string text;
+  char buf[4096];
+  for (ssize_t n; (n = read(fds[0], buf, sizeof(buf))) > 0;) text.append(buf, n);
+  close(fds[0]);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  if (text.empty()) throw std::runtime_error("bench: the measuring child process died");
+  nlohmann::json out = nlohmann::json::parse(text);
+  if (out.contains("error")) throw std::runtime_error(out["error"].get<std::string>());
+  return out;
+}
+
+// The experiment resized to n followers: generated ring topology (leader -> follower 1), the
+// default start ring, circle shape phases spread over 2 pi.
+ExperimentConfig Resized(ExperimentConfig c, int n) {
+  if (n == c.followers) return c;
+  c.followers = n;
+  c.follower_start.clear();
+  c.leader_weight.assign(n, 0.0);
+  c.leader_weight[0] = 1.0;
+  c.edges.clear();
+  for (int i = 1; i < n; ++i) c.edges.push_back({i - 1, i, 1.0});
+  if (n > 2) c.edges.push_back({n - 1, 0, 1.0});
+  c.shape.phase_step = -1;
+  return c;
+}
+
+// (a) bare MuJoCo: the same composed model stepped with mj_step and constant hover controls.
+nlohmann::json BareMujoco(const ExperimentConfig& config) {
+  Simulation sim(config);  // composes the scene exactly as a run does
+  mjModel* m = CompileModel(sim.scene_xml(), "bench scene");
+  mjData* d = mj_makeData(m);
+  const double hover = sim.binding(0).info.mass * sim.binding(0).info.gravity /
+                       std::max(1, sim.actuators_per_vehicle());
+  for (int i = 0; i < m->nu; ++i) d->ctrl[i] = hover;
+  if (m->nu == 0) {
+    // Wrench rotor model: the same constant wrench every step, as xfrc_applied.
+    for (int i = 0; i < sim.n_vehicles(); ++i) {
+      d->xfrc_applied[6 * sim.binding(i).body + 2] = hover * sim.actuators_per_vehicle();
+    }
+  }
+  const int64_t steps = sim.total_steps();
+  const auto start = Clock::now();
+  for (int64_t k = 0; k < steps; ++k) mj_step(m, d);
+  const double wall = Seconds(start);
+  mj_deleteData(d);
+  mj_deleteModel(m);
+  return {{"steps", steps}, {"wall_s", wall}};
+}
+
+// (b) the full pipeline, recording to a scratch run directory, no rendering.
+nlohmann::json Pipeline(const ExperimentConfig& config, const std::string& scratch) {
+  RunOptions options;
+  options.out_dir = scratch;
+  options.overwrite = true;
+  options.render = false;
+  const RunResult r = RunExperiment(config, options);
+  if (!r.complete) throw std::runtime_error("bench run stopped early: " + r.error);
+  return {{"steps", r.steps},
+          {"wall_s", r.wall_time_s},
+          {"sigma_f_mean", r.summary["metrics"]["sigma_f_mean"]}};
+}
+
+nlohmann::json RenderCost(const ExperimentConfig& config) {
+  Simulation sim(config);
+  for (int k = 0; k < 100; ++k) {
+    sim.ComputeControls();
+    sim.Integrate();
+  }
+  sim.ComputeControls();
+  const auto& leader = sim.states()[0].pos;
+  const double target[3] = {leader[0], leader[1], leader[2]};
+  render::CameraSpec camera;
+  camera.distance = config.render.distance;
+  render::Overlay overlay;
+  nlohmann::json out;
+  auto time_frames = [&](int w, int h, bool shadows, int frames) {
+    render::OffscreenRenderer renderer(sim.model(), w, h, shadows);
+    renderer.Render(sim.data(), camera, overlay, target);  // warm-up
+    const auto start = Clock::now();
+    for (int k = 0; k < frames; ++k) renderer.Render(sim.data(), camera, overlay, target);
+    return Seconds(start) / frames;
+  };
+  out["snapshot_1280x720_shadows_ms"] = 1e3 * time_frames(1280, 720, true, 10);
+  out["snapshot_1280x720_noshadows_ms"] = 1e3 * time_frames(1280, 720, false, 10);
+  out["video_640x480_shadows_fps"] = 1.0 / time_frames(640, 480, true, 30);
+  out["video_640x480_noshadows_fps"] = 1.0 / time_frames(640, 480, false, 30);
+  return out;
+}
+
+}  // namespace
+
+void AddBenchCommand(CLI::App& app, CliCommands* c) {
+  c->bench = app.add_subcommand(
+      "bench",
+      "Time bare MuJoCo against the full pipeline on the same composed scene; scale the swarm");
+  c->bench->add_option("experiment", c->experiment, "experiment file (TOML)")->required();
+  c->bench->add_option("--followers", c->bench_followers,
+                       "swarm sizes to measure (default: the file's); other sizes use a "
+                       "generated ring topology")
+      ->delimiter(',');
+  c->bench->add_option("--duration", c->bench_duration, "simulated seconds (default: the file's)");
+  c->bench->add_option("--set", c->overrides, "override a value: section.key=value");
+  c->bench->add_option("--json", c->bench_json, "also write the figures to this JSON file");
+  c->bench->add_flag("--render", c->bench_render, "also time offscreen rendering");
+  c->bench->add_flag("--memory", c->bench_memory,
+                     "also run the first size 10x longer and compare peak memory");
+}
+
+int BenchCommand(const CliCommands& c) {
+  ExperimentConfig base = LoadExperiment(c.experiment, c.overrides);
+  if (c.bench_duration > 0) base.duration = c.bench_duration;
+  base.render.snapshots.clear();
+  base.render.video = false;
+  std::vector<int> sizes = c.bench_followers;
+  if (sizes.empty()) sizes.push_back(base.followers);
+  const std::string scratch = fmt::format("/tmp/mjformation_bench_{}", getpid());
+
+  nlohmann::ordered_json report;
+  report["experiment"] = c.experiment;
+  report["duration_s"] = base.duration;
+  report["timestep_s"] = base.timestep;
+  report["record_rate_hz"] = base.record_rate;
+  report["rotor_model"] = base.rotor_model;
+  report["version"] = VersionString();
+  std::printf("%s: %.1f s at %g s steps, rotor model %s, recording at %g Hz\n",
+              c.experiment.c_str(), base.duration, base.timestep, base.rotor_model.c_str(),
+              base.record_rate);
+  std::printf("%9s %9s %14s %14s %12s %9s %9s %10s\n", "followers", "steps", "bare steps/s",
+              "full steps/s", "ratio full/bare", "RTF bare", "RTF full", "peak MiB");
+  for (int n : sizes) {
+    const ExperimentConfig config = Resized(base, n);
+    const nlohmann::json bare = InChild([&] { return BareMujoco(config); });
+    const nlohmann::json full = InChild([&] { return Pipeline(config, scratch); });
+    const double steps = full["steps"].get<double>();
+    const double bare_wall = bare["wall_s"].get<double>(), full_wall = full["wall_s"].get<double>();
+    const double ratio = full_wall / bare_wall;
+    std::printf("%9d %9.0f %14.0f %14.0f %15.3f %9.2f %9.2f %10.1f\n", n, steps, steps / bare_wall,
+                steps / full_wall, ratio, config.duration / bare_wall, config.duration / full_wall,
+                full["peak_rss_mib"].get<double>());
+    std::fflush(stdout);
+    report["points"].push_back({{"followers", n},
+                                {"steps", steps},
+                                {"bare_wall_s", bare_wall},
+                                {"full_wall_s", full_wall},
+                                {"ratio_full_over_bare", ratio},
+                                {"real_time_factor_bare", config.duration / bare_wall},
+                                {"real_time_factor_full", config.duration / full_wall},
+                                {"peak_rss_mib_full", full["peak_rss_mib"]},
+                                {"peak_rss_mib_bare", bare["peak_rss_mib"]}});
+  }
+  if (c.bench_memory) {
+    ExperimentConfig shorter = Resized(base, sizes.front());
+    ExperimentConfig longer = shorter;
+    longer.duration *= 10;
+    const nlohmann::json a = InChild([&] { return Pipeline(shorter, scratch); });
+    const nlohmann::json b = InChild([&] { return Pipeline(longer, scratch); });
+    const double ra = a["peak_rss_mib"].get<double>(), rb = b["peak_rss_mib"].get<double>();
+    std::printf("memory: %d followers, %.0f s run: peak %.1f MiB; %.0f s run: peak %.1f MiB; "
+                "ratio %.3f (target < 1.2)\n",
+                sizes.front(), shorter.duration, ra, longer.duration, rb, rb / ra);
+    report["memory"] = {{"followers", sizes.front()},
+                        {"short_duration_s", shorter.duration},
+                        {"long_duration_s", longer.duration},
+                        {"short_peak_rss_mib", ra},
+                        {"long_peak_rss_mib", rb},
+                        {"ratio", rb / ra}};
+  }
+  if (c.bench_render) {
+    const nlohmann::json r = InChild([&] { return RenderCost(Resized(base, sizes.front())); });
+    std::printf("render: snapshot 1280x720 %.1f ms with shadows, %.1f ms without; video 640x480 "
+                "%.1f fps with shadows, %.1f fps without\n",
+                r["snapshot_1280x720_shadows_ms"].get<double>(),
+                r["snapshot_1280x720_noshadows_ms"].get<double>(),
+                r["video_640x480_shadows_fps"].get<double>(),
+                r["video_640x480_noshadows_fps"].get<double>());
+    report["render"] = r;
+  }
+  if (!c.bench_json.empty()) {
+    std::FILE* f = std::fopen(c.bench_json.c_str(), "wb");
+    if (!f) throw OutputError(c.bench_json + ": cannot write");
+    const std::string text = report.dump(2) + "\n";
+    std::fwrite(text.data(), 1, text.size(), f);
+    std::fclose(f);
+  }
+  return 0;
 }
 
 }  // namespace mjf::runner

@@ -25,8 +25,9 @@ struct CliCommands {
   // bench
   std::vector<int> bench_followers;
   double bench_duration = 0;
-  int bench_repeats = 1;
   std::string bench_json;
+  bool bench_render = false;
+  bool bench_memory = false;
 };
 
 void AddCommands(CLI::App& app, CliCommands* commands);
