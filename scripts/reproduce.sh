@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# The main job: installs what is missing, builds, runs Experiments 1-3 of the paper (every
+# variant, on the quadrotor and on the ideal point-mass vehicle) and writes the report:
+# results/report/report.md (Table 1 beside the paper's, figures, snapshots).
+# Usage: scripts/reproduce.sh [--video] [--out DIR]
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+out=$root/results
+video=()
+while (($#)); do
+  case $1 in
+    --video) video=(--set render.video=true) ;;
+    --out) out=$2; shift ;;
+    -h|--help) sed -n 2,5p "$0"; exit 0 ;;
+    *) echo "reproduce.sh: unknown argument '$1' (try --help)" >&2; exit 2 ;;
+  esac
+  shift
+done
+bash "$root/scripts/build.sh" "$root/build"
+bin=$root/build/runner/mjformation
+mkdir -p "$out"
+experiments=(exp1_printed exp1_switching exp1_exponential exp2 exp3 consensus_baseline)
+jobs=()
+for e in "${experiments[@]}"; do
+  jobs+=("$bin run $root/experiments/$e.toml --out $out/$e --overwrite --quiet ${video[*]:-}")
+  jobs+=("$bin run $root/experiments/$e.toml --out $out/${e}_pointmass --overwrite --quiet --no-render --set vehicles.model=\"pointmass\" --set attitude.plugin=\"pointmass_direct\" --set run.name=\"${e}_pointmass\"")
+done
+echo "reproduce: running ${#jobs[@]} experiments, two at a time, into $out"
+status=0
+printf '%s\n' "${jobs[@]}" | xargs -P 2 -I{} bash -c '{} && echo "  done: $(echo "{}" | grep -o -- "--out [^ ]*" | cut -d" " -f2)"' || status=$?
+/usr/bin/python3 "$root/analysis/report.py" "$out" --out "$out/report"
+echo "reproduce: report at $out/report/report.md"
+if [ $status != 0 ]; then
+  echo "reproduce: some runs stopped early or failed (see above; the report marks them)" >&2
+  exit $status
+fi
