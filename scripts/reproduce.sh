@@ -20,14 +20,38 @@ bash "$root/scripts/build.sh" "$root/build"
 bin=$root/build/runner/mjformation
 mkdir -p "$out"
 experiments=(exp1_printed exp1_switching exp1_exponential exp2 exp3 consensus_baseline)
-jobs=()
-for e in "${experiments[@]}"; do
-  jobs+=("$bin run $root/experiments/$e.toml --out $out/$e --overwrite --quiet ${video[*]:-}")
-  jobs+=("$bin run $root/experiments/$e.toml --out $out/${e}_pointmass --overwrite --quiet --no-render --set vehicles.model=\"pointmass\" --set attitude.plugin=\"pointmass_direct\" --set run.name=\"${e}_pointmass\"")
-done
-echo "reproduce: running ${#jobs[@]} experiments, two at a time, into $out"
+# One run: experiment name, vehicle ("quadrotor" or "pointmass").
+run_one() {
+  local e=$1 vehicle=$2 args=()
+  local dir=$out/$e
+  if [ "$vehicle" = pointmass ]; then
+    dir=$out/${e}_pointmass
+    args=(--no-render --set 'vehicles.model="pointmass"' --set 'attitude.plugin="pointmass_direct"'
+          --set "run.name=\"${e}_pointmass\"")
+  else
+    args=("${video[@]}")
+  fi
+  if "$bin" run "$root/experiments/$e.toml" --out "$dir" --overwrite --quiet "${args[@]}"; then
+    echo "  done: $dir"
+  else
+    echo "  FAILED or incomplete: $dir" >&2
+    return 1
+  fi
+}
+echo "reproduce: running $((2 * ${#experiments[@]})) experiments, two at a time, into $out"
 status=0
-printf '%s\n' "${jobs[@]}" | xargs -P 2 -I{} bash -c '{} && echo "  done: $(echo "{}" | grep -o -- "--out [^ ]*" | cut -d" " -f2)"' || status=$?
+pids=()
+for e in "${experiments[@]}"; do
+  for vehicle in quadrotor pointmass; do
+    run_one "$e" "$vehicle" &
+    pids+=($!)
+    if ((${#pids[@]} >= 2)); then
+      wait "${pids[0]}" || status=1
+      pids=("${pids[@]:1}")
+    fi
+  done
+done
+for p in "${pids[@]}"; do wait "$p" || status=1; done
 /usr/bin/python3 "$root/analysis/report.py" "$out" --out "$out/report"
 echo "reproduce: report at $out/report/report.md"
 if [ $status != 0 ]; then
