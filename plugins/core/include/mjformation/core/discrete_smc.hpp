@@ -1,0 +1,66 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// Discrete sliding-mode formation tracking protocol, eq. (48), computed in its compact form
+// eq. (53) with one solve against the factored L_H, and Theorem 2's band and bound (47).
+#ifndef MJFORMATION_CORE_DISCRETE_SMC_HPP_
+#define MJFORMATION_CORE_DISCRETE_SMC_HPP_
+
+#include <Eigen/Core>
+#include <mjformation/core/graph.hpp>
+#include <mjformation/core/laplacian_solver.hpp>
+#include <mjformation/core/sliding.hpp>
+#include <vector>
+
+namespace mjf::core {
+
+struct DiscreteSmcParams {
+  SlidingGains gains;    // 'k'
+  double eps = 0.05;     // 'eps', switching gain
+  double q = 4.5;        // 'q', 1/s, exponential reaching
+  double period = 0.05;  // 'period', T in s
+  double u_min = -1.0;   // 'u_min', m/s^2
+  double u_max = 1.0;    // 'u_max', m/s^2
+  SignFunction sign = SignFunction::kSgn;
+  double boundary_layer = 0.1;  // 'boundary_layer', phi of sat (sign = sat only)
+  double eta0 = 1e-6;           // 'eta0', the small eta_0 > 0 of Delta_1, eq. (49)
+
+  // Algorithm 2 / Theorem 2: k1, k2 > 0, eps > 0, q > 0, T > 0, 1 - qT > 0, u_min <= u_max,
+  // eta0 > 0, phi > 0 (sat). Throws std::invalid_argument naming the key and the condition.
+  void Validate() const;
+};
+
+class DiscreteSmc {
+ public:
+  // Validates params, requires a spanning tree and factors L_H (throws std::invalid_argument).
+  DiscreteSmc(const Graph& graph, const DiscreteSmcParams& params);
+
+  // Evaluates eq. (53) at sample k: input.shape_now = F(k) (at t), input.shape_next = F(k+1)
+  // (at t + T). O(N + edges + nnz(factor)), no heap allocation.
+  void Update(const FormationInput& input);
+
+  const std::vector<double>& acceleration() const { return acceleration_; }  // [2i + axis]
+  const std::vector<double>& sliding() const { return sliding_; }            // [2i + axis]
+  const std::vector<double>& error() const { return error_; }                // [4i + k]
+
+  // Theorem 2, eqs. (49)-(50), for follower i (uses a_i0): Delta_i = max(Delta1_i, Delta2_i).
+  double delta1(int i) const;
+  double delta2(int i) const;
+  double delta(int i) const;
+  double delta() const;  // max over followers
+  // eq. (47) as EQUATIONS.md reads it: ||L_H^-1|| sqrt(N) Delta / ((k1 + k2) sqrt(2)).
+  double error_bound() const;
+  double norm_inv_lh() const { return solver_.InverseTwoNorm(); }
+  const DiscreteSmcParams& params() const { return params_; }
+  const Graph& graph() const { return graph_; }
+
+ private:
+  Graph graph_;
+  DiscreteSmcParams params_;
+  LaplacianSolver solver_;
+  std::vector<double> acceleration_, sliding_, error_;
+  Eigen::Matrix<double, Eigen::Dynamic, 2> rhs_;
+};
+
+}  // namespace mjf::core
+
+#endif  // MJFORMATION_CORE_DISCRETE_SMC_HPP_

@@ -1,0 +1,68 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// What the three formation adapters share: reading the swarm from the step context into the
+// core's layout, writing follower setpoints, and building graph/shape/gains from create().
+#ifndef MJFORMATION_PLUGINS_FORMATION_ADAPTER_HPP_
+#define MJFORMATION_PLUGINS_FORMATION_ADAPTER_HPP_
+
+#include <mjformation/plugin.h>
+
+#include <mjformation/core/graph.hpp>
+#include <mjformation/core/shape.hpp>
+#include <mjformation/core/sliding.hpp>
+#include <mjformation/plugin_util.hpp>
+#include <vector>
+
+namespace mjf::formation {
+
+// Attribute keys (short, lowercase).
+inline constexpr char kKeyGains[] = "k";
+inline constexpr char kKeyRho[] = "rho";
+inline constexpr char kKeyEps[] = "eps";
+inline constexpr char kKeyQ[] = "q";
+inline constexpr char kKeyPeriod[] = "period";
+inline constexpr char kKeyUMin[] = "u_min";
+inline constexpr char kKeyUMax[] = "u_max";
+inline constexpr char kKeyCompensation[] = "compensation";
+inline constexpr char kKeyReaching[] = "reaching";
+inline constexpr char kKeySign[] = "sign";
+inline constexpr char kKeyBoundaryLayer[] = "boundary_layer";
+inline constexpr char kKeyEta0[] = "eta0";
+inline constexpr char kKeyKp[] = "kp";
+inline constexpr char kKeyKv[] = "kv";
+
+// The graph and shape handed to a formation plugin's create(); checks that they exist, agree
+// with n_vehicles and that the graph has a spanning tree (Assumption 2). Throws on failure.
+struct SwarmSetup {
+  explicit SwarmSetup(const mjfCreateContext* ctx);
+  core::Graph graph;
+  core::AbiShape shape;
+};
+
+core::SlidingGains ParseGains(const plugin::Attributes& attributes);
+
+// Preallocated buffers in the core's layout, filled from a step context.
+class SwarmBuffers {
+ public:
+  explicit SwarmBuffers(int n_followers);
+  // Copies leader and follower pos/vel (x, y) from ctx->states; false if ctx does not match
+  // the swarm's size or a state is not finite.
+  bool Read(const mjfStepContext* ctx);
+  core::FormationInput Input() const;
+  int n() const { return n_; }
+  std::vector<double> leader_pv, follower_pv, shape_now, shape_next;
+
+ private:
+  int n_;
+};
+
+// Writes follower i's (vehicle i+1) slot: pos[0..1] = leader pos + f_ip, vel[0..1] = leader
+// vel + f_iv. Leaves acc/pos/vel[2] and yaw alone.
+void WriteSlots(const SwarmBuffers& buffers, mjfSetpoint* setpoints);
+// Writes acc[0..1] = acceleration[2i..2i+1] and, unless sliding is null, sliding[0..1].
+void WriteCommands(int n, const double* acceleration, const double* sliding,
+                   mjfSetpoint* setpoints);
+
+}  // namespace mjf::formation
+
+#endif  // MJFORMATION_PLUGINS_FORMATION_ADAPTER_HPP_

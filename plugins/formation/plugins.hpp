@@ -1,0 +1,15 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+#ifndef MJFORMATION_PLUGINS_FORMATION_PLUGINS_HPP_
+#define MJFORMATION_PLUGINS_FORMATION_PLUGINS_HPP_
+
+#include <mjformation/plugin.h>
+
+namespace mjf::formation {
+
+extern const mjfPlugin kSmcContinuous;    // smc_continuous.cc: eq. (30) / (33)
+extern const mjfPlugin kSmcDiscrete;      // smc_discrete.cc: eq. (48) / (53), zero-order hold
+extern const mjfPlugin kConsensusLinear;  // consensus_linear.cc: linear baseline
+
+}  // namespace mjf::formation
+
+#endif  // MJFORMATION_PLUGINS_FORMATION_PLUGINS_HPP_

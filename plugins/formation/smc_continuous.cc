@@ -1,0 +1,98 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// smc_continuous: the continuous sliding-mode protocol, eq. (30) via its compact form (33),
+// evaluated every physics step.
+#include <mjformation/core/continuous_smc.hpp>
+
+#include "adapter.hpp"
+#include "plugins.hpp"
+
+namespace mjf::formation {
+namespace {
+
+const mjfAttribute kAttributes[] = {
+    {kKeyGains, "3 1", "K = [k1 k2] of the sliding variable s_i = K e_i, eq. (17); both > 0"},
+    {kKeyRho, "0.05", "switching gain rho > 0 of eq. (30)"},
+    {kKeyQ, "4.5", "exponential reaching gain q > 0, 1/s (reaching = exponential only)"},
+    {kKeyUMin, "-1", "lower bound u_min of the leader's acceleration, m/s^2"},
+    {kKeyUMax, "1", "upper bound u_max of the leader's acceleration, m/s^2 (switching only)"},
+    {kKeyCompensation, "lower_bound",
+     "leader input compensation: lower_bound (u_min, as printed in (30)) or switching "
+     "(mu1 - mu2 sgn(s_i), as in (48))"},
+    {kKeyReaching, "constant", "reaching law: constant (rho sgn s) or exponential (+ q s)"},
+    {kKeySign, "sgn", "sign function: sgn (paper) or sat (boundary layer)"},
+    {kKeyBoundaryLayer, "0.1", "boundary-layer width phi of sat (sign = sat only)"},
+};
+
+struct Instance {
+  Instance(const SwarmSetup& setup, const core::ContinuousSmcParams& params)
+      : shape(setup.shape), controller(setup.graph, params), buffers(setup.graph.num_followers()) {}
+  core::AbiShape shape;
+  core::ContinuousSmc controller;
+  SwarmBuffers buffers;
+};
+
+void* Create(const mjfCreateContext* ctx) {
+  return plugin::CreateOrExplain(ctx, [&]() -> void* {
+    const plugin::Attributes attributes(ctx);
+    core::ContinuousSmcParams params;
+    params.gains = ParseGains(attributes);
+    params.rho = attributes.Number(kKeyRho);
+    params.q = attributes.Number(kKeyQ);
+    params.u_min = attributes.Number(kKeyUMin);
+    params.u_max = attributes.Number(kKeyUMax);
+    params.compensation = core::ParseCompensation(attributes.String(kKeyCompensation));
+    params.reaching = core::ParseReaching(attributes.String(kKeyReaching));
+    params.sign = core::ParseSignFunction(attributes.String(kKeySign));
+    params.boundary_layer = attributes.Number(kKeyBoundaryLayer);
+    params.Validate();
+    const SwarmSetup setup(ctx);
+    return new Instance(setup, params);
+  });
+}
+
+int Compute(void* instance, const mjfStepContext* ctx) {
+  auto* self = static_cast<Instance*>(instance);
+  SwarmBuffers& buffers = self->buffers;
+  if (!buffers.Read(ctx)) return 1;
+  self->shape.Evaluate(ctx->time, buffers.shape_now.data());
+  self->controller.Update(buffers.Input());
+  WriteSlots(buffers, ctx->setpoints);
+  WriteCommands(buffers.n(), self->controller.acceleration().data(),
+                self->controller.sliding().data(), ctx->setpoints);
+  return 0;
+}
+
+void Reset(void* instance) { static_cast<Instance*>(instance)->controller.ResetReachingTime(); }
+
+void Destroy(void* instance) { delete static_cast<Instance*>(instance); }
+
+void Report(void* instance, mjfReportFn emit, void* user) {
+  const auto* self = static_cast<const Instance*>(instance);
+  emit(user, "norm_inv_lh", self->controller.norm_inv_lh());
+  if (self->controller.reaching_time_bound() >= 0.0) {
+    emit(user, "reaching_time_bound", self->controller.reaching_time_bound());
+  }
+  emit(user, "switching_compensation",
+       self->controller.params().compensation == core::Compensation::kSwitching ? 1.0 : 0.0);
+}
+
+}  // namespace
+
+const mjfPlugin kSmcContinuous = {
+    MJF_ABI_VERSION,
+    "smc_continuous",
+    MJF_KIND_FORMATION,
+    "continuous sliding-mode formation tracking, eq. (30) via compact form (33)",
+    static_cast<int>(sizeof(kAttributes) / sizeof(kAttributes[0])),
+    kAttributes,
+    0,
+    nullptr,
+    &Create,
+    &Compute,
+    &Reset,
+    &Destroy,
+    &Report,
+};
+
+}  // namespace mjf::formation

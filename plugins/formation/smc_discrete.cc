@@ -1,0 +1,137 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// smc_discrete: the discrete sliding-mode protocol, eq. (48) via its compact form (53), sampled
+// every `period` seconds (an integer number of physics steps, chosen on ctx->step) and held
+// in between (zero-order hold).
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <mjformation/core/discrete_smc.hpp>
+#include <sstream>
+#include <stdexcept>
+
+#include "adapter.hpp"
+#include "plugins.hpp"
+
+namespace mjf::formation {
+namespace {
+
+const mjfAttribute kAttributes[] = {
+    {kKeyGains, "3 1", "K = [k1 k2] of the sliding variable s_i = K e_i, eq. (17); both > 0"},
+    {kKeyEps, "0.05", "switching gain eps > 0 of eq. (48)"},
+    {kKeyQ, "4.5", "reaching gain q > 0 of eq. (48), 1/s; 1 - q T > 0"},
+    {kKeyPeriod, "0.05", "sample period T, s: an integer multiple of the physics timestep"},
+    {kKeyUMin, "-1", "lower bound u_min of the leader's acceleration, m/s^2"},
+    {kKeyUMax, "1", "upper bound u_max of the leader's acceleration, m/s^2"},
+    {kKeySign, "sgn", "sign function: sgn (paper) or sat (boundary layer)"},
+    {kKeyBoundaryLayer, "0.1", "boundary-layer width phi of sat (sign = sat only)"},
+    {kKeyEta0, "1e-6", "the small eta_0 > 0 of Delta_1, eq. (49) (reporting only)"},
+};
+
+struct Instance {
+  Instance(const SwarmSetup& setup, const core::DiscreteSmcParams& params, int64_t steps)
+      : shape(setup.shape),
+        controller(setup.graph, params),
+        buffers(setup.graph.num_followers()),
+        steps_per_sample(steps) {}
+  core::AbiShape shape;
+  core::DiscreteSmc controller;
+  SwarmBuffers buffers;
+  int64_t steps_per_sample;
+  bool has_sample = false;
+};
+
+int64_t StepsPerSample(double period, double timestep) {
+  if (!(timestep > 0.0) || !std::isfinite(timestep)) {
+    throw std::invalid_argument("smc_discrete: the physics timestep must be > 0");
+  }
+  const double ratio = period / timestep;
+  const int64_t steps = std::llround(ratio);
+  if (steps < 1 || std::abs(ratio - static_cast<double>(steps)) > 1e-6 * ratio) {
+    std::ostringstream out;
+    out << "attribute 'period': T = " << period
+        << " s is not an integer multiple of the physics timestep " << timestep
+        << " s (zero-order hold samples every round(T / timestep) steps)";
+    throw std::invalid_argument(out.str());
+  }
+  return steps;
+}
+
+void* Create(const mjfCreateContext* ctx) {
+  return plugin::CreateOrExplain(ctx, [&]() -> void* {
+    const plugin::Attributes attributes(ctx);
+    core::DiscreteSmcParams params;
+    params.gains = ParseGains(attributes);
+    params.eps = attributes.Number(kKeyEps);
+    params.q = attributes.Number(kKeyQ);
+    params.period = attributes.Number(kKeyPeriod);
+    params.u_min = attributes.Number(kKeyUMin);
+    params.u_max = attributes.Number(kKeyUMax);
+    params.sign = core::ParseSignFunction(attributes.String(kKeySign));
+    params.boundary_layer = attributes.Number(kKeyBoundaryLayer);
+    params.eta0 = attributes.Number(kKeyEta0);
+    params.Validate();
+    const int64_t steps = StepsPerSample(params.period, ctx->timestep);
+    const SwarmSetup setup(ctx);
+    return new Instance(setup, params, steps);
+  });
+}
+
+int Compute(void* instance, const mjfStepContext* ctx) {
+  auto* self = static_cast<Instance*>(instance);
+  SwarmBuffers& buffers = self->buffers;
+  if (!buffers.Read(ctx)) return 1;
+  self->shape.Evaluate(ctx->time, buffers.shape_now.data());
+  if (!self->has_sample || ctx->step % self->steps_per_sample == 0) {
+    // Sample k: F(k) at t, F(k+1) at t + T, eq. (53).
+    self->shape.Evaluate(ctx->time + self->controller.params().period, buffers.shape_next.data());
+    self->controller.Update(buffers.Input());
+    self->has_sample = true;
+  }
+  WriteSlots(buffers, ctx->setpoints);
+  // Zero-order hold: the last sample's u_i and s_i until the next sample.
+  WriteCommands(buffers.n(), self->controller.acceleration().data(),
+                self->controller.sliding().data(), ctx->setpoints);
+  return 0;
+}
+
+void Reset(void* instance) { static_cast<Instance*>(instance)->has_sample = false; }
+
+void Destroy(void* instance) { delete static_cast<Instance*>(instance); }
+
+void Report(void* instance, mjfReportFn emit, void* user) {
+  const auto* self = static_cast<const Instance*>(instance);
+  const core::DiscreteSmc& c = self->controller;
+  double delta1 = 0.0, delta2 = 0.0;
+  for (int i = 0; i < c.graph().num_followers(); ++i) {
+    delta1 = std::max(delta1, c.delta1(i));
+    delta2 = std::max(delta2, c.delta2(i));
+  }
+  emit(user, "delta", c.delta());
+  emit(user, "delta1", delta1);
+  emit(user, "delta2", delta2);
+  emit(user, "error_bound", c.error_bound());
+  emit(user, "norm_inv_lh", c.norm_inv_lh());
+  emit(user, "period", c.params().period);
+  emit(user, "steps_per_sample", static_cast<double>(self->steps_per_sample));
+}
+
+}  // namespace
+
+const mjfPlugin kSmcDiscrete = {
+    MJF_ABI_VERSION,
+    "smc_discrete",
+    MJF_KIND_FORMATION,
+    "discrete sliding-mode formation tracking, eq. (48) via compact form (53), zero-order hold",
+    static_cast<int>(sizeof(kAttributes) / sizeof(kAttributes[0])),
+    kAttributes,
+    0,
+    nullptr,
+    &Create,
+    &Compute,
+    &Reset,
+    &Destroy,
+    &Report,
+};
+
+}  // namespace mjf::formation

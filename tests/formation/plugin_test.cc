@@ -1,0 +1,281 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// Plugin-level test: dlopen libmjf_formation.so as the runner does, fetch the descriptors
+// through mjf_plugin_entry, create with a context, run compute on a small point-mass swarm.
+#include <dlfcn.h>
+#include <gtest/gtest.h>
+#include <mjformation/plugin.h>
+
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <memory>
+#include <mjformation/core/metrics.hpp>
+#include <mjformation/core/shape.hpp>
+#include <string>
+#include <vector>
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kSentinel = 123.5;
+
+class FormationPluginTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    handle_ = dlopen(MJF_FORMATION_PLUGIN_PATH, RTLD_NOW | RTLD_LOCAL);
+    ASSERT_NE(handle_, nullptr) << dlerror();
+    auto entry = reinterpret_cast<mjfEntryFn>(dlsym(handle_, MJF_ENTRY_SYMBOL));
+    ASSERT_NE(entry, nullptr) << dlerror();
+    int count = 0;
+    const mjfPlugin* const* plugins = entry(&count);
+    for (int k = 0; k < count; ++k) plugins_[plugins[k]->name] = plugins[k];
+  }
+  static void TearDownTestSuite() {
+    if (handle_) dlclose(handle_);
+    handle_ = nullptr;
+  }
+
+  const mjfPlugin* Plugin(const std::string& name) {
+    EXPECT_EQ(plugins_.count(name), 1u) << name;
+    return plugins_.at(name);
+  }
+
+  // Paper graph: 1 hears the leader; chain 1 -> ... -> 6 with 1 -> 3, 3 -> 5, 6 -> 4.
+  std::vector<double> leader_weight_ = {1, 0, 0, 0, 0, 0};
+  std::vector<int> from_ = {0, 1, 2, 3, 4, 0, 2, 5};
+  std::vector<int> to_ = {1, 2, 3, 4, 5, 2, 4, 3};
+  std::vector<double> weight_ = std::vector<double>(8, 1.0);
+  std::unique_ptr<mjf::core::Shape> shape_ =
+      mjf::core::MakeCircleShape(6, 10.0, 0.314, 0.0, kPi / 3);
+
+  // Creates `plugin` with its declared defaults overridden by `overrides`.
+  void* Create(const mjfPlugin* plugin, const std::map<std::string, std::string>& overrides,
+               std::string* error, double timestep = 0.01, bool spanning_tree = true) {
+    keys_.clear();
+    values_.clear();
+    for (int k = 0; k < plugin->n_attributes; ++k) {
+      const mjfAttribute& a = plugin->attributes[k];
+      keys_.push_back(a.key);
+      auto it = overrides.find(a.key);
+      values_.push_back(it != overrides.end() ? it->second.c_str() : a.default_value);
+    }
+    for (const auto& [key, value] : overrides) {
+      bool declared = false;
+      for (const char* k : keys_) declared |= key == k;
+      EXPECT_TRUE(declared) << plugin->name << " does not declare '" << key << "'";
+    }
+    std::vector<double> leader = leader_weight_;
+    if (!spanning_tree) leader[0] = 0.0;
+    graph_leader_ = leader;
+    graph_ = {6, graph_leader_.data(), 8, from_.data(), to_.data(), weight_.data()};
+    abi_shape_ = mjf::core::ToAbi(*shape_);
+    char buffer[512] = "";
+    mjfCreateContext ctx{};
+    ctx.n_attributes = static_cast<int>(keys_.size());
+    ctx.keys = keys_.data();
+    ctx.values = values_.data();
+    ctx.timestep = timestep;
+    ctx.vehicle = -1;
+    ctx.n_vehicles = 7;
+    ctx.graph = &graph_;
+    ctx.shape = &abi_shape_;
+    ctx.error = buffer;
+    ctx.error_size = sizeof(buffer);
+    void* instance = plugin->create(&ctx);
+    *error = buffer;
+    return instance;
+  }
+
+  struct RunResult {
+    double sigma_initial = 0, sigma_final = 0;
+    bool untouched = true, finite = true, slots_ok = true;
+    std::vector<std::vector<double>> acc_x;  // per step, follower 1..6
+  };
+
+  // Point masses following setpoints[i].acc (Euler, timestep h), leader on the paper's circle.
+  RunResult Run(const mjfPlugin* plugin, void* instance, int steps, double h = 0.01) {
+    RunResult result;
+    std::vector<mjfVehicleState> states(7);
+    std::vector<mjfSetpoint> setpoints(7);
+    std::vector<double> f(36);
+    for (int i = 1; i <= 6; ++i) {
+      states[i] = mjfVehicleState{};
+      states[i].pos[0] = 2.0 * i - 6.0;  // near the origin, as in the paper's Fig. 27
+      states[i].pos[1] = -1.0;
+      states[i].pos[2] = 5.0;
+    }
+    std::vector<double> leader_pv(4), follower_pv(24);
+    for (int k = 0; k <= steps; ++k) {
+      const double t = k * h;
+      mjfVehicleState& leader = states[0];
+      leader.pos[0] = 20 * std::cos(0.157 * t);
+      leader.pos[1] = 20 * std::sin(0.157 * t);
+      leader.vel[0] = -20 * 0.157 * std::sin(0.157 * t);
+      leader.vel[1] = 20 * 0.157 * std::cos(0.157 * t);
+      for (auto& sp : setpoints) {
+        sp.acc[2] = sp.pos[2] = sp.vel[2] = sp.yaw = kSentinel;
+        sp.sliding[0] = sp.sliding[1] = std::nan("");
+      }
+      mjfStepContext ctx{};
+      ctx.time = t;
+      ctx.step = k;
+      ctx.timestep = h;
+      ctx.n_vehicles = 7;
+      ctx.states = states.data();
+      ctx.setpoints = setpoints.data();
+      EXPECT_EQ(plugin->compute(instance, &ctx), 0);
+      shape_->Evaluate(t, f.data());
+      for (int c = 0; c < 2; ++c) {
+        leader_pv[c] = leader.pos[c];
+        leader_pv[2 + c] = leader.vel[c];
+      }
+      std::vector<double> row;
+      for (int i = 1; i <= 6; ++i) {
+        mjfSetpoint& sp = setpoints[i];
+        result.untouched &= sp.acc[2] == kSentinel && sp.pos[2] == kSentinel &&
+                            sp.vel[2] == kSentinel && sp.yaw == kSentinel;
+        result.finite &= std::isfinite(sp.acc[0]) && std::isfinite(sp.acc[1]);
+        for (int c = 0; c < 2; ++c) {
+          result.slots_ok &= std::abs(sp.pos[c] - leader.pos[c] - f[6 * (i - 1) + c]) < 1e-9 &&
+                             std::abs(sp.vel[c] - leader.vel[c] - f[6 * (i - 1) + 2 + c]) < 1e-9;
+          follower_pv[4 * (i - 1) + c] = states[i].pos[c];
+          follower_pv[4 * (i - 1) + 2 + c] = states[i].vel[c];
+        }
+        row.push_back(sp.acc[0]);
+      }
+      result.acc_x.push_back(row);
+      const double sigma =
+          mjf::core::FormationError(6, follower_pv.data(), leader_pv.data(), f.data());
+      if (k == 0) result.sigma_initial = sigma;
+      result.sigma_final = sigma;
+      for (int i = 1; i <= 6; ++i) {
+        for (int c = 0; c < 2; ++c) {
+          states[i].pos[c] += h * states[i].vel[c];
+          states[i].vel[c] += h * setpoints[i].acc[c];
+        }
+      }
+    }
+    return result;
+  }
+
+  static std::map<std::string, double> Report(const mjfPlugin* plugin, void* instance) {
+    std::map<std::string, double> values;
+    if (plugin->report) {
+      plugin->report(
+          instance,
+          [](void* user, const char* key, double value) {
+            (*static_cast<std::map<std::string, double>*>(user))[key] = value;
+          },
+          &values);
+    }
+    return values;
+  }
+
+  static void* handle_;
+  static std::map<std::string, const mjfPlugin*> plugins_;
+  std::vector<const char*> keys_, values_;
+  std::vector<double> graph_leader_;
+  mjfGraph graph_{};
+  mjfShape abi_shape_{};
+};
+
+void* FormationPluginTest::handle_ = nullptr;
+std::map<std::string, const mjfPlugin*> FormationPluginTest::plugins_;
+
+TEST_F(FormationPluginTest, ExportsThreeFormationPlugins) {
+  ASSERT_EQ(plugins_.size(), 3u);
+  for (const char* name : {"smc_continuous", "smc_discrete", "consensus_linear"}) {
+    const mjfPlugin* p = Plugin(name);
+    EXPECT_EQ(p->abi_version, MJF_ABI_VERSION);
+    EXPECT_EQ(p->kind, MJF_KIND_FORMATION);
+    EXPECT_NE(p->create, nullptr);
+    EXPECT_NE(p->compute, nullptr);
+    EXPECT_NE(p->destroy, nullptr);
+  }
+}
+
+TEST_F(FormationPluginTest, DiscreteHoldsBetweenSamplesAndConverges) {
+  const mjfPlugin* p = Plugin("smc_discrete");
+  std::string error;
+  void* instance = Create(p, {{"period", "0.05"}}, &error);
+  ASSERT_NE(instance, nullptr) << error;
+  const RunResult r = Run(p, instance, 4000);
+  EXPECT_TRUE(r.untouched);
+  EXPECT_TRUE(r.finite);
+  EXPECT_TRUE(r.slots_ok);
+  for (size_t k = 0; k + 5 < r.acc_x.size(); k += 5) {
+    for (int m = 1; m < 5; ++m) EXPECT_EQ(r.acc_x[k + m], r.acc_x[k]) << "step " << k + m;
+  }
+  EXPECT_NE(r.acc_x[5], r.acc_x[0]);
+  EXPECT_LT(r.sigma_final, 0.1 * r.sigma_initial);
+  const auto report = Report(p, instance);
+  EXPECT_GT(report.at("delta"), 0.0);
+  EXPECT_GT(report.at("error_bound"), 0.0);
+  EXPECT_GT(report.at("norm_inv_lh"), 0.0);
+  EXPECT_EQ(report.at("steps_per_sample"), 5.0);
+  p->destroy(instance);
+}
+
+TEST_F(FormationPluginTest, ContinuousSwitchingExponentialConverges) {
+  const mjfPlugin* p = Plugin("smc_continuous");
+  std::string error;
+  void* instance = Create(p, {{"compensation", "switching"}, {"reaching", "exponential"}}, &error);
+  ASSERT_NE(instance, nullptr) << error;
+  const RunResult r = Run(p, instance, 3000);
+  EXPECT_TRUE(r.untouched);
+  EXPECT_TRUE(r.finite);
+  EXPECT_TRUE(r.slots_ok);
+  EXPECT_LT(r.sigma_final, 0.05 * r.sigma_initial);
+  const auto report = Report(p, instance);
+  EXPECT_GT(report.at("reaching_time_bound"), 0.0);
+  p->reset(instance);
+  p->destroy(instance);
+}
+
+TEST_F(FormationPluginTest, ConsensusConvergesWithDefaults) {
+  const mjfPlugin* p = Plugin("consensus_linear");
+  std::string error;
+  void* instance = Create(p, {}, &error);
+  ASSERT_NE(instance, nullptr) << error;
+  const RunResult r = Run(p, instance, 4000);
+  EXPECT_TRUE(r.untouched);
+  EXPECT_TRUE(r.finite);
+  EXPECT_LT(r.sigma_final, 0.2 * r.sigma_initial);
+  p->destroy(instance);
+}
+
+TEST_F(FormationPluginTest, BadConfigurationGivesNullAndMessage) {
+  struct Bad {
+    const char* plugin;
+    std::map<std::string, std::string> overrides;
+    const char* fragment;
+  };
+  const Bad cases[] = {
+      {"smc_continuous", {{"rho", "-1"}}, "'rho'"},
+      {"smc_continuous", {{"k", "3"}}, "'k'"},
+      {"smc_continuous", {{"k", "3 0"}}, "k1 > 0 and k2 > 0"},
+      {"smc_continuous", {{"compensation", "upper"}}, "'compensation'"},
+      {"smc_continuous", {{"sign", "sat"}, {"boundary_layer", "0"}}, "'boundary_layer'"},
+      {"smc_continuous", {{"u_min", "abc"}}, "'u_min'"},
+      {"smc_discrete", {{"period", "0.033"}}, "not an integer multiple"},
+      {"smc_discrete", {{"q", "30"}}, "1 - q*T > 0"},
+      {"smc_discrete", {{"eps", "0"}}, "'eps'"},
+      {"smc_discrete", {{"u_min", "2"}}, "'u_min' with 'u_max'"},
+      {"consensus_linear", {{"kv", "0"}}, "'kv'"},
+  };
+  for (const Bad& bad : cases) {
+    std::string error;
+    void* instance = Create(Plugin(bad.plugin), bad.overrides, &error);
+    EXPECT_EQ(instance, nullptr) << bad.plugin << " " << bad.fragment;
+    EXPECT_NE(error.find(bad.fragment), std::string::npos)
+        << bad.plugin << ": '" << error << "' lacks '" << bad.fragment << "'";
+  }
+  for (const char* name : {"smc_continuous", "smc_discrete", "consensus_linear"}) {
+    std::string error;
+    EXPECT_EQ(Create(Plugin(name), {}, &error, 0.01, /*spanning_tree=*/false), nullptr);
+    EXPECT_NE(error.find("Assumption 2"), std::string::npos) << error;
+  }
+}
+
+}  // namespace
