@@ -89,23 +89,27 @@ struct OffscreenRenderer::Impl {
     return g;
   }
 
-  void Connector(const std::array<double, 3>& a, const std::array<double, 3>& b, double radius,
-                 const float rgba[4]) {
+  // A line segment of `pixels` width: GL lines cost almost nothing in llvmpipe, whereas capsules
+  // (hundreds of triangles each, drawn twice with shadows) made a 7-vehicle trail overlay cost
+  // several hundred ms per frame.
+  void Line(const std::array<double, 3>& a, const std::array<double, 3>& b, double pixels,
+            const float rgba[4]) {
     if (a == b) return;
     mjvGeom* g = NewGeom(rgba);
     if (!g) return;
-    mjv_makeConnector(g, mjGEOM_CAPSULE, radius, a[0], a[1], a[2], b[0], b[1], b[2]);
+    mjv_makeConnector(g, mjGEOM_LINE, pixels, a[0], a[1], a[2], b[0], b[1], b[2]);
   }
 
   void AddOverlay(const Overlay& o, double cam_distance) {
-    // Sizes grow with the viewing distance so that lines stay a few pixels wide.
-    const double line = std::max(0.02, 0.0012 * cam_distance);
+    // Lines a few pixels wide whatever the image size; slot markers scale with the distance so
+    // that they stay visible from far away.
+    const double line_px = std::max(2.0, height / 280.0);
     const double sphere = std::max(0.1, 0.006 * cam_distance);
     for (size_t i = 0; i < o.trails.size(); ++i) {
-      const float* rgba = i < o.trail_rgba.size() ? o.trail_rgba[i].data()
-                                                  : kPalette[i % kPaletteSize];
+      const float* rgba =
+          i < o.trail_rgba.size() ? o.trail_rgba[i].data() : kPalette[i % kPaletteSize];
       const auto& t = o.trails[i];
-      for (size_t k = 1; k < t.size(); ++k) Connector(t[k - 1], t[k], line, rgba);
+      for (size_t k = 1; k < t.size(); ++k) Line(t[k - 1], t[k], line_px, rgba);
     }
     const float slot_rgba[4] = {0.2f, 1.0f, 0.3f, 0.45f};
     for (const auto& p : o.slots) {
@@ -116,9 +120,9 @@ struct OffscreenRenderer::Impl {
         g->pos[k] = static_cast<float>(p[k]);
       }
     }
-    const float ring_rgba[4] = {1.0f, 1.0f, 1.0f, 0.6f};
+    const float ring_rgba[4] = {1.0f, 1.0f, 1.0f, 0.7f};
     for (size_t k = 1; k < o.ring_points.size(); ++k) {
-      Connector(o.ring_points[k - 1], o.ring_points[k], 0.6 * line, ring_rgba);
+      Line(o.ring_points[k - 1], o.ring_points[k], std::max(1.0, 0.75 * line_px), ring_rgba);
     }
   }
 };
@@ -132,12 +136,12 @@ OffscreenRenderer::OffscreenRenderer(const mjModel* m, int width, int height, bo
   }
   const int offw = m->vis.global.offwidth, offh = m->vis.global.offheight;
   if (width > offw || height > offh) {
-    throw std::runtime_error(
-        "OffscreenRenderer: requested " + std::to_string(width) + "x" + std::to_string(height) +
-        " exceeds the model's offscreen buffer " + std::to_string(offw) + "x" +
-        std::to_string(offh) + "; raise <visual><global offwidth=\"" +
-        std::to_string(std::max(width, offw)) + "\" offheight=\"" +
-        std::to_string(std::max(height, offh)) + "\"/> in the MJCF");
+    throw std::runtime_error("OffscreenRenderer: requested " + std::to_string(width) + "x" +
+                             std::to_string(height) + " exceeds the model's offscreen buffer " +
+                             std::to_string(offw) + "x" + std::to_string(offh) +
+                             "; raise <visual><global offwidth=\"" +
+                             std::to_string(std::max(width, offw)) + "\" offheight=\"" +
+                             std::to_string(std::max(height, offh)) + "\"/> in the MJCF");
   }
   Impl& r = *impl_;
   r.m = m;

@@ -28,8 +28,7 @@ void OnPngWarning(png_structp, png_const_charp) {}
 
 // libpng reports errors by longjmp: only trivially destructible locals live in this function.
 // Returns false with a message in err->message.
-bool WriteRows(std::FILE* file, const unsigned char* rgb, int width, int height,
-               PngError* err) {
+bool WriteRows(std::FILE* file, const unsigned char* rgb, int width, int height, PngError* err) {
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, err, OnPngError, OnPngWarning);
   if (!png) {
     std::snprintf(err->message, sizeof(err->message), "png_create_write_struct failed");
@@ -71,8 +70,8 @@ void WritePng(const std::string& path, const unsigned char* rgb, int width, int 
   const std::string tmp = path + ".tmp";
   std::FILE* file = std::fopen(tmp.c_str(), "wb");
   if (!file) {
-    throw std::runtime_error("WritePng " + path + ": cannot open " + tmp + " for writing: " +
-                             std::strerror(errno));
+    throw std::runtime_error("WritePng " + path + ": cannot open " + tmp +
+                             " for writing: " + std::strerror(errno));
   }
   PngError err{};
   const bool ok = WriteRows(file, rgb, width, height, &err);

@@ -83,8 +83,8 @@ VideoWriter::VideoWriter(const std::string& path, int width, int height, double 
   std::string err_template = "/tmp/mjf_ffmpeg_XXXXXX";
   err_fd_ = ::mkostemp(err_template.data(), O_CLOEXEC);
   if (err_fd_ < 0) {
-    throw std::runtime_error("VideoWriter " + path + ": cannot create a temporary file: " +
-                             std::strerror(errno));
+    throw std::runtime_error("VideoWriter " + path +
+                             ": cannot create a temporary file: " + std::strerror(errno));
   }
   err_path_ = err_template;
 
@@ -100,39 +100,17 @@ VideoWriter::VideoWriter(const std::string& path, int width, int height, double 
   }
 
   const std::string size = std::to_string(width) + "x" + std::to_string(height);
-  std::vector<std::string> args = {ffmpeg,
-                                   "-nostdin",
-                                   "-hide_banner",
-                                   "-loglevel",
-                                   "error",
-                                   "-y",
-                                   "-f",
-                                   "rawvideo",
-                                   "-pix_fmt",
-                                   "rgb24",
-                                   "-s",
-                                   size,
-                                   "-framerate",
-                                   Number(fps),
-                                   "-i",
-                                   "pipe:0",
-                                   "-vf",
-                                   "pad=ceil(iw/2)*2:ceil(ih/2)*2",
-                                   "-c:v",
-                                   "libx264",
-                                   "-pix_fmt",
-                                   "yuv420p",
-                                   "-preset",
-                                   "veryfast",
-                                   "-crf",
-                                   "20",
-                                   "-threads",
-                                   "1",
-                                   "-movflags",
-                                   "+faststart",
-                                   "-f",
-                                   "mp4",
-                                   tmp_path_};
+  std::vector<std::string> args = {ffmpeg,       "-nostdin",  "-hide_banner",
+                                   "-loglevel",  "error",     "-y",
+                                   "-f",         "rawvideo",  "-pix_fmt",
+                                   "rgb24",      "-s",        size,
+                                   "-framerate", Number(fps), "-i",
+                                   "pipe:0",     "-vf",       "pad=ceil(iw/2)*2:ceil(ih/2)*2",
+                                   "-c:v",       "libx264",   "-pix_fmt",
+                                   "yuv420p",    "-preset",   "veryfast",
+                                   "-crf",       "20",        "-threads",
+                                   "1",          "-movflags", "+faststart",
+                                   "-f",         "mp4",       tmp_path_};
   // -nostdin only stops ffmpeg's interactive keys; the frames still come on pipe:0.
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
@@ -181,9 +159,8 @@ void VideoWriter::AddFrame(const unsigned char* rgb_top_down) {
     if (n < 0) {
       if (errno == EINTR) continue;
       const int e = errno;
-      std::string message = "VideoWriter " + path_ + ": writing frame " +
-                            std::to_string(frames_) + " to ffmpeg failed (" + std::strerror(e) +
-                            ")";
+      std::string message = "VideoWriter " + path_ + ": writing frame " + std::to_string(frames_) +
+                            " to ffmpeg failed (" + std::strerror(e) + ")";
       ::close(fd_);
       fd_ = -1;
       int status = 0;
