@@ -1,0 +1,69 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// The inner loop of the paper's two-loop scheme (Fig. 2, Fig. 7): a horizontal acceleration
+// command becomes roll and pitch references through the hover-linearised model (9); a PD loop
+// on roll and pitch and a PD loop on yaw give body torques; a PID loop holds the altitude; the
+// mixer turns thrust and torques into four rotor thrusts.
+//
+// J. Wang, L. Han, X. Dong et al., Aerosp. Sci. Technol. 111 (2021) 106549, eq. (9), z up:
+//   x'' = g (theta cos psi + phi sin psi),  y'' = g (theta sin psi - phi cos psi)
+// (the small-angle limit of a = (T / m) R e_z - g e_z, R = Rz(psi) Ry(theta) Rx(phi)).
+#ifndef MJFORMATION_ATTITUDE_PD_CASCADE_HPP_
+#define MJFORMATION_ATTITUDE_PD_CASCADE_HPP_
+
+#include "mjformation/attitude/mixer.hpp"
+#include "mjformation/attitude/types.hpp"
+
+namespace mjf::attitude {
+
+class PdCascade {
+ public:
+  struct Gains {
+    double tilt_max = 0.35;  // rad, limit on the norm of (roll, pitch) references
+    double kp_att = 150;     // 1/s^2, roll/pitch: angular acceleration per rad of error
+    double kd_att = 22;      // 1/s, roll/pitch: angular acceleration per rad/s of body rate
+    double kp_yaw = 9;       // 1/s^2
+    double kd_yaw = 6;       // 1/s
+    double kp_z = 6;         // 1/s^2, altitude
+    double ki_z = 2;         // 1/s^3
+    double kd_z = 5;         // 1/s
+    double imax_z = 2;       // m/s^2, bound on the altitude integrator's acceleration
+  };
+  struct Vehicle {
+    double mass = 0;     // kg
+    double gravity = 0;  // m/s^2, magnitude
+    Vec3 inertia{};      // kg m^2, principal moments (body axes)
+  };
+  struct Output {
+    std::array<double, Mixer::kRotors> ctrl{};  // N, rotor thrust commands
+    double thrust = 0;                          // N, wanted collective thrust
+    Vec3 torque{};                              // N m, wanted body torques
+    double roll_ref = 0, pitch_ref = 0;         // rad, from eq. (9) after the tilt limit
+    Mixer::Result mix;
+  };
+
+  // Throws std::invalid_argument on a non-positive mass, gravity, inertia or gain (ki_z, imax_z
+  // may be 0), tilt_max outside (0, pi/2), or a singular allocation.
+  PdCascade(const Gains& gains, const Vehicle& vehicle,
+            const std::array<RotorGeometry, Mixer::kRotors>& rotors);
+
+  // One control step of dt seconds (integrator update). No allocation.
+  Output Update(const VehicleState& state, const Setpoint& setpoint, double dt);
+
+  // Clears the altitude integrator.
+  void Reset() { integral_z_ = 0; }
+
+  const Mixer& mixer() const { return mixer_; }
+  const Gains& gains() const { return gains_; }
+  double altitude_integral() const { return integral_z_; }  // m/s^2
+
+ private:
+  Gains gains_;
+  Vehicle vehicle_;
+  Mixer mixer_;
+  double integral_z_ = 0;  // m/s^2, ki_z * integral of the altitude error
+};
+
+}  // namespace mjf::attitude
+
+#endif  // MJFORMATION_ATTITUDE_PD_CASCADE_HPP_

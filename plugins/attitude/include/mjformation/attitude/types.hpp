@@ -1,0 +1,39 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// Plain inputs of the attitude controllers (no MuJoCo, no plugin ABI): what the vehicle's sensors
+// say and what guidance or formation asks for. World frame z up, gravity -z (ENU-like).
+#ifndef MJFORMATION_ATTITUDE_TYPES_HPP_
+#define MJFORMATION_ATTITUDE_TYPES_HPP_
+
+#include <array>
+
+namespace mjf::attitude {
+
+using Vec3 = std::array<double, 3>;
+
+// The vehicle as its sensors report it.
+struct VehicleState {
+  Vec3 pos{};                              // m, world frame
+  Vec3 vel{};                              // m/s, world frame
+  std::array<double, 4> quat{1, 0, 0, 0};  // w x y z, body -> world
+  Vec3 gyro{};                             // rad/s, body frame
+};
+
+// What the attitude loop is asked to do (the setpoint bus, mjfSetpoint).
+struct Setpoint {
+  Vec3 acc{};      // m/s^2, world: acc[0..1] horizontal command, acc[2] vertical feedforward
+  Vec3 pos{};      // m, world: pos[2] is the altitude setpoint (x, y unused here)
+  Vec3 vel{};      // m/s, world: vel[2] is the climb-rate reference (x, y unused here)
+  double yaw = 0;  // rad
+};
+
+// Roll, pitch, yaw (rad) of a body -> world quaternion, ZYX convention: R = Rz(yaw) Ry(pitch)
+// Rx(roll). Same formulae as the runner's EulerZYX (timeseries.csv).
+Vec3 EulerZYX(const std::array<double, 4>& quat);
+
+// Angle wrapped to [-pi, pi), rad.
+double WrapPi(double angle);
+
+}  // namespace mjf::attitude
+
+#endif  // MJFORMATION_ATTITUDE_TYPES_HPP_

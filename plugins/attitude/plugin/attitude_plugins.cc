@@ -1,0 +1,212 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// Plugin family libmjf_attitude.so: thin adapters from the plugin ABI to the pure controllers
+// PdCascade (quadrotor) and PointMassDirect (double integrator).
+#include <mjformation/plugin.h>
+
+#include <cmath>
+#include <memory>
+#include <mjformation/plugin_util.hpp>
+#include <string>
+
+#include "mjformation/attitude/pd_cascade.hpp"
+#include "mjformation/attitude/pointmass_direct.hpp"
+
+namespace {
+
+using mjf::attitude::Mixer;
+using mjf::attitude::PdCascade;
+using mjf::attitude::PointMassDirect;
+using mjf::plugin::Attributes;
+using mjf::plugin::ConfigError;
+using mjf::plugin::Require;
+
+mjf::attitude::VehicleState ToState(const mjfVehicleState& s) {
+  mjf::attitude::VehicleState out;
+  for (int i = 0; i < 3; ++i) {
+    out.pos[i] = s.pos[i];
+    out.vel[i] = s.vel[i];
+    out.gyro[i] = s.gyro[i];
+  }
+  for (int i = 0; i < 4; ++i) out.quat[i] = s.quat[i];
+  return out;
+}
+
+// The fields an attitude loop reads; false when one is not finite.
+bool ToSetpoint(const mjfSetpoint& s, mjf::attitude::Setpoint* out) {
+  for (int i = 0; i < 3; ++i) {
+    out->acc[i] = s.acc[i];
+    out->pos[i] = s.pos[i];
+    out->vel[i] = s.vel[i];
+  }
+  out->yaw = s.yaw;
+  return std::isfinite(s.acc[0]) && std::isfinite(s.acc[1]) && std::isfinite(s.acc[2]) &&
+         std::isfinite(s.pos[2]) && std::isfinite(s.vel[2]) && std::isfinite(s.yaw);
+}
+
+const mjfVehicleInfo& RequireVehicle(const mjfCreateContext* ctx, int n_actuators) {
+  if (!ctx->vehicle_info) throw ConfigError("no vehicle info: this is a per-vehicle plugin");
+  if (ctx->vehicle < 0) throw ConfigError("no vehicle index: this is a per-vehicle plugin");
+  if (ctx->vehicle_info->n_actuators != n_actuators || !ctx->vehicle_info->actuators) {
+    throw ConfigError("expected " + std::to_string(n_actuators) + " actuators, got " +
+                      std::to_string(ctx->vehicle_info->n_actuators));
+  }
+  return *ctx->vehicle_info;
+}
+
+// ---------------------------------------------------------------------------------------------
+// pd_cascade
+
+constexpr const char* kTiltMax = "tilt_max";
+constexpr const char* kKpAtt = "kp_att";
+constexpr const char* kKdAtt = "kd_att";
+constexpr const char* kKpYaw = "kp_yaw";
+constexpr const char* kKdYaw = "kd_yaw";
+constexpr const char* kKpZ = "kp_z";
+constexpr const char* kKiZ = "ki_z";
+constexpr const char* kKdZ = "kd_z";
+constexpr const char* kImaxZ = "imax_z";
+
+// Defaults equal PdCascade::Gains{} (checked by tests/vehicle/plugin_test.cc).
+const mjfAttribute kCascadeAttributes[] = {
+    {kTiltMax, "0.35", "rad: limit on the tilt (norm of roll, pitch references)"},
+    {kKpAtt, "150", "1/s^2: roll/pitch proportional gain (angular acceleration per rad)"},
+    {kKdAtt, "22", "1/s: roll/pitch derivative gain on the body rate"},
+    {kKpYaw, "9", "1/s^2: yaw proportional gain"},
+    {kKdYaw, "6", "1/s: yaw derivative gain on the body z rate"},
+    {kKpZ, "6", "1/s^2: altitude proportional gain"},
+    {kKiZ, "2", "1/s^3: altitude integral gain (0: none)"},
+    {kKdZ, "5", "1/s: altitude derivative gain"},
+    {kImaxZ, "2", "m/s^2: bound on the altitude integrator's acceleration (anti-windup)"},
+};
+const char* const kRotorNames[] = {"rotor0", "rotor1", "rotor2", "rotor3"};
+
+struct CascadeInstance {
+  int vehicle;
+  PdCascade controller;
+};
+
+void* CascadeCreate(const mjfCreateContext* ctx) {
+  return mjf::plugin::CreateOrExplain(ctx, [ctx]() -> void* {
+    const Attributes attributes(ctx);
+    PdCascade::Gains gains;
+    gains.tilt_max = attributes.Number(kTiltMax);
+    Require(gains.tilt_max > 0 && gains.tilt_max < M_PI / 2, kTiltMax, "0 < tilt_max < pi/2",
+            gains.tilt_max);
+    const struct {
+      const char* key;
+      double* value;
+      bool may_be_zero;
+    } scalars[] = {{kKpAtt, &gains.kp_att, false}, {kKdAtt, &gains.kd_att, false},
+                   {kKpYaw, &gains.kp_yaw, false}, {kKdYaw, &gains.kd_yaw, false},
+                   {kKpZ, &gains.kp_z, false},     {kKiZ, &gains.ki_z, true},
+                   {kKdZ, &gains.kd_z, false},     {kImaxZ, &gains.imax_z, true}};
+    for (const auto& s : scalars) {
+      *s.value = attributes.Number(s.key);
+      Require(s.may_be_zero ? *s.value >= 0 : *s.value > 0, s.key, s.may_be_zero ? ">= 0" : "> 0",
+              *s.value);
+    }
+    const mjfVehicleInfo& info = RequireVehicle(ctx, Mixer::kRotors);
+    PdCascade::Vehicle vehicle;
+    vehicle.mass = info.mass;
+    vehicle.gravity = info.gravity;
+    for (int i = 0; i < 3; ++i) vehicle.inertia[i] = info.inertia[i];
+    std::array<mjf::attitude::RotorGeometry, Mixer::kRotors> rotors;
+    for (int k = 0; k < Mixer::kRotors; ++k) {
+      const mjfActuatorInfo& a = info.actuators[k];
+      for (int i = 0; i < 3; ++i) rotors[k].pos[i] = a.site_pos[i];
+      for (int i = 0; i < 6; ++i) rotors[k].gear[i] = a.gear[i];
+      rotors[k].ctrl_min = a.ctrl_min;
+      rotors[k].ctrl_max = a.ctrl_max;
+    }
+    return new CascadeInstance{ctx->vehicle, PdCascade(gains, vehicle, rotors)};
+  });
+}
+
+int CascadeCompute(void* instance, const mjfStepContext* ctx) {
+  auto* self = static_cast<CascadeInstance*>(instance);
+  if (self->vehicle >= ctx->n_vehicles || !ctx->controls) return 1;
+  mjf::attitude::Setpoint setpoint;
+  if (!ToSetpoint(ctx->setpoints[self->vehicle], &setpoint)) return 2;
+  const PdCascade::Output out =
+      self->controller.Update(ToState(ctx->states[self->vehicle]), setpoint, ctx->timestep);
+  for (int k = 0; k < Mixer::kRotors; ++k) ctx->controls[k] = out.ctrl[k];
+  return 0;
+}
+
+void CascadeReset(void* instance) { static_cast<CascadeInstance*>(instance)->controller.Reset(); }
+void CascadeDestroy(void* instance) { delete static_cast<CascadeInstance*>(instance); }
+
+const mjfPlugin kPdCascade = {
+    MJF_ABI_VERSION,
+    "pd_cascade",
+    MJF_KIND_ATTITUDE,
+    "quadrotor: model (9) -> roll/pitch refs, PD attitude, PID altitude, PD yaw, mixer",
+    static_cast<int>(sizeof(kCascadeAttributes) / sizeof(kCascadeAttributes[0])),
+    kCascadeAttributes,
+    Mixer::kRotors,
+    kRotorNames,
+    CascadeCreate,
+    CascadeCompute,
+    CascadeReset,
+    CascadeDestroy,
+    nullptr};
+
+// ---------------------------------------------------------------------------------------------
+// pointmass_direct
+
+const mjfAttribute kPointMassAttributes[] = {
+    {kKpZ, "6", "1/s^2: altitude proportional gain"},
+    {kKdZ, "5", "1/s: altitude derivative gain"},
+};
+const char* const kForceNames[] = {"fx", "fy", "fz"};
+
+struct PointMassInstance {
+  int vehicle;
+  PointMassDirect controller;
+};
+
+void* PointMassCreate(const mjfCreateContext* ctx) {
+  return mjf::plugin::CreateOrExplain(ctx, [ctx]() -> void* {
+    const Attributes attributes(ctx);
+    PointMassDirect::Gains gains;
+    gains.kp_z = attributes.Number(kKpZ);
+    Require(gains.kp_z >= 0, kKpZ, ">= 0", gains.kp_z);
+    gains.kd_z = attributes.Number(kKdZ);
+    Require(gains.kd_z >= 0, kKdZ, ">= 0", gains.kd_z);
+    const mjfVehicleInfo& info = RequireVehicle(ctx, 3);
+    return new PointMassInstance{ctx->vehicle, PointMassDirect(gains, info.mass, info.gravity)};
+  });
+}
+
+int PointMassCompute(void* instance, const mjfStepContext* ctx) {
+  auto* self = static_cast<PointMassInstance*>(instance);
+  if (self->vehicle >= ctx->n_vehicles || !ctx->controls) return 1;
+  mjf::attitude::Setpoint setpoint;
+  if (!ToSetpoint(ctx->setpoints[self->vehicle], &setpoint)) return 2;
+  const auto force = self->controller.Update(ToState(ctx->states[self->vehicle]), setpoint);
+  for (int k = 0; k < 3; ++k) ctx->controls[k] = force[k];
+  return 0;
+}
+
+void PointMassReset(void*) {}
+void PointMassDestroy(void* instance) { delete static_cast<PointMassInstance*>(instance); }
+
+const mjfPlugin kPointMassDirect = {
+    MJF_ABI_VERSION,
+    "pointmass_direct",
+    MJF_KIND_ATTITUDE,
+    "double integrator: force = m * acceleration command, PD altitude, gravity compensated",
+    static_cast<int>(sizeof(kPointMassAttributes) / sizeof(kPointMassAttributes[0])),
+    kPointMassAttributes,
+    3,
+    kForceNames,
+    PointMassCreate,
+    PointMassCompute,
+    PointMassReset,
+    PointMassDestroy,
+    nullptr};
+
+}  // namespace
+
+MJF_EXPORT_PLUGINS(&kPdCascade, &kPointMassDirect)

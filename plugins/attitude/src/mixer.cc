@@ -1,0 +1,67 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+#include "mjformation/attitude/mixer.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace mjf::attitude {
+
+Mixer::Mixer(const std::array<RotorGeometry, kRotors>& rotors) {
+  for (int k = 0; k < kRotors; ++k) {
+    const RotorGeometry& r = rotors[k];
+    const Eigen::Vector3d pos(r.pos[0], r.pos[1], r.pos[2]);
+    const Eigen::Vector3d force(r.gear[0], r.gear[1], r.gear[2]);
+    const Eigen::Vector3d torque =
+        pos.cross(force) + Eigen::Vector3d(r.gear[3], r.gear[4], r.gear[5]);
+    allocation_.col(k) << force.z(), torque;  // thrust along body z, torque x, y, z
+    if (!(r.ctrl_min < r.ctrl_max)) {
+      throw std::invalid_argument("rotor " + std::to_string(k) + ": empty control range");
+    }
+    ctrl_min_[k] = r.ctrl_min;
+    ctrl_max_[k] = r.ctrl_max;
+  }
+  const Eigen::JacobiSVD<Eigen::Matrix4d> svd(allocation_);
+  const auto& sv = svd.singularValues();
+  condition_ = sv[3] > 0 ? sv[0] / sv[3] : INFINITY;
+  if (!(condition_ < kMaxCondition)) {
+    throw std::invalid_argument(
+        "the rotor allocation matrix (thrust, torques vs rotor thrusts) is singular or "
+        "ill-conditioned (condition number " +
+        std::to_string(condition_) + "): check rotor site positions and gears");
+  }
+  inverse_ = allocation_.inverse();
+}
+
+double Mixer::MaxScale(const Eigen::Vector4d& base, const Eigen::Vector4d& delta) const {
+  double s = 1;
+  for (int k = 0; k < kRotors; ++k) {
+    if (delta[k] > 0) {
+      s = std::min(s, (ctrl_max_[k] - base[k]) / delta[k]);
+    } else if (delta[k] < 0) {
+      s = std::min(s, (ctrl_min_[k] - base[k]) / delta[k]);
+    }
+  }
+  return std::max(s, 0.0);
+}
+
+Mixer::Result Mixer::Mix(const Wrench& wanted) const {
+  Result result;
+  // Split u = B^-1 w into the parts of thrust, roll/pitch torque and yaw torque.
+  const Eigen::Vector4d u_thrust = inverse_.col(0) * wanted[0];
+  const Eigen::Vector4d u_roll_pitch = inverse_.col(1) * wanted[1] + inverse_.col(2) * wanted[2];
+  const Eigen::Vector4d u_yaw = inverse_.col(3) * wanted[3];
+
+  const double thrust_scale = MaxScale(Eigen::Vector4d::Zero(), u_thrust);
+  result.thrust_saturated = thrust_scale < 1;
+  Eigen::Vector4d u = thrust_scale * u_thrust;
+  result.roll_pitch_scale = MaxScale(u, u_roll_pitch);
+  u += result.roll_pitch_scale * u_roll_pitch;
+  result.yaw_scale = MaxScale(u, u_yaw);
+  u += result.yaw_scale * u_yaw;
+  for (int k = 0; k < kRotors; ++k) result.ctrl[k] = std::clamp(u[k], ctrl_min_[k], ctrl_max_[k]);
+  return result;
+}
+
+}  // namespace mjf::attitude

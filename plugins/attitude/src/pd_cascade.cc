@@ -1,0 +1,98 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+#include "mjformation/attitude/pd_cascade.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace mjf::attitude {
+namespace {
+
+void RequirePositive(double value, const char* what) {
+  if (!(value > 0) || !std::isfinite(value)) {
+    throw std::invalid_argument(std::string(what) + " must be positive and finite (got " +
+                                std::to_string(value) + ")");
+  }
+}
+
+void RequireNonNegative(double value, const char* what) {
+  if (!(value >= 0) || !std::isfinite(value)) {
+    throw std::invalid_argument(std::string(what) + " must be >= 0 and finite (got " +
+                                std::to_string(value) + ")");
+  }
+}
+
+}  // namespace
+
+PdCascade::PdCascade(const Gains& gains, const Vehicle& vehicle,
+                     const std::array<RotorGeometry, Mixer::kRotors>& rotors)
+    : gains_(gains), vehicle_(vehicle), mixer_(rotors) {
+  RequirePositive(vehicle.mass, "vehicle mass");
+  RequirePositive(vehicle.gravity, "gravity");
+  for (double i : vehicle.inertia) RequirePositive(i, "vehicle inertia");
+  if (!(gains.tilt_max > 0 && gains.tilt_max < M_PI / 2)) {
+    throw std::invalid_argument("tilt_max must be in (0, pi/2) rad (got " +
+                                std::to_string(gains.tilt_max) + ")");
+  }
+  RequirePositive(gains.kp_att, "kp_att");
+  RequirePositive(gains.kd_att, "kd_att");
+  RequirePositive(gains.kp_yaw, "kp_yaw");
+  RequirePositive(gains.kd_yaw, "kd_yaw");
+  RequirePositive(gains.kp_z, "kp_z");
+  RequirePositive(gains.kd_z, "kd_z");
+  RequireNonNegative(gains.ki_z, "ki_z");
+  RequireNonNegative(gains.imax_z, "imax_z");
+}
+
+PdCascade::Output PdCascade::Update(const VehicleState& state, const Setpoint& setpoint,
+                                    double dt) {
+  Output out;
+  const double g = vehicle_.gravity;
+  const Vec3 euler = EulerZYX(state.quat);
+  const double roll = euler[0], pitch = euler[1], yaw = euler[2];
+  const double cos_yaw = std::cos(yaw), sin_yaw = std::sin(yaw);
+
+  // Eq. (9) inverted for the references, with the measured yaw:
+  //   [ax; ay] = g [cos psi, sin psi; sin psi, -cos psi] [theta; phi], the matrix is its own
+  //   inverse, so theta = (ax cos psi + ay sin psi) / g, phi = (ax sin psi - ay cos psi) / g.
+  double pitch_ref = (setpoint.acc[0] * cos_yaw + setpoint.acc[1] * sin_yaw) / g;  // eq. (9)
+  double roll_ref = (setpoint.acc[0] * sin_yaw - setpoint.acc[1] * cos_yaw) / g;   // eq. (9)
+  const double tilt = std::hypot(roll_ref, pitch_ref);
+  if (tilt > gains_.tilt_max) {  // keep the direction of the horizontal command
+    roll_ref *= gains_.tilt_max / tilt;
+    pitch_ref *= gains_.tilt_max / tilt;
+  }
+  out.roll_ref = roll_ref;
+  out.pitch_ref = pitch_ref;
+
+  // PD attitude (Fig. 2 inner loop): body rates stand for Euler rates near hover.
+  const Vec3& rate = state.gyro;
+  out.torque[0] =
+      vehicle_.inertia[0] * (gains_.kp_att * (roll_ref - roll) - gains_.kd_att * rate[0]);
+  out.torque[1] =
+      vehicle_.inertia[1] * (gains_.kp_att * (pitch_ref - pitch) - gains_.kd_att * rate[1]);
+  out.torque[2] =
+      vehicle_.inertia[2] * (gains_.kp_yaw * WrapPi(setpoint.yaw - yaw) - gains_.kd_yaw * rate[2]);
+
+  // PID altitude: vertical acceleration wanted, then the thrust that gives it at this tilt.
+  const double z_error = setpoint.pos[2] - state.pos[2];
+  const double az = setpoint.acc[2] + gains_.kp_z * z_error +
+                    gains_.kd_z * (setpoint.vel[2] - state.vel[2]) + integral_z_;
+  const double tilt_cos = std::max(std::cos(roll) * std::cos(pitch), std::cos(gains_.tilt_max));
+  out.thrust = std::max(0.0, vehicle_.mass * (g + az) / tilt_cos);
+
+  out.mix = mixer_.Mix(Wrench(out.thrust, out.torque[0], out.torque[1], out.torque[2]));
+  out.ctrl = out.mix.ctrl;
+
+  // Anti-windup: clamp, and do not integrate further into a saturated thrust.
+  const bool pushing_saturation =
+      (out.mix.thrust_saturated && z_error > 0) || (out.thrust <= 0 && z_error < 0);
+  if (!pushing_saturation) {
+    integral_z_ =
+        std::clamp(integral_z_ + gains_.ki_z * z_error * dt, -gains_.imax_z, gains_.imax_z);
+  }
+  return out;
+}
+
+}  // namespace mjf::attitude

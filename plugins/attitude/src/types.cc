@@ -1,0 +1,23 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+#include "mjformation/attitude/types.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace mjf::attitude {
+
+Vec3 EulerZYX(const std::array<double, 4>& q) {
+  const double w = q[0], x = q[1], y = q[2], z = q[3];
+  return {std::atan2(2 * (w * x + y * z), 1 - 2 * (x * x + y * y)),
+          std::asin(std::clamp(2 * (w * y - z * x), -1.0, 1.0)),
+          std::atan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z))};
+}
+
+double WrapPi(double angle) {
+  const double two_pi = 2 * M_PI;
+  double a = std::fmod(angle + M_PI, two_pi);
+  if (a < 0) a += two_pi;
+  return a - M_PI;
+}
+
+}  // namespace mjf::attitude
