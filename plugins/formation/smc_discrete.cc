@@ -111,6 +111,7 @@ void Report(void* instance, mjfReportFn emit, void* user) {
   emit(user, "delta1", delta1);
   emit(user, "delta2", delta2);
   emit(user, "error_bound", c.error_bound());
+  emit(user, "error_bound_rederived", c.ultimate_error_bound());
   emit(user, "norm_inv_lh", c.norm_inv_lh());
   emit(user, "period", c.params().period);
   emit(user, "steps_per_sample", static_cast<double>(self->steps_per_sample));

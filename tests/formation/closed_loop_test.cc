@@ -7,11 +7,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <mjformation/core/continuous_smc.hpp>
 #include <mjformation/core/discrete_smc.hpp>
 #include <mjformation/core/metrics.hpp>
 #include <mjformation/core/shape.hpp>
 #include <random>
+#include <stdexcept>
 #include <vector>
 
 #include "test_util.hpp"
@@ -90,10 +92,18 @@ void DiscreteBandHolds(const Graph& g, double T, double u_min, double u_max, uns
     EXPECT_GE(reached_at[m], 0) << "follower " << m / 2 + 1 << " never reached the band, T = " << T;
     EXPECT_LT(reached_at[m], steps / 2);
   }
+  // Our ultimate bound assumes f_ip(k+1) = f_ip(k) + T f_iv(k); the circle misses that by
+  // delta_f <= T^2 r w^2 / 2 per step, which adds at most delta_f / (1 - |1 - a|) to |z_ip| and
+  // k1 / k2 times that to |z_iv| (a = T k1 / k2).
+  const double a = T * p.gains.k1 / p.gains.k2;
+  const double shape_p = 0.5 * T * T * 10.0 * 0.314 * 0.314 / (1.0 - std::abs(1.0 - a));
+  const double shape_term = std::sqrt(2.0 * n) * shape_p * std::hypot(1.0, p.gains.k1 / p.gains.k2);
+  const double rederived = smc.ultimate_error_bound() + shape_term;
+  EXPECT_LE(sigma_max_late, rederived) << "T = " << T;
   std::printf(
       "[ info ] n = %d T = %.2f: Delta = %.4g, max |s|/Delta_i after reaching = %.3f, "
-      "max sigma_f (2nd half) = %.4g, bound (47) = %.4g\n",
-      n, T, smc.delta(), max_after, sigma_max_late, smc.error_bound());
+      "max sigma_f (2nd half) = %.4g, bound (47) = %.4g, re-derived bound = %.4g\n",
+      n, T, smc.delta(), max_after, sigma_max_late, smc.error_bound(), rederived);
 }
 
 TEST(DiscreteClosedLoopTest, StaysInQuasiSlidingBandPaperGraph) {
@@ -106,6 +116,46 @@ TEST(DiscreteClosedLoopTest, StaysInQuasiSlidingBandRandomGraphs) {
     DiscreteBandHolds(testing::RandomGraph(12, 20, true, &rng), T, -0.5, 1.5, 2);
     DiscreteBandHolds(testing::RandomGraph(12, 20, false, &rng), T, -1.0, 1.0, 3);
   }
+}
+
+// Theorem 2 keeps |s_i| <= Delta, but on model (40) s_i = 0 means e_ip(k+1) = (1 - T k1/k2)
+// e_ip(k): with T k1 / k2 >= 2 (allowed by Algorithm 2) the formation diverges inside the band.
+TEST(DiscreteClosedLoopTest, SurfaceUnstableWhenTk1OverK2AtLeastTwo) {
+  DiscreteSmcParams p;
+  p.period = 0.1;
+  p.gains = {25.0, 1.0};  // T k1 / k2 = 2.5; Theorem 2's conditions hold (1 - qT = 0.55)
+  EXPECT_THROW(DiscreteSmc(testing::PaperGraph(), p), std::invalid_argument);
+  p.require_stable_surface = false;
+  DiscreteSmc smc(testing::PaperGraph(), p);
+  EXPECT_EQ(smc.ultimate_error_bound(), std::numeric_limits<double>::infinity());
+  const auto shape = MakeCircleShape(6, 10.0, 0.314, 0.0, kPi / 3);
+  std::vector<double> leader = {20.0, 0.0, 0.0, 3.14}, followers(24, 0.0), now(36), next(36);
+  for (int i = 0; i < 6; ++i) followers[4 * i] = 2.0 * i - 6.0;
+  double sigma = 0.0;
+  bool all_in_band_at_step_30 = false;
+  for (int k = 0; k < 60; ++k) {
+    shape->Evaluate(k * p.period, now.data());
+    shape->Evaluate((k + 1) * p.period, next.data());
+    smc.Update({leader.data(), followers.data(), now.data(), next.data()});
+    if (k == 30) {
+      all_in_band_at_step_30 = true;
+      for (int i = 0; i < 6; ++i) {
+        for (int a = 0; a < 2; ++a) {
+          all_in_band_at_step_30 &= std::abs(smc.sliding()[2 * i + a]) <= smc.delta(i) + 1e-6;
+        }
+      }
+    }
+    sigma = FormationError(6, followers.data(), leader.data(), now.data());
+    for (int a = 0; a < 2; ++a) {
+      leader[a] += p.period * leader[2 + a];
+      for (int i = 0; i < 6; ++i) {
+        followers[4 * i + a] += p.period * followers[4 * i + 2 + a];
+        followers[4 * i + 2 + a] += p.period * smc.acceleration()[2 * i + a];
+      }
+    }
+  }
+  EXPECT_TRUE(all_in_band_at_step_30);
+  EXPECT_GT(sigma, 1e6);
 }
 
 struct ContinuousRun {

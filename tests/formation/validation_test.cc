@@ -92,6 +92,12 @@ TEST(ValidationTest, DiscreteParameters) {
   p.eta0 = 0;
   ExpectRefused(Build<DiscreteSmc>(p), {"attribute 'eta0'"});
   p = D{};
+  p.gains = {25.0, 1.0};  // T k1 / k2 = 1.25 with T = 0.05: fine; with T = 0.1: 2.5
+  EXPECT_NO_THROW(Build<DiscreteSmc>(p)());
+  p.period = 0.1;
+  p.q = 4.5;
+  ExpectRefused(Build<DiscreteSmc>(p), {"attribute 'k' with 'period'", "T*k1/k2 < 2"});
+  p = D{};
   p.sign = SignFunction::kSat;
   p.boundary_layer = -1;
   ExpectRefused(Build<DiscreteSmc>(p), {"attribute 'boundary_layer'"});

@@ -1,6 +1,7 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <mjformation/core/discrete_smc.hpp>
 #include <sstream>
 #include <stdexcept>
@@ -27,6 +28,14 @@ void DiscreteSmcParams::Validate() const {
     throw std::invalid_argument(out.str());
   }
   require_positive(eta0, "eta0", "eq. (49)");
+  if (require_stable_surface && !(period * gains.k1 / gains.k2 < 2.0)) {
+    std::ostringstream out;
+    out << "attribute 'k' with 'period': T*k1/k2 < 2 is required for the discrete sliding "
+           "surface to be stable (e_p(k+1) = (1 - T k1/k2) e_p(k) on s = 0; not stated in "
+           "Algorithm 2) (got k1 = "
+        << gains.k1 << ", k2 = " << gains.k2 << ", T = " << period << ")";
+    throw std::invalid_argument(out.str());
+  }
   ValidateLeaderBounds(u_min, u_max);
   ValidateSign(sign, boundary_layer);
 }
@@ -109,6 +118,25 @@ double DiscreteSmc::error_bound() const {
   const double k_sum = params_.gains.k1 + params_.gains.k2;
   return norm_inv_lh() * std::sqrt(static_cast<double>(graph_.num_followers())) * delta() /
          (k_sum * std::sqrt(2.0));  // eq. (47) as EQUATIONS.md reads it
+}
+
+double DiscreteSmc::ultimate_error_bound() const {
+  const int n = graph_.num_followers();
+  const double k1 = params_.gains.k1, k2 = params_.gains.k2, T = params_.period;
+  const double a = T * k1 / k2;
+  if (!(a < 2.0)) return std::numeric_limits<double>::infinity();
+  // b = L_H^-1 Delta (both columns carry the same Delta; the solver works on pairs).
+  Eigen::Matrix<double, Eigen::Dynamic, 2> b(n, 2);
+  for (int i = 0; i < n; ++i) b(i, 0) = b(i, 1) = delta(i);
+  LaplacianSolver solver(graph_.laplacian_h());
+  solver.SolveInPlace(b);
+  double sum = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const double p_bound = (T / k2) * b(i, 0) / (1.0 - std::abs(1.0 - a));
+    const double v_bound = (b(i, 0) + k1 * p_bound) / k2;
+    sum += 2.0 * (p_bound * p_bound + v_bound * v_bound);
+  }
+  return std::sqrt(sum);
 }
 
 }  // namespace mjf::core

@@ -23,9 +23,14 @@ struct DiscreteSmcParams {
   SignFunction sign = SignFunction::kSgn;
   double boundary_layer = 0.1;  // 'boundary_layer', phi of sat (sign = sat only)
   double eta0 = 1e-6;           // 'eta0', the small eta_0 > 0 of Delta_1, eq. (49)
+  // Our addition to Algorithm 2: on model (40) the surface s_i = 0 gives
+  // e_ip(k+1) = (1 - T k1/k2) e_ip(k), stable only when T k1/k2 < 2 (see README). Set false
+  // only to reproduce the paper's conditions (tests do, to show the divergence).
+  bool require_stable_surface = true;
 
   // Algorithm 2 / Theorem 2: k1, k2 > 0, eps > 0, q > 0, T > 0, 1 - qT > 0, u_min <= u_max,
-  // eta0 > 0, phi > 0 (sat). Throws std::invalid_argument naming the key and the condition.
+  // eta0 > 0, phi > 0 (sat); and T k1 / k2 < 2 (require_stable_surface). Throws
+  // std::invalid_argument naming the key and the condition.
   void Validate() const;
 };
 
@@ -49,6 +54,14 @@ class DiscreteSmc {
   double delta() const;  // max over followers
   // eq. (47) as EQUATIONS.md reads it: ||L_H^-1|| sqrt(N) Delta / ((k1 + k2) sqrt(2)).
   double error_bound() const;
+  // Our re-derivation (README): after reaching, with w = L_H^-1 S and L_H^-1 >= 0 elementwise
+  // (M-matrix), |w_i| <= b_i = (L_H^-1 Delta)_i; on model (40) with a shape satisfying
+  // f_ip(k+1) = f_ip(k) + T f_iv(k), the position deviation obeys
+  // z_p(k+1) = (1 - a) z_p(k) + (T/k2) w(k), a = T k1/k2, so ultimately
+  // |z_ip| <= P_i = (T/k2) b_i / (1 - |1 - a|), |z_iv| <= V_i = (b_i + k1 P_i) / k2 and
+  // sigma_f <= sqrt(2 sum_i (P_i^2 + V_i^2)) (two axes). +infinity when a >= 2.
+  // Factors L_H again: call at report time, not per step.
+  double ultimate_error_bound() const;
   double norm_inv_lh() const { return solver_.InverseTwoNorm(); }
   const DiscreteSmcParams& params() const { return params_; }
   const Graph& graph() const { return graph_; }
