@@ -1,0 +1,322 @@
+# Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+"""The paper's figures (section 6, Figs. 10-27) for one run, and the cross-run comparison.
+
+Every function writes one PNG and returns its path. Output is deterministic: same data, same
+bytes (Agg backend, fixed style, no PNG 'Software' metadata, fixed SVG hash salt).
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+from matplotlib.patches import Circle  # noqa: E402
+
+from . import metrics as M  # noqa: E402
+from .io import Run  # noqa: E402
+
+DPI = 110
+STYLE = {
+    "figure.figsize": (7.0, 4.6),
+    "axes.grid": True,
+    "grid.alpha": 0.35,
+    "font.size": 10,
+    "legend.fontsize": 8,
+    "svg.hashsalt": "mjformation",
+    "path.simplify": False,
+}
+LEADER_COLOR = "black"
+FIGURE_NAMES = {
+    "trajectories": "trajectories_xy.png",
+    "final_positions": "final_positions.png",
+    "pitch_roll": "attitude_pitch_roll.png",
+    "yaw": "attitude_yaw.png",
+    "sliding": "sliding_s1.png",
+    "sigma_f": "sigma_f.png",
+}
+
+
+def follower_color(i: int):
+    return plt.get_cmap("tab10")((i - 1) % 10)
+
+
+def _save(fig, out_path) -> Path:
+    out_path = Path(out_path)
+    out_path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(out_path, dpi=DPI, metadata={"Software": None})
+    plt.close(fig)
+    return out_path
+
+
+def _title(run: Run, what: str, fig_index: int) -> str:
+    exp = M.paper_experiment(run.summary, run.name)
+    ref = f" (cf. paper Fig. {M.PAPER_FIGURES[exp][fig_index]})" if exp else ""
+    head = f"{run.label} [{run.vehicle_model}]"
+    if exp:
+        head = f"Exp. {exp}, {head}"
+    tail = "" if run.complete else f"  — {run.status.upper()}"
+    return f"{head}: {what}{ref}{tail}"
+
+
+def _new(figsize=None):
+    with plt.rc_context(STYLE):
+        fig, ax = plt.subplots(figsize=figsize or STYLE["figure.figsize"], layout="constrained")
+    return fig, ax
+
+
+def _no_data(run: Run, out_path, what: str, fig_index: int, why: str) -> Path:
+    with plt.rc_context(STYLE):
+        fig, ax = _new()
+        ax.set_title(_title(run, what, fig_index), fontsize=9)
+        ax.text(0.5, 0.5, why, ha="center", va="center", transform=ax.transAxes)
+        ax.set_axis_off()
+        return _save(fig, out_path)
+
+
+def _rows(run: Run):
+    ts = run.timeseries
+    if ts is None:
+        return None
+    return ts
+
+
+def fig_trajectories(run: Run, out_path) -> Path:
+    """X-Y trajectories of all vehicles over the run; start = circle, end = square (Figs. 10,
+    16, 22)."""
+    what = "X-Y trajectories"
+    ts = _rows(run)
+    if ts is None:
+        return _no_data(run, out_path, what, 0, run.ts_error or "no data")
+    t = ts["t"]
+    with plt.rc_context(STYLE):
+        fig, ax = _new((6.6, 6.2))
+        for i in M.vehicle_ids(ts):
+            x, y = ts[f"uav{i}_px"], ts[f"uav{i}_py"]
+            leader = i == 0
+            c = LEADER_COLOR if leader else follower_color(i)
+            ax.plot(x, y, color=c, lw=2.0 if leader else 1.1, ls="--" if leader else "-",
+                    label="leader" if leader else f"follower {i}", zorder=3 if leader else 2)
+            ax.plot(x[0], y[0], "o", ms=7, mfc="white", mec=c, mew=1.5, zorder=4)
+            ax.plot(x[-1], y[-1], "s", ms=7, color=c, zorder=4)
+        ax.plot([], [], "o", mfc="white", mec="gray", label=f"start, t = {t[0]:g} s")
+        ax.plot([], [], "s", color="gray", label=f"end, t = {t[-1]:g} s")
+        ax.set_aspect("equal", adjustable="datalim")
+        ax.set_xlabel("X (m)")
+        ax.set_ylabel("Y (m)")
+        ax.set_title(_title(run, f"{what}, t = {t[0]:g}..{t[-1]:g} s", 0), fontsize=9)
+        ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0))
+        return _save(fig, out_path)
+
+
+def formation_radius(run: Run) -> float:
+    p = M.shape_parameters(run.summary, run.config)
+    if p["radius"] is not None and (p["type"] in (None, "circle")):
+        return p["radius"]
+    ts = run.timeseries
+    return M.slot_radius(ts) if ts is not None else float("nan")
+
+
+def fig_final_positions(run: Run, out_path) -> Path:
+    """Positions at the final time, the desired circle about the leader, the slots (Figs. 11,
+    17, 23)."""
+    what = "positions at the final time"
+    ts = _rows(run)
+    if ts is None:
+        return _no_data(run, out_path, what, 1, run.ts_error or "no data")
+    t_end = ts["t"][-1]
+    r = formation_radius(run)
+    lx, ly = ts["uav0_px"][-1], ts["uav0_py"][-1]
+    with plt.rc_context(STYLE):
+        fig, ax = _new((6.6, 6.2))
+        if math.isfinite(r):
+            ax.add_patch(Circle((lx, ly), r, fill=False, color="red", lw=1.5,
+                                label=f"desired circle, r = {r:g} m"))
+        ax.plot(lx, ly, "*", ms=16, color=LEADER_COLOR, label="leader", zorder=4)
+        for k, i in enumerate(M.followers(ts)):
+            c = follower_color(i)
+            px, py = ts[f"uav{i}_px"][-1], ts[f"uav{i}_py"][-1]
+            sx, sy = ts[f"uav{i}_slot_x"][-1], ts[f"uav{i}_slot_y"][-1]
+            ax.plot([sx, px], [sy, py], color=c, lw=0.8, ls=":")
+            ax.plot(sx, sy, "x", ms=9, mew=1.8, color=c, zorder=3,
+                    label="slot (desired position)" if k == 0 else None)
+            ax.plot(px, py, "s", ms=8, color=c, label=f"follower {i}", zorder=4)
+            ax.annotate(str(i), (px, py), textcoords="offset points", xytext=(6, 6), fontsize=8)
+        ax.set_aspect("equal", adjustable="datalim")
+        if math.isfinite(r):
+            ax.set_xlim(lx - 1.5 * r, lx + 1.5 * r)
+            ax.set_ylim(ly - 1.5 * r, ly + 1.5 * r)
+        err = M.final_slot_errors(ts)
+        ax.text(0.02, 0.02, f"max |p_i - slot_i| = {np.nanmax(err):.3g} m" if err.size else "",
+                transform=ax.transAxes, fontsize=8,
+                bbox={"facecolor": "white", "alpha": 0.8, "lw": 0})
+        ax.set_xlabel("X (m)")
+        ax.set_ylabel("Y (m)")
+        ax.set_title(_title(run, f"{what} t = {t_end:g} s", 1), fontsize=9)
+        ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0))
+        return _save(fig, out_path)
+
+
+def _angles_deg(ts, i, name):
+    return np.degrees(ts[f"uav{i}_{name}"])
+
+
+def fig_pitch_roll(run: Run, out_path, follower: int = 1) -> Path:
+    """Pitch and roll of follower 1 vs time, degrees (Figs. 12, 18, 24)."""
+    what = f"pitch and roll of follower {follower}"
+    ts = _rows(run)
+    if ts is None or f"uav{follower}_pitch" not in ts:
+        return _no_data(run, out_path, what, 2, run.ts_error or f"no follower {follower}")
+    t = ts["t"]
+    with plt.rc_context(STYLE):
+        fig, ax = _new()
+        ax.plot(t, _angles_deg(ts, follower, "pitch"), lw=1.0, label="pitch θ")
+        ax.plot(t, _angles_deg(ts, follower, "roll"), lw=1.0, label="roll φ")
+        ax.set_xlabel("t (s)")
+        ax.set_ylabel("angle (deg)")
+        ax.set_title(_title(run, what, 2), fontsize=9)
+        ax.legend(loc="upper right")
+        return _save(fig, out_path)
+
+
+def fig_yaw(run: Run, out_path, follower: int = 1) -> Path:
+    """Yaw of follower 1 vs time, degrees (Figs. 13, 19, 25)."""
+    what = f"yaw of follower {follower}"
+    ts = _rows(run)
+    if ts is None or f"uav{follower}_yaw" not in ts:
+        return _no_data(run, out_path, what, 3, run.ts_error or f"no follower {follower}")
+    t = ts["t"]
+    with plt.rc_context(STYLE):
+        fig, ax = _new()
+        ax.plot(t, _angles_deg(ts, follower, "yaw"), lw=1.0, color="C2", label="yaw ψ")
+        ax.set_xlabel("t (s)")
+        ax.set_ylabel("angle (deg)")
+        ax.set_title(_title(run, what, 3), fontsize=9)
+        ax.legend(loc="upper right")
+        return _save(fig, out_path)
+
+
+def _is_discrete(run: Run) -> bool:
+    f = ((run.summary or {}).get("plugins") or {}).get("formation") or {}
+    return "discrete" in str(f.get("name", ""))
+
+
+def fig_sliding(run: Run, out_path, follower: int = 1) -> Path:
+    """Sliding variable s_1 (x and y axes) vs time (Figs. 14, 20, 26)."""
+    discrete = _is_discrete(run)
+    what = f"sliding variable s_{follower}" + ("(k)" if discrete else "(t)")
+    ts = _rows(run)
+    if ts is None:
+        return _no_data(run, out_path, what, 4, run.ts_error or "no data")
+    sx, sy = ts.get(f"uav{follower}_sx"), ts.get(f"uav{follower}_sy")
+    if sx is None or sy is None or not (np.isfinite(sx).any() or np.isfinite(sy).any()):
+        return _no_data(run, out_path, what, 4,
+                        "no sliding variable recorded\n(the protocol has none: empty CSV cells)")
+    t = ts["t"]
+    kw = {"drawstyle": "steps-post"} if discrete else {}
+    with plt.rc_context(STYLE):
+        fig, ax = _new()
+        ax.plot(t, sx, lw=1.0, label=f"s_{follower},x", **kw)
+        ax.plot(t, sy, lw=1.0, label=f"s_{follower},y", **kw)
+        delta = run.plugin_report("delta")
+        if math.isfinite(delta):
+            ax.axhspan(-delta, delta, color="gray", alpha=0.2,
+                       label=f"quasi-sliding band ±Δ, Δ = {delta:.3g}")
+        ax.axhline(0.0, color="black", lw=0.6)
+        ax.set_xlabel("t (s)")
+        # s = K e = k1 e_p + k2 e_v: with k1 in 1/s it has the units of a velocity.
+        ax.set_ylabel("s (m/s)")
+        ax.set_title(_title(run, what, 4), fontsize=9)
+        ax.legend(loc="upper right")
+        return _save(fig, out_path)
+
+
+def sigma_f_series(run: Run):
+    """(t, sigma_f) from the CSV column; the recomputation where the column is empty."""
+    ts = run.timeseries
+    if ts is None:
+        return None, None
+    t, s = ts["t"], ts.get("sigma_f")
+    if s is None or not np.isfinite(s).any():
+        s = M.sigma_f_recomputed(ts, M.circle_omega(run.summary, run.config))
+    return t, s
+
+
+def fig_sigma_f(run: Run, out_path) -> Path:
+    """sigma_f(t), eq. (68), with the metric window shaded and its mean annotated (Figs. 15,
+    21, 27)."""
+    what = "formation tracking error σ_f(t)"
+    t, s = sigma_f_series(run)
+    if t is None:
+        return _no_data(run, out_path, what, 5, run.ts_error or "no data")
+    w = M.metric_window(run.summary, run.config)
+    mean = M.window_mean(t, s, w)
+    exp = M.paper_experiment(run.summary, run.name)
+    with plt.rc_context(STYLE):
+        fig, ax = _new()
+        ax.plot(t, s, lw=1.1, color="C0", label="σ_f(t)")
+        ax.axvspan(w[0], w[1], color="gold", alpha=0.25, label=f"window [{w[0]:g}, {w[1]:g}] s")
+        if math.isfinite(mean):
+            ax.hlines(mean, w[0], w[1], colors="C3", lw=1.6,
+                      label=f"mean on window = {mean:.4f}")
+            ax.annotate(f"mean = {mean:.4f}", (w[0], mean), textcoords="offset points",
+                        xytext=(2, 8), color="C3", fontsize=9)
+        if exp:
+            ax.hlines(M.PAPER_SIGMA_F[exp], w[0], w[1], colors="gray", lw=1.2, ls="--",
+                      label=f"paper, Table 1: {M.PAPER_SIGMA_F[exp]:.4f}")
+        ax.set_ylim(bottom=0)
+        ax.set_xlabel("t (s)")
+        ax.set_ylabel("σ_f (m, m/s: eq. (68))")
+        ax.set_title(_title(run, what, 5), fontsize=9)
+        ax.legend(loc="upper right")
+        return _save(fig, out_path)
+
+
+FIGURES = (
+    ("trajectories", fig_trajectories),
+    ("final_positions", fig_final_positions),
+    ("pitch_roll", fig_pitch_roll),
+    ("yaw", fig_yaw),
+    ("sliding", fig_sliding),
+    ("sigma_f", fig_sigma_f),
+)
+
+
+def run_figures(run: Run, out_dir) -> dict[str, Path]:
+    """Every per-run figure into out_dir; {key: path}."""
+    out_dir = Path(out_dir)
+    return {key: fn(run, out_dir / FIGURE_NAMES[key]) for key, fn in FIGURES}
+
+
+def fig_sigma_comparison(runs: list[Run], out_path, window=M.DEFAULT_WINDOW) -> Path:
+    """sigma_f(t) of all runs on one log-scale axis."""
+    with plt.rc_context(STYLE):
+        fig, ax = _new((8.0, 5.0))
+        styles = ["-", "--", "-.", ":"]
+        n = 0
+        for k, run in enumerate(runs):
+            t, s = sigma_f_series(run)
+            if t is None:
+                continue
+            s = np.where(s > 0, s, np.nan)
+            label = run.name + ("" if run.complete else f" ({run.status})")
+            ax.plot(t, s, lw=1.0, ls=styles[(k // 10) % 4], color=plt.get_cmap("tab10")(k % 10),
+                    label=label)
+            n += 1
+        ax.axvspan(window[0], window[1], color="gold", alpha=0.2,
+                   label=f"window [{window[0]:g}, {window[1]:g}] s")
+        for exp, v in sorted(M.PAPER_SIGMA_F.items()):
+            ax.axhline(v, color="gray", lw=0.7, ls="--")
+            ax.annotate(f"paper Exp. {exp}: {v:g}", (0, v), xycoords=("axes fraction", "data"),
+                        xytext=(3, 2), textcoords="offset points", fontsize=7, color="gray")
+        ax.set_yscale("log")
+        ax.set_xlabel("t (s)")
+        ax.set_ylabel("σ_f (eq. (68), log scale)")
+        ax.set_title("Formation tracking error σ_f(t), all runs", fontsize=10)
+        if n:
+            ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0))
+        return _save(fig, out_path)
