@@ -194,6 +194,7 @@ const std::vector<unsigned char>& OffscreenRenderer::Render(const mjData* d,
                                                             const CameraSpec& camera,
                                                             const Overlay& overlay,
                                                             const double target[3]) {
+  if (!d) throw std::runtime_error("OffscreenRenderer::Render: no mjData");
   Impl& r = *impl_;
   const mjModel* m = r.m;
   mjvCamera& cam = r.cam;
