@@ -3,7 +3,7 @@
 set -euo pipefail
 PACKAGES=(
   build-essential cmake pkg-config git
-  libmujoco-dev libmujoco-samples libeigen3-dev libosmesa6-dev
+  libmujoco-dev libmujoco-samples libqhull-dev libeigen3-dev libosmesa6-dev
   libtomlplusplus-dev libtinyxml2-dev libcli11-dev nlohmann-json3-dev libfmt-dev libpng-dev libssl-dev
   libgtest-dev libgmock-dev libbenchmark-dev ffmpeg
   python3 python3-numpy python3-matplotlib python3-pytest
