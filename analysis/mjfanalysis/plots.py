@@ -60,7 +60,7 @@ def _title(run: Run, what: str, fig_index: int) -> str:
     if exp:
         head = f"Exp. {exp}, {head}"
     tail = "" if run.complete else f"  — {run.status.upper()}"
-    return f"{head}: {what}{ref}{tail}"
+    return f"{head}{tail}\n{what}{ref}"
 
 
 def _new(figsize=None):
@@ -142,14 +142,23 @@ def fig_final_positions(run: Run, out_path) -> Path:
             px, py = ts[f"uav{i}_px"][-1], ts[f"uav{i}_py"][-1]
             sx, sy = ts[f"uav{i}_slot_x"][-1], ts[f"uav{i}_slot_y"][-1]
             ax.plot([sx, px], [sy, py], color=c, lw=0.8, ls=":")
-            ax.plot(sx, sy, "x", ms=9, mew=1.8, color=c, zorder=3,
-                    label="slot (desired position)" if k == 0 else None)
-            ax.plot(px, py, "s", ms=8, color=c, label=f"follower {i}", zorder=4)
+            ax.plot(sx, sy, "x", ms=9, mew=1.8, color="black", zorder=5)
+            ax.plot(px, py, "s", ms=9, color=c, alpha=0.85, label=f"follower {i}", zorder=4)
             ax.annotate(str(i), (px, py), textcoords="offset points", xytext=(6, 6), fontsize=8)
+        ax.plot([], [], "x", ms=9, mew=1.8, color="black", label="slot = leader + f_ip")
         ax.set_aspect("equal", adjustable="datalim")
+        # Frame the circle and every follower (a diverged follower must stay visible).
+        xs = [lx] + [ts[f"uav{i}_{c}"][-1] for i in M.followers(ts) for c in ("px", "slot_x")]
+        ys = [ly] + [ts[f"uav{i}_{c}"][-1] for i in M.followers(ts) for c in ("py", "slot_y")]
         if math.isfinite(r):
-            ax.set_xlim(lx - 1.5 * r, lx + 1.5 * r)
-            ax.set_ylim(ly - 1.5 * r, ly + 1.5 * r)
+            xs += [lx - 1.3 * r, lx + 1.3 * r]
+            ys += [ly - 1.3 * r, ly + 1.3 * r]
+        xs = [v for v in xs if math.isfinite(v)]
+        ys = [v for v in ys if math.isfinite(v)]
+        if xs and ys:
+            pad = 0.08 * max(max(xs) - min(xs), max(ys) - min(ys), 1.0)
+            ax.set_xlim(min(xs) - pad, max(xs) + pad)
+            ax.set_ylim(min(ys) - pad, max(ys) + pad)
         err = M.final_slot_errors(ts)
         ax.text(0.02, 0.02, f"max |p_i - slot_i| = {np.nanmax(err):.3g} m" if err.size else "",
                 transform=ax.transAxes, fontsize=8,
@@ -179,7 +188,7 @@ def fig_pitch_roll(run: Run, out_path, follower: int = 1) -> Path:
         ax.set_xlabel("t (s)")
         ax.set_ylabel("angle (deg)")
         ax.set_title(_title(run, what, 2), fontsize=9)
-        ax.legend(loc="upper right")
+        ax.legend(loc="best")
         return _save(fig, out_path)
 
 
@@ -196,7 +205,7 @@ def fig_yaw(run: Run, out_path, follower: int = 1) -> Path:
         ax.set_xlabel("t (s)")
         ax.set_ylabel("angle (deg)")
         ax.set_title(_title(run, what, 3), fontsize=9)
-        ax.legend(loc="upper right")
+        ax.legend(loc="best")
         return _save(fig, out_path)
 
 
@@ -231,7 +240,7 @@ def fig_sliding(run: Run, out_path, follower: int = 1) -> Path:
         # s = K e = k1 e_p + k2 e_v: with k1 in 1/s it has the units of a velocity.
         ax.set_ylabel("s (m/s)")
         ax.set_title(_title(run, what, 4), fontsize=9)
-        ax.legend(loc="upper right")
+        ax.legend(loc="best")
         return _save(fig, out_path)
 
 
@@ -256,23 +265,46 @@ def fig_sigma_f(run: Run, out_path) -> Path:
     w = M.metric_window(run.summary, run.config)
     mean = M.window_mean(t, s, w)
     exp = M.paper_experiment(run.summary, run.name)
+    paper = M.PAPER_SIGMA_F.get(exp, float("nan"))
     with plt.rc_context(STYLE):
-        fig, ax = _new()
-        ax.plot(t, s, lw=1.1, color="C0", label="σ_f(t)")
-        ax.axvspan(w[0], w[1], color="gold", alpha=0.25, label=f"window [{w[0]:g}, {w[1]:g}] s")
+        fig, ax = _new((8.0, 4.6))
+        in_win = M.window_mask(t, w) & np.isfinite(s)
+        zoom = bool(in_win.any()) and np.nanmax(s[in_win]) < 0.3 * np.nanmax(s)
+        axes = [ax]
+        if zoom:
+            # The window detail is invisible at the scale of sigma_f(0): an inset zooms on it.
+            axes.append(ax.inset_axes([0.42, 0.38, 0.55, 0.55]))
+        for k, a in enumerate(axes):
+            a.plot(t, s, lw=1.1, color="C0", label="σ_f(t)" if k == 0 else None)
+            a.axvspan(w[0], w[1], color="gold", alpha=0.25,
+                      label=f"window [{w[0]:g}, {w[1]:g}] s" if k == 0 else None)
+            if math.isfinite(mean):
+                a.hlines(mean, w[0], w[1], colors="C3", lw=1.6,
+                         label=f"our mean on window = {mean:.4f}" if k == 0 else None)
+            if math.isfinite(paper):
+                a.hlines(paper, w[0], w[1], colors="gray", lw=1.2, ls="--",
+                         label=f"paper, Table 1: {paper:.4f}" if k == 0 else None)
+        top = np.nanmax(np.append(s[np.isfinite(s)], paper if math.isfinite(paper) else 0.0))
+        ax.set_ylim(0, 1.12 * top if top > 0 else 1.0)
+        if zoom:
+            z = axes[1]
+            lo, hi = w[0] - 0.1 * (w[1] - w[0]), w[1] + 0.02 * (w[1] - w[0])
+            sel = (t >= lo) & (t <= hi) & np.isfinite(s)
+            ztop = np.nanmax(np.append(s[sel], [mean, paper if math.isfinite(paper) else 0.0]))
+            z.set_xlim(lo, hi)
+            z.set_ylim(0, 1.15 * ztop if ztop > 0 else 1.0)
+            z.set_title("zoom on the window", fontsize=8)
+            z.tick_params(labelsize=7)
+            z.set_facecolor("white")
         if math.isfinite(mean):
-            ax.hlines(mean, w[0], w[1], colors="C3", lw=1.6,
-                      label=f"mean on window = {mean:.4f}")
-            ax.annotate(f"mean = {mean:.4f}", (w[0], mean), textcoords="offset points",
-                        xytext=(2, 8), color="C3", fontsize=9)
-        if exp:
-            ax.hlines(M.PAPER_SIGMA_F[exp], w[0], w[1], colors="gray", lw=1.2, ls="--",
-                      label=f"paper, Table 1: {M.PAPER_SIGMA_F[exp]:.4f}")
-        ax.set_ylim(bottom=0)
+            target = axes[-1]
+            target.annotate(f"mean = {mean:.4f}", (0.5 * (w[0] + w[1]), mean),
+                            textcoords="offset points", xytext=(0, 4), ha="center",
+                            color="C3", fontsize=8)
         ax.set_xlabel("t (s)")
         ax.set_ylabel("σ_f (m, m/s: eq. (68))")
         ax.set_title(_title(run, what, 5), fontsize=9)
-        ax.legend(loc="upper right")
+        ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0))
         return _save(fig, out_path)
 
 

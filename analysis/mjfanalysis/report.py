@@ -322,7 +322,7 @@ def write_report(results_dir, out_dir) -> Path:
     for r in rows:
         ours = fmt(r.sigma)
         if not r.run.complete:
-            ours = f"({ours}) incomplete" if ours != "—" else "— incomplete"
+            ours = f"({ours}) {r.run.status}" if ours != "—" else f"— ({r.run.status})"
         elif not r.window_covered:
             ours += " (window not covered)"
         L.append("| " + " | ".join([
