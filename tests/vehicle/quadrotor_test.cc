@@ -156,6 +156,53 @@ TEST_F(QuadrotorTest, HoverHoldsPosition) {
   EXPECT_LT(worst_z, 0.05);
 }
 
+TEST_F(QuadrotorTest, HoverRecoversFromATiltedMovingStart) {
+  const std::array<double, 3> start{0, 0, 10};
+  PlaceFree(start);
+  // Rolled 0.3 rad, pitched -0.2 rad, moving at (1, -1, 0.5) m/s and spinning.
+  const double roll = 0.3, pitch = -0.2;
+  d_->qpos[3] = std::cos(roll / 2) * std::cos(pitch / 2);
+  d_->qpos[4] = std::sin(roll / 2) * std::cos(pitch / 2);
+  d_->qpos[5] = std::cos(roll / 2) * std::sin(pitch / 2);
+  d_->qpos[6] = -std::sin(roll / 2) * std::sin(pitch / 2);
+  d_->qvel[0] = 1;
+  d_->qvel[1] = -1;
+  d_->qvel[2] = 0.5;
+  d_->qvel[3] = 1;
+  d_->qvel[5] = -2;
+  mj_forward(m_, d_);
+  PdCascade controller = MakeController();
+  guidance::HoverGuidance::Config config;
+  config.position = start;
+  const guidance::HoverGuidance hover(config);
+  double worst = 0, peak = 0, peak_late_tilt = 0;
+  Fly(
+      controller, 20,
+      [&](double, const VehicleState& s) {
+        const auto out = hover.Update(s.pos, s.vel);
+        Setpoint sp;
+        sp.acc = out.acc;
+        sp.pos = out.pos;
+        sp.vel = out.vel;
+        return sp;
+      },
+      [&](double t, const VehicleState& s, const Setpoint&) {
+        const double error =
+            std::hypot(s.pos[0] - start[0], s.pos[1] - start[1], s.pos[2] - start[2]);
+        peak = std::max(peak, error);
+        const auto e = attitude::EulerZYX(s.quat);
+        if (t >= 3) peak_late_tilt = std::max(peak_late_tilt, std::hypot(e[0], e[1]));
+        if (t >= 8) worst = std::max(worst, error);
+      });
+  std::printf(
+      "disturbed hover: peak excursion %.3f m, max tilt after 3 s %.3f rad, max error 8..20 s "
+      "%.2e m\n",
+      peak, peak_late_tilt, worst);
+  EXPECT_LT(peak_late_tilt, 0.05);
+  EXPECT_LT(peak, 1.0);
+  EXPECT_LT(worst, 0.02);
+}
+
 TEST_F(QuadrotorTest, YawSetpointIsReachedWithTheRightSign) {
   PlaceFree({0, 0, 1.5});
   PdCascade controller = MakeController();
@@ -183,7 +230,7 @@ TEST_F(QuadrotorTest, AccelerationStepTiltsAndAcceleratesTheRightWay) {
         PlaceFree({0, 0, 20}, yaw);
         PdCascade controller = MakeController();
         const double tilt_ref = std::min(command / Gravity(), controller.gains().tilt_max);
-        double peak_tilt = 0;
+        double peak_tilt = 0, rise_time = -1;
         Setpoint sp;
         sp.pos = {0, 0, 20};
         sp.yaw = yaw;
@@ -194,6 +241,7 @@ TEST_F(QuadrotorTest, AccelerationStepTiltsAndAcceleratesTheRightWay) {
             [&](double t, const VehicleState& s, const Setpoint&) {
               const auto e = attitude::EulerZYX(s.quat);
               peak_tilt = std::max(peak_tilt, std::hypot(e[0], e[1]));
+              if (rise_time < 0 && std::hypot(e[0], e[1]) >= 0.9 * tilt_ref) rise_time = t;
               if (std::abs(t - 1.0) < 1e-9) before = s;
             });
         const VehicleState after = State();
@@ -204,12 +252,13 @@ TEST_F(QuadrotorTest, AccelerationStepTiltsAndAcceleratesTheRightWay) {
         const double acc = (after.vel[axis] - before.vel[axis]) / 0.5;
         const double cross = (after.vel[1 - axis] - before.vel[1 - axis]) / 0.5;
         std::printf(
-            "yaw %.2f axis %d command %.1f: tilt %.4f (ref %.4f), overshoot %.1f %%, acc %.3f, "
-            "cross %.3f\n",
-            yaw, axis, command, tilt, tilt_ref, 100 * overshoot, acc, cross);
+            "yaw %.2f axis %d command %.1f: tilt %.4f (ref %.4f), 90 %% rise %.3f s, overshoot "
+            "%.2f %%, acc %.3f, cross %.3f\n",
+            yaw, axis, command, tilt, tilt_ref, rise_time, 100 * overshoot, acc, cross);
         EXPECT_NEAR(tilt, tilt_ref, 0.01 * tilt_ref + 1e-3);
         EXPECT_LE(peak_tilt, controller.gains().tilt_max * 1.05);
         EXPECT_LT(overshoot, 0.1);
+        EXPECT_LT(rise_time, 0.3);
         const double expected_acc = Gravity() * std::tan(tilt_ref);  // thrust tilt-compensated
         EXPECT_GT(acc, 0) << "wrong direction";
         EXPECT_NEAR(acc, expected_acc, 0.1 * expected_acc);
