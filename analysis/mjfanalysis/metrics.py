@@ -193,7 +193,7 @@ def _fmt_attr(v) -> str:
     if n is not None and not isinstance(v, str):
         return f"{n:g}"
     if isinstance(v, str) and n is not None:
-        return v.strip()
+        return f"{n:.6g}"  # the runner echoes attributes as full-precision text
     if isinstance(v, list):
         return "[" + ", ".join(_fmt_attr(x) for x in v) + "]"
     return str(v)

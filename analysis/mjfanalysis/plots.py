@@ -300,7 +300,8 @@ def fig_sigma_f(run: Run, out_path) -> Path:
             target = axes[-1]
             target.annotate(f"mean = {mean:.4f}", (0.5 * (w[0] + w[1]), mean),
                             textcoords="offset points", xytext=(0, 4), ha="center",
-                            color="C3", fontsize=8)
+                            color="C3", fontsize=8, zorder=6,
+                            bbox={"facecolor": "white", "alpha": 0.85, "lw": 0, "pad": 1})
         ax.set_xlabel("t (s)")
         ax.set_ylabel("σ_f (m, m/s: eq. (68))")
         ax.set_title(_title(run, what, 5), fontsize=9)
