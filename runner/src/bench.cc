@@ -159,9 +159,10 @@ void AddBenchCommand(CLI::App& app, CliCommands* c) {
       "bench",
       "Time bare MuJoCo against the full pipeline on the same composed scene; scale the swarm");
   c->bench->add_option("experiment", c->experiment, "experiment file (TOML)")->required();
-  c->bench->add_option("--followers", c->bench_followers,
-                       "swarm sizes to measure (default: the file's); other sizes use a "
-                       "generated ring topology")
+  c->bench
+      ->add_option("--followers", c->bench_followers,
+                   "swarm sizes to measure (default: the file's); other sizes use a "
+                   "generated ring topology")
       ->delimiter(',');
   c->bench->add_option("--duration", c->bench_duration, "simulated seconds (default: the file's)");
   c->bench->add_option("--set", c->overrides, "override a value: section.key=value");
@@ -220,9 +221,10 @@ int BenchCommand(const CliCommands& c) {
     const nlohmann::json a = InChild([&] { return Pipeline(shorter, scratch); });
     const nlohmann::json b = InChild([&] { return Pipeline(longer, scratch); });
     const double ra = a["peak_rss_mib"].get<double>(), rb = b["peak_rss_mib"].get<double>();
-    std::printf("memory: %d followers, %.0f s run: peak %.1f MiB; %.0f s run: peak %.1f MiB; "
-                "ratio %.3f (target < 1.2)\n",
-                sizes.front(), shorter.duration, ra, longer.duration, rb, rb / ra);
+    std::printf(
+        "memory: %d followers, %.0f s run: peak %.1f MiB; %.0f s run: peak %.1f MiB; "
+        "ratio %.3f (target < 1.2)\n",
+        sizes.front(), shorter.duration, ra, longer.duration, rb, rb / ra);
     report["memory"] = {{"followers", sizes.front()},
                         {"short_duration_s", shorter.duration},
                         {"long_duration_s", longer.duration},
@@ -232,12 +234,13 @@ int BenchCommand(const CliCommands& c) {
   }
   if (c.bench_render) {
     const nlohmann::json r = InChild([&] { return RenderCost(Resized(base, sizes.front())); });
-    std::printf("render: snapshot 1280x720 %.1f ms with shadows, %.1f ms without; video 640x480 "
-                "%.1f fps with shadows, %.1f fps without\n",
-                r["snapshot_1280x720_shadows_ms"].get<double>(),
-                r["snapshot_1280x720_noshadows_ms"].get<double>(),
-                r["video_640x480_shadows_fps"].get<double>(),
-                r["video_640x480_noshadows_fps"].get<double>());
+    std::printf(
+        "render: snapshot 1280x720 %.1f ms with shadows, %.1f ms without; video 640x480 "
+        "%.1f fps with shadows, %.1f fps without\n",
+        r["snapshot_1280x720_shadows_ms"].get<double>(),
+        r["snapshot_1280x720_noshadows_ms"].get<double>(),
+        r["video_640x480_shadows_fps"].get<double>(),
+        r["video_640x480_noshadows_fps"].get<double>());
     report["render"] = r;
   }
   if (!c.bench_json.empty()) {

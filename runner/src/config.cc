@@ -1,6 +1,7 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 #include "mjformation/runner/config.hpp"
 
+#include <fmt/format.h>
 #include <toml++/toml.h>
 
 #include <cmath>
@@ -145,10 +146,8 @@ class Section {
 // TOML value -> the ABI's attribute string ("3 1" for arrays of numbers).
 std::string AttributeText(const Reporter& reporter, const toml::node& node,
                           const std::string& where) {
-  char buf[64];
   if (auto v = node.value_exact<double>()) {
-    std::snprintf(buf, sizeof(buf), "%.17g", *v);
-    return buf;
+    return fmt::format("{}", *v);  // shortest text that reads back to the same double
   }
   if (auto v = node.value_exact<int64_t>()) return std::to_string(*v);
   if (auto v = node.value_exact<bool>()) return *v ? "true" : "false";

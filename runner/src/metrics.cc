@@ -56,7 +56,7 @@ OnlineMetrics::OnlineMetrics(const Simulation& sim)
   final_errors_.assign(nf, kNaN);
 }
 
-double OnlineMetrics::Sample(const Simulation& sim, std::vector<double>* slots) {
+double OnlineMetrics::Sample(const Simulation& sim, std::vector<double>* slots, bool accumulate) {
   const int nf = sim.n_followers();
   const double t = sim.time();
   const auto& states = sim.states();
@@ -81,6 +81,7 @@ double OnlineMetrics::Sample(const Simulation& sim, std::vector<double>* slots) 
     }
     // eq. (68)
     sigma_f = core::FormationError(nf, follower_pv_.data(), leader_pv_.data(), shape_now_.data());
+    if (!accumulate) return sigma_f;
     if (!have_initial_) sigma_initial_ = sigma_f;
     have_initial_ = true;
     sigma_final_ = sigma_f;
@@ -96,6 +97,7 @@ double OnlineMetrics::Sample(const Simulation& sim, std::vector<double>* slots) 
           std::hypot(states[i].pos[0] - (*slots)[2 * i], states[i].pos[1] - (*slots)[2 * i + 1]);
     }
   }
+  if (!accumulate) return sigma_f;
   // Sliding variables, where the formation plugin reports them.
   double max_abs_s = -1;
   for (int i = 1; i <= nf; ++i) {

@@ -144,7 +144,9 @@ void TimeseriesWriter::Close() {
 }
 
 std::string ConfigEcho(const ExperimentConfig& config) {
-  std::string echo = "# Experiment file " + config.source_path + " as run by mjformation.\n";
+  // The file's name only: the same experiment run from another folder gives the same bytes.
+  const std::string name = config.source_path.substr(config.source_path.find_last_of('/') + 1);
+  std::string echo = "# Experiment file " + name + " as run by mjformation.\n";
   if (config.overrides.empty()) return echo + config.source_text;
   // With --set overrides the merged table is what ran (comments of the original are lost).
   for (const auto& o : config.overrides) echo += "# with --set " + o + "\n";

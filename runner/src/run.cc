@@ -181,7 +181,7 @@ RunResult RunExperiment(const ExperimentConfig& config, const RunOptions& option
           std::find(snapshot_steps.begin(), snapshot_steps.end(), step) != snapshot_steps.end();
       const bool video_tick = want_video && step % video_every == 0;
       if (record_tick || snapshot_tick || video_tick) {
-        const double sigma_f = metrics.Sample(sim, &slots);
+        const double sigma_f = metrics.Sample(sim, &slots, record_tick);
         if (record_tick && csv) csv->Write(sim, sigma_f, slots);
         progress.Update(sim.time(), sigma_f, start);
       }

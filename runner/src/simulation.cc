@@ -1,6 +1,8 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 #include "mjformation/runner/simulation.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -373,8 +375,8 @@ void Simulation::ComputeControls() {
   ctx.data = reinterpret_cast<const struct mjData_*>(data_);
   auto check = [&](int rc, const PluginInstance& p, int vehicle) {
     if (rc != 0) {
-      throw SimulationError("t = " + std::to_string(time()) + " s: plugin '" + p.descriptor().name +
-                            "' failed (code " + std::to_string(rc) +
+      throw SimulationError(TimeTag() + ": plugin '" + p.descriptor().name + "' failed (code " +
+                            std::to_string(rc) +
                             (vehicle >= 0 ? ", vehicle " + std::to_string(vehicle) : "") + ")");
     }
   };
@@ -394,15 +396,30 @@ void Simulation::ComputeControls() {
       check(follower_guidance_[i]->Compute(ctx), *follower_guidance_[i], static_cast<int>(i) + 1);
     }
   }
+  // A non-finite setpoint is named here, with the plugin that wrote it, rather than surfacing
+  // later as a failure of the attitude plugin that read it.
+  for (int i = 0; i < n_vehicles(); ++i) {
+    const mjfSetpoint& sp = setpoints_[i];
+    bool finite = std::isfinite(sp.yaw);
+    for (int k = 0; k < 3; ++k) {
+      finite = finite && std::isfinite(sp.acc[k]) && std::isfinite(sp.pos[k]) &&
+               std::isfinite(sp.vel[k]);
+    }
+    if (!finite) {
+      const PluginInstance& writer =
+          i == 0 ? *leader_ : (formation_ ? *formation_ : *follower_guidance_[i - 1]);
+      throw SimulationError(TimeTag() + ": plugin '" + writer.descriptor().name +
+                            "' wrote a non-finite setpoint for vehicle " + std::to_string(i));
+    }
+  }
   for (int i = 0; i < n_vehicles(); ++i) {
     ctx.controls = controls_.data() + static_cast<size_t>(i) * actuators_per_vehicle_;
     check(attitude_[i]->Compute(ctx), *attitude_[i], i);
     for (int k = 0; k < actuators_per_vehicle_; ++k) {
       if (!std::isfinite(ctx.controls[k])) {
-        throw SimulationError("t = " + std::to_string(time()) + " s: attitude plugin '" +
-                              attitude_[i]->descriptor().name + "' gave a non-finite control " +
-                              "for vehicle " + std::to_string(i) + " (its setpoint or state is " +
-                              "not finite)");
+        throw SimulationError(TimeTag() + ": attitude plugin '" + attitude_[i]->descriptor().name +
+                              "' gave a non-finite control " + "for vehicle " + std::to_string(i) +
+                              " (its setpoint or state is " + "not finite)");
       }
     }
   }
@@ -489,17 +506,17 @@ void Simulation::CheckState() const {
   }
   for (int i = 0; i < model_->nq; ++i) {
     if (!std::isfinite(data_->qpos[i])) {
-      throw SimulationError("t = " + std::to_string(time()) + " s: non-finite qpos[" +
-                            std::to_string(i) + "]");
+      throw SimulationError(TimeTag() + ": non-finite qpos[" + std::to_string(i) + "]");
     }
   }
   for (int i = 0; i < model_->nv; ++i) {
     if (!std::isfinite(data_->qvel[i])) {
-      throw SimulationError("t = " + std::to_string(time()) + " s: non-finite qvel[" +
-                            std::to_string(i) + "]");
+      throw SimulationError(TimeTag() + ": non-finite qvel[" + std::to_string(i) + "]");
     }
   }
 }
+
+std::string Simulation::TimeTag() const { return fmt::format("t = {:.3f} s", time()); }
 
 std::vector<std::pair<std::string, double>> Simulation::FormationReport() const {
   return formation_ ? formation_->Report() : std::vector<std::pair<std::string, double>>{};

@@ -153,7 +153,7 @@ TEST(RunTest, NonFiniteRunKeepsPartialResultsMarkedIncomplete) {
   EXPECT_THAT(r.error, HasSubstr("non-finite"));
   const nlohmann::json s = Summary(out);
   EXPECT_FALSE(s["complete"].get<bool>());
-  EXPECT_THAT(s["error"].get<std::string>(), HasSubstr("t = 1.0"));
+  EXPECT_THAT(s["error"].get<std::string>(), HasSubstr("t = 1.000 s"));
   const std::string csv = ReadFile(out + "/timeseries.csv");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 100);  // rows for t in [0, 1) s
 }

@@ -16,9 +16,10 @@ class Simulation;
 class OnlineMetrics {
  public:
   explicit OnlineMetrics(const Simulation& sim);
-  // One sample of the current state: fills slots[2 i + k] (desired x, y of vehicle i; NaN when
-  // there is no formation) and returns sigma_f (NaN without a formation).
-  double Sample(const Simulation& sim, std::vector<double>* slots);
+  // One sample of the current state: fills slots[2 i + k] (desired x, y of vehicle i) and
+  // returns sigma_f (NaN without a formation). Only samples with `accumulate` (the record ticks)
+  // enter the statistics, so they match timeseries.csv whatever the render rates.
+  double Sample(const Simulation& sim, std::vector<double>* slots, bool accumulate);
   // Every physics step: counts time with any actuator at a limit of its range.
   void StepControls(const Simulation& sim);
   nlohmann::ordered_json Summary(const Simulation& sim) const;

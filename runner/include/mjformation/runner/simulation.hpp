@@ -87,6 +87,7 @@ class Simulation {
   void ReadStates();
   void ApplyRotorWrenches();
   void CheckState() const;
+  std::string TimeTag() const;  // "t = 1.234 s", for messages
 
   ExperimentConfig config_;
   std::unique_ptr<PluginRegistry> registry_;
