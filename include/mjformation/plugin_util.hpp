@@ -84,8 +84,7 @@ class Attributes {
     }
     std::string list;
     for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + ("'" + a + "'");
-    throw ConfigError(std::string("attribute '") + key + "': '" + text + "' is not one of " +
-                      list);
+    throw ConfigError(std::string("attribute '") + key + "': '" + text + "' is not one of " + list);
   }
 
  private:
@@ -97,8 +96,8 @@ inline void Require(bool ok, const char* key, const char* condition, double valu
   if (!ok) {
     char buf[64];
     std::snprintf(buf, sizeof(buf), "%.17g", value);
-    throw ConfigError(std::string("attribute '") + key + "' must satisfy " + condition +
-                      " (got " + buf + ")");
+    throw ConfigError(std::string("attribute '") + key + "' must satisfy " + condition + " (got " +
+                      buf + ")");
   }
 }
 
