@@ -26,7 +26,7 @@ run_one() {
   local dir=$out/$e
   if [ "$vehicle" = pointmass ]; then
     dir=$out/${e}_pointmass
-    args=(--no-render --set 'vehicles.model="pointmass"' --set 'attitude.plugin="pointmass_direct"'
+    args=(--no-render --set 'vehicles.model="pointmass"' --set 'attitude={plugin="pointmass_direct"}'
           --set "run.name=\"${e}_pointmass\"")
   else
     args=("${video[@]}")

@@ -102,8 +102,10 @@ void AddCommands(CLI::App& app, CliCommands* c) {
   c->run = app.add_subcommand("run", "Run an experiment file and write its run directory");
   c->run->add_option("experiment", c->experiment, "experiment file (TOML)")->required();
   c->run->add_option("--out,-o", c->out, "run directory (default: runs/<run.name>)");
-  c->run->add_option("--set", c->overrides,
-                     "override a value: section.key=value (TOML value), e.g. formation.rho=0.1");
+  c->run->add_option(
+      "--set", c->overrides,
+      "override a value: section.key=value (TOML value), e.g. formation.rho=0.1, or replace a "
+      "section: 'attitude={plugin=\"pointmass_direct\"}'");
   c->run->add_option("--plugin-path", c->plugin_path, "extra folder to search for plugins");
   c->run->add_flag("--overwrite", c->overwrite, "replace an existing run directory");
   c->run->add_flag("--no-render", c->no_render, "skip snapshots and video");

@@ -221,9 +221,11 @@ void ApplyOverrides(toml::table& root, const std::vector<std::string>& overrides
       if (!table) throw ConfigError("override '" + item + "': '" + part + "' is not a table");
     }
     const std::string key = path.substr(start);
-    if (key.empty() || start == 0) {
-      throw ConfigError("override '" + item + "': expected section.key=value");
+    if (key.empty() || (start == 0 && !parsed.get("v")->is_table())) {
+      throw ConfigError("override '" + item +
+                        "': expected section.key=value, or section={...} to replace a section");
     }
+    // section={ plugin = "x" } replaces the whole section (its old keys may not suit x).
     table->insert_or_assign(key, *parsed.get("v"));
   }
 }

@@ -87,6 +87,12 @@ TEST(ConfigTest, OverridesApplyAndAreChecked) {
   ExperimentConfig c = LoadExperiment(path, {"run.duration=7.5", "formation.gain=2"});
   EXPECT_DOUBLE_EQ(c.duration, 7.5);
   EXPECT_EQ(c.formation.attributes.at("gain").text, "2");
+  // A whole section can be replaced with an inline table.
+  c = LoadExperiment(path, {"attitude={plugin=\"pointmass_direct\"}"});
+  EXPECT_EQ(c.attitude.plugin, "pointmass_direct");
+  EXPECT_TRUE(c.attitude.attributes.empty());
+  EXPECT_THAT(ErrorOf([&] { LoadExperiment(path, {"attitude=3"}); }),
+              HasSubstr("expected section.key=value"));
   EXPECT_THAT(ErrorOf([&] { LoadExperiment(path, {"run.duration"}); }),
               HasSubstr("expected section.key=value"));
   EXPECT_THAT(ErrorOf([&] { LoadExperiment(path, {"run.duration=fast"}); }), HasSubstr("not TOML"));

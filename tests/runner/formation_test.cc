@@ -1,0 +1,109 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// The formation plugins inside MuJoCo, on the paper's Exp 2 (experiments/exp2.toml): the ideal
+// point mass stays within the discrete protocol's error bound after reaching, and the quadrotor
+// achieves the formation.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "mjformation/runner/run.hpp"
+#include "test_util.hpp"
+
+namespace mjf::runner {
+namespace {
+
+using mjf::testing::ReadFile;
+using mjf::testing::TempDir;
+
+struct RunData {
+  nlohmann::json summary;
+  std::vector<std::string> header;
+  std::vector<std::vector<double>> rows;  // NaN for empty cells
+  int Column(const std::string& name) const {
+    for (size_t i = 0; i < header.size(); ++i) {
+      if (header[i] == name) return static_cast<int>(i);
+    }
+    ADD_FAILURE() << "no column " << name;
+    return 0;
+  }
+};
+
+RunData RunExp2(const std::vector<std::string>& overrides) {
+  ExperimentConfig c =
+      LoadExperiment(std::string(MJF_SOURCE_DIR) + "/experiments/exp2.toml", overrides);
+  RunOptions options;
+  options.out_dir = TempDir("exp2") + "/run";
+  options.render = false;
+  const RunResult r = RunExperiment(c, options);
+  EXPECT_TRUE(r.complete) << r.error;
+  RunData run;
+  run.summary = nlohmann::json::parse(ReadFile(options.out_dir + "/summary.json"));
+  std::istringstream csv(ReadFile(options.out_dir + "/timeseries.csv"));
+  std::string line, cell;
+  std::getline(csv, line);
+  std::istringstream header(line);
+  while (std::getline(header, cell, ',')) run.header.push_back(cell);
+  while (std::getline(csv, line)) {
+    std::vector<double> row;
+    std::istringstream cells(line);
+    while (std::getline(cells, cell, ',')) row.push_back(cell.empty() ? NAN : std::stod(cell));
+    run.rows.push_back(row);
+  }
+  return run;
+}
+
+// Issue 3: with the point-mass vehicle the discrete protocol's measured sigma_f stays below the
+// reported bound once the transient is over (Table 1's window, t >= 25 s). Both bounds the plugin reports are checked: (47) as
+// EQUATIONS.md reads it, and the re-derived ultimate bound (plugins/core/README.md).
+TEST(FormationInMujocoTest, PointMassDiscreteStaysWithinTheBound) {
+  const RunData run =
+      RunExp2({"vehicles.model=\"pointmass\"", "attitude={plugin=\"pointmass_direct\"}"});
+  const auto& report = run.summary["plugin_report"];
+  const double printed_bound = report["error_bound"].get<double>();
+  const double rederived_bound = report["error_bound_rederived"].get<double>();
+  ASSERT_FALSE(run.summary["metrics"]["reaching_time_s"].is_null()) << "never reached the band";
+  const double reaching = run.summary["metrics"]["reaching_time_s"].get<double>();
+  EXPECT_LT(reaching, 20.0);
+  // The bounds are ultimate bounds on the error: once s_i is in its band, e_i still decays along
+  // the sliding surface (e_p' = -(k1/k2) e_p), so they are checked on Table 1's window.
+  const int t = run.Column("t"), sigma = run.Column("sigma_f");
+  double worst = 0;
+  for (const auto& row : run.rows) {
+    if (row[t] >= 25.0) worst = std::max(worst, row[sigma]);
+  }
+  RecordProperty("max_sigma_f_25_40s", std::to_string(worst));
+  RecordProperty("printed_bound_47", std::to_string(printed_bound));
+  RecordProperty("rederived_bound", std::to_string(rederived_bound));
+  EXPECT_LT(worst, printed_bound);
+  EXPECT_LT(worst, rederived_bound);
+  // And the band of Theorem 2 holds after reaching.
+  const double delta = report["delta"].get<double>();
+  EXPECT_LE(run.summary["metrics"]["max_abs_s_after_reaching"].get<double>(), delta);
+}
+
+// Issue 3: with the quadrotor, Exp 2's parameters bring every follower within 1 m of its slot
+// by t = 30 s (and it stays there).
+TEST(FormationInMujocoTest, QuadrotorExp2ConvergesBy30s) {
+  const RunData run = RunExp2({});
+  const int t = run.Column("t");
+  double worst = 0;
+  for (const auto& row : run.rows) {
+    if (row[t] < 30.0) continue;
+    for (int i = 1; i <= 6; ++i) {
+      const std::string p = "uav" + std::to_string(i) + "_";
+      worst =
+          std::max(worst, std::hypot(row[run.Column(p + "px")] - row[run.Column(p + "slot_x")],
+                                     row[run.Column(p + "py")] - row[run.Column(p + "slot_y")]));
+    }
+  }
+  RecordProperty("max_slot_error_after_30s_m", std::to_string(worst));
+  EXPECT_LT(worst, 1.0);
+  // sigma_f starts near the paper's Fig. 27 value.
+  EXPECT_NEAR(run.summary["metrics"]["sigma_f_initial"].get<double>(), 54.3, 1.0);
+}
+
+}  // namespace
+}  // namespace mjf::runner
