@@ -50,6 +50,7 @@ class TrailKeeper {
   render::Overlay Overlay(const Simulation& sim, const std::vector<double>& slots) const {
     render::Overlay o;
     for (const auto& t : trails_) o.trails.emplace_back(t.begin(), t.end());
+    for (const auto& s : sim.states()) o.markers.push_back({s.pos[0], s.pos[1], s.pos[2]});
     const double z = sim.config().altitude;
     for (int i = 1; i < sim.n_vehicles(); ++i) {
       if (!std::isnan(slots[2 * i])) o.slots.push_back({slots[2 * i], slots[2 * i + 1], z});

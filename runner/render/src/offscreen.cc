@@ -120,6 +120,19 @@ struct OffscreenRenderer::Impl {
         g->pos[k] = static_cast<float>(p[k]);
       }
     }
+    const double disc = std::max(0.3, 0.012 * cam_distance);
+    for (size_t i = 0; i < o.markers.size(); ++i) {
+      const float* base =
+          i < o.trail_rgba.size() ? o.trail_rgba[i].data() : kPalette[i % kPaletteSize];
+      const float rgba[4] = {base[0], base[1], base[2], 0.55f};
+      mjvGeom* g = NewGeom(rgba);
+      if (!g) continue;
+      g->type = mjGEOM_CYLINDER;
+      g->size[0] = g->size[1] = static_cast<float>(disc);
+      g->size[2] = 0.02f;
+      for (int k = 0; k < 3; ++k) g->pos[k] = static_cast<float>(o.markers[i][k]);
+      g->pos[2] -= 0.15f;  // just under the rotors
+    }
     const float ring_rgba[4] = {1.0f, 1.0f, 1.0f, 0.7f};
     for (size_t k = 1; k < o.ring_points.size(); ++k) {
       Line(o.ring_points[k - 1], o.ring_points[k], std::max(1.0, 0.75 * line_px), ring_rgba);

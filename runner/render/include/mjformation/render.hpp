@@ -38,6 +38,9 @@ struct Overlay {
   std::vector<std::array<float, 4>> trail_rgba;            // per trail colour; default palette
   std::vector<std::array<double, 3>> slots;                // desired slots: translucent spheres
   std::vector<std::array<double, 3>> ring_points;          // optional polyline (e.g. 10 m circle)
+  // Vehicle positions: a translucent disc under each one in its trail's colour, sized with the
+  // camera distance, so vehicles half a metre wide stay visible in a 60 m wide view.
+  std::vector<std::array<double, 3>> markers;
   std::string label;  // optional text in the top-left corner (e.g. "t = 10.0 s")
 };
 
