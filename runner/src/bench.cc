@@ -10,6 +10,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -89,27 +90,68 @@ ExperimentConfig Resized(ExperimentConfig c, int n) {
   return c;
 }
 
-// (a) bare MuJoCo: the same composed model stepped with mj_step and constant hover controls.
+// (a) bare MuJoCo: the same composed model stepped with mj_step and constant controls, from a
+// flying state. A swarm at rest and level is not what MuJoCo steps during a run: with every
+// quaternion exactly (1, 0, 0, 0) and every rotor wrench along a world axis, MuJoCo 2.2.2 takes
+// shortcuts (mju_quat2Mat's identity case, mju_mulMatTVec skipping zero entries of the rotated
+// rotor wrenches) and a step costs about 10% less than the same step in flight (perf, see
+// docs/PERFORMANCE.md). So each free-flying vehicle starts tilted by kTilt about a horizontal axis
+// of its own, spinning about its body z axis (a principal axis: the attitude stays put) with
+// thrust / cos(kTilt) = weight: it holds its altitude and accelerates sideways, its attitude never
+// level, for the whole run, with fixed controls.
+constexpr double kTilt = 0.1;  // rad
+constexpr double kSpin = 0.3;  // rad/s about body z
 nlohmann::json BareMujoco(const ExperimentConfig& config) {
   Simulation sim(config);  // composes the scene exactly as a run does
   mjModel* m = CompileModel(sim.scene_xml(), "bench scene");
   mjData* d = mj_makeData(m);
-  const double hover = sim.binding(0).info.mass * sim.binding(0).info.gravity /
-                       std::max(1, sim.actuators_per_vehicle());
-  for (int i = 0; i < m->nu; ++i) d->ctrl[i] = hover;
+  const int per_vehicle = std::max(1, sim.actuators_per_vehicle());
+  const double hover = sim.binding(0).info.mass * sim.binding(0).info.gravity / per_vehicle;
+  double thrust = hover;
+  for (int i = 0; i < sim.n_vehicles(); ++i) {
+    const int body = sim.binding(i).body;
+    const int joint = m->body_jntadr[body];
+    if (m->body_jntnum[body] != 1 || m->jnt_type[joint] != mjJNT_FREE) continue;
+    const double axis_angle = 2 * M_PI * i / sim.n_vehicles();
+    mjtNum* q = d->qpos + m->jnt_qposadr[joint] + 3;
+    q[0] = std::cos(kTilt / 2);
+    q[1] = std::sin(kTilt / 2) * std::cos(axis_angle);
+    q[2] = std::sin(kTilt / 2) * std::sin(axis_angle);
+    q[3] = 0;
+    d->qvel[m->jnt_dofadr[joint] + 5] = kSpin;  // free joint: angular velocity in body axes
+    thrust = hover / std::cos(kTilt);
+  }
+  for (int i = 0; i < m->nu; ++i) d->ctrl[i] = thrust;
+  for (int i = 0; i < m->na; ++i) d->act[i] = thrust;  // motor lag already settled
+  mj_forward(m, d);
   if (m->nu == 0) {
-    // Wrench rotor model: the same constant wrench every step, as xfrc_applied.
+    // Wrench rotor model: the same constant wrench every step, as xfrc_applied, along the body
+    // z axis (which the spin about it leaves fixed in the world).
     for (int i = 0; i < sim.n_vehicles(); ++i) {
-      d->xfrc_applied[6 * sim.binding(i).body + 2] = hover * sim.actuators_per_vehicle();
+      const int body = sim.binding(i).body;
+      for (int k = 0; k < 3; ++k) {
+        d->xfrc_applied[6 * body + k] = thrust * per_vehicle * d->xmat[9 * body + 3 * k + 2];
+      }
     }
   }
   const int64_t steps = sim.total_steps();
   const auto start = Clock::now();
   for (int64_t k = 0; k < steps; ++k) mj_step(m, d);
   const double wall = Seconds(start);
+  // The state stayed a flight: every vehicle still airborne and tilted (a landed or level swarm
+  // would time something else).
+  double min_z = INFINITY, min_tilt = INFINITY;
+  for (int i = 0; i < sim.n_vehicles(); ++i) {
+    const int body = sim.binding(i).body;
+    min_z = std::min(min_z, d->xpos[3 * body + 2]);
+    min_tilt = std::min(min_tilt, std::acos(std::clamp(d->xmat[9 * body + 8], -1.0, 1.0)));
+  }
   mj_deleteData(d);
   mj_deleteModel(m);
-  return {{"steps", steps}, {"wall_s", wall}};
+  return {{"steps", steps},
+          {"wall_s", wall},
+          {"final_min_z_m", min_z},
+          {"final_min_tilt_rad", min_tilt}};
 }
 
 // (b) the full pipeline, recording to a scratch run directory, no rendering.
@@ -212,7 +254,9 @@ int BenchCommand(const CliCommands& c) {
                                 {"real_time_factor_bare", config.duration / bare_wall},
                                 {"real_time_factor_full", config.duration / full_wall},
                                 {"peak_rss_mib_full", full["peak_rss_mib"]},
-                                {"peak_rss_mib_bare", bare["peak_rss_mib"]}});
+                                {"peak_rss_mib_bare", bare["peak_rss_mib"]},
+                                {"bare_final_min_z_m", bare["final_min_z_m"]},
+                                {"bare_final_min_tilt_rad", bare["final_min_tilt_rad"]}});
   }
   if (c.bench_memory) {
     ExperimentConfig shorter = Resized(base, sizes.front());

@@ -8,6 +8,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <charconv>
 #include <cmath>
 #include <cstring>
 
@@ -102,15 +103,21 @@ TimeseriesWriter::~TimeseriesWriter() {
 
 void TimeseriesWriter::Write(const Simulation& sim, double sigma_f,
                              const std::vector<double>& slots) {
-  auto out = std::back_inserter(buffer_);
+  // std::to_chars with (general, 9) is specified to give printf's "%.9g" bytes, the same as
+  // fmt's "{:.9g}" (checked on 2e6 random doubles), at under half the cost; a row is written
+  // into the buffer's spare room directly, with no per-character appends.
+  constexpr size_t kMaxNumber = 32;  // ",-1.23456789e-308" is 17 characters
+  const size_t numbers = 2 + 15 * static_cast<size_t>(sim.n_vehicles());
+  const size_t used = buffer_.size();
+  buffer_.resize(used + kMaxNumber * numbers + 1);
+  char* p = buffer_.data() + used;
+  char* const end = buffer_.data() + buffer_.size();
   auto number = [&](double v) {
-    if (std::isfinite(v)) {
-      fmt::format_to(out, ",{:.9g}", v);
-    } else {
-      buffer_ += ",";  // empty cell: not applicable
-    }
+    *p++ = ',';
+    if (std::isfinite(v)) p = std::to_chars(p, end, v, std::chars_format::general, 9).ptr;
+    // else an empty cell: not applicable
   };
-  fmt::format_to(out, "{:.6f}", sim.time());
+  p = std::to_chars(p, end, sim.time(), std::chars_format::fixed, 6).ptr;
   number(sigma_f);
   for (int i = 0; i < sim.n_vehicles(); ++i) {
     const mjfVehicleState& s = sim.states()[i];
@@ -126,7 +133,8 @@ void TimeseriesWriter::Write(const Simulation& sim, double sigma_f,
     number(slots[2 * i]);
     number(slots[2 * i + 1]);
   }
-  buffer_ += "\n";
+  *p++ = '\n';
+  buffer_.resize(p - buffer_.data());
   if (buffer_.size() > (1u << 20)) Flush();
 }
 
