@@ -120,6 +120,7 @@ void AddCommands(CLI::App& app, CliCommands* c) {
   c->plugins = app.add_subcommand("plugins", "List the plugins found, with their attributes");
   c->plugins->add_option("--plugin-path", c->plugin_path, "extra folder to search for plugins");
   AddBenchCommand(app, c);
+  AddSweepCommand(app, c);
 }
 
 int Dispatch(const CLI::App& app, const CliCommands& c) {
@@ -129,6 +130,7 @@ int Dispatch(const CLI::App& app, const CliCommands& c) {
     if (c.check->parsed()) return CheckCommand(c);
     if (c.plugins->parsed()) return PluginsCommand(c);
     if (c.bench && c.bench->parsed()) return BenchCommand(c);
+    if (c.sweep->parsed()) return SweepCommand(c);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "mjformation: error: %s\n", e.what());
     return 1;

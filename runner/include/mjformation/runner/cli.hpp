@@ -15,6 +15,7 @@ struct CliCommands {
   CLI::App* check = nullptr;
   CLI::App* plugins = nullptr;
   CLI::App* bench = nullptr;
+  CLI::App* sweep = nullptr;
   std::string experiment;
   std::string out;
   std::vector<std::string> overrides;
@@ -28,6 +29,9 @@ struct CliCommands {
   std::string bench_json;
   bool bench_render = false;
   bool bench_memory = false;
+  // sweep
+  std::vector<std::string> sweep_vary;
+  int sweep_jobs = 2;
 };
 
 void AddCommands(CLI::App& app, CliCommands* commands);
@@ -38,6 +42,10 @@ int Dispatch(const CLI::App& app, const CliCommands& commands);
 // `mjformation bench` (runner/src/bench.cc).
 void AddBenchCommand(CLI::App& app, CliCommands* commands);
 int BenchCommand(const CliCommands& commands);
+
+// `mjformation sweep` (runner/src/sweep.cc).
+void AddSweepCommand(CLI::App& app, CliCommands* commands);
+int SweepCommand(const CliCommands& commands);
 
 }  // namespace mjf::runner
 
