@@ -9,6 +9,7 @@ add_library(mjf_runner STATIC
   ${CMAKE_CURRENT_SOURCE_DIR}/src/plugin_host.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/run.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/scene.cc
+  ${CMAKE_CURRENT_SOURCE_DIR}/src/shape_config.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/simulation.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/sweep.cc)
 target_include_directories(mjf_runner PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include)

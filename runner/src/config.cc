@@ -417,11 +417,34 @@ ExperimentConfig ParseExperiment(const std::string& text, const std::string& pat
   c.shape.omega = shape.Number("omega", c.shape.omega);
   c.shape.phase0 = shape.Number("phase0", c.shape.phase0);
   c.shape.phase_step = shape.Number("phase_step", -1.0);
+  c.shape.tolerance = shape.Number("tolerance", c.shape.tolerance);
+  if (const toml::array* a = shape.Array("offsets")) {
+    for (const toml::node& item : *a) {
+      const toml::array* xy = item.as_array();
+      if (!xy || xy->size() != 2) {
+        reporter.Fail(&item, "[formation.shape] offsets", "expected [[x, y], ...] in m");
+      }
+      c.shape.offsets.push_back(
+          {shape.AsNumber(*xy->get(0), "offsets"), shape.AsNumber(*xy->get(1), "offsets")});
+    }
+  }
+  if (shape.Has("file")) c.shape.file = ResolveRelative(shape.String("file", ""), path);
+  shape.MarkUsed("file");
   shape.RejectUnknown();
-  if (c.shape.type != "circle" && c.shape.type != "none") {
-    shape.Fail("type", "must be \"circle\" or \"none\"");
+  if (c.shape.type != "circle" && c.shape.type != "offsets" && c.shape.type != "table" &&
+      c.shape.type != "none") {
+    shape.Fail("type", "must be \"circle\", \"offsets\", \"table\" or \"none\"");
   }
   if (c.shape.type == "circle" && c.shape.radius <= 0) shape.Fail("radius", "must be > 0 m");
+  if (c.shape.type == "offsets" && static_cast<int>(c.shape.offsets.size()) != c.followers) {
+    shape.Fail("offsets", "needs one [x, y] per follower (" + std::to_string(c.followers) + ")");
+  }
+  if (c.shape.type == "table" && c.shape.file.empty()) {
+    shape.Fail("file",
+               "type \"table\" needs file = \"shape.csv\" (t, then px, py, vx, vy per "
+               "follower)");
+  }
+  if (c.shape.tolerance <= 0) shape.Fail("tolerance", "must be > 0 m/s");
 
   Section render(reporter, table_of("render"), "render");
   c.render.snapshots = render.Numbers("snapshots", {});

@@ -45,13 +45,6 @@ std::vector<std::array<double, 3>> InitialPositions(const ExperimentConfig& c) {
   return out;
 }
 
-// The circle of section 6: f_i = r [cos(w t + phase0 + i phase_step), sin(...)].
-std::unique_ptr<core::Shape> MakeShape(const ExperimentConfig& c) {
-  if (c.shape.type == "none") return nullptr;
-  const double step = c.shape.phase_step >= 0 ? c.shape.phase_step : 2 * M_PI / c.followers;
-  return core::MakeCircleShape(c.followers, c.shape.radius, c.shape.omega, c.shape.phase0, step);
-}
-
 std::string Where(const ExperimentConfig& c, const PluginSection& s) {
   return c.source_path + (s.line > 0 ? ":" + std::to_string(s.line) : std::string()) + ": [" +
          s.section + "]";
@@ -305,7 +298,7 @@ void Simulation::CreatePlugins() {
     }
     try {
       // Algorithms 1 and 2, step "f_ip' = f_iv": the shape must be self-consistent.
-      core::CheckShapeConsistency(*shape_, 0.0, config_.duration, 0.01, 1e-3);
+      core::CheckShapeConsistency(*shape_, 0.0, config_.duration, 0.01, config_.shape.tolerance);
     } catch (const std::invalid_argument& e) {
       throw ConfigError(config_.source_path + ": [formation.shape]: " + e.what());
     }

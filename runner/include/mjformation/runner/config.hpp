@@ -8,10 +8,15 @@
 
 #include <array>
 #include <map>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
+
+namespace mjf::core {
+class Shape;
+}  // namespace mjf::core
 
 namespace mjf::runner {
 
@@ -37,11 +42,16 @@ struct PluginSection {
 
 // [formation.shape]: the desired formation f_i(t) (Definition 1).
 struct ShapeConfig {
-  std::string type = "circle";  // "circle" or "none"
-  double radius = 10.0;         // m
-  double omega = 0.314;         // rad/s
-  double phase0 = 0.0;          // rad, phase of follower 1
-  double phase_step = -1.0;     // rad between consecutive followers; < 0: 2 pi / N
+  // "circle": the paper's rotating circle; "offsets": fixed offsets [[x, y], ...] (m);
+  // "table": a CSV file of t, then px, py, vx, vy per follower (interpolated); "none".
+  std::string type = "circle";
+  double radius = 10.0;                        // m
+  double omega = 0.314;                        // rad/s
+  double phase0 = 0.0;                         // rad, phase of follower 1
+  double phase_step = -1.0;                    // rad between consecutive followers; < 0: 2 pi / N
+  std::vector<std::array<double, 2>> offsets;  // "offsets"
+  std::string file;                            // "table": resolved path
+  double tolerance = 1e-3;  // m/s: allowed mismatch of f_ip' and f_iv (Algorithms 1-2)
 };
 
 struct RenderConfig {
@@ -104,6 +114,10 @@ struct ExperimentConfig {
   ShapeConfig shape;
   RenderConfig render;
 };
+
+// The desired formation f_i(t) of [formation.shape]; nullptr for type "none". Reads the table
+// file for type "table". Throws ConfigError naming the file (and row) on bad input.
+std::unique_ptr<core::Shape> MakeShape(const ExperimentConfig& config);
 
 // Reads and checks an experiment file; `overrides` are "section.key=value" strings (TOML
 // values) applied on top, e.g. "formation.rho=0.1". Throws ConfigError.
