@@ -491,8 +491,7 @@ void Simulation::CheckState() const {
   for (int w = 0; w < mjNWARNING; ++w) {
     if (w == mjWARN_VGEOMFULL) continue;  // a rendering matter, not the physics'
     if (data_->warning[w].number > 0) {
-      throw SimulationError("t = " + std::to_string(time()) +
-                            " s: MuJoCo warning: " + kWarningNames[w] + " (index " +
+      throw SimulationError(TimeTag() + ": MuJoCo warning: " + kWarningNames[w] + " (index " +
                             std::to_string(data_->warning[w].lastinfo) +
                             "); the simulation is no longer trustworthy");
     }

@@ -1,22 +1,23 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
 // The command line as users type it: exit codes and the sweep command.
+#include "mjformation/runner/cli.hpp"
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
 
-#include "mjformation/runner/cli.hpp"
 #include "test_util.hpp"
 
 namespace mjf::runner {
 namespace {
 
-using ::testing::HasSubstr;
 using mjf::testing::HoverExperiment;
 using mjf::testing::ReadFile;
 using mjf::testing::TempDir;
 using mjf::testing::WriteFile;
+using ::testing::HasSubstr;
 
 // Parses and dispatches like main() does; returns the exit code.
 int Cli(std::vector<std::string> args) {
@@ -50,8 +51,8 @@ TEST(CliTest, ExitCodes) {
 TEST(CliTest, SweepRunsEveryPointAndWritesTheTable) {
   const std::string dir = TempDir("sweep");
   const std::string exp = WriteFile(dir + "/e.toml", HoverExperiment(1, 0.3));
-  ASSERT_EQ(Cli({"sweep", exp, "--vary", "vehicles.altitude=2.0,3.0", "--vary",
-                 "run.seed=1,2", "--out", dir + "/s", "--no-render"}),
+  ASSERT_EQ(Cli({"sweep", exp, "--vary", "vehicles.altitude=2.0,3.0", "--vary", "run.seed=1,2",
+                 "--out", dir + "/s", "--no-render"}),
             0);
   const std::string csv = ReadFile(dir + "/s/sweep.csv");
   EXPECT_THAT(csv, HasSubstr("vehicles.altitude,run.seed,complete,sigma_f_mean"));

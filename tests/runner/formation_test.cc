@@ -56,8 +56,9 @@ RunData RunExp2(const std::vector<std::string>& overrides) {
 }
 
 // Issue 3: with the point-mass vehicle the discrete protocol's measured sigma_f stays below the
-// reported bound once the transient is over (Table 1's window, t >= 25 s). Both bounds the plugin reports are checked: (47) as
-// EQUATIONS.md reads it, and the re-derived ultimate bound (plugins/core/README.md).
+// reported bound once the transient is over (Table 1's window, t >= 25 s). Both bounds the plugin
+// reports are checked: (47) as EQUATIONS.md reads it, and the re-derived ultimate bound
+// (plugins/core/README.md).
 TEST(FormationInMujocoTest, PointMassDiscreteStaysWithinTheBound) {
   const RunData run =
       RunExp2({"vehicles.model=\"pointmass\"", "attitude={plugin=\"pointmass_direct\"}"});

@@ -9,16 +9,19 @@ namespace {
 struct Hold {
   int vehicle;
   double position[3];
-  double nan_after;  // s; negative: never
+  double nan_after;     // s; negative: never
+  double broken_value;  // what is commanded from nan_after on
 };
 
 const mjfAttribute kRequiredAttributes[] = {{"value", nullptr, "a required number"}};
 const mjfAttribute kNanAttributes[] = {{"after", "1.0", "s: from this time on, command NaN"}};
+const mjfAttribute kHugeAttributes[] = {
+    {"after", "1.0", "s: from this time on, command an absurd (finite) acceleration"}};
 
-void* CreateHold(const mjfCreateContext* ctx, bool nan) {
+void* CreateHold(const mjfCreateContext* ctx, bool nan, double broken_value) {
   return mjf::plugin::CreateOrExplain(ctx, [&]() -> void* {
     mjf::plugin::Attributes attributes(ctx);
-    auto* h = new Hold{ctx->vehicle, {0, 0, 0}, -1};
+    auto* h = new Hold{ctx->vehicle, {0, 0, 0}, -1, broken_value};
     if (nan) {
       h->nan_after = attributes.Number("after");
     } else {
@@ -37,8 +40,7 @@ int ComputeHold(void* instance, const mjfStepContext* ctx) {
   for (int k = 0; k < 2; ++k) {
     sp.pos[k] = h->position[k];
     sp.vel[k] = 0;
-    sp.acc[k] = broken ? std::numeric_limits<double>::quiet_NaN()
-                       : 2.0 * (h->position[k] - s.pos[k]) - 2.5 * s.vel[k];
+    sp.acc[k] = broken ? h->broken_value : 2.0 * (h->position[k] - s.pos[k]) - 2.5 * s.vel[k];
   }
   return 0;
 }
@@ -53,7 +55,7 @@ const mjfPlugin kRequired = {MJF_ABI_VERSION,
                              kRequiredAttributes,
                              0,
                              nullptr,
-                             [](const mjfCreateContext* c) { return CreateHold(c, false); },
+                             [](const mjfCreateContext* c) { return CreateHold(c, false, 0.0); },
                              ComputeHold,
                              nullptr,
                              Destroy,
@@ -66,12 +68,28 @@ const mjfPlugin kNan = {MJF_ABI_VERSION,
                         kNanAttributes,
                         0,
                         nullptr,
-                        [](const mjfCreateContext* c) { return CreateHold(c, true); },
+                        [](const mjfCreateContext* c) {
+                          return CreateHold(c, true, std::numeric_limits<double>::quiet_NaN());
+                        },
                         ComputeHold,
                         nullptr,
                         Destroy,
                         nullptr};
 
+const mjfPlugin kHuge = {MJF_ABI_VERSION,
+                         "test_huge",
+                         MJF_KIND_GUIDANCE,
+                         "holds position, then commands 1e12 m/s^2",
+                         1,
+                         kHugeAttributes,
+                         0,
+                         nullptr,
+                         [](const mjfCreateContext* c) { return CreateHold(c, true, 1e12); },
+                         ComputeHold,
+                         nullptr,
+                         Destroy,
+                         nullptr};
+
 }  // namespace
 
-MJF_EXPORT_PLUGINS(&kRequired, &kNan)
+MJF_EXPORT_PLUGINS(&kRequired, &kNan, &kHuge)

@@ -158,6 +158,25 @@ TEST(RunTest, NonFiniteRunKeepsPartialResultsMarkedIncomplete) {
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 100);  // rows for t in [0, 1) s
 }
 
+// A MuJoCo warning (here bad ctrl: an absurd force command on the point mass) stops the run the same way.
+TEST(RunTest, MujocoWarningStopsTheRunAndKeepsWhatWasRecorded) {
+  std::string text = HoverExperiment(1, 3.0);
+  text.replace(text.find("model = \"quadrotor\""), 19, "model = \"pointmass\"");
+  text.replace(text.find("plugin = \"pd_cascade\""), 21, "plugin = \"pointmass_direct\"");
+  text.replace(text.find("[leader]\nplugin = \"hover\""), 25,
+               "[leader]\nplugin = \"test_huge\"\nafter = 0.5");
+  const std::string out = TempDir("qacc") + "/r";
+  RunOptions options;
+  options.out_dir = out;
+  const RunResult r = RunExperiment(Parse(text), options);
+  EXPECT_FALSE(r.complete);
+  EXPECT_THAT(r.error, HasSubstr("t = 0.501 s: MuJoCo warning: bad ctrl"));
+  const nlohmann::json s = Summary(out);
+  EXPECT_FALSE(s["complete"].get<bool>());
+  const std::string csv = ReadFile(out + "/timeseries.csv");
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 51);  // rows for t in [0, 0.5] s
+}
+
 // Same config and seed: the same bytes in every file (summary.json's "timing" aside).
 void ExpectSameRunFiles(const std::string& a, const std::string& b) {
   for (const char* f : {"config.toml", "scene.xml", "timeseries.csv", "snapshots/t000.00.png",

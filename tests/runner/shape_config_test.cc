@@ -15,10 +15,10 @@
 namespace mjf::runner {
 namespace {
 
-using ::testing::AllOf;
-using ::testing::HasSubstr;
 using mjf::testing::TempDir;
 using mjf::testing::WriteFile;
+using ::testing::AllOf;
+using ::testing::HasSubstr;
 
 std::string PointMassFormation(const std::string& shape) {
   return "[run]\nduration = 20.0\n[vehicles]\nmodel = \"pointmass\"\nfollowers = 3\n"
@@ -47,8 +47,8 @@ void ExpectSlotsReached(Simulation& sim, const std::vector<std::array<double, 2>
 
 TEST(ShapeConfigTest, FixedOffsetsAreReached) {
   const std::string dir = TempDir("shape");
-  const std::string text = PointMassFormation(
-      "type = \"offsets\"\noffsets = [[3.0, 0.0], [0.0, 3.0], [-3.0, 0.0]]\n");
+  const std::string text =
+      PointMassFormation("type = \"offsets\"\noffsets = [[3.0, 0.0], [0.0, 3.0], [-3.0, 0.0]]\n");
   Simulation sim(LoadExperiment(WriteFile(dir + "/e.toml", text)));
   ExpectSlotsReached(sim, {{3.0, 0.0}, {0.0, 3.0}, {-3.0, 0.0}});
 }
