@@ -128,8 +128,9 @@ int SweepCommand(const CliCommands& c) {
     }
     return fmt::format("{:.6g}", s["metrics"][key].get<double>());
   };
-  const char* const kMetrics[] = {"sigma_f_mean",     "sigma_f_final",   "max_final_slot_error_m",
-                                  "min_separation_m", "reaching_time_s", "saturation_time_s"};
+  const char* const kMetrics[] = {
+      "sigma_f_mean",    "sigma_f_final",     "max_final_slot_error_m",         "min_separation_m",
+      "reaching_time_s", "saturation_time_s", "max_follower_tilt_deg_in_window"};
   std::string csv;
   for (const Axis& axis : axes) csv += axis.key + ",";
   csv += "complete";

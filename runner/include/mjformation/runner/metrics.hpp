@@ -41,6 +41,7 @@ class OnlineMetrics {
   double max_abs_s_ever_ = 0;
   std::vector<double> final_errors_;
   long saturated_steps_ = 0;
+  double max_follower_tilt_in_window_ = 0;  // rad
   double timestep_;
 };
 
