@@ -52,6 +52,8 @@ for e in "${experiments[@]}"; do
   done
 done
 for p in "${pids[@]}"; do wait "$p" || status=1; done
+# The written discussion (docs/DISCUSSION.md) goes into the report, after the generated one.
+cp "$root/docs/DISCUSSION.md" "$out/discussion.md"
 /usr/bin/python3 "$root/analysis/report.py" "$out" --out "$out/report"
 echo "reproduce: report at $out/report/report.md"
 if [ $status != 0 ]; then
