@@ -125,13 +125,14 @@ nlohmann::json BareMujoco(const ExperimentConfig& config) {
   for (int i = 0; i < m->na; ++i) d->act[i] = thrust;  // motor lag already settled
   mj_forward(m, d);
   if (m->nu == 0) {
-    // Wrench rotor model: the same constant wrench every step, as xfrc_applied, along the body
-    // z axis (which the spin about it leaves fixed in the world).
+    // Wrench rotor model: the same constant wrench every step, thrust along the body z axis
+    // (which the spin about it leaves fixed in the world), handed to MuJoCo as the constant
+    // generalized force qfrc_applied, as the runner does (simulation.cc, ApplyRotorWrenches).
     for (int i = 0; i < sim.n_vehicles(); ++i) {
       const int body = sim.binding(i).body;
-      for (int k = 0; k < 3; ++k) {
-        d->xfrc_applied[6 * body + k] = thrust * per_vehicle * d->xmat[9 * body + 3 * k + 2];
-      }
+      mjtNum force[3];
+      for (int k = 0; k < 3; ++k) force[k] = thrust * per_vehicle * d->xmat[9 * body + 3 * k + 2];
+      mj_applyFT(m, d, force, nullptr, d->xipos + 3 * body, body, d->qfrc_applied);
     }
   }
   const int64_t steps = sim.total_steps();

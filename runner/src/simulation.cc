@@ -431,11 +431,19 @@ void Simulation::ComputeControls() {
 // computed per vehicle in O(1) instead of through the dense nu x nv actuator_moment of 2.2.2.
 // force = gain * act (act: first-order motor lag of the clamped control, updated in Integrate);
 // the wrench gear * force acts at the site, in the site's frame.
+//
+// The vehicle's summed wrench (force f at its centre of mass, torque t) goes to MuJoCo as the
+// generalized force J^T [f; t] in qfrc_applied, computed here from cdof over the vehicle's own
+// dofs only. Handing it over as xfrc_applied instead makes MuJoCo 2.2.2 (mj_xfrcAccumulate ->
+// mj_applyFT) build and clear two dense 3 x nv Jacobians per vehicle every step: O(N nv) =
+// O(N^2), 97% of a step at 1000 followers (docs/PERFORMANCE.md). The maths is mj_jac's: for each
+// dof j of the body's chain, J_j . [f; t] = (cdof_lin + cdof_rot x (point - subtree_com)) . f +
+// cdof_rot . t; only the floating-point summation order differs.
 void Simulation::ApplyRotorWrenches() {
-  mju_zero(data_->xfrc_applied, 6 * model_->nbody);
+  mju_zero(data_->qfrc_applied, model_->nv);
   for (int i = 0; i < n_vehicles(); ++i) {
     const VehicleBinding& b = bindings_[i];
-    mjtNum* wrench = data_->xfrc_applied + 6 * b.body;
+    mjtNum wrench[6] = {0, 0, 0, 0, 0, 0};
     const double* act = rotor_state_.data() + static_cast<size_t>(i) * actuators_per_vehicle_;
     for (int k = 0; k < actuators_per_vehicle_; ++k) {
       const mjfActuatorInfo& a = b.actuator_info[k];
@@ -457,6 +465,20 @@ void Simulation::ApplyRotorWrenches() {
         wrench[j] += f[j];
         wrench[3 + j] += t[j] + moment[j];
       }
+    }
+    // J^T wrench at the centre of mass, over the dofs that move this body (as mj_jac walks them).
+    int body = b.body;
+    while (body && !model_->body_dofnum[body]) body = model_->body_parentid[body];
+    if (!body) continue;
+    mjtNum offset[3];
+    mju_sub3(offset, data_->xipos + 3 * b.body, data_->subtree_com + 3 * model_->body_rootid[body]);
+    for (int j = model_->body_dofadr[body] + model_->body_dofnum[body] - 1; j >= 0;
+         j = model_->dof_parentid[j]) {
+      const mjtNum* cdof = data_->cdof + 6 * j;
+      mjtNum lin[3];
+      mju_cross(lin, cdof, offset);
+      for (int k = 0; k < 3; ++k) lin[k] += cdof[3 + k];
+      data_->qfrc_applied[j] += mju_dot3(lin, wrench) + mju_dot3(cdof, wrench + 3);
     }
   }
 }
