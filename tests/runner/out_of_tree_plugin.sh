@@ -2,6 +2,7 @@
 # A plugin written in plain C, compiled outside the source tree against the INSTALLED header
 # only, loads from a config line and flies the leader. Usage: BUILD_DIR SOURCE_DIR WORK_DIR
 set -euo pipefail
+trap 'echo "out_of_tree_plugin.sh: failed at line $LINENO: $BASH_COMMAND" >&2' ERR
 build=$1 src=$2 work=$3
 rm -rf "$work" && mkdir -p "$work/plugins"
 cmake --install "$build" --prefix "$work/prefix" >/dev/null
@@ -51,7 +52,8 @@ plugin = "hover"
 [attitude]
 plugin = "pd_cascade"
 T
-"$work/prefix/bin/mjformation" plugins --plugin-path "$work/plugins" | grep -q "oot_hold"
+"$work/prefix/bin/mjformation" plugins --plugin-path "$work/plugins" > "$work/plugins.txt"
+grep -q "oot_hold" "$work/plugins.txt" || { cat "$work/plugins.txt"; false; }
 "$work/prefix/bin/mjformation" run "$work/exp.toml" --out "$work/run" \
     --plugin-path "$work/plugins" --no-render -q
 grep -q '"complete": true' "$work/run/summary.json"
