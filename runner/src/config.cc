@@ -462,6 +462,7 @@ ExperimentConfig ParseExperiment(const std::string& text, const std::string& pat
   c.render.trail_seconds = render.Number("trail_seconds", c.render.trail_seconds);
   c.render.video = render.Bool("video", c.render.video);
   c.render.video_fps = render.Number("video_fps", c.render.video_fps);
+  c.render.video_shadows = render.Bool("video_shadows", c.render.video_shadows);
   c.render.video_width = static_cast<int>(render.Integer("video_width", c.render.video_width));
   c.render.video_height = static_cast<int>(render.Integer("video_height", c.render.video_height));
   render.RejectUnknown();

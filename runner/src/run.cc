@@ -154,7 +154,8 @@ RunResult RunExperiment(const ExperimentConfig& config, const RunOptions& option
   }
   if (want_video) {
     video_renderer = std::make_unique<render::OffscreenRenderer>(
-        sim.model(), config.render.video_width, config.render.video_height, config.render.shadows);
+        sim.model(), config.render.video_width, config.render.video_height,
+        config.render.video_shadows);
     video =
         std::make_unique<render::VideoWriter>(dir->Path("video.mp4"), config.render.video_width,
                                               config.render.video_height, config.render.video_fps);

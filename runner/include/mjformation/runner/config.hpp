@@ -66,7 +66,8 @@ struct RenderConfig {
   bool shadows = true;
   double trail_seconds = 10.0;  // s of path drawn behind each vehicle
   bool video = false;
-  double video_fps = 30.0;
+  double video_fps = 25.0;
+  bool video_shadows = false;  // shadows double the cost of a frame (docs/PERFORMANCE.md)
   int video_width = 640;
   int video_height = 480;
 };
