@@ -208,6 +208,9 @@ nlohmann::json RenderCost(const ExperimentConfig& config) {
   return out;
 }
 
+constexpr int kRepeats = 3;
+constexpr double kRepeatBelowS = 5.0;  // s of pipeline wall time
+
 }  // namespace
 
 void AddBenchCommand(CLI::App& app, CliCommands* c) {
@@ -247,21 +250,31 @@ int BenchCommand(const CliCommands& c) {
   std::printf("%s: %.1f s at %g s steps, rotor model %s, recording at %g Hz\n",
               c.experiment.c_str(), base.duration, base.timestep, base.rotor_model.c_str(),
               base.record_rate);
-  std::printf("%9s %9s %14s %14s %12s %9s %9s %10s\n", "followers", "steps", "bare steps/s",
-              "full steps/s", "ratio full/bare", "RTF bare", "RTF full", "peak MiB");
+  std::printf("%9s %9s %14s %14s %12s %9s %9s %10s %5s\n", "followers", "steps", "bare steps/s",
+              "full steps/s", "ratio full/bare", "RTF bare", "RTF full", "peak MiB", "runs");
   for (int n : sizes) {
     const ExperimentConfig config = Resized(base, n);
-    const nlohmann::json bare = InChild([&] { return BareMujoco(config); });
-    const nlohmann::json full = InChild([&] { return Pipeline(config, scratch); });
+    // Other processes share the machine: short points are measured kRepeats times, bare and full
+    // alternating, and the fastest of each is kept (the least disturbed run).
+    nlohmann::json bare = InChild([&] { return BareMujoco(config); });
+    nlohmann::json full = InChild([&] { return Pipeline(config, scratch); });
+    int repeats = 1;
+    for (; repeats < kRepeats && full["wall_s"].get<double>() < kRepeatBelowS; ++repeats) {
+      const nlohmann::json b = InChild([&] { return BareMujoco(config); });
+      const nlohmann::json f = InChild([&] { return Pipeline(config, scratch); });
+      if (b["wall_s"].get<double>() < bare["wall_s"].get<double>()) bare = b;
+      if (f["wall_s"].get<double>() < full["wall_s"].get<double>()) full = f;
+    }
     const double steps = full["steps"].get<double>();
     const double bare_wall = bare["wall_s"].get<double>(), full_wall = full["wall_s"].get<double>();
     const double ratio = full_wall / bare_wall;
-    std::printf("%9d %9.0f %14.0f %14.0f %15.3f %9.2f %9.2f %10.1f\n", n, steps, steps / bare_wall,
-                steps / full_wall, ratio, config.duration / bare_wall, config.duration / full_wall,
-                full["peak_rss_mib"].get<double>());
+    std::printf("%9d %9.0f %14.0f %14.0f %15.3f %9.2f %9.2f %10.1f %5d\n", n, steps,
+                steps / bare_wall, steps / full_wall, ratio, config.duration / bare_wall,
+                config.duration / full_wall, full["peak_rss_mib"].get<double>(), repeats);
     std::fflush(stdout);
     report["points"].push_back({{"followers", n},
                                 {"steps", steps},
+                                {"best_of", repeats},
                                 {"bare_wall_s", bare_wall},
                                 {"full_wall_s", full_wall},
                                 {"ratio_full_over_bare", ratio},
