@@ -331,6 +331,7 @@ ExperimentConfig ParseExperiment(const std::string& text, const std::string& pat
   }
   c.start_jitter = vehicles.Number("start_jitter", 0.0);
   c.rotor_model = vehicles.String("rotor_model", c.rotor_model);
+  c.contacts = vehicles.Bool("contacts", c.contacts);
   vehicles.RejectUnknown();
   if (c.followers < 1 || c.followers > 100000) vehicles.Fail("followers", "must be in [1, 100000]");
   if (!c.follower_start.empty() && static_cast<int>(c.follower_start.size()) != c.followers) {

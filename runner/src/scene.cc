@@ -128,6 +128,8 @@ std::string ComposeScene(const SceneRequest& request) {
   std::snprintf(ts, sizeof(ts), "%.17g", request.timestep);
   option->SetAttribute("timestep", ts);
   option->SetAttribute("integrator", "Euler");
+  if (request.disable_contacts)
+    ChildOrNew(scene, option, "flag")->SetAttribute("contact", "disable");
 
   XMLElement* visual = ChildOrNew(scene, root, "visual");
   XMLElement* global = ChildOrNew(scene, visual, "global");

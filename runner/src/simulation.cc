@@ -131,6 +131,7 @@ Simulation::Simulation(const ExperimentConfig& config) : config_(config) {
   request.offscreen_width = std::max(config_.render.width, config_.render.video_width);
   request.offscreen_height = std::max(config_.render.height, config_.render.video_height);
   request.strip_actuators = config_.rotor_model == "wrench";
+  request.disable_contacts = !config_.contacts;
   scene_xml_ = ComposeScene(request);
   model_ = CompileModel(scene_xml_, "composed scene of " + config_.model_path);
   data_ = mj_makeData(model_);

@@ -99,6 +99,10 @@ struct ExperimentConfig {
   std::vector<std::array<double, 2>> follower_start;  // empty: a small ring near the origin
   double start_jitter = 0.0;                          // m, seeded uniform perturbation
   std::string rotor_model = "actuator";               // "actuator" or "wrench"
+  // false: no collision detection at all. Vehicles never touch each other anyway (see
+  // mjcf/README.md), and MuJoCo 2.2.2's broadphase costs O(bodies^2) per step even with no
+  // contact: at 1000 vehicles it is the largest single cost (docs/PERFORMANCE.md).
+  bool contacts = true;
 
   // [topology]
   std::vector<double> leader_weight;  // a_i0 per follower (0-based)

@@ -28,6 +28,7 @@ struct SceneRequest {
   int offscreen_width = 1280;                    // offscreen buffer, pixels
   int offscreen_height = 720;
   bool strip_actuators = false;  // wrench rotor model: rotors become body wrenches, no actuators
+  bool disable_contacts = false;  // <option><flag contact="disable"/>: no collision detection
 };
 
 // The composed MJCF text. Throws SceneError naming the file (and XML line) on bad input.
