@@ -56,6 +56,18 @@ class SwarmBuffers {
   int n_;
 };
 
+// What a formation plugin instance holds: its copy of the shape, the pure controller and the
+// buffers its compute() fills.
+template <typename Controller>
+struct SwarmInstance {
+  template <typename Params>
+  SwarmInstance(const SwarmSetup& setup, const Params& params)
+      : shape(setup.shape), controller(setup.graph, params), buffers(setup.graph.num_followers()) {}
+  core::AbiShape shape;
+  Controller controller;
+  SwarmBuffers buffers;
+};
+
 // Writes follower i's (vehicle i+1) slot: pos[0..1] = leader pos + f_ip, vel[0..1] = leader
 // vel + f_iv. Leaves acc/pos/vel[2] and yaw alone.
 void WriteSlots(const SwarmBuffers& buffers, mjfSetpoint* setpoints);

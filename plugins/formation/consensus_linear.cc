@@ -15,13 +15,7 @@ const mjfAttribute kAttributes[] = {
     {kKeyKv, "2", "velocity gain kv > 0, 1/s"},
 };
 
-struct Instance {
-  Instance(const SwarmSetup& setup, const core::LinearConsensusParams& params)
-      : shape(setup.shape), controller(setup.graph, params), buffers(setup.graph.num_followers()) {}
-  core::AbiShape shape;
-  core::LinearConsensus controller;
-  SwarmBuffers buffers;
-};
+using Instance = SwarmInstance<core::LinearConsensus>;
 
 void* Create(const mjfCreateContext* ctx) {
   return plugin::CreateOrExplain(ctx, [&]() -> void* {

@@ -24,13 +24,7 @@ const mjfAttribute kAttributes[] = {
     {kKeyBoundaryLayer, "0.1", "boundary-layer width phi of sat (sign = sat only)"},
 };
 
-struct Instance {
-  Instance(const SwarmSetup& setup, const core::ContinuousSmcParams& params)
-      : shape(setup.shape), controller(setup.graph, params), buffers(setup.graph.num_followers()) {}
-  core::AbiShape shape;
-  core::ContinuousSmc controller;
-  SwarmBuffers buffers;
-};
+using Instance = SwarmInstance<core::ContinuousSmc>;
 
 void* Create(const mjfCreateContext* ctx) {
   return plugin::CreateOrExplain(ctx, [&]() -> void* {

@@ -28,16 +28,10 @@ const mjfAttribute kAttributes[] = {
     {kKeyEta0, "1e-6", "the small eta_0 > 0 of Delta_1, eq. (49) (reporting only)"},
 };
 
-struct Instance {
+struct Instance : SwarmInstance<core::DiscreteSmc> {
   Instance(const SwarmSetup& setup, const core::DiscreteSmcParams& params, int64_t steps)
-      : shape(setup.shape),
-        controller(setup.graph, params),
-        buffers(setup.graph.num_followers()),
-        steps_per_sample(steps) {}
-  core::AbiShape shape;
-  core::DiscreteSmc controller;
-  SwarmBuffers buffers;
-  int64_t steps_per_sample;
+      : SwarmInstance(setup, params), steps_per_sample(steps) {}
+  int64_t steps_per_sample;  // zero-order hold: physics steps per sample period T
   bool has_sample = false;
 };
 

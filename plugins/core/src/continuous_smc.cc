@@ -36,17 +36,6 @@ Reaching ParseReaching(const std::string& text) {
                               "' is not one of 'constant', 'exponential'");
 }
 
-namespace {
-const ContinuousSmcParams& Validated(const ContinuousSmcParams& params) {
-  params.Validate();
-  return params;
-}
-const Graph& WithSpanningTree(const Graph& graph) {
-  graph.RequireSpanningTree();
-  return graph;
-}
-}  // namespace
-
 ContinuousSmc::ContinuousSmc(const Graph& graph, const ContinuousSmcParams& params)
     : graph_(WithSpanningTree(graph)),
       params_(Validated(params)),

@@ -40,17 +40,6 @@ void DiscreteSmcParams::Validate() const {
   ValidateSign(sign, boundary_layer);
 }
 
-namespace {
-const DiscreteSmcParams& Validated(const DiscreteSmcParams& params) {
-  params.Validate();
-  return params;
-}
-const Graph& WithSpanningTree(const Graph& graph) {
-  graph.RequireSpanningTree();
-  return graph;
-}
-}  // namespace
-
 DiscreteSmc::DiscreteSmc(const Graph& graph, const DiscreteSmcParams& params)
     : graph_(WithSpanningTree(graph)),
       params_(Validated(params)),

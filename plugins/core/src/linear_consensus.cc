@@ -16,17 +16,6 @@ void LinearConsensusParams::Validate() const {
   }
 }
 
-namespace {
-const LinearConsensusParams& Validated(const LinearConsensusParams& params) {
-  params.Validate();
-  return params;
-}
-const Graph& WithSpanningTree(const Graph& graph) {
-  graph.RequireSpanningTree();
-  return graph;
-}
-}  // namespace
-
 LinearConsensus::LinearConsensus(const Graph& graph, const LinearConsensusParams& params)
     : graph_(WithSpanningTree(graph)),
       params_(Validated(params)),

@@ -46,6 +46,17 @@ void ComputeErrorAndSliding(const Graph& graph, const SlidingGains& gains, const
                             const double* follower_pv, const double* shape, double* error,
                             double* sliding);
 
+// For constructors' member initializer lists: the argument, once it has passed its checks.
+template <typename Params>
+const Params& Validated(const Params& params) {
+  params.Validate();  // throws std::invalid_argument naming the key and the condition
+  return params;
+}
+inline const Graph& WithSpanningTree(const Graph& graph) {
+  graph.RequireSpanningTree();  // Assumption 2
+  return graph;
+}
+
 }  // namespace mjf::core
 
 #endif  // MJFORMATION_CORE_SLIDING_HPP_
