@@ -72,10 +72,21 @@ class TrailKeeper {
   size_t capacity_;
 };
 
-render::CameraSpec Camera(const RenderConfig& r) {
+// The configured camera; a following camera ("follow", "leader") backs off so that every
+// vehicle stays in the picture: MuJoCo's 45 degree field of view shows about 0.35 x distance
+// around the target, hence distance >= 2.8 x the farthest vehicle from it.
+render::CameraSpec Camera(const RenderConfig& r, const Simulation& sim,
+                          const std::array<double, 3>& target) {
   render::CameraSpec cam;
   cam.mode = r.camera == "fixed" ? "fixed" : "follow";
   cam.distance = r.distance;
+  if (cam.mode == "follow") {
+    double farthest = 0;
+    for (const auto& s : sim.states()) {
+      farthest = std::max(farthest, std::hypot(s.pos[0] - target[0], s.pos[1] - target[1]));
+    }
+    cam.distance = std::max(r.distance, 2.8 * farthest);
+  }
   cam.azimuth = r.azimuth;
   cam.elevation = r.elevation;
   for (int k = 0; k < 3; ++k) cam.lookat[k] = r.lookat[k];
@@ -191,7 +202,7 @@ RunResult RunExperiment(const ExperimentConfig& config, const RunOptions& option
       if ((want_snapshots || want_video) && step % trail_every == 0) trails.Add(sim);
       if (snapshot_tick) {
         const auto target = CameraTarget(sim);
-        const auto& rgb = snapshot_renderer->Render(sim.data(), Camera(config.render),
+        const auto& rgb = snapshot_renderer->Render(sim.data(), Camera(config.render, sim, target),
                                                     trails.Overlay(sim, slots), target.data());
         const std::string name = fmt::format("snapshots/t{:06.2f}.png", sim.time());
         render::WritePng(dir->Path(name), rgb.data(), config.render.width, config.render.height);
@@ -200,8 +211,8 @@ RunResult RunExperiment(const ExperimentConfig& config, const RunOptions& option
       if (video_tick) {
         const auto target = CameraTarget(sim);
         video->AddFrame(video_renderer
-                            ->Render(sim.data(), Camera(config.render), trails.Overlay(sim, slots),
-                                     target.data())
+                            ->Render(sim.data(), Camera(config.render, sim, target),
+                                     trails.Overlay(sim, slots), target.data())
                             .data());
       }
       if (step < sim.total_steps()) sim.Integrate();
