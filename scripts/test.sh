@@ -11,6 +11,7 @@ if [ "${MJF_SKIP_SANITIZE:-0}" != 1 ]; then
   cmake -S "$root" -B "$root/build-asan" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMJF_SANITIZE=ON >/dev/null
   cmake --build "$root/build-asan" -j"$(nproc)"
   # The physics-heavy end-to-end runs are covered above; here the unit suites and setup errors.
-  (cd "$root/build-asan" && ASAN_OPTIONS=detect_leaks=1 ctest --output-on-failure -j2 \
+  (cd "$root/build-asan" && ASAN_OPTIONS=detect_leaks=1 \
+      LSAN_OPTIONS="suppressions=$root/tests/lsan.supp" ctest --output-on-failure -j2 \
       -R "${MJF_SANITIZE_TESTS:-Formation|Graph|Shape|Smc|Consensus|Plugin|Config|SetupError|Scene|Vehicle|Allocation|Attitude}")
 fi

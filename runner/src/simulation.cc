@@ -133,8 +133,8 @@ Simulation::Simulation(const ExperimentConfig& config) : config_(config) {
   request.strip_actuators = config_.rotor_model == "wrench";
   request.disable_contacts = !config_.contacts;
   scene_xml_ = ComposeScene(request);
-  model_ = CompileModel(scene_xml_, "composed scene of " + config_.model_path);
-  data_ = mj_makeData(model_);
+  model_owner_.reset(model_ = CompileModel(scene_xml_, "composed scene of " + config_.model_path));
+  data_owner_.reset(data_ = mj_makeData(model_));
   total_steps_ = std::llround(config_.duration / config_.timestep);
 
   BindVehicles(*attitude.descriptor);
@@ -147,8 +147,6 @@ Simulation::~Simulation() {
   follower_guidance_.clear();
   formation_.reset();
   leader_.reset();
-  if (data_) mj_deleteData(data_);
-  if (model_) mj_deleteModel(model_);
 }
 
 void Simulation::BindVehicles(const mjfPlugin& attitude) {

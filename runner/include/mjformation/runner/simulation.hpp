@@ -94,6 +94,16 @@ class Simulation {
   std::string scene_xml_;
   mjModel* model_ = nullptr;
   mjData* data_ = nullptr;
+  // Owners of model_ and data_, so that a constructor that throws (bad plugin configuration,
+  // topology, ...) frees them; declared before the plugins, so plugins go first.
+  struct ModelDeleter {
+    void operator()(mjModel* m) const { mj_deleteModel(m); }
+  };
+  struct DataDeleter {
+    void operator()(mjData* d) const { mj_deleteData(d); }
+  };
+  std::unique_ptr<mjModel, ModelDeleter> model_owner_;
+  std::unique_ptr<mjData, DataDeleter> data_owner_;
   int64_t step_ = 0;
   int64_t total_steps_ = 0;
 
