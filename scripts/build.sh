@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
 # Installs what is missing (scripts/setup.sh) and builds mjformation.
 # Usage: scripts/build.sh [BUILD_DIR] [extra cmake arguments...]   (default BUILD_DIR: build)
+# Environment: MJF_BUILD_TARGET=<target> builds only that target (and what it depends on).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-$root/build}
 shift || true
 bash "$root/scripts/setup.sh"
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null
-cmake --build "$build" -j"$(nproc)"
+# MJF_BUILD_TARGET=mjformation builds the runner and its plugins only (no tests).
+cmake --build "$build" -j"$(nproc)" ${MJF_BUILD_TARGET:+--target "$MJF_BUILD_TARGET"}

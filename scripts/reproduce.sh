@@ -16,7 +16,7 @@ while (($#)); do
   esac
   shift
 done
-bash "$root/scripts/build.sh" "$root/build"
+MJF_BUILD_TARGET=mjformation bash "$root/scripts/build.sh" "$root/build"  # runner + plugins
 bin=$root/build/runner/mjformation
 mkdir -p "$out"
 experiments=(exp1_printed exp1_switching exp1_exponential exp2 exp3 consensus_baseline)
