@@ -96,9 +96,7 @@ ExperimentConfig Resized(ExperimentConfig c, int n) {
   c.follower_start.clear();
   c.leader_weight.assign(n, 0.0);
   c.leader_weight[0] = 1.0;
-  c.edges.clear();
-  for (int i = 1; i < n; ++i) c.edges.push_back({i - 1, i, 1.0});
-  if (n > 2) c.edges.push_back({n - 1, 0, 1.0});
+  c.edges = GeneratedEdges(n, true);
   c.shape.phase_step = -1;
   return c;
 }

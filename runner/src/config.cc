@@ -232,6 +232,13 @@ void ApplyOverrides(toml::table& root, const std::vector<std::string>& overrides
 
 }  // namespace
 
+std::vector<ExperimentConfig::Edge> GeneratedEdges(int n, bool ring) {
+  std::vector<ExperimentConfig::Edge> edges;
+  for (int i = 1; i < n; ++i) edges.push_back({i - 1, i, 1.0});
+  if (ring && n > 2) edges.push_back({n - 1, 0, 1.0});
+  return edges;
+}
+
 ExperimentConfig ParseExperiment(const std::string& text, const std::string& path,
                                  const std::vector<std::string>& overrides) {
   Reporter reporter(path);
@@ -393,14 +400,13 @@ ExperimentConfig ParseExperiment(const std::string& text, const std::string& pat
       topology.Fail("generate", "must be \"chain\" or \"ring\"");
     }
     if (!c.edges.empty()) topology.Fail("generate", "give either edges or generate, not both");
-    for (int i = 1; i < c.followers; ++i) c.edges.push_back({i - 1, i, 1.0});
-    if (generator == "ring" && c.followers > 2) c.edges.push_back({c.followers - 1, 0, 1.0});
+    c.edges = GeneratedEdges(c.followers, generator == "ring");
   }
   topology.RejectUnknown();
   if (!table_of("topology")) {
     // Default: the leader talks to follower 1 and the followers form a chain 1 -> 2 -> ... -> N.
     c.leader_weight[0] = 1.0;
-    for (int i = 1; i < c.followers; ++i) c.edges.push_back({i - 1, i, 1.0});
+    c.edges = GeneratedEdges(c.followers, false);
   }
 
   c.leader = ReadPluginSection(reporter, root, "leader", "circle", {});

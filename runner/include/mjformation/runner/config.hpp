@@ -120,6 +120,10 @@ struct ExperimentConfig {
   RenderConfig render;
 };
 
+// Follower edges of a generated topology ([topology] generate): the chain 1 -> 2 -> ... -> n,
+// closed into a ring by n -> 1 when `ring` and n > 2. 0-based, weight 1.
+std::vector<ExperimentConfig::Edge> GeneratedEdges(int n, bool ring);
+
 // The desired formation f_i(t) of [formation.shape]; nullptr for type "none". Reads the table
 // file for type "table". Throws ConfigError naming the file (and row) on bad input.
 std::unique_ptr<core::Shape> MakeShape(const ExperimentConfig& config);
