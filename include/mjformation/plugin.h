@@ -1,6 +1,11 @@
 /* Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0. */
 /*
- * mjformation plugin ABI, version 1.
+ * mjformation plugin ABI, version 2.
+ *
+ * Version 2 (this wave): compute() can say why it failed (mjfStepContext.error), and formation
+ * protocols can run as one instance per follower over a simulated network
+ * (MJF_KIND_FORMATION_AGENT, mjfNeighbourhood, mjfAgentInput, mjfMessage). A library built for
+ * another version is refused at load with a message naming both versions.
  *
  * MuJoCo 2.2.2 (Debian 12) predates MuJoCo's native engine plugins (mjpPlugin, MuJoCo >= 2.3),
  * so mjformation defines its own C ABI with the same shape: a descriptor with a name, a kind,
@@ -27,7 +32,7 @@ extern "C" {
 #endif
 
 /* Bump on any change of the structs or callbacks below. */
-#define MJF_ABI_VERSION 1u
+#define MJF_ABI_VERSION 2u
 
 /* Name of the exported entry point: const mjfPlugin* const* mjf_plugin_entry(int* count). */
 #define MJF_ENTRY_SYMBOL "mjf_plugin_entry"
@@ -38,7 +43,9 @@ struct mjData_;
 typedef enum mjfKind_ {
   MJF_KIND_GUIDANCE = 1,  /* one instance per vehicle: own trajectory -> setpoint (leader, hover) */
   MJF_KIND_FORMATION = 2, /* one instance per swarm: neighbours' states -> follower setpoints */
-  MJF_KIND_ATTITUDE = 3   /* one instance per vehicle: setpoint -> actuator controls */
+  MJF_KIND_ATTITUDE = 3,  /* one instance per vehicle: setpoint -> actuator controls */
+  MJF_KIND_FORMATION_AGENT = 4 /* one instance per follower: own state + received messages ->
+                                  own setpoint (distributed execution, see mjfAgentInput) */
 } mjfKind;
 
 /* A declared attribute. Values reach create() as strings (like mjpPlugin attributes). */
@@ -105,6 +112,46 @@ typedef struct mjfShape_ {
   void (*evaluate)(const void* self, double t, double* out);
 } mjfShape;
 
+/* What one follower knows of the graph (per-agent formation plugins): its own row of L_H. */
+typedef struct mjfNeighbourhood_ {
+  int follower;                /* this follower, 0..n_followers-1 (paper's i = follower + 1) */
+  int n_followers;
+  double leader_weight;        /* a_i0 (0: this follower does not hear the leader) */
+  int n_neighbours;            /* in-neighbours j (edges j -> i) */
+  const int* neighbours;       /* [n_neighbours] follower indices j */
+  const double* weights;       /* [n_neighbours] a_ij > 0 */
+} mjfNeighbourhood;
+
+/* Generic payload slots a per-agent protocol may add to its broadcast (e.g. a Jacobi iterate). */
+#define MJF_MESSAGE_PAYLOAD 8
+
+/* One message as received over a simulated link (or the follower's own outgoing message). */
+typedef struct mjfMessage_ {
+  int sender;             /* vehicle index of the sender: 0 = leader, 1..N = followers */
+  int round;              /* exchange round within the sample (0 .. n_rounds-1) */
+  double send_time;       /* s, simulation time at which the sender broadcast it */
+  mjfVehicleState state;  /* the sender's state as it measured it */
+  double input[3];        /* the sender's last formation input u_j (world frame); NaN: none */
+  int n_payload;          /* used payload slots */
+  double payload[MJF_MESSAGE_PAYLOAD];
+} mjfMessage;
+
+/* Handed to a per-agent formation plugin on each compute() (ctx->agent). The host never hands
+ * such a plugin the swarm's arrays: ctx->states, ctx->model and ctx->data are NULL and
+ * ctx->setpoints points at this follower's own setpoint only. */
+typedef struct mjfAgentInput_ {
+  int follower;                 /* 0-based follower index (vehicle follower + 1) */
+  const mjfVehicleState* self;  /* this follower's own measured state */
+  int n_messages;               /* the newest message held from each in-neighbour */
+  const mjfMessage* messages;
+  const mjfMessage* leader;     /* newest leader message, NULL when a_i0 = 0 or none yet */
+  int round;                    /* exchange round of this call within the sample */
+  int n_rounds;                 /* rounds per sample (1 unless Jacobi exchange is configured) */
+  mjfMessage* outgoing;         /* what this follower broadcasts next: the host fills sender,
+                                   time, state and input (from the setpoint written); the plugin
+                                   may fill round-specific payload */
+} mjfAgentInput;
+
 typedef struct mjfCreateContext_ {
   /* Attributes: every declared key, in declaration order, with defaults filled in. */
   int n_attributes;
@@ -116,7 +163,8 @@ typedef struct mjfCreateContext_ {
   const mjfVehicleInfo* vehicle_info; /* per-vehicle plugins; NULL for formation plugins */
   const double* initial_pos;          /* [3] per-vehicle plugins: the vehicle's initial position */
   const mjfGraph* graph;              /* formation plugins; NULL otherwise */
-  const mjfShape* shape;              /* formation plugins; NULL otherwise */
+  const mjfShape* shape;              /* formation plugins (both kinds); NULL otherwise */
+  const mjfNeighbourhood* neighbourhood; /* per-agent formation plugins; NULL otherwise */
   const struct mjModel_* model;       /* raw access, may be NULL (unit tests) */
   char* error;       /* create() writes a one-line reason here when it returns NULL */
   size_t error_size;
@@ -132,6 +180,11 @@ typedef struct mjfStepContext_ {
   double* controls;              /* attitude plugins: [n_actuators] for this vehicle; NULL otherwise */
   const struct mjModel_* model;  /* raw access, may be NULL */
   const struct mjData_* data;
+  /* compute() may write a one-line reason here before it returns nonzero; the host reports it
+   * with the plugin's name, the vehicle and the time. Always non-NULL when called by the host. */
+  char* error;
+  size_t error_size;
+  const mjfAgentInput* agent;    /* per-agent formation plugins; NULL otherwise */
 } mjfStepContext;
 
 /* Optional reporting of scalar results into summary.json (e.g. "delta", "error_bound"). */
@@ -147,7 +200,8 @@ typedef struct mjfPlugin_ {
   int n_actuators;                /* attitude plugins: actuators driven, per vehicle */
   const char* const* actuators;   /* their names without the vehicle prefix, e.g. "rotor0" */
   void* (*create)(const mjfCreateContext* ctx);         /* NULL + ctx->error on bad config */
-  int (*compute)(void* instance, const mjfStepContext* ctx); /* 0 ok; nonzero: stop the run */
+  int (*compute)(void* instance, const mjfStepContext* ctx); /* 0 ok; nonzero: stop the run
+                                                                (ctx->error may say why) */
   void (*reset)(void* instance);
   void (*destroy)(void* instance);
   void (*report)(void* instance, mjfReportFn emit, void* user); /* may be NULL */

@@ -115,6 +115,26 @@ void* CreateOrExplain(const mjfCreateContext* ctx, Make make) {
   }
 }
 
+// Writes a one-line reason for a failed compute() into ctx->error and returns `code` (nonzero):
+//   if (!ok) return mjf::plugin::Fail(ctx, "thrust allocation is singular");
+inline int Fail(const mjfStepContext* ctx, const char* reason, int code = 1) {
+  if (ctx->error && ctx->error_size > 0) std::snprintf(ctx->error, ctx->error_size, "%s", reason);
+  return code;
+}
+
+// Runs step() (returning 0 or a code) and turns a C++ exception into a failure with its message:
+// no exception ever crosses the C ABI.
+template <typename Step>
+int ComputeOrExplain(const mjfStepContext* ctx, Step step) {
+  try {
+    return step();
+  } catch (const std::exception& e) {
+    return Fail(ctx, e.what());
+  } catch (...) {
+    return Fail(ctx, "unknown C++ exception");
+  }
+}
+
 }  // namespace mjf::plugin
 
 // Defines the exported entry point returning the given descriptors (pointers to mjfPlugin).
