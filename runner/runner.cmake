@@ -1,18 +1,25 @@
 # Included from runner/CMakeLists.txt.
 add_library(mjf_runner STATIC
+  ${CMAKE_CURRENT_SOURCE_DIR}/src/actuation.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/bench.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/cli.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/config.cc
+  ${CMAKE_CURRENT_SOURCE_DIR}/src/control_tick.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/interrupt.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/metrics.cc
+  ${CMAKE_CURRENT_SOURCE_DIR}/src/mujoco_errors.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/output.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/paths.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/plugin_host.cc
+  ${CMAKE_CURRENT_SOURCE_DIR}/src/recorders.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/run.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/scene.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/shape_config.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/simulation.cc
-  ${CMAKE_CURRENT_SOURCE_DIR}/src/sweep.cc)
+  ${CMAKE_CURRENT_SOURCE_DIR}/src/stage_factory.cc
+  ${CMAKE_CURRENT_SOURCE_DIR}/src/summary.cc
+  ${CMAKE_CURRENT_SOURCE_DIR}/src/sweep.cc
+  ${CMAKE_CURRENT_SOURCE_DIR}/src/vehicle_binding.cc)
 target_include_directories(mjf_runner PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include)
 target_compile_definitions(mjf_runner PRIVATE
   MJF_VERSION="${PROJECT_VERSION}"

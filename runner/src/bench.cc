@@ -243,10 +243,10 @@ int BenchCommand(const CliCommands& c) {
   report["duration_s"] = base.duration;
   report["timestep_s"] = base.timestep;
   report["record_rate_hz"] = base.record_rate;
-  report["rotor_model"] = base.rotor_model;
+  report["rotor_model"] = ToString(base.rotor_model);
   report["version"] = VersionString();
   std::printf("%s: %.1f s at %g s steps, rotor model %s, recording at %g Hz\n",
-              c.experiment.c_str(), base.duration, base.timestep, base.rotor_model.c_str(),
+              c.experiment.c_str(), base.duration, base.timestep, ToString(base.rotor_model),
               base.record_rate);
   std::printf("%9s %9s %14s %14s %12s %9s %9s %10s %5s\n", "followers", "steps", "bare steps/s",
               "full steps/s", "ratio full/bare", "RTF bare", "RTF full", "peak MiB", "runs");

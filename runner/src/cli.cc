@@ -27,15 +27,21 @@ int RunCommand(const CliCommands& c) {
   options.render = !c.no_render;
   const RunResult r = RunExperiment(config, options);
   const auto& m = r.summary["metrics"];
-  const std::string sigma = m["sigma_f_mean"].is_number()
+  const std::string sigma = m.is_object() && m["sigma_f_mean"].is_number()
                                 ? fmt::format("{:.4f}", m["sigma_f_mean"].get<double>())
                                 : std::string("n/a");
+  if (!r.summary_error.empty()) {
+    std::fprintf(stderr, "mjformation: %s: %s\n  summary.json could not be written: %s\n",
+                 config.name.c_str(), r.error.empty() ? "run finished" : r.error.c_str(),
+                 r.summary_error.c_str());
+    return r.signal ? 128 + r.signal : 3;
+  }
   if (!r.complete) {
     std::fprintf(stderr,
                  "mjformation: %s: the run stopped early: %s\n  what was recorded up to t = %.3f s "
                  "is kept in %s (summary.json says \"complete\": false)\n",
                  config.name.c_str(), r.error.c_str(), r.sim_time_s, options.out_dir.c_str());
-    return 3;
+    return r.signal ? 128 + r.signal : 3;
   }
   if (!c.quiet) {
     std::printf(

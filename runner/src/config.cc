@@ -123,6 +123,21 @@ class Section {
   }
   void MarkUsed(const std::string& key) { used_.insert(key); }
 
+  // One of a fixed set of words, returned as its enum value.
+  template <typename E>
+  E Enum(const std::string& key, E fallback,
+         std::initializer_list<std::pair<const char*, E>> names) {
+    used_.insert(key);
+    if (!Node(key)) return fallback;
+    const std::string text = String(key, "");
+    std::string list;
+    for (const auto& [name, value] : names) {
+      if (text == name) return value;
+      list += (list.empty() ? "\"" : ", \"") + std::string(name) + "\"";
+    }
+    Fail(key, "must be one of " + list + " (got \"" + text + "\")");
+  }
+
   // Refuses keys this section does not define, listing the ones it does.
   void RejectUnknown() const {
     if (!table_) return;
@@ -239,9 +254,11 @@ std::vector<ExperimentConfig::Edge> GeneratedEdges(int n, bool ring) {
   return edges;
 }
 
-ExperimentConfig ParseExperiment(const std::string& text, const std::string& path,
-                                 const std::vector<std::string>& overrides) {
-  Reporter reporter(path);
+namespace {
+
+// The TOML document with overrides applied; syntax errors as FILE:LINE:COLUMN.
+toml::table ParseDocument(const std::string& text, const std::string& path,
+                          const std::vector<std::string>& overrides) {
   toml::table root;
   try {
     root = toml::parse(text, path);
@@ -252,11 +269,14 @@ ExperimentConfig ParseExperiment(const std::string& text, const std::string& pat
     throw ConfigError(out.str());
   }
   ApplyOverrides(root, overrides);
+  return root;
+}
 
-  const std::set<std::string> known_sections = {"run",       "vehicles", "topology", "leader",
-                                                "formation", "attitude", "render"};
+void RejectUnknownSections(const Reporter& reporter, const toml::table& root) {
+  static const std::set<std::string> kKnown = {"run",       "vehicles", "topology", "leader",
+                                               "formation", "attitude", "render"};
   for (auto&& [key, node] : root) {
-    if (!known_sections.count(std::string(key.str()))) {
+    if (!kKnown.count(std::string(key.str()))) {
       reporter.Fail(&node, "[" + std::string(key.str()) + "]",
                     "unknown section (known: run, vehicles, topology, leader, formation, "
                     "attitude, render)");
@@ -265,19 +285,10 @@ ExperimentConfig ParseExperiment(const std::string& text, const std::string& pat
       reporter.Fail(&node, std::string(key.str()), "expected a [section] table");
     }
   }
-  auto table_of = [&](const char* name) { return root.get_as<toml::table>(name); };
+}
 
-  ExperimentConfig c;
-  c.source_path = path;
-  c.source_text = text;
-  c.overrides = overrides;
-  if (!overrides.empty()) {
-    std::ostringstream merged;
-    merged << root;
-    c.effective_text = merged.str() + "\n";
-  }
-
-  Section run(reporter, table_of("run"), "run");
+void ParseRunSection(const Reporter& reporter, Section run, const std::string& path,
+                     ExperimentConfig& c) {
   c.name = run.String("name", "");
   c.duration = run.Number("duration", c.duration);
   c.timestep = run.Number("timestep", c.timestep);
@@ -285,6 +296,7 @@ ExperimentConfig ParseExperiment(const std::string& text, const std::string& pat
   if (seed < 0) run.Fail("seed", "must be >= 0");
   c.seed = static_cast<uint64_t>(seed);
   c.record_rate = run.Number("record_rate", c.record_rate);
+  const bool window_given = run.Has("metric_window");
   {
     auto w = run.Numbers("metric_window", {c.metric_window[0], c.metric_window[1]}, 2);
     c.metric_window = {w[0], w[1]};
@@ -307,6 +319,15 @@ ExperimentConfig ParseExperiment(const std::string& text, const std::string& pat
   if (!(c.metric_window[0] < c.metric_window[1])) {
     run.Fail("metric_window", "expected [start, end] with start < end");
   }
+  if (!window_given) {
+    // Default: the last 37.5 % of the run, Table 1's [25, 40] s for the paper's 40 s runs.
+    c.metric_window = {0.625 * c.duration, c.duration};
+  }
+  // A window reaching past the run would average fewer samples than the user asked for.
+  if (c.metric_window[0] < 0 || c.metric_window[1] > c.duration + 1e-9) {
+    run.Fail("metric_window", fmt::format("[{}, {}] s lies outside the run [0, {}] s",
+                                          c.metric_window[0], c.metric_window[1], c.duration));
+  }
   if (c.paper_experiment < 0 || c.paper_experiment > 3) {
     run.Fail("paper_experiment", "must be 1, 2 or 3 (or 0: none)");
   }
@@ -315,8 +336,10 @@ ExperimentConfig ParseExperiment(const std::string& text, const std::string& pat
     std::string stem = path.substr(path.find_last_of('/') + 1);
     c.name = stem.substr(0, stem.rfind('.'));
   }
+}
 
-  Section vehicles(reporter, table_of("vehicles"), "vehicles");
+void ParseVehiclesSection(const Reporter& reporter, Section vehicles, const std::string& path,
+                          ExperimentConfig& c) {
   c.model = vehicles.String("model", c.model);
   c.model_path = ResolveModel(c.model, path);
   c.scene_path = ResolveModel(vehicles.String("scene", "scene"), path);
@@ -337,7 +360,8 @@ ExperimentConfig ParseExperiment(const std::string& text, const std::string& pat
     }
   }
   c.start_jitter = vehicles.Number("start_jitter", 0.0);
-  c.rotor_model = vehicles.String("rotor_model", c.rotor_model);
+  c.rotor_model = vehicles.Enum("rotor_model", c.rotor_model,
+                                {{"actuator", RotorModel::kActuator}, {"wrench", RotorModel::kWrench}});
   c.contacts = vehicles.Bool("contacts", c.contacts);
   vehicles.RejectUnknown();
   if (c.followers < 1 || c.followers > 100000) vehicles.Fail("followers", "must be in [1, 100000]");
@@ -348,11 +372,35 @@ ExperimentConfig ParseExperiment(const std::string& text, const std::string& pat
   }
   if (c.altitude <= 0) vehicles.Fail("altitude", "must be > 0 m");
   if (c.start_jitter < 0) vehicles.Fail("start_jitter", "must be >= 0 m");
-  if (c.rotor_model != "actuator" && c.rotor_model != "wrench") {
-    vehicles.Fail("rotor_model", "must be \"actuator\" or \"wrench\"");
-  }
+}
 
-  Section topology(reporter, table_of("topology"), "topology");
+// [topology] edges = [[from, to(, weight)], ...] (1-based in the file, 0-based here).
+std::vector<ExperimentConfig::Edge> ReadEdges(const Reporter& reporter, Section& topology,
+                                              int followers) {
+  std::vector<ExperimentConfig::Edge> edges;
+  const toml::array* a = topology.Array("edges");
+  if (!a) return edges;
+  for (const toml::node& item : *a) {
+    const toml::array* e = item.as_array();
+    if (!e || e->size() < 2 || e->size() > 3) {
+      reporter.Fail(&item, "[topology] edges",
+                    "expected [from, to] or [from, to, weight] (follower `to` receives "
+                    "`from`'s state)");
+    }
+    auto from = e->get(0)->value_exact<int64_t>();
+    auto to = e->get(1)->value_exact<int64_t>();
+    if (!from || !to || *from < 1 || *to < 1 || *from > followers || *to > followers) {
+      reporter.Fail(&item, "[topology] edges",
+                    "follower numbers must be integers in 1.." + std::to_string(followers));
+    }
+    ExperimentConfig::Edge edge{static_cast<int>(*from - 1), static_cast<int>(*to - 1), 1.0};
+    if (e->size() == 3) edge.weight = topology.AsNumber(*e->get(2), "edges");
+    edges.push_back(edge);
+  }
+  return edges;
+}
+
+void ReadLeaderLinks(const Reporter& reporter, Section& topology, ExperimentConfig& c) {
   c.leader_weight.assign(c.followers, 0.0);
   if (const toml::array* a = topology.Array("leader_links")) {
     for (const toml::node& item : *a) {
@@ -363,7 +411,7 @@ ExperimentConfig ParseExperiment(const std::string& text, const std::string& pat
       }
       c.leader_weight[*v - 1] = 1.0;
     }
-  } else if (table_of("topology")) {
+  } else if (topology.table()) {
     topology.Fail("leader_links", "missing: which followers receive the leader's state");
   }
   if (const toml::array* a = topology.Array("leader_weights")) {
@@ -374,26 +422,12 @@ ExperimentConfig ParseExperiment(const std::string& text, const std::string& pat
       c.leader_weight[i] = topology.AsNumber(*a->get(i), "leader_weights");
     }
   }
+}
+
+void ParseTopologySection(const Reporter& reporter, Section topology, ExperimentConfig& c) {
+  ReadLeaderLinks(reporter, topology, c);
   const std::string generator = topology.String("generate", "");
-  if (const toml::array* a = topology.Array("edges")) {
-    for (const toml::node& item : *a) {
-      const toml::array* e = item.as_array();
-      if (!e || e->size() < 2 || e->size() > 3) {
-        reporter.Fail(&item, "[topology] edges",
-                      "expected [from, to] or [from, to, weight] (follower `to` receives "
-                      "`from`'s state)");
-      }
-      auto from = e->get(0)->value_exact<int64_t>();
-      auto to = e->get(1)->value_exact<int64_t>();
-      if (!from || !to || *from < 1 || *to < 1 || *from > c.followers || *to > c.followers) {
-        reporter.Fail(&item, "[topology] edges",
-                      "follower numbers must be integers in 1.." + std::to_string(c.followers));
-      }
-      ExperimentConfig::Edge edge{static_cast<int>(*from - 1), static_cast<int>(*to - 1), 1.0};
-      if (e->size() == 3) edge.weight = topology.AsNumber(*e->get(2), "edges");
-      c.edges.push_back(edge);
-    }
-  }
+  c.edges = ReadEdges(reporter, topology, c.followers);
   if (!generator.empty()) {
     // Generated graphs for large N: "chain" (1 -> 2 -> ... -> N) or "ring" (chain + N -> 1).
     if (generator != "chain" && generator != "ring") {
@@ -403,23 +437,25 @@ ExperimentConfig ParseExperiment(const std::string& text, const std::string& pat
     c.edges = GeneratedEdges(c.followers, generator == "ring");
   }
   topology.RejectUnknown();
-  if (!table_of("topology")) {
+  if (!topology.table()) {
     // Default: the leader talks to follower 1 and the followers form a chain 1 -> 2 -> ... -> N.
     c.leader_weight[0] = 1.0;
     c.edges = GeneratedEdges(c.followers, false);
   }
+}
 
-  c.leader = ReadPluginSection(reporter, root, "leader", "circle", {});
-  c.formation = ReadPluginSection(reporter, root, "formation", "", {"shape"});
-  c.attitude = ReadPluginSection(reporter, root, "attitude", "pd_cascade", {});
-
-  const toml::table* formation_table = table_of("formation");
+void ParseShapeSection(const Reporter& reporter, const toml::table* formation_table,
+                       const std::string& path, ExperimentConfig& c) {
   const toml::node* shape_node = formation_table ? formation_table->get("shape") : nullptr;
   if (shape_node && !shape_node->is_table()) {
     reporter.Fail(shape_node, "[formation.shape]", "expected a table");
   }
   Section shape(reporter, shape_node ? shape_node->as_table() : nullptr, "formation.shape");
-  c.shape.type = shape.String("type", shape_node ? "circle" : "none");
+  c.shape.type = shape.Enum("type", shape_node ? ShapeType::kCircle : ShapeType::kNone,
+                            {{"circle", ShapeType::kCircle},
+                             {"offsets", ShapeType::kOffsets},
+                             {"table", ShapeType::kTable},
+                             {"none", ShapeType::kNone}});
   c.shape.radius = shape.Number("radius", c.shape.radius);
   c.shape.omega = shape.Number("omega", c.shape.omega);
   c.shape.phase0 = shape.Number("phase0", c.shape.phase0);
@@ -438,61 +474,112 @@ ExperimentConfig ParseExperiment(const std::string& text, const std::string& pat
   if (shape.Has("file")) c.shape.file = ResolveRelative(shape.String("file", ""), path);
   shape.MarkUsed("file");
   shape.RejectUnknown();
-  if (c.shape.type != "circle" && c.shape.type != "offsets" && c.shape.type != "table" &&
-      c.shape.type != "none") {
-    shape.Fail("type", "must be \"circle\", \"offsets\", \"table\" or \"none\"");
-  }
-  if (c.shape.type == "circle" && c.shape.radius <= 0) shape.Fail("radius", "must be > 0 m");
-  if (c.shape.type == "offsets" && static_cast<int>(c.shape.offsets.size()) != c.followers) {
+  const ShapeType type = c.shape.type;
+  if (type == ShapeType::kCircle && c.shape.radius <= 0) shape.Fail("radius", "must be > 0 m");
+  if (type == ShapeType::kOffsets && static_cast<int>(c.shape.offsets.size()) != c.followers) {
     shape.Fail("offsets", "needs one [x, y] per follower (" + std::to_string(c.followers) + ")");
   }
-  if (c.shape.type == "table" && c.shape.file.empty()) {
+  if (type == ShapeType::kTable && c.shape.file.empty()) {
     shape.Fail("file",
                "type \"table\" needs file = \"shape.csv\" (t, then px, py, vx, vy per "
                "follower)");
   }
   if (c.shape.tolerance <= 0) shape.Fail("tolerance", "must be > 0 m/s");
+}
 
-  Section render(reporter, table_of("render"), "render");
-  c.render.snapshots = render.Numbers("snapshots", {});
-  c.render.width = static_cast<int>(render.Integer("width", c.render.width));
-  c.render.height = static_cast<int>(render.Integer("height", c.render.height));
-  c.render.camera = render.String("camera", c.render.camera);
-  c.render.distance = render.Number("distance", c.render.distance);
-  c.render.azimuth = render.Number("azimuth", c.render.azimuth);
-  c.render.elevation = render.Number("elevation", c.render.elevation);
+void ReadRenderValues(Section& render, RenderConfig& r) {
+  r.snapshots = render.Numbers("snapshots", {});
+  r.width = static_cast<int>(render.Integer("width", r.width));
+  r.height = static_cast<int>(render.Integer("height", r.height));
+  r.camera = render.Enum("camera", r.camera,
+                         {{"follow", CameraMode::kFollow},
+                          {"leader", CameraMode::kLeader},
+                          {"fixed", CameraMode::kFixed}});
+  r.distance = render.Number("distance", r.distance);
+  r.azimuth = render.Number("azimuth", r.azimuth);
+  r.elevation = render.Number("elevation", r.elevation);
   {
     auto l = render.Numbers("lookat", {0, 0, 0}, 3);
-    c.render.lookat = {l[0], l[1], l[2]};
+    r.lookat = {l[0], l[1], l[2]};
   }
-  c.render.shadows = render.Bool("shadows", c.render.shadows);
-  c.render.trail_seconds = render.Number("trail_seconds", c.render.trail_seconds);
-  c.render.video = render.Bool("video", c.render.video);
-  c.render.video_fps = render.Number("video_fps", c.render.video_fps);
-  c.render.video_shadows = render.Bool("video_shadows", c.render.video_shadows);
-  c.render.video_width = static_cast<int>(render.Integer("video_width", c.render.video_width));
-  c.render.video_height = static_cast<int>(render.Integer("video_height", c.render.video_height));
+  r.shadows = render.Bool("shadows", r.shadows);
+  r.trail_seconds = render.Number("trail_seconds", r.trail_seconds);
+  r.video = render.Bool("video", r.video);
+  r.video_fps = render.Number("video_fps", r.video_fps);
+  r.video_shadows = render.Bool("video_shadows", r.video_shadows);
+  r.video_width = static_cast<int>(render.Integer("video_width", r.video_width));
+  r.video_height = static_cast<int>(render.Integer("video_height", r.video_height));
+}
+
+void ParseRenderSection(Section render, double duration, RenderConfig& r) {
+  ReadRenderValues(render, r);
   render.RejectUnknown();
-  for (double t : c.render.snapshots) {
-    if (t < 0 || t > c.duration + 1e-9) {
-      render.Fail("snapshots", "times must lie in [0, duration]");
-    }
+  for (double t : r.snapshots) {
+    if (t < 0 || t > duration + 1e-9) render.Fail("snapshots", "times must lie in [0, duration]");
   }
-  if (c.render.width < 16 || c.render.height < 16 || c.render.width > 4096 ||
-      c.render.height > 4096) {
+  if (r.width < 16 || r.height < 16 || r.width > 4096 || r.height > 4096) {
     render.Fail("width", "width and height must be in [16, 4096] pixels");
   }
-  if (c.render.camera != "follow" && c.render.camera != "leader" && c.render.camera != "fixed") {
-    render.Fail("camera", "must be \"follow\" (formation), \"leader\" or \"fixed\"");
-  }
-  if (c.render.video_fps <= 0 || c.render.video_fps > 120) {
-    render.Fail("video_fps", "must be in (0, 120]");
-  }
-  if (c.render.video_width < 16 || c.render.video_height < 16 || c.render.video_width > 4096 ||
-      c.render.video_height > 4096 || c.render.video_width % 2 || c.render.video_height % 2) {
+  if (r.video_fps <= 0 || r.video_fps > 120) render.Fail("video_fps", "must be in (0, 120]");
+  if (r.video_width < 16 || r.video_height < 16 || r.video_width > 4096 ||
+      r.video_height > 4096 || r.video_width % 2 || r.video_height % 2) {
     render.Fail("video_width", "video size must be even and in [16, 4096] pixels");
   }
-  if (c.render.trail_seconds < 0) render.Fail("trail_seconds", "must be >= 0 s");
+  if (r.trail_seconds < 0) render.Fail("trail_seconds", "must be >= 0 s");
+}
+
+}  // namespace
+
+const char* ToString(RotorModel value) {
+  return value == RotorModel::kWrench ? "wrench" : "actuator";
+}
+const char* ToString(CameraMode value) {
+  switch (value) {
+    case CameraMode::kLeader:
+      return "leader";
+    case CameraMode::kFixed:
+      return "fixed";
+    default:
+      return "follow";
+  }
+}
+const char* ToString(ShapeType value) {
+  switch (value) {
+    case ShapeType::kOffsets:
+      return "offsets";
+    case ShapeType::kTable:
+      return "table";
+    case ShapeType::kNone:
+      return "none";
+    default:
+      return "circle";
+  }
+}
+
+ExperimentConfig ParseExperiment(const std::string& text, const std::string& path,
+                                 const std::vector<std::string>& overrides) {
+  Reporter reporter(path);
+  toml::table root = ParseDocument(text, path, overrides);
+  RejectUnknownSections(reporter, root);
+  auto table_of = [&](const char* name) { return root.get_as<toml::table>(name); };
+
+  ExperimentConfig c;
+  c.source_path = path;
+  c.source_text = text;
+  c.overrides = overrides;
+  if (!overrides.empty()) {
+    std::ostringstream merged;
+    merged << root;
+    c.effective_text = merged.str() + "\n";
+  }
+  ParseRunSection(reporter, Section(reporter, table_of("run"), "run"), path, c);
+  ParseVehiclesSection(reporter, Section(reporter, table_of("vehicles"), "vehicles"), path, c);
+  ParseTopologySection(reporter, Section(reporter, table_of("topology"), "topology"), c);
+  c.leader = ReadPluginSection(reporter, root, "leader", "circle", {});
+  c.formation = ReadPluginSection(reporter, root, "formation", "", {"shape"});
+  c.attitude = ReadPluginSection(reporter, root, "attitude", "pd_cascade", {});
+  ParseShapeSection(reporter, table_of("formation"), path, c);
+  ParseRenderSection(Section(reporter, table_of("render"), "render"), c.duration, c.render);
   return c;
 }
 

@@ -30,6 +30,9 @@ void InstallInterruptHandlers() {
   action.sa_flags = SA_RESTART;  // blocking writes resume; the loops poll the flag
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);
+  // A file over RLIMIT_FSIZE then fails its write with EFBIG (reported, run marked incomplete)
+  // instead of killing the process.
+  std::signal(SIGXFSZ, SIG_IGN);
 }
 
 bool InterruptRequested() { return g_signal.load(std::memory_order_relaxed) != 0; }

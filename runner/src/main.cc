@@ -6,6 +6,7 @@
 #include <exception>
 
 #include "mjformation/runner/cli.hpp"
+#include "mjformation/runner/interrupt.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"mjformation: distributed formation control of quadrotor swarms in MuJoCo"};
@@ -14,7 +15,10 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // --help and --version end here with 0; every misuse of the command line exits 2.
+    const int code = app.exit(e);
+    return code == 0 ? 0 : 2;
   }
+  mjf::runner::InstallInterruptHandlers();
   return mjf::runner::Dispatch(app, commands);
 }

@@ -1,7 +1,6 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 #include "mjformation/runner/output.hpp"
 
-#include <dirent.h>
 #include <errno.h>
 #include <fmt/format.h>
 #include <openssl/evp.h>
@@ -9,6 +8,7 @@
 #include <unistd.h>
 
 #include <charconv>
+#include <filesystem>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -18,46 +18,55 @@
 namespace mjf::runner {
 namespace {
 
-void MakeDirs(const std::string& path) {
-  std::string partial;
-  size_t start = 0;
-  while (start <= path.size()) {
-    const size_t slash = path.find('/', start);
-    partial = path.substr(0, slash);
-    if (!partial.empty() && mkdir(partial.c_str(), 0755) != 0 && errno != EEXIST) {
-      throw OutputError(partial + ": cannot create directory: " + std::strerror(errno));
-    }
-    if (slash == std::string::npos) break;
-    start = slash + 1;
+namespace fs = std::filesystem;
+
+// Written first into every run directory: what --overwrite checks before it deletes anything.
+constexpr const char* kMarker = ".mjformation-run";
+
+// What a run directory may hold: the runner's files, the analysis' figures, leftovers of an
+// interrupted atomic write. Anything else is the user's and stops --overwrite.
+bool IsRunEntry(const fs::directory_entry& e) {
+  static const char* const kFiles[] = {kMarker,        "config.toml", "scene.xml",
+                                       "timeseries.csv", "summary.json", "video.mp4"};
+  const std::string name = e.path().filename().string();
+  for (const char* f : kFiles) {
+    if (name == f) return !e.is_symlink();
   }
+  if (name.size() > 4 && name.compare(name.size() - 4, 4, ".tmp") == 0) return !e.is_symlink();
+  if ((name == "snapshots" || name == "figures") && e.is_directory() && !e.is_symlink()) {
+    // Only regular files inside, no deeper folders and no links out of the run directory.
+    for (const auto& child : fs::directory_iterator(e.path())) {
+      if (child.is_symlink() || !child.is_regular_file()) return false;
+    }
+    return true;
+  }
+  return false;
 }
 
-bool IsEmptyDir(const std::string& path) {
-  DIR* d = opendir(path.c_str());
-  if (!d) return true;
-  bool empty = true;
-  while (dirent* e = readdir(d)) {
-    if (std::strcmp(e->d_name, ".") && std::strcmp(e->d_name, "..")) empty = false;
+// Removes a previous run directory's contents, after checking that it is one and that every
+// entry in it is the runner's. Throws OutputError (and deletes nothing) otherwise.
+void ClearPreviousRun(const fs::path& dir) {
+  const fs::path marker = dir / kMarker;
+  if (fs::is_symlink(marker) || !fs::is_regular_file(marker)) {
+    throw OutputError(dir.string() + ": not a mjformation run directory (no " + kMarker +
+                      " marker): --overwrite replaces only run directories; nothing was "
+                      "deleted. Choose another --out.");
   }
-  closedir(d);
-  return empty;
-}
-
-void RemoveTree(const std::string& path) {
-  DIR* d = opendir(path.c_str());
-  if (!d) return;
-  while (dirent* e = readdir(d)) {
-    if (!std::strcmp(e->d_name, ".") || !std::strcmp(e->d_name, "..")) continue;
-    const std::string child = path + "/" + e->d_name;
-    struct stat st;
-    if (lstat(child.c_str(), &st) == 0 && S_ISDIR(st.st_mode)) {
-      RemoveTree(child);
-      rmdir(child.c_str());
-    } else {
-      unlink(child.c_str());
-    }
+  std::vector<std::string> foreign;
+  for (const auto& e : fs::directory_iterator(dir)) {
+    if (!IsRunEntry(e)) foreign.push_back(e.path().filename().string());
   }
-  closedir(d);
+  if (!foreign.empty()) {
+    std::string list;
+    for (const auto& f : foreign) list += (list.empty() ? "" : ", ") + f;
+    throw OutputError(dir.string() + ": holds files mjformation did not write (" + list +
+                      "); --overwrite deletes only a run's own files, so nothing was deleted. "
+                      "Move them or choose another --out.");
+  }
+  // remove_all removes a symbolic link itself, never what it points to.
+  for (const auto& e : fs::directory_iterator(dir)) {
+    if (e.path().filename() != kMarker) fs::remove_all(e.path());
+  }
 }
 
 // Writes finite v as printf's "%.9g" (and fmt's "{:.9g}") would, returning the end: the bytes
@@ -130,15 +139,26 @@ char* FormatG9(char* p, char* end, double v) {
 }  // namespace
 
 RunDirectory::RunDirectory(const std::string& path, bool overwrite) : path_(path) {
-  if (!IsEmptyDir(path)) {
-    if (!overwrite) {
-      throw OutputError(path +
-                        ": the run directory exists and is not empty; choose another "
-                        "--out or pass --overwrite to replace it");
+  std::error_code ec;
+  const fs::path dir(path);
+  try {
+    if (fs::exists(dir) && !fs::is_directory(dir)) {
+      throw OutputError(path + ": exists and is not a directory; choose another --out");
     }
-    RemoveTree(path);
+    if (fs::exists(dir) && !fs::is_empty(dir)) {
+      if (!overwrite) {
+        throw OutputError(path +
+                          ": the run directory exists and is not empty; choose another "
+                          "--out or pass --overwrite to replace it");
+      }
+      ClearPreviousRun(dir);
+    }
+    fs::create_directories(dir / "snapshots");
+  } catch (const fs::filesystem_error& e) {
+    throw OutputError(path + ": " + e.code().message());
   }
-  MakeDirs(path + "/snapshots");
+  WriteText(kMarker, "This folder is a mjformation run directory; `mjformation run --overwrite`\n"
+                     "may replace it. Delete this file to protect the folder from that.\n");
 }
 
 void RunDirectory::WriteText(const std::string& name, const std::string& text) const {
@@ -166,7 +186,11 @@ TimeseriesWriter::TimeseriesWriter(const std::string& path, int n_vehicles) : pa
 }
 
 TimeseriesWriter::~TimeseriesWriter() {
-  if (file_) Close();
+  // Never throws: an unfinished writer (the run failed) keeps what it flushed; Close() is the
+  // checked path.
+  if (!file_) return;
+  if (!buffer_.empty()) std::fwrite(buffer_.data(), 1, buffer_.size(), file_);
+  std::fclose(file_);
 }
 
 void TimeseriesWriter::Write(const Simulation& sim, double sigma_f,
@@ -207,15 +231,20 @@ void TimeseriesWriter::Write(const Simulation& sim, double sigma_f,
 
 void TimeseriesWriter::Flush() {
   if (!buffer_.empty() && std::fwrite(buffer_.data(), 1, buffer_.size(), file_) != buffer_.size()) {
-    throw OutputError(path_ + ": write failed: " + std::strerror(errno));
+    const int error = errno;
+    buffer_.clear();  // what did not fit is lost; the rows before it are on disk
+    throw OutputError(path_ + ": write failed: " + std::strerror(error));
   }
   buffer_.clear();
+  if (std::fflush(file_) != 0) throw OutputError(path_ + ": write failed: " + std::strerror(errno));
 }
 
 void TimeseriesWriter::Close() {
+  if (!file_) return;
   Flush();
-  std::fclose(file_);
+  std::FILE* f = file_;
   file_ = nullptr;
+  if (std::fclose(f) != 0) throw OutputError(path_ + ": close failed: " + std::strerror(errno));
 }
 
 std::string ConfigEcho(const ExperimentConfig& config) {

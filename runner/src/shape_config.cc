@@ -53,12 +53,12 @@ std::unique_ptr<core::Shape> ReadTable(const std::string& path, int n) {
 std::unique_ptr<core::Shape> MakeShape(const ExperimentConfig& c) {
   const ShapeConfig& s = c.shape;
   try {
-    if (s.type == "circle") {
+    if (s.type == ShapeType::kCircle) {
       // Section 6: f_i = r [cos(w t + phase0 + (i-1) phase_step), sin(...)].
       const double step = s.phase_step >= 0 ? s.phase_step : 2 * M_PI / c.followers;
       return core::MakeCircleShape(c.followers, s.radius, s.omega, s.phase0, step);
     }
-    if (s.type == "offsets") {
+    if (s.type == ShapeType::kOffsets) {
       std::vector<core::FollowerTerms> terms(c.followers);
       for (int i = 0; i < c.followers; ++i) {
         terms[i].x.polynomial = {s.offsets[i][0]};
@@ -66,7 +66,7 @@ std::unique_ptr<core::Shape> MakeShape(const ExperimentConfig& c) {
       }
       return core::MakeTermsShape(std::move(terms));
     }
-    if (s.type == "table") return ReadTable(s.file, c.followers);
+    if (s.type == ShapeType::kTable) return ReadTable(s.file, c.followers);
   } catch (const std::invalid_argument& e) {
     throw ConfigError(c.source_path + ": [formation.shape]: " + e.what());
   }

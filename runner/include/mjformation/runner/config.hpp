@@ -26,6 +26,15 @@ class ConfigError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// The experiment's choices, parsed once into enums: no string is compared while a run steps.
+enum class RotorModel { kActuator, kWrench };  // MuJoCo's actuators, or the runner's wrench
+enum class CameraMode { kFollow, kLeader, kFixed };
+enum class ShapeType { kCircle, kOffsets, kTable, kNone };
+// Their names in the experiment file and in summary.json.
+const char* ToString(RotorModel value);
+const char* ToString(CameraMode value);
+const char* ToString(ShapeType value);
+
 // One plugin attribute as written in the experiment file.
 struct AttributeValue {
   std::string text;  // value converted to the ABI's string form ("3 1" for arrays)
@@ -44,7 +53,7 @@ struct PluginSection {
 struct ShapeConfig {
   // "circle": the paper's rotating circle; "offsets": fixed offsets [[x, y], ...] (m);
   // "table": a CSV file of t, then px, py, vx, vy per follower (interpolated); "none".
-  std::string type = "circle";
+  ShapeType type = ShapeType::kCircle;
   double radius = 10.0;                        // m
   double omega = 0.314;                        // rad/s
   double phase0 = 0.0;                         // rad, phase of follower 1
@@ -58,7 +67,7 @@ struct RenderConfig {
   std::vector<double> snapshots;  // s; empty: none
   int width = 1280;
   int height = 720;
-  std::string camera = "follow";  // "follow" (formation centroid), "leader", "fixed"
+  CameraMode camera = CameraMode::kFollow;  // formation centroid, the leader, or fixed
   double distance = 45.0;         // m
   double azimuth = 90.0;          // deg
   double elevation = -55.0;       // deg
@@ -84,7 +93,8 @@ struct ExperimentConfig {
   double timestep = 0.001;  // s, physics
   uint64_t seed = 1;
   double record_rate = 100.0;                          // Hz
-  std::array<double, 2> metric_window = {25.0, 40.0};  // s, mean sigma_f window (Table 1)
+  // s, mean sigma_f window (Table 1); default the last 37.5 % of the run ([25, 40] for 40 s)
+  std::array<double, 2> metric_window = {25.0, 40.0};
   int paper_experiment = 0;                            // 1..3 when this reproduces one
   std::vector<std::string> plugin_path;                // extra plugin folders
   double reaching_band = 0.0;  // |s| band for the reaching time; 0: the plugin's "delta"
@@ -98,7 +108,7 @@ struct ExperimentConfig {
   std::array<double, 2> leader_start = {20.0, 0.0};
   std::vector<std::array<double, 2>> follower_start;  // empty: a small ring near the origin
   double start_jitter = 0.0;                          // m, seeded uniform perturbation
-  std::string rotor_model = "actuator";               // "actuator" or "wrench"
+  RotorModel rotor_model = RotorModel::kActuator;
   // false: no collision detection at all. Vehicles never touch each other anyway (see
   // mjcf/README.md), and MuJoCo 2.2.2's broadphase costs O(bodies^2) per step even with no
   // contact: at 1000 vehicles it is the largest single cost (docs/PERFORMANCE.md).

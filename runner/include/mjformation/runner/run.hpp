@@ -22,15 +22,18 @@ struct RunOptions {
 struct RunResult {
   bool complete = false;
   std::string error;       // why the run stopped early
+  int signal = 0;          // SIGINT / SIGTERM when the run was interrupted, else 0
+  std::string summary_error;  // summary.json could not be written (e.g. a full disk)
   double wall_time_s = 0;  // stepping loop only
   double sim_time_s = 0;
   int64_t steps = 0;
   nlohmann::ordered_json summary;  // what summary.json holds
 };
 
-// Runs one experiment end to end. Input errors (config, scene, plugins) throw before anything
-// is written; a failure mid-run returns complete = false with everything recorded so far kept
-// and summary.json saying so.
+// Runs one experiment end to end. Input errors (config, scene, plugins, a run directory that
+// may not be replaced) throw before anything is written; from then on nothing is thrown: any
+// failure or interrupt returns complete = false with everything recorded so far kept and
+// summary.json saying so (or summary_error when even that could not be written).
 RunResult RunExperiment(const ExperimentConfig& config, const RunOptions& options);
 
 // The project's version string and MuJoCo's.

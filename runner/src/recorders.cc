@@ -1,0 +1,209 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+#include "mjformation/runner/recorders.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+
+#include "mjformation/render.hpp"
+#include "mjformation/runner/output.hpp"
+#include "mjformation/runner/simulation.hpp"
+
+namespace mjf::runner {
+
+int64_t StepsPer(double period, double timestep) {
+  return std::max<int64_t>(1, std::llround(period / timestep));
+}
+
+namespace {
+
+// timeseries.csv at [run] record_rate, and always at the last step.
+class TimeseriesRecorder final : public Recorder {
+ public:
+  TimeseriesRecorder(const Simulation& sim, const RunDirectory& dir)
+      : writer_(dir.Path("timeseries.csv"), sim.n_vehicles()),
+        every_(StepsPer(1.0 / sim.config().record_rate, sim.config().timestep)),
+        last_(sim.total_steps()) {}
+  bool Wants(int64_t step) const override { return step % every_ == 0 || step == last_; }
+  void Record(const Frame& f) override { writer_.Write(f.sim, f.sigma_f, f.slots); }
+  void Finish() override { writer_.Close(); }
+
+ private:
+  TimeseriesWriter writer_;
+  int64_t every_, last_;
+};
+
+// The vehicles' recent paths, the desired slots and circle: what snapshots and video draw.
+class Scenery {
+ public:
+  Scenery(const Simulation& sim)
+      : trails_(sim.n_vehicles()),
+        every_(StepsPer(0.1, sim.config().timestep)),
+        capacity_(static_cast<size_t>(sim.config().render.trail_seconds /
+                                      (every_ * sim.config().timestep)) +
+                  1) {}
+  // Called every step by the recorders that draw; keeps a point every 0.1 s.
+  void Update(const Simulation& sim) {
+    if (sim.step_index() % every_ != 0 || sim.step_index() == last_step_) return;
+    last_step_ = sim.step_index();
+    for (int i = 0; i < sim.n_vehicles(); ++i) {
+      const auto& p = sim.states()[i].pos;
+      trails_[i].push_back({p[0], p[1], p[2]});
+      if (trails_[i].size() > capacity_) trails_[i].pop_front();
+    }
+  }
+  int64_t every() const { return every_; }
+  render::Overlay Overlay(const Simulation& sim, const std::vector<double>& slots) const;
+
+ private:
+  std::vector<std::deque<std::array<double, 3>>> trails_;
+  int64_t every_;
+  size_t capacity_;
+  int64_t last_step_ = -1;
+};
+
+render::Overlay Scenery::Overlay(const Simulation& sim, const std::vector<double>& slots) const {
+  render::Overlay o;
+  for (const auto& t : trails_) o.trails.emplace_back(t.begin(), t.end());
+  for (const auto& s : sim.states()) o.markers.push_back({s.pos[0], s.pos[1], s.pos[2]});
+  const double z = sim.config().altitude;
+  for (int i = 1; i < sim.n_vehicles(); ++i) {
+    if (!std::isnan(slots[2 * i])) o.slots.push_back({slots[2 * i], slots[2 * i + 1], z});
+  }
+  if (sim.shape() && sim.config().shape.type == ShapeType::kCircle) {
+    const auto& leader = sim.states()[0].pos;
+    const double r = sim.config().shape.radius;
+    for (int k = 0; k <= 96; ++k) {
+      const double a = 2 * M_PI * k / 96;
+      o.ring_points.push_back({leader[0] + r * std::cos(a), leader[1] + r * std::sin(a), z});
+    }
+  }
+  o.label = fmt::format("{}   t = {:.1f} s", sim.config().name, sim.time());
+  return o;
+}
+
+// Camera target: the formation's centroid (follow, fixed) or the leader.
+std::array<double, 3> CameraTarget(const Simulation& sim) {
+  std::array<double, 3> c = {0, 0, 0};
+  if (sim.config().render.camera == CameraMode::kLeader) {
+    for (int k = 0; k < 3; ++k) c[k] = sim.states()[0].pos[k];
+    return c;
+  }
+  for (const auto& s : sim.states()) {
+    for (int k = 0; k < 3; ++k) c[k] += s.pos[k];
+  }
+  for (double& v : c) v /= sim.n_vehicles();
+  return c;
+}
+
+// The configured camera; a following camera backs off so that every vehicle stays in the
+// picture: MuJoCo's 45 degree field of view shows about 0.35 x distance around the target,
+// hence distance >= 2.8 x the farthest vehicle from it.
+render::CameraSpec Camera(const RenderConfig& r, const Simulation& sim,
+                          const std::array<double, 3>& target) {
+  render::CameraSpec cam;
+  cam.mode = r.camera == CameraMode::kFixed ? "fixed" : "follow";
+  cam.distance = r.distance;
+  if (r.camera != CameraMode::kFixed) {
+    double farthest = 0;
+    for (const auto& s : sim.states()) {
+      farthest = std::max(farthest, std::hypot(s.pos[0] - target[0], s.pos[1] - target[1]));
+    }
+    cam.distance = std::max(r.distance, 2.8 * farthest);
+  }
+  cam.azimuth = r.azimuth;
+  cam.elevation = r.elevation;
+  for (int k = 0; k < 3; ++k) cam.lookat[k] = r.lookat[k];
+  return cam;
+}
+
+// An offscreen view of the scene with its overlay, for snapshots and video.
+const std::vector<unsigned char>& RenderFrame(render::OffscreenRenderer& renderer,
+                                              const Scenery& scenery, const Frame& f) {
+  const auto target = CameraTarget(f.sim);
+  return renderer.Render(f.sim.data(), Camera(f.sim.config().render, f.sim, target),
+                         scenery.Overlay(f.sim, f.slots), target.data());
+}
+
+// snapshots/t<sss.ss>.png at the configured times.
+class SnapshotRecorder final : public Recorder {
+ public:
+  SnapshotRecorder(const Simulation& sim, const RunDirectory& dir,
+                   std::shared_ptr<Scenery> scenery)
+      : dir_(dir),
+        scenery_(std::move(scenery)),
+        renderer_(sim.model(), sim.config().render.width, sim.config().render.height,
+                  sim.config().render.shadows) {
+    for (double t : sim.config().render.snapshots) {
+      steps_.push_back(std::llround(t / sim.config().timestep));
+    }
+  }
+  bool Wants(int64_t step) const override {
+    return step % scenery_->every() == 0 || std::find(steps_.begin(), steps_.end(), step) != steps_.end();
+  }
+  void Record(const Frame& f) override {
+    scenery_->Update(f.sim);
+    if (std::find(steps_.begin(), steps_.end(), f.step) == steps_.end()) return;
+    const RenderConfig& r = f.sim.config().render;
+    const std::string name = fmt::format("snapshots/t{:06.2f}.png", f.sim.time());
+    render::WritePng(dir_.Path(name), RenderFrame(renderer_, *scenery_, f).data(), r.width,
+                     r.height);
+    files_.push_back(name);
+  }
+  void Summarize(nlohmann::ordered_json* summary) const override {
+    (*summary)["snapshots"] = files_;
+  }
+
+ private:
+  const RunDirectory& dir_;
+  std::shared_ptr<Scenery> scenery_;
+  render::OffscreenRenderer renderer_;
+  std::vector<int64_t> steps_;
+  std::vector<std::string> files_;
+};
+
+// video.mp4 through ffmpeg, at [render] video_fps.
+class VideoRecorder final : public Recorder {
+ public:
+  VideoRecorder(const Simulation& sim, const RunDirectory& dir, std::shared_ptr<Scenery> scenery)
+      : scenery_(std::move(scenery)),
+        renderer_(sim.model(), sim.config().render.video_width, sim.config().render.video_height,
+                  sim.config().render.video_shadows),
+        writer_(dir.Path("video.mp4"), sim.config().render.video_width,
+                sim.config().render.video_height, sim.config().render.video_fps),
+        every_(StepsPer(1.0 / sim.config().render.video_fps, sim.config().timestep)) {}
+  bool Wants(int64_t step) const override {
+    return step % every_ == 0 || step % scenery_->every() == 0;
+  }
+  void Record(const Frame& f) override {
+    scenery_->Update(f.sim);
+    if (f.step % every_ == 0) writer_.AddFrame(RenderFrame(renderer_, *scenery_, f).data());
+  }
+  void Finish() override { writer_.Close(); }
+
+ private:
+  std::shared_ptr<Scenery> scenery_;
+  render::OffscreenRenderer renderer_;
+  render::VideoWriter writer_;
+  int64_t every_;
+};
+
+}  // namespace
+
+std::vector<std::unique_ptr<Recorder>> MakeRecorders(const Simulation& sim, const RunDirectory* dir,
+                                                     const RecorderOptions& options) {
+  std::vector<std::unique_ptr<Recorder>> out;
+  if (!dir) return out;
+  if (options.record) out.push_back(std::make_unique<TimeseriesRecorder>(sim, *dir));
+  const RenderConfig& r = sim.config().render;
+  auto scenery = std::make_shared<Scenery>(sim);
+  if (options.render && !r.snapshots.empty()) {
+    out.push_back(std::make_unique<SnapshotRecorder>(sim, *dir, scenery));
+  }
+  if (options.render && r.video) out.push_back(std::make_unique<VideoRecorder>(sim, *dir, scenery));
+  return out;
+}
+
+}  // namespace mjf::runner
