@@ -221,9 +221,10 @@ void Simulation::CheckState() const {
   for (int w = 0; w < mjNWARNING; ++w) {
     if (w == mjWARN_VGEOMFULL) continue;  // a rendering matter, not the physics'
     if (data_->warning[w].number > 0) {
-      throw SimulationError(TimeTag() + ": MuJoCo warning: " +
-                            mju_warningText(w, data_->warning[w].lastinfo) +
-                            "; the simulation is no longer trustworthy");
+      std::string text = mju_warningText(w, data_->warning[w].lastinfo);
+      while (!text.empty() && (text.back() == '.' || text.back() == ' ')) text.pop_back();
+      throw SimulationError(TimeTag() + ": MuJoCo warning: " + text +
+                            " (the simulation is no longer trustworthy)");
     }
   }
   for (int i = 0; i < model_->nq; ++i) {

@@ -1,8 +1,13 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
-// Plugins for the runner's tests: a guidance plugin with a required attribute, and one that
-// goes non-finite after a given time (to test how a run that breaks mid-way is kept).
+// Plugins for the runner's tests: a guidance plugin with a required attribute, one that goes
+// non-finite after a given time, and the fault corpus of the failure contract: one that fails
+// with a message, one that throws a C++ exception out of compute(), one that raises a MuJoCo
+// engine error (mju_error) from inside the step, each from a given time on.
+#include <mujoco/mujoco.h>
+
 #include <limits>
 #include <mjformation/plugin_util.hpp>
+#include <stdexcept>
 
 namespace {
 
@@ -90,6 +95,49 @@ const mjfPlugin kHuge = {MJF_ABI_VERSION,
                          Destroy,
                          nullptr};
 
+// The faults: each holds position until `after`, then fails its own way.
+enum class Fault { kMessage, kThrow, kEngineError };
+
+template <Fault kFault>
+int ComputeFault(void* instance, const mjfStepContext* ctx) {
+  auto* h = static_cast<Hold*>(instance);
+  if (ctx->time < h->nan_after) return ComputeHold(instance, ctx);
+  switch (kFault) {
+    case Fault::kMessage:
+      return mjf::plugin::Fail(ctx, "rotor 2 reports an over-temperature", 7);
+    case Fault::kThrow:
+      throw std::runtime_error("std::vector::at: index out of range (a plugin bug)");
+    case Fault::kEngineError:
+      mju_error("test_engine_error: an engine error raised inside a step");
+      return 0;  // not reached: the runner's handler does not return
+  }
+  return 0;
+}
+
+template <Fault kFault>
+constexpr mjfPlugin FaultPlugin(const char* name, const char* doc) {
+  return {MJF_ABI_VERSION,
+          name,
+          MJF_KIND_GUIDANCE,
+          doc,
+          1,
+          kNanAttributes,
+          0,
+          nullptr,
+          [](const mjfCreateContext* c) { return CreateHold(c, true, 0.0); },
+          ComputeFault<kFault>,
+          nullptr,
+          Destroy,
+          nullptr};
+}
+
+const mjfPlugin kFailMessage =
+    FaultPlugin<Fault::kMessage>("test_fail_message", "holds position, then fails with a reason");
+const mjfPlugin kThrow =
+    FaultPlugin<Fault::kThrow>("test_throw", "holds position, then throws a C++ exception");
+const mjfPlugin kEngineError =
+    FaultPlugin<Fault::kEngineError>("test_engine_error", "holds position, then calls mju_error");
+
 }  // namespace
 
-MJF_EXPORT_PLUGINS(&kRequired, &kNan, &kHuge)
+MJF_EXPORT_PLUGINS(&kRequired, &kNan, &kHuge, &kFailMessage, &kThrow, &kEngineError)

@@ -170,7 +170,7 @@ TEST(RunTest, MujocoWarningStopsTheRunAndKeepsWhatWasRecorded) {
   options.out_dir = out;
   const RunResult r = RunExperiment(Parse(text), options);
   EXPECT_FALSE(r.complete);
-  EXPECT_THAT(r.error, HasSubstr("t = 0.501 s: MuJoCo warning: bad ctrl"));
+  EXPECT_THAT(r.error, HasSubstr("t = 0.501 s: MuJoCo warning: Nan, Inf or huge value in CTRL"));
   const nlohmann::json s = Summary(out);
   EXPECT_FALSE(s["complete"].get<bool>());
   const std::string csv = ReadFile(out + "/timeseries.csv");
