@@ -68,7 +68,8 @@ typedef struct mjfVehicleState_ {
 /* Before each formation tick the host fills every follower's pos[2] (altitude setpoint), vel[2],
  * acc[2] (0) and yaw (0) and sets sliding to NaN; formation plugins write only x and y. */
 typedef struct mjfSetpoint_ {
-  double acc[3];     /* desired acceleration, m/s^2, world frame (x, y horizontal command; z feedforward) */
+  double acc[3];     /* desired acceleration, m/s^2, world frame (x, y horizontal command; z
+                        feedforward) */
   double pos[3];     /* reference position, m (z: altitude setpoint) */
   double vel[3];     /* reference velocity, m/s */
   double yaw;        /* yaw setpoint, rad */
@@ -77,12 +78,12 @@ typedef struct mjfSetpoint_ {
 
 /* One actuator an attitude plugin drives, resolved by the host from the composed model. */
 typedef struct mjfActuatorInfo_ {
-  double site_pos[3];    /* m, actuator site relative to the vehicle's centre of mass, body-frame axes
-                            (0 for joint actuators) */
-  double gear[6];        /* actuator gear: force (0..2) and torque (3..5) per unit control */
-  double ctrl_min;       /* ctrlrange (or -inf/inf when unlimited) */
+  double site_pos[3]; /* m, actuator site relative to the vehicle's centre of mass, body-frame axes
+                         (0 for joint actuators) */
+  double gear[6];     /* actuator gear: force (0..2) and torque (3..5) per unit control */
+  double ctrl_min;    /* ctrlrange (or -inf/inf when unlimited) */
   double ctrl_max;
-  double time_constant;  /* s, first-order actuator lag (dyntype filter), 0 when none */
+  double time_constant; /* s, first-order actuator lag (dyntype filter), 0 when none */
 } mjfActuatorInfo;
 
 /* What an attitude or guidance plugin knows of its vehicle. */
@@ -99,9 +100,9 @@ typedef struct mjfGraph_ {
   int n_followers;
   const double* leader_weight; /* [n_followers] a_i0 */
   int n_edges;
-  const int* edge_from;       /* j: follower i receives j's state (edge j -> i) */
-  const int* edge_to;         /* i */
-  const double* edge_weight;  /* a_ij > 0 */
+  const int* edge_from;      /* j: follower i receives j's state (edge j -> i) */
+  const int* edge_to;        /* i */
+  const double* edge_weight; /* a_ij > 0 */
 } mjfGraph;
 
 /* Desired formation (Definition 1): offsets f_i(t) of each follower from the leader. */
@@ -114,12 +115,12 @@ typedef struct mjfShape_ {
 
 /* What one follower knows of the graph (per-agent formation plugins): its own row of L_H. */
 typedef struct mjfNeighbourhood_ {
-  int follower;                /* this follower, 0..n_followers-1 (paper's i = follower + 1) */
+  int follower; /* this follower, 0..n_followers-1 (paper's i = follower + 1) */
   int n_followers;
-  double leader_weight;        /* a_i0 (0: this follower does not hear the leader) */
-  int n_neighbours;            /* in-neighbours j (edges j -> i) */
-  const int* neighbours;       /* [n_neighbours] follower indices j */
-  const double* weights;       /* [n_neighbours] a_ij > 0 */
+  double leader_weight;  /* a_i0 (0: this follower does not hear the leader) */
+  int n_neighbours;      /* in-neighbours j (edges j -> i) */
+  const int* neighbours; /* [n_neighbours] follower indices j */
+  const double* weights; /* [n_neighbours] a_ij > 0 */
 } mjfNeighbourhood;
 
 /* Generic payload slots a per-agent protocol may add to its broadcast (e.g. a Jacobi iterate). */
@@ -127,12 +128,12 @@ typedef struct mjfNeighbourhood_ {
 
 /* One message as received over a simulated link (or the follower's own outgoing message). */
 typedef struct mjfMessage_ {
-  int sender;             /* vehicle index of the sender: 0 = leader, 1..N = followers */
-  int round;              /* exchange round within the sample (0 .. n_rounds-1) */
-  double send_time;       /* s, simulation time at which the sender broadcast it */
-  mjfVehicleState state;  /* the sender's state as it measured it */
-  double input[3];        /* the sender's last formation input u_j (world frame); NaN: none */
-  int n_payload;          /* used payload slots */
+  int sender;            /* vehicle index of the sender: 0 = leader, 1..N = followers */
+  int round;             /* exchange round within the sample (0 .. n_rounds-1) */
+  double send_time;      /* s, simulation time at which the sender broadcast it */
+  mjfVehicleState state; /* the sender's state as it measured it */
+  double input[3];       /* the sender's last formation input u_j (world frame); NaN: none */
+  int n_payload;         /* used payload slots */
   double payload[MJF_MESSAGE_PAYLOAD];
 } mjfMessage;
 
@@ -140,16 +141,16 @@ typedef struct mjfMessage_ {
  * such a plugin the swarm's arrays: ctx->states, ctx->model and ctx->data are NULL and
  * ctx->setpoints points at this follower's own setpoint only. */
 typedef struct mjfAgentInput_ {
-  int follower;                 /* 0-based follower index (vehicle follower + 1) */
-  const mjfVehicleState* self;  /* this follower's own measured state */
-  int n_messages;               /* the newest message held from each in-neighbour */
+  int follower;                /* 0-based follower index (vehicle follower + 1) */
+  const mjfVehicleState* self; /* this follower's own measured state */
+  int n_messages;              /* the newest message held from each in-neighbour */
   const mjfMessage* messages;
-  const mjfMessage* leader;     /* newest leader message, NULL when a_i0 = 0 or none yet */
-  int round;                    /* exchange round of this call within the sample */
-  int n_rounds;                 /* rounds per sample (1 unless Jacobi exchange is configured) */
-  mjfMessage* outgoing;         /* what this follower broadcasts next: the host fills sender,
-                                   time, state and input (from the setpoint written); the plugin
-                                   may fill round-specific payload */
+  const mjfMessage* leader; /* newest leader message, NULL when a_i0 = 0 or none yet */
+  int round;                /* exchange round of this call within the sample */
+  int n_rounds;             /* rounds per sample (1 unless Jacobi exchange is configured) */
+  mjfMessage* outgoing;     /* what this follower broadcasts next: the host fills sender,
+                               time, state and input (from the setpoint written); the plugin
+                               may fill round-specific payload */
 } mjfAgentInput;
 
 typedef struct mjfCreateContext_ {
@@ -157,16 +158,16 @@ typedef struct mjfCreateContext_ {
   int n_attributes;
   const char* const* keys;
   const char* const* values;
-  double timestep;   /* s, physics step */
-  int vehicle;       /* per-vehicle plugins: the vehicle index; -1 for formation plugins */
-  int n_vehicles;    /* 1 + number of followers */
+  double timestep; /* s, physics step */
+  int vehicle;     /* per-vehicle plugins: the vehicle index; -1 for formation plugins */
+  int n_vehicles;  /* 1 + number of followers */
   const mjfVehicleInfo* vehicle_info; /* per-vehicle plugins; NULL for formation plugins */
   const double* initial_pos;          /* [3] per-vehicle plugins: the vehicle's initial position */
   const mjfGraph* graph;              /* formation plugins; NULL otherwise */
   const mjfShape* shape;              /* formation plugins (both kinds); NULL otherwise */
   const mjfNeighbourhood* neighbourhood; /* per-agent formation plugins; NULL otherwise */
-  const struct mjModel_* model;       /* raw access, may be NULL (unit tests) */
-  char* error;       /* create() writes a one-line reason here when it returns NULL */
+  const struct mjModel_* model;          /* raw access, may be NULL (unit tests) */
+  char* error; /* create() writes a one-line reason here when it returns NULL */
   size_t error_size;
 } mjfCreateContext;
 
@@ -177,14 +178,14 @@ typedef struct mjfStepContext_ {
   int n_vehicles;
   const mjfVehicleState* states; /* [n_vehicles], 0 = leader */
   mjfSetpoint* setpoints;        /* [n_vehicles], the bus */
-  double* controls;              /* attitude plugins: [n_actuators] for this vehicle; NULL otherwise */
-  const struct mjModel_* model;  /* raw access, may be NULL */
+  double* controls; /* attitude plugins: [n_actuators] for this vehicle; NULL otherwise */
+  const struct mjModel_* model; /* raw access, may be NULL */
   const struct mjData_* data;
   /* compute() may write a one-line reason here before it returns nonzero; the host reports it
    * with the plugin's name, the vehicle and the time. Always non-NULL when called by the host. */
   char* error;
   size_t error_size;
-  const mjfAgentInput* agent;    /* per-agent formation plugins; NULL otherwise */
+  const mjfAgentInput* agent; /* per-agent formation plugins; NULL otherwise */
 } mjfStepContext;
 
 /* Optional reporting of scalar results into summary.json (e.g. "delta", "error_bound"). */
@@ -194,12 +195,12 @@ typedef struct mjfPlugin_ {
   uint32_t abi_version; /* MJF_ABI_VERSION the plugin was compiled against */
   const char* name;     /* unique, lowercase: "smc_discrete" */
   mjfKind kind;
-  const char* doc;      /* one line */
+  const char* doc; /* one line */
   int n_attributes;
   const mjfAttribute* attributes;
-  int n_actuators;                /* attitude plugins: actuators driven, per vehicle */
-  const char* const* actuators;   /* their names without the vehicle prefix, e.g. "rotor0" */
-  void* (*create)(const mjfCreateContext* ctx);         /* NULL + ctx->error on bad config */
+  int n_actuators;              /* attitude plugins: actuators driven, per vehicle */
+  const char* const* actuators; /* their names without the vehicle prefix, e.g. "rotor0" */
+  void* (*create)(const mjfCreateContext* ctx);              /* NULL + ctx->error on bad config */
   int (*compute)(void* instance, const mjfStepContext* ctx); /* 0 ok; nonzero: stop the run
                                                                 (ctx->error may say why) */
   void (*reset)(void* instance);

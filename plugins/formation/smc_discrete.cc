@@ -74,7 +74,9 @@ void* Create(const mjfCreateContext* ctx) {
 int Compute(void* instance, const mjfStepContext* ctx) {
   auto* self = static_cast<Instance*>(instance);
   SwarmBuffers& buffers = self->buffers;
-  if (!buffers.Read(ctx)) return 1;
+  if (!buffers.Read(ctx))
+    return mjf::plugin::Fail(
+        ctx, "the step does not carry 1 + n_followers vehicle states and setpoints");
   self->shape.Evaluate(ctx->time, buffers.shape_now.data());
   if (!self->has_sample || ctx->step % self->steps_per_sample == 0) {
     // Sample k: F(k) at t, F(k+1) at t + T, eq. (53).

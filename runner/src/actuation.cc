@@ -34,7 +34,6 @@ inline mjtNum Dot3(const mjtNum a[3], const mjtNum b[3]) {
 }
 }  // namespace
 
-
 void AddWrenchAtCentreOfMass(const mjModel* m, mjData* d, int body, const mjtNum wrench[6]) {
   const mjtNum* com = d->xipos + 3 * body;
   // J^T wrench at the centre of mass, over the dofs that move this body (as mj_jac walks them).
@@ -96,8 +95,8 @@ class WrenchActuation final : public Actuation {
   std::vector<double> rotor_state_;  // motor lag states, like MuJoCo's act
 };
 
-void WrenchActuation::VehicleWrench(int i, const std::vector<double>& controls,
-                                    const mjData* data, mjtNum wrench[6]) const {
+void WrenchActuation::VehicleWrench(int i, const std::vector<double>& controls, const mjData* data,
+                                    mjtNum wrench[6]) const {
   const VehicleBinding& b = bindings_.vehicles[i];
   const int per = bindings_.actuators_per_vehicle;
   const mjtNum* com = data->xipos + 3 * b.body;

@@ -360,8 +360,9 @@ void ParseVehiclesSection(const Reporter& reporter, Section vehicles, const std:
     }
   }
   c.start_jitter = vehicles.Number("start_jitter", 0.0);
-  c.rotor_model = vehicles.Enum("rotor_model", c.rotor_model,
-                                {{"actuator", RotorModel::kActuator}, {"wrench", RotorModel::kWrench}});
+  c.rotor_model =
+      vehicles.Enum("rotor_model", c.rotor_model,
+                    {{"actuator", RotorModel::kActuator}, {"wrench", RotorModel::kWrench}});
   c.contacts = vehicles.Bool("contacts", c.contacts);
   vehicles.RejectUnknown();
   if (c.followers < 1 || c.followers > 100000) vehicles.Fail("followers", "must be in [1, 100000]");
@@ -521,8 +522,8 @@ void ParseRenderSection(Section render, double duration, RenderConfig& r) {
     render.Fail("width", "width and height must be in [16, 4096] pixels");
   }
   if (r.video_fps <= 0 || r.video_fps > 120) render.Fail("video_fps", "must be in (0, 120]");
-  if (r.video_width < 16 || r.video_height < 16 || r.video_width > 4096 ||
-      r.video_height > 4096 || r.video_width % 2 || r.video_height % 2) {
+  if (r.video_width < 16 || r.video_height < 16 || r.video_width > 4096 || r.video_height > 4096 ||
+      r.video_width % 2 || r.video_height % 2) {
     render.Fail("video_width", "video size must be even and in [16, 4096] pixels");
   }
   if (r.trail_seconds < 0) render.Fail("trail_seconds", "must be >= 0 s");

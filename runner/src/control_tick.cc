@@ -18,8 +18,8 @@ std::string TimeTag(double time) { return fmt::format("t = {:.3f} s", time); }
 bool IsFinite(const mjfSetpoint& sp) {
   bool finite = std::isfinite(sp.yaw);
   for (int k = 0; k < 3; ++k) {
-    finite = finite && std::isfinite(sp.acc[k]) && std::isfinite(sp.pos[k]) &&
-             std::isfinite(sp.vel[k]);
+    finite =
+        finite && std::isfinite(sp.acc[k]) && std::isfinite(sp.pos[k]) && std::isfinite(sp.vel[k]);
   }
   return finite;
 }

@@ -13,7 +13,9 @@ thread_local std::string t_last_warning;
 // MuJoCo 2.2.2 is C, compiled with unwind tables (x86-64 and arm64 ABIs), so a C++ exception
 // thrown here unwinds through its frames back into the runner's step loop. The mjData that
 // raised it is left mid-step; the run ends and no further step is taken on it.
-void OnMujocoError(const char* message) { throw MujocoError(std::string("MuJoCo error: ") + message); }
+void OnMujocoError(const char* message) {
+  throw MujocoError(std::string("MuJoCo error: ") + message);
+}
 
 void OnMujocoWarning(const char* message) { t_last_warning = message; }
 

@@ -8,10 +8,10 @@
 #include <unistd.h>
 
 #include <charconv>
-#include <filesystem>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
 
 #include "mjformation/runner/simulation.hpp"
 
@@ -26,7 +26,7 @@ constexpr const char* kMarker = ".mjformation-run";
 // What a run directory may hold: the runner's files, the analysis' figures, leftovers of an
 // interrupted atomic write. Anything else is the user's and stops --overwrite.
 bool IsRunEntry(const fs::directory_entry& e) {
-  static const char* const kFiles[] = {kMarker,        "config.toml", "scene.xml",
+  static const char* const kFiles[] = {kMarker,          "config.toml",  "scene.xml",
                                        "timeseries.csv", "summary.json", "video.mp4"};
   const std::string name = e.path().filename().string();
   for (const char* f : kFiles) {
@@ -157,8 +157,9 @@ RunDirectory::RunDirectory(const std::string& path, bool overwrite) : path_(path
   } catch (const fs::filesystem_error& e) {
     throw OutputError(path + ": " + e.code().message());
   }
-  WriteText(kMarker, "This folder is a mjformation run directory; `mjformation run --overwrite`\n"
-                     "may replace it. Delete this file to protect the folder from that.\n");
+  WriteText(kMarker,
+            "This folder is a mjformation run directory; `mjformation run --overwrite`\n"
+            "may replace it. Delete this file to protect the folder from that.\n");
 }
 
 void RunDirectory::WriteText(const std::string& name, const std::string& text) const {

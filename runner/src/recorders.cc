@@ -130,8 +130,7 @@ const std::vector<unsigned char>& RenderFrame(render::OffscreenRenderer& rendere
 // snapshots/t<sss.ss>.png at the configured times.
 class SnapshotRecorder final : public Recorder {
  public:
-  SnapshotRecorder(const Simulation& sim, const RunDirectory& dir,
-                   std::shared_ptr<Scenery> scenery)
+  SnapshotRecorder(const Simulation& sim, const RunDirectory& dir, std::shared_ptr<Scenery> scenery)
       : dir_(dir),
         scenery_(std::move(scenery)),
         renderer_(sim.model(), sim.config().render.width, sim.config().render.height,
@@ -141,7 +140,8 @@ class SnapshotRecorder final : public Recorder {
     }
   }
   bool Wants(int64_t step) const override {
-    return step % scenery_->every() == 0 || std::find(steps_.begin(), steps_.end(), step) != steps_.end();
+    return step % scenery_->every() == 0 ||
+           std::find(steps_.begin(), steps_.end(), step) != steps_.end();
   }
   void Record(const Frame& f) override {
     scenery_->Update(f.sim);

@@ -56,7 +56,6 @@ class ProgressLine {
   Clock::time_point last_{};
 };
 
-
 std::string SignalName(int signal) {
   return signal == SIGINT ? "SIGINT" : signal == SIGTERM ? "SIGTERM" : std::to_string(signal);
 }

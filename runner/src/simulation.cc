@@ -62,8 +62,9 @@ std::array<double, 3> EulerZYX(const double q[4]) {
 Simulation::Simulation(const ExperimentConfig& config) : config_(config) {
   InstallMujocoHandlers();
   registry_ = std::make_unique<PluginRegistry>(PluginSearchPath(config_.plugin_path));
-  const LoadedPlugin& attitude = FindPlugin(*registry_, config_, config_.attitude,
-                                            {MJF_KIND_ATTITUDE}, "this section needs an attitude plugin");
+  const LoadedPlugin& attitude =
+      FindPlugin(*registry_, config_, config_.attitude, {MJF_KIND_ATTITUDE},
+                 "this section needs an attitude plugin");
   // Attribute problems are reported before the (slower) scene compilation.
   ResolveAttributes(*attitude.descriptor, config_.attitude, config_.source_path);
 
@@ -204,8 +205,8 @@ void Simulation::ApplyForces() {
   std::fill(external_force_.begin(), external_force_.end(), 0.0);
   for (auto& stage : force_stages_) stage->AddForces(step_, time(), truth_, &external_force_);
   for (int i = 0; i < n_vehicles(); ++i) {
-    const mjtNum wrench[6] = {external_force_[3 * i], external_force_[3 * i + 1],
-                              external_force_[3 * i + 2], 0, 0, 0};
+    const mjtNum wrench[6] = {
+        external_force_[3 * i], external_force_[3 * i + 1], external_force_[3 * i + 2], 0, 0, 0};
     AddWrenchAtCentreOfMass(model_.get(), data_.get(), bindings_.vehicles[i].body, wrench);
   }
 }

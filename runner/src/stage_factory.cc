@@ -15,8 +15,6 @@ std::unique_ptr<SensorStage> MakeSensorStage(const ExperimentConfig&) {
   return std::make_unique<IdealSensors>();
 }
 
-std::vector<std::unique_ptr<ForceStage>> MakeForceStages(const ExperimentConfig&) {
-  return {};
-}
+std::vector<std::unique_ptr<ForceStage>> MakeForceStages(const ExperimentConfig&) { return {}; }
 
 }  // namespace mjf::runner

@@ -63,7 +63,6 @@ std::vector<mjfActuatorInfo> ActuatorInfo(const mjModel* m, const mjfPlugin& plu
   return out;
 }
 
-
 // The vehicle model alone: mass, inertia and the attitude plugin's actuators.
 struct VehicleModelInfo {
   double mass = 0;

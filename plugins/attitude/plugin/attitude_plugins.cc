@@ -125,9 +125,14 @@ void* CascadeCreate(const mjfCreateContext* ctx) {
 
 int CascadeCompute(void* instance, const mjfStepContext* ctx) {
   auto* self = static_cast<CascadeInstance*>(instance);
-  if (self->vehicle >= ctx->n_vehicles || !ctx->controls) return 1;
+  if (self->vehicle >= ctx->n_vehicles || !ctx->controls) {
+    return mjf::plugin::Fail(ctx,
+                             "called for a vehicle the step does not have, or without controls");
+  }
   mjf::attitude::Setpoint setpoint;
-  if (!ToSetpoint(ctx->setpoints[self->vehicle], &setpoint)) return 2;
+  if (!ToSetpoint(ctx->setpoints[self->vehicle], &setpoint)) {
+    return mjf::plugin::Fail(ctx, "the setpoint is not finite", 2);
+  }
   const PdCascade::Output out =
       self->controller.Update(ToState(ctx->states[self->vehicle]), setpoint, ctx->timestep);
   for (int k = 0; k < Mixer::kRotors; ++k) ctx->controls[k] = out.ctrl[k];
@@ -181,9 +186,14 @@ void* PointMassCreate(const mjfCreateContext* ctx) {
 
 int PointMassCompute(void* instance, const mjfStepContext* ctx) {
   auto* self = static_cast<PointMassInstance*>(instance);
-  if (self->vehicle >= ctx->n_vehicles || !ctx->controls) return 1;
+  if (self->vehicle >= ctx->n_vehicles || !ctx->controls) {
+    return mjf::plugin::Fail(ctx,
+                             "called for a vehicle the step does not have, or without controls");
+  }
   mjf::attitude::Setpoint setpoint;
-  if (!ToSetpoint(ctx->setpoints[self->vehicle], &setpoint)) return 2;
+  if (!ToSetpoint(ctx->setpoints[self->vehicle], &setpoint)) {
+    return mjf::plugin::Fail(ctx, "the setpoint is not finite", 2);
+  }
   const auto force = self->controller.Update(ToState(ctx->states[self->vehicle]), setpoint);
   for (int k = 0; k < 3; ++k) ctx->controls[k] = force[k];
   return 0;

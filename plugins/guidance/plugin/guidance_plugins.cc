@@ -95,7 +95,9 @@ void* CircleCreate(const mjfCreateContext* ctx) {
 
 int CircleCompute(void* instance, const mjfStepContext* ctx) {
   auto* self = static_cast<CircleInstance*>(instance);
-  if (self->vehicle >= ctx->n_vehicles) return 1;
+  if (self->vehicle >= ctx->n_vehicles) {
+    return mjf::plugin::Fail(ctx, "called for a vehicle the step does not have");
+  }
   const mjfVehicleState& s = ctx->states[self->vehicle];
   Write(self->guidance.Update(ctx->time, Get(s.pos), Get(s.vel)), &ctx->setpoints[self->vehicle]);
   return 0;
@@ -158,7 +160,9 @@ void* HoverCreate(const mjfCreateContext* ctx) {
 
 int HoverCompute(void* instance, const mjfStepContext* ctx) {
   auto* self = static_cast<HoverInstance*>(instance);
-  if (self->vehicle >= ctx->n_vehicles) return 1;
+  if (self->vehicle >= ctx->n_vehicles) {
+    return mjf::plugin::Fail(ctx, "called for a vehicle the step does not have");
+  }
   const mjfVehicleState& s = ctx->states[self->vehicle];
   Write(self->guidance.Update(Get(s.pos), Get(s.vel)), &ctx->setpoints[self->vehicle]);
   return 0;

@@ -68,9 +68,9 @@ struct RenderConfig {
   int width = 1280;
   int height = 720;
   CameraMode camera = CameraMode::kFollow;  // formation centroid, the leader, or fixed
-  double distance = 45.0;         // m
-  double azimuth = 90.0;          // deg
-  double elevation = -55.0;       // deg
+  double distance = 45.0;                   // m
+  double azimuth = 90.0;                    // deg
+  double elevation = -55.0;                 // deg
   std::array<double, 3> lookat = {0, 0, 0};
   bool shadows = true;
   double trail_seconds = 10.0;  // s of path drawn behind each vehicle
@@ -92,12 +92,12 @@ struct ExperimentConfig {
   double duration = 40.0;   // s
   double timestep = 0.001;  // s, physics
   uint64_t seed = 1;
-  double record_rate = 100.0;                          // Hz
+  double record_rate = 100.0;  // Hz
   // s, mean sigma_f window (Table 1); default the last 37.5 % of the run ([25, 40] for 40 s)
   std::array<double, 2> metric_window = {25.0, 40.0};
-  int paper_experiment = 0;                            // 1..3 when this reproduces one
-  std::vector<std::string> plugin_path;                // extra plugin folders
-  double reaching_band = 0.0;  // |s| band for the reaching time; 0: the plugin's "delta"
+  int paper_experiment = 0;              // 1..3 when this reproduces one
+  std::vector<std::string> plugin_path;  // extra plugin folders
+  double reaching_band = 0.0;            // |s| band for the reaching time; 0: the plugin's "delta"
 
   // [vehicles]
   std::string model = "quadrotor";  // "quadrotor", "pointmass" or a path to an MJCF file

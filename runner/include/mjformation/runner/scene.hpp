@@ -27,7 +27,7 @@ struct SceneRequest {
   double timestep = 0.001;                       // s
   int offscreen_width = 1280;                    // offscreen buffer, pixels
   int offscreen_height = 720;
-  bool strip_actuators = false;  // wrench rotor model: rotors become body wrenches, no actuators
+  bool strip_actuators = false;   // wrench rotor model: rotors become body wrenches, no actuators
   bool disable_contacts = false;  // <option><flag contact="disable"/>: no collision detection
 };
 

@@ -23,7 +23,7 @@ struct VehicleBinding {
   std::vector<int> actuators;  // ids in the composed model (actuator rotor model)
   std::vector<int> sites;      // site of each driven actuator (wrench rotor model)
   std::vector<mjfActuatorInfo> actuator_info;
-  mjfVehicleInfo info{};       // points into actuator_info: do not copy a binding
+  mjfVehicleInfo info{};  // points into actuator_info: do not copy a binding
 };
 
 struct VehicleBindings {
