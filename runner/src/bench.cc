@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -229,16 +230,100 @@ void AddBenchCommand(CLI::App& app, CliCommands* c) {
                      "also run the first size 10x longer and compare peak memory");
 }
 
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+// One size: bare MuJoCo against the full pipeline, printed as a table row.
+Json BenchPoint(const ExperimentConfig& base, int n, const std::string& scratch) {
+  const ExperimentConfig config = Resized(base, n);
+  // Other processes share the machine: short points are measured kRepeats times, bare and full
+  // alternating, and the fastest of each is kept (the least disturbed run).
+  nlohmann::json bare = InChild([&] { return BareMujoco(config); });
+  nlohmann::json full = InChild([&] { return Pipeline(config, scratch); });
+  int repeats = 1;
+  for (; repeats < kRepeats && full["wall_s"].get<double>() < kRepeatBelowS; ++repeats) {
+    const nlohmann::json b = InChild([&] { return BareMujoco(config); });
+    const nlohmann::json f = InChild([&] { return Pipeline(config, scratch); });
+    if (b["wall_s"].get<double>() < bare["wall_s"].get<double>()) bare = b;
+    if (f["wall_s"].get<double>() < full["wall_s"].get<double>()) full = f;
+  }
+  const double steps = full["steps"].get<double>();
+  const double bare_wall = bare["wall_s"].get<double>(), full_wall = full["wall_s"].get<double>();
+  const double ratio = full_wall / bare_wall;
+  std::printf("%9d %9.0f %14.0f %14.0f %15.3f %9.2f %9.2f %10.1f %5d\n", n, steps,
+              steps / bare_wall, steps / full_wall, ratio, config.duration / bare_wall,
+              config.duration / full_wall, full["peak_rss_mib"].get<double>(), repeats);
+  std::fflush(stdout);
+  return {{"followers", n},
+          {"steps", steps},
+          {"best_of", repeats},
+          {"bare_wall_s", bare_wall},
+          {"full_wall_s", full_wall},
+          {"ratio_full_over_bare", ratio},
+          {"real_time_factor_bare", config.duration / bare_wall},
+          {"real_time_factor_full", config.duration / full_wall},
+          {"peak_rss_mib_full", full["peak_rss_mib"]},
+          {"peak_rss_mib_bare", bare["peak_rss_mib"]},
+          {"bare_final_min_z_m", bare["final_min_z_m"]},
+          {"bare_final_min_tilt_rad", bare["final_min_tilt_rad"]}};
+}
+
+// Peak memory of a run ten times longer: nothing may grow with run length.
+Json BenchMemory(const ExperimentConfig& base, int n, const std::string& scratch) {
+  ExperimentConfig shorter = Resized(base, n);
+  ExperimentConfig longer = shorter;
+  longer.duration *= 10;
+  longer.metric_window = {0.625 * longer.duration, longer.duration};
+  const nlohmann::json a = InChild([&] { return Pipeline(shorter, scratch); });
+  const nlohmann::json b = InChild([&] { return Pipeline(longer, scratch); });
+  const double ra = a["peak_rss_mib"].get<double>(), rb = b["peak_rss_mib"].get<double>();
+  std::printf(
+      "memory: %d followers, %.0f s run: peak %.1f MiB; %.0f s run: peak %.1f MiB; "
+      "ratio %.3f (target < 1.2)\n",
+      n, shorter.duration, ra, longer.duration, rb, rb / ra);
+  return {{"followers", n},
+          {"short_duration_s", shorter.duration},
+          {"long_duration_s", longer.duration},
+          {"short_peak_rss_mib", ra},
+          {"long_peak_rss_mib", rb},
+          {"ratio", rb / ra}};
+}
+
+Json BenchRender(const ExperimentConfig& config) {
+  const nlohmann::json r = InChild([&] { return RenderCost(config); });
+  std::printf(
+      "render: snapshot 1280x720 %.1f ms with shadows, %.1f ms without; video 640x480 "
+      "%.1f fps with shadows, %.1f fps without\n",
+      r["snapshot_1280x720_shadows_ms"].get<double>(),
+      r["snapshot_1280x720_noshadows_ms"].get<double>(),
+      r["video_640x480_shadows_fps"].get<double>(), r["video_640x480_noshadows_fps"].get<double>());
+  return r;
+}
+
+void WriteJson(const std::string& path, const Json& report) {
+  std::FILE* f = std::fopen(path.c_str(), "wb");
+  if (!f) throw OutputError(path + ": cannot write: " + std::strerror(errno));
+  const std::string text = report.dump(2) + "\n";
+  const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
+  if (std::fclose(f) != 0 || !ok)
+    throw OutputError(path + ": write failed: " + std::strerror(errno));
+}
+
+}  // namespace
+
 int BenchCommand(const CliCommands& c) {
   ExperimentConfig base = LoadExperiment(c.experiment, c.overrides);
-  if (c.bench_duration > 0) base.duration = c.bench_duration;
+  if (c.bench_duration > 0) {
+    base.duration = c.bench_duration;
+    base.metric_window = {0.625 * base.duration, base.duration};
+  }
   base.render.snapshots.clear();
   base.render.video = false;
   std::vector<int> sizes = c.bench_followers;
   if (sizes.empty()) sizes.push_back(base.followers);
   const std::string scratch = fmt::format("/tmp/mjformation_bench_{}", getpid());
-
-  nlohmann::ordered_json report;
+  Json report;
   report["experiment"] = c.experiment;
   report["duration_s"] = base.duration;
   report["timestep_s"] = base.timestep;
@@ -250,75 +335,10 @@ int BenchCommand(const CliCommands& c) {
               base.record_rate);
   std::printf("%9s %9s %14s %14s %12s %9s %9s %10s %5s\n", "followers", "steps", "bare steps/s",
               "full steps/s", "ratio full/bare", "RTF bare", "RTF full", "peak MiB", "runs");
-  for (int n : sizes) {
-    const ExperimentConfig config = Resized(base, n);
-    // Other processes share the machine: short points are measured kRepeats times, bare and full
-    // alternating, and the fastest of each is kept (the least disturbed run).
-    nlohmann::json bare = InChild([&] { return BareMujoco(config); });
-    nlohmann::json full = InChild([&] { return Pipeline(config, scratch); });
-    int repeats = 1;
-    for (; repeats < kRepeats && full["wall_s"].get<double>() < kRepeatBelowS; ++repeats) {
-      const nlohmann::json b = InChild([&] { return BareMujoco(config); });
-      const nlohmann::json f = InChild([&] { return Pipeline(config, scratch); });
-      if (b["wall_s"].get<double>() < bare["wall_s"].get<double>()) bare = b;
-      if (f["wall_s"].get<double>() < full["wall_s"].get<double>()) full = f;
-    }
-    const double steps = full["steps"].get<double>();
-    const double bare_wall = bare["wall_s"].get<double>(), full_wall = full["wall_s"].get<double>();
-    const double ratio = full_wall / bare_wall;
-    std::printf("%9d %9.0f %14.0f %14.0f %15.3f %9.2f %9.2f %10.1f %5d\n", n, steps,
-                steps / bare_wall, steps / full_wall, ratio, config.duration / bare_wall,
-                config.duration / full_wall, full["peak_rss_mib"].get<double>(), repeats);
-    std::fflush(stdout);
-    report["points"].push_back({{"followers", n},
-                                {"steps", steps},
-                                {"best_of", repeats},
-                                {"bare_wall_s", bare_wall},
-                                {"full_wall_s", full_wall},
-                                {"ratio_full_over_bare", ratio},
-                                {"real_time_factor_bare", config.duration / bare_wall},
-                                {"real_time_factor_full", config.duration / full_wall},
-                                {"peak_rss_mib_full", full["peak_rss_mib"]},
-                                {"peak_rss_mib_bare", bare["peak_rss_mib"]},
-                                {"bare_final_min_z_m", bare["final_min_z_m"]},
-                                {"bare_final_min_tilt_rad", bare["final_min_tilt_rad"]}});
-  }
-  if (c.bench_memory) {
-    ExperimentConfig shorter = Resized(base, sizes.front());
-    ExperimentConfig longer = shorter;
-    longer.duration *= 10;
-    const nlohmann::json a = InChild([&] { return Pipeline(shorter, scratch); });
-    const nlohmann::json b = InChild([&] { return Pipeline(longer, scratch); });
-    const double ra = a["peak_rss_mib"].get<double>(), rb = b["peak_rss_mib"].get<double>();
-    std::printf(
-        "memory: %d followers, %.0f s run: peak %.1f MiB; %.0f s run: peak %.1f MiB; "
-        "ratio %.3f (target < 1.2)\n",
-        sizes.front(), shorter.duration, ra, longer.duration, rb, rb / ra);
-    report["memory"] = {{"followers", sizes.front()},
-                        {"short_duration_s", shorter.duration},
-                        {"long_duration_s", longer.duration},
-                        {"short_peak_rss_mib", ra},
-                        {"long_peak_rss_mib", rb},
-                        {"ratio", rb / ra}};
-  }
-  if (c.bench_render) {
-    const nlohmann::json r = InChild([&] { return RenderCost(Resized(base, sizes.front())); });
-    std::printf(
-        "render: snapshot 1280x720 %.1f ms with shadows, %.1f ms without; video 640x480 "
-        "%.1f fps with shadows, %.1f fps without\n",
-        r["snapshot_1280x720_shadows_ms"].get<double>(),
-        r["snapshot_1280x720_noshadows_ms"].get<double>(),
-        r["video_640x480_shadows_fps"].get<double>(),
-        r["video_640x480_noshadows_fps"].get<double>());
-    report["render"] = r;
-  }
-  if (!c.bench_json.empty()) {
-    std::FILE* f = std::fopen(c.bench_json.c_str(), "wb");
-    if (!f) throw OutputError(c.bench_json + ": cannot write");
-    const std::string text = report.dump(2) + "\n";
-    std::fwrite(text.data(), 1, text.size(), f);
-    std::fclose(f);
-  }
+  for (int n : sizes) report["points"].push_back(BenchPoint(base, n, scratch));
+  if (c.bench_memory) report["memory"] = BenchMemory(base, sizes.front(), scratch);
+  if (c.bench_render) report["render"] = BenchRender(Resized(base, sizes.front()));
+  if (!c.bench_json.empty()) WriteJson(c.bench_json, report);
   return 0;
 }
 

@@ -3,6 +3,7 @@
 // Algorithms 1/2 and Theorems 1/2: every invalid parameter is refused, naming the key.
 #include <gtest/gtest.h>
 
+#include <Eigen/Dense>
 #include <functional>
 #include <mjformation/core/continuous_smc.hpp>
 #include <mjformation/core/discrete_smc.hpp>
@@ -123,9 +124,20 @@ TEST(TheoremTwoTest, BandAndBoundFollowEquations) {
   EXPECT_DOUBLE_EQ(smc.delta1(0), (0.05 * 0.05 + kb * 2.0 + 1e-6) / (2 - 0.225));  // eq. (49)
   EXPECT_DOUBLE_EQ(smc.delta2(1), 0.05 * 0.05);                                    // a_20 = 0
   EXPECT_DOUBLE_EQ(smc.delta(), smc.delta2(0));
-  const double norm = smc.norm_inv_lh();
-  EXPECT_GT(norm, 1.0);
-  EXPECT_DOUBLE_EQ(smc.error_bound(), norm * std::sqrt(6.0) * smc.delta() / (4.0 * std::sqrt(2.0)));
+  // ||L_H^-1||_2 from L_H written out by hand for PaperGraph (edges j -> i: row i gets -a_ij,
+  // the diagonal d_i + a_i0) and a dense SVD: independent of the protocol's own solver.
+  Eigen::MatrixXd lh = Eigen::MatrixXd::Zero(6, 6);
+  const int edges[][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 4}, {4, 5}, {0, 2}, {2, 4}, {5, 3}};
+  for (const auto& e : edges) {
+    lh(e[1], e[0]) -= 1.0;
+    lh(e[1], e[1]) += 1.0;
+  }
+  lh(0, 0) += 1.0;  // a_10 = 1
+  const double norm = Eigen::JacobiSVD<Eigen::MatrixXd>(lh.inverse()).singularValues()(0);
+  EXPECT_NEAR(smc.norm_inv_lh(), norm, 1e-9 * norm);
+  // eq. (47) as EQUATIONS.md reads it: ||L_H^-1|| sqrt(N) Delta / ((k1 + k2) sqrt(2)), k = [3 1].
+  EXPECT_NEAR(smc.error_bound(), norm * std::sqrt(6.0) * smc.delta() / (4.0 * std::sqrt(2.0)),
+              1e-9 * smc.error_bound());
 }
 
 }  // namespace

@@ -321,32 +321,6 @@ TEST(OffscreenRenderer, SizeLargerThanOffscreenBufferThrows) {
   EXPECT_THROW(OffscreenRenderer(m.get(), 0, 10), std::runtime_error);
 }
 
-TEST(OffscreenRenderer, Timings) {
-  auto m = LoadModel();
-  auto d = MakeData(m.get());
-  const Overlay overlay = SampleOverlay();
-  struct Case {
-    int w, h;
-    bool shadows;
-  };
-  for (const Case c : {Case{1280, 720, true}, Case{1280, 720, false}, Case{640, 480, true},
-                       Case{640, 480, false}}) {
-    OffscreenRenderer r(m.get(), c.w, c.h, c.shadows);
-    r.Render(d.get(), FollowCamera(), overlay, kBoxA);  // warm up
-    const int n = 5;
-    const auto start = std::chrono::steady_clock::now();
-    for (int k = 0; k < n; ++k) r.Render(d.get(), FollowCamera(), overlay, kBoxA);
-    const double ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-            .count() /
-        n;
-    std::printf("[ timing ] %dx%d shadows=%d: %.1f ms/frame\n", c.w, c.h, c.shadows, ms);
-    RecordProperty(std::to_string(c.w) + "x" + std::to_string(c.h) +
-                       (c.shadows ? "_shadows_ms" : "_noshadows_ms"),
-                   std::to_string(ms));
-  }
-}
-
 // Reads an 8-bit RGB PNG back with libpng.
 std::vector<unsigned char> ReadPng(const std::string& path, int* w, int* h) {
   std::FILE* f = std::fopen(path.c_str(), "rb");
