@@ -76,6 +76,8 @@ void ClearPreviousRun(const fs::path& dir) {
 // [1e8, 1e9) with an error below 2e-7, so rounding to an integer is certain unless the fraction
 // is within 1e-6 of one half; those (and every other case) go to std::to_chars. Checked equal to
 // std::to_chars on 6e7 doubles (random bits, near-ties, powers of ten and their neighbours).
+}  // namespace
+
 char* FormatG9(char* p, char* end, double v) {
   static constexpr double kPow10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
                                       1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
@@ -135,8 +137,6 @@ char* FormatG9(char* p, char* end, double v) {
   *p++ = static_cast<char>('0' + ae % 10);
   return p;
 }
-
-}  // namespace
 
 RunDirectory::RunDirectory(const std::string& path, bool overwrite) : path_(path) {
   std::error_code ec;

@@ -1,11 +1,11 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 #include "mjformation/runner/plugin_host.hpp"
 
-#include <dirent.h>
 #include <dlfcn.h>
 
 #include <algorithm>
 #include <cstring>
+#include <filesystem>
 #include <set>
 
 #include "mjformation/runner/paths.hpp"
@@ -20,6 +20,8 @@ const char* KindName(mjfKind kind) {
       return "formation";
     case MJF_KIND_ATTITUDE:
       return "attitude";
+    case MJF_KIND_FORMATION_AGENT:
+      return "per-agent formation";
   }
   return "unknown";
 }
@@ -28,17 +30,16 @@ PluginRegistry::PluginRegistry(const std::vector<std::string>& search_path)
     : search_path_(search_path) {
   std::set<std::string> seen_files;
   for (const std::string& dir : search_path) {
-    DIR* d = opendir(dir.c_str());
-    if (!d) continue;
+    std::error_code ec;
     std::vector<std::string> files;
-    while (dirent* entry = readdir(d)) {
-      const std::string name = entry->d_name;
+    for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
+      const std::string name = entry.path().filename().string();
       if (name.size() > 6 && name.compare(0, 3, "lib") == 0 &&
           name.compare(name.size() - 3, 3, ".so") == 0) {
         files.push_back(name);
       }
     }
-    closedir(d);
+    if (ec) continue;                       // an absent folder on the search path is not an error
     std::sort(files.begin(), files.end());  // deterministic order
     for (const std::string& file : files) {
       const std::string path = dir + "/" + file;

@@ -132,7 +132,8 @@ ControlPlugins Simulation::CreatePlugins(const LoadedPlugin& attitude) const {
                                                     VehicleContext(base, 0));
   const LoadedPlugin& formation =
       FindPlugin(*registry_, config_, config_.formation, {MJF_KIND_FORMATION, MJF_KIND_GUIDANCE},
-                 "followers need a formation or guidance plugin");
+                 "followers need a formation or guidance plugin (per-agent formation plugins need "
+                 "distributed execution, which this runner does not provide yet)");
   if (formation.descriptor->kind == MJF_KIND_FORMATION) {
     plugins.formation = CreateFormation(formation, base);
   } else {

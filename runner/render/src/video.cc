@@ -56,6 +56,35 @@ std::string Number(double v) {
   return buf;
 }
 
+// The video's folder must exist and be writable before ffmpeg is started.
+void RequireWritableDirectory(const std::string& path) {
+  const std::string dir = DirectoryOf(path);
+  struct stat st;
+  if (::stat(dir.c_str(), &st) != 0 || !S_ISDIR(st.st_mode)) {
+    throw std::runtime_error("VideoWriter " + path + ": directory " + dir + " does not exist");
+  }
+  if (::access(dir.c_str(), W_OK) != 0) {
+    throw std::runtime_error("VideoWriter " + path + ": directory " + dir + " is not writable");
+  }
+}
+
+// ffmpeg reading raw RGB frames on stdin and writing H.264 in an mp4 at `output`.
+std::vector<std::string> FfmpegArguments(const std::string& ffmpeg, int width, int height,
+                                         double fps, const std::string& output) {
+  const std::string size = std::to_string(width) + "x" + std::to_string(height);
+  return {ffmpeg,       "-nostdin",  "-hide_banner",
+          "-loglevel",  "error",     "-y",
+          "-f",         "rawvideo",  "-pix_fmt",
+          "rgb24",      "-s",        size,
+          "-framerate", Number(fps), "-i",
+          "pipe:0",     "-vf",       "pad=ceil(iw/2)*2:ceil(ih/2)*2",
+          "-c:v",       "libx264",   "-pix_fmt",
+          "yuv420p",    "-preset",   "veryfast",
+          "-crf",       "20",        "-threads",
+          "1",          "-movflags", "+faststart",
+          "-f",         "mp4",       output};
+}
+
 }  // namespace
 
 VideoWriter::VideoWriter(const std::string& path, int width, int height, double fps)
@@ -70,14 +99,7 @@ VideoWriter::VideoWriter(const std::string& path, int width, int height, double 
                              ": ffmpeg not found on PATH (install the ffmpeg package, or render "
                              "without video)");
   }
-  const std::string dir = DirectoryOf(path);
-  struct stat st;
-  if (::stat(dir.c_str(), &st) != 0 || !S_ISDIR(st.st_mode)) {
-    throw std::runtime_error("VideoWriter " + path + ": directory " + dir + " does not exist");
-  }
-  if (::access(dir.c_str(), W_OK) != 0) {
-    throw std::runtime_error("VideoWriter " + path + ": directory " + dir + " is not writable");
-  }
+  RequireWritableDirectory(path);
 
   // ffmpeg's messages go to a temporary file, read back when it fails.
   std::string err_template = "/tmp/mjf_ffmpeg_XXXXXX";
@@ -99,18 +121,7 @@ VideoWriter::VideoWriter(const std::string& path, int width, int height, double 
     throw std::runtime_error("VideoWriter " + path + ": socketpair failed: " + std::strerror(e));
   }
 
-  const std::string size = std::to_string(width) + "x" + std::to_string(height);
-  std::vector<std::string> args = {ffmpeg,       "-nostdin",  "-hide_banner",
-                                   "-loglevel",  "error",     "-y",
-                                   "-f",         "rawvideo",  "-pix_fmt",
-                                   "rgb24",      "-s",        size,
-                                   "-framerate", Number(fps), "-i",
-                                   "pipe:0",     "-vf",       "pad=ceil(iw/2)*2:ceil(ih/2)*2",
-                                   "-c:v",       "libx264",   "-pix_fmt",
-                                   "yuv420p",    "-preset",   "veryfast",
-                                   "-crf",       "20",        "-threads",
-                                   "1",          "-movflags", "+faststart",
-                                   "-f",         "mp4",       tmp_path_};
+  std::vector<std::string> args = FfmpegArguments(ffmpeg, width, height, fps, tmp_path_);
   // -nostdin only stops ffmpeg's interactive keys; the frames still come on pipe:0.
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());

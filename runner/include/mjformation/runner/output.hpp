@@ -50,6 +50,10 @@ class TimeseriesWriter {
   std::string buffer_;
 };
 
+// Writes finite v as std::to_chars(general, precision 9) would (printf's "%.9g") at p and
+// returns the end: the number format of timeseries.csv, at a fraction of to_chars' cost.
+char* FormatG9(char* p, char* end, double v);
+
 // The experiment file as run: its text plus the command-line overrides, as a TOML comment.
 std::string ConfigEcho(const ExperimentConfig& config);
 std::string Sha256Hex(const std::string& bytes);
