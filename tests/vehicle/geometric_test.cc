@@ -373,10 +373,10 @@ TEST(GeometricConfigTest, RefusesBadGainsWithTheReason) {
   g.rate_bw = 60;  // 60 x 0.025 = 1.5 > 1
   EXPECT_NE(message(g, v).find("beyond the motors"), std::string::npos) << message(g, v);
   g = {};
-  g.att_bw = 15;  // > rate_bw / 2 = 9.3
+  g.att_bw = 20;  // > rate_bw / 2 = 16.7
   EXPECT_NE(message(g, v).find("att_bw"), std::string::npos) << message(g, v);
   g = {};
-  g.z_bw = 8;  // > att_bw = 6.2
+  g.z_bw = 9;  // > att_bw = 8.3
   EXPECT_NE(message(g, v).find("z_bw"), std::string::npos) << message(g, v);
   g = {};
   g.yaw_bw = -1;

@@ -300,8 +300,8 @@ TEST(AttitudePluginTest, GeometricRefusesBadGainsByName) {
   // the key whose value breaks the cascade).
   const std::pair<std::map<std::string, std::string>, std::string> bad[] = {
       {{{"tilt_max", "1.6"}}, "tilt_max"}, {{{"rate_bw", "-1"}}, "rate_bw"},
-      {{{"rate_bw", "60"}}, "rate_bw"},    {{{"att_bw", "12"}}, "att_bw"},
-      {{{"z_bw", "7"}}, "z_bw"},           {{{"yaw_bw", "x"}}, "yaw_bw"},
+      {{{"rate_bw", "60"}}, "rate_bw"},    {{{"att_bw", "20"}}, "att_bw"},
+      {{{"z_bw", "9"}}, "z_bw"},           {{{"yaw_bw", "x"}}, "yaw_bw"},
       {{{"rate_ki", "0.9"}}, "rate_ki"},   {{{"thrust_margin", "0.6"}}, "thrust_margin"}};
   for (const auto& [overrides, key] : bad) {
     Context c(*p, overrides, &info.vehicle, 0, nullptr);

@@ -185,8 +185,8 @@ constexpr const char* kThrustMargin = "thrust_margin";
 // the vehicle info (motor lag, inertia, mass, rotor limits).
 const mjfAttribute kGeometricAttributes[] = {
     {kTiltMax, "0.78", "rad: limit on the angle of the thrust vector from the vertical"},
-    {kRateBw, "0", "rad/s: body-rate loop crossover (0: 0.5 / (motor lag + 2 timesteps))"},
-    {kAttBw, "0", "rad/s: roll/pitch attitude loop bandwidth (0: rate_bw / 3)"},
+    {kRateBw, "0", "rad/s: body-rate loop crossover (0: 0.9 / (motor lag + 2 timesteps))"},
+    {kAttBw, "0", "rad/s: roll/pitch attitude loop bandwidth (0: rate_bw / 4)"},
     {kYawBw, "0", "rad/s: yaw attitude loop bandwidth (0: att_bw / 2)"},
     {kZBw, "0", "rad/s: altitude loop natural frequency (0: att_bw / 2.5)"},
     {kRateKi, "0.1", "rate integral zero as a fraction of rate_bw (0: no integral, <= 0.5)"},
