@@ -71,6 +71,8 @@ def measure(run: Path) -> dict:
     gain = float(np.abs(cross) / power_cmd) if power_cmd > 0 else math.nan
     tilt = np.concatenate(tilts)
     return {
+        "complete": bool(summary.get("complete")),
+        "t_end": float(t[-1]),
         "sigma_f_mean": m["sigma_f_mean"],
         "max_slot_error_m": m["max_final_slot_error_m"],
         "tilt_needed_rms_deg": float(np.sqrt(np.mean(tilt**2))),
@@ -121,7 +123,9 @@ def main(argv=None) -> int:
         lines.append("| " + " | ".join([
             exp, vehicle, f"{tau:g}" if math.isfinite(tau) else "—",
             (f"{lim:g}" if lim else "none") if math.isfinite(lim) else "g tan 0.55 = 6.0 (tilt)",
-            f"{r['sigma_f_mean']:.3f}", f"{r['max_slot_error_m']:.3f}",
+            (f"{r['sigma_f_mean']:.3f}" if r["complete"] else
+             f"diverged (stopped at t = {r['t_end']:.0f} s)"),
+            f"{r['max_slot_error_m']:.3g}",
             f"{r['tilt_needed_rms_deg']:.1f}",
             f"{r['quad_rms_tilt_deg']:.1f}" if math.isfinite(r["quad_rms_tilt_deg"]) else "—",
             f"{r['accel_hz']:.2f}", f"{r['cmd_rms']:.2f}",

@@ -39,6 +39,11 @@ for e in exp2 exp3; do
     run "$e" "pm_tau${tau}_lim6.0" --set "vehicles.model=\"$(model "$tau" 6.0)\"" "${pm[@]}"
     wait
   done
+  # Authority alone: the ideal point mass (no lag) limited to what tilt_max 0.35 and 0.45 rad
+  # give, g tan(tilt_max) per axis.
+  run "$e" pm_tau0_lim3.57 --set "vehicles.model=\"$(model 0 3.57)\"" "${pm[@]}" &
+  run "$e" pm_tau0_lim4.86 --set "vehicles.model=\"$(model 0 4.86)\"" "${pm[@]}"
+  wait
   run "$e" quad_pd_cascade &
   run "$e" quad_geometric --set 'attitude={plugin="geometric", tilt_max=0.55}'
   wait

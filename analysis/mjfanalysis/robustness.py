@@ -135,7 +135,7 @@ def markdown(cells: list[Cell]) -> list[str]:
                 _f(c.max_slot_error_m, 3), rms_cell,
                 f"{np.median(hz):.2f}" if hz else "—", _f(c.max_tilt_deg_window, 1),
                 _f(c.max_tilt_deg_run, 1),
-                (f"**{over:+.1f}**" if over > TILT_MARGIN_DEG else f"{over + 0.0:+.1f}"),
+                (f"**{over:+.1f}**" if over > TILT_MARGIN_DEG else f"{round(over, 1) or 0.0:+.1f}"),
             ]) + " |")
         lines.append("")
     return lines

@@ -45,3 +45,20 @@ def test_map_reads_sweeps_and_flags_reach_refusal_and_limit(tmp_path):
     assert "**+14.9**" in text  # beyond the limit by more than 10 deg is flagged
     robustness.write_csv(list(cells.values()), tmp_path / "map.csv")
     assert (tmp_path / "map.csv").read_text().count("\n") == 4
+
+
+def test_report_shows_follower_motion_and_the_map(tmp_path):
+    from conftest import make_run
+    from mjfanalysis.report import write_report
+    path, _, _ = make_run(tmp_path, "exp2", exp=2)
+    summary = json.loads((path / "summary.json").read_text())
+    summary["metrics"].update({"rms_tilt_deg_in_window": [10.0, 14.0],
+                               "tilt_oscillation_hz_in_window": [1.2, 1.4],
+                               "rms_thrust_variation_n_in_window": [0.5, 0.7]})
+    (path / "summary.json").write_text(json.dumps(summary))
+    (tmp_path / "robustness").mkdir()
+    (tmp_path / "robustness" / "map.md").write_text("| a map |\n")
+    text = write_report(tmp_path, tmp_path / "report").read_text()
+    assert "## Follower motion in the metric window" in text
+    assert "| 12.0 [10.0, 14.0] | 1.30 | 0.6 [0.5, 0.7] |" in text
+    assert "## Robustness map" in text and "| a map |" in text
