@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # "Why the vehicles rock" (issue 12, docs/DISCUSSION.md): Exps 2 and 3 on the ideal point mass
-# with a first-order actuation lag tau (0 .. 0.3 s; the quadrotor plugins' measured attitude
-# bandwidths give tau = 0.088 s for pd_cascade and 0.127 s for geometric), with and without an
+# with a first-order actuation lag tau (0 .. 0.3 s; the quadrotor plugins' small-step attitude
+# bandwidths give tau = 0.088 s for pd_cascade and 0.141 s for geometric), with and without an
 # acceleration limit equal to the quadrotor's g tan(0.55 rad) = 6.0 m/s^2 per axis, beside the
 # quadrotor with each attitude plugin. Then the table and figure (analysis/rocking_diagnosis.py).
 # Usage: scripts/rocking_diagnosis.sh [OUT_DIR]   (default results/rocking; about 1 minute)

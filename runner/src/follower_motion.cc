@@ -33,10 +33,19 @@ void FollowerMotion::Begin(double t) {
   const double span = t1_ - t0_;
   weight_ = span > 0 ? 0.5 * (1 - std::cos(2 * M_PI * std::clamp((t - t0_) / span, 0.0, 1.0))) : 1;
   weight_sum_ += weight_;
+  // e^{-i 2 pi (f0 + b df) t} = e^{-i 2 pi f0 t} (e^{-i 2 pi df t})^b: two sin/cos per sample,
+  // phases from t itself (no drift from sample to sample).
+  const std::complex<double> first = std::polar(weight_, -2 * M_PI * kMinHz * t);
+  const std::complex<double> step = std::polar(1.0, -2 * M_PI * kStepHz * t);
+  // Real arithmetic: std::complex's operator* goes through __muldc3 (NaN handling) in GCC.
+  double re = first.real(), im = first.imag();
+  const double step_re = step.real(), step_im = step.imag();
   for (int b = 0; b < bins_; ++b) {
-    const double phase = -2 * M_PI * (kMinHz + b * kStepHz) * t;  // from t: no drift
-    phasor_[b] = weight_ * std::complex<double>(std::cos(phase), std::sin(phase));
+    phasor_[b] = {re, im};
     phasor_sum_[b] += phasor_[b];
+    const double next_re = re * step_re - im * step_im;
+    im = re * step_im + im * step_re;
+    re = next_re;
   }
 }
 
@@ -51,9 +60,9 @@ void FollowerMotion::Add(int i, const double q[4], double thrust) {
   tilt_x_sum_[i] += weight_ * x;
   tilt_y_sum_[i] += weight_ * y;
   std::complex<double>* s = &spectrum_[static_cast<size_t>(i) * bins_ * 2];
-  for (int b = 0; b < bins_; ++b) {
-    s[2 * b] += x * phasor_[b];
-    s[2 * b + 1] += y * phasor_[b];
+  for (int b = 0; b < bins_; ++b) {  // real x complex: no __muldc3
+    s[2 * b] += phasor_[b] * x;
+    s[2 * b + 1] += phasor_[b] * y;
   }
   const double delta = thrust - thrust_mean_[i];  // Welford: exact mean and variance online
   thrust_mean_[i] += delta / static_cast<double>(samples_);

@@ -117,6 +117,7 @@ Geometric::Geometric(const Gains& gains, const Vehicle& vehicle,
                                 rotors[3].ctrl_max);
   d.thrust_max = (1 - gains.thrust_margin) * mixer_.allocation().row(0).dot(all_max);
   d.thrust_min = 0.1 * vehicle.mass * vehicle.gravity;
+  d.tan_tilt_max = std::tan(gains_.tilt_max);
   if (!(d.thrust_max > 1.05 * vehicle.mass * vehicle.gravity)) {
     throw std::invalid_argument("the rotors give at most " + std::to_string(d.thrust_max) +
                                 " N of usable collective thrust, less than 1.05 x the weight " +
@@ -151,7 +152,7 @@ Geometric::Output Geometric::Update(const VehicleState& state, const Setpoint& s
   const double fz = std::clamp(m * (g + az), k.thrust_min, k.thrust_max);
   Eigen::Vector2d fxy(m * setpoint.acc[0], m * setpoint.acc[1]);
   const double fxy_max =
-      std::min(fz * std::tan(gains_.tilt_max), std::sqrt(k.thrust_max * k.thrust_max - fz * fz));
+      std::min(fz * k.tan_tilt_max, std::sqrt(k.thrust_max * k.thrust_max - fz * fz));
   const double fxy_norm = fxy.norm();
   if (fxy_norm > fxy_max) {
     fxy *= fxy_max / fxy_norm;
@@ -163,19 +164,17 @@ Geometric::Output Geometric::Update(const VehicleState& state, const Setpoint& s
   // Desired attitude: body z along F, body x as close as possible to the yaw heading b1c.
   // |b3d x b1c| >= b3d.z() > 0 since b1c is horizontal, so no singularity.
   const Eigen::Vector3d b1c(std::cos(setpoint.yaw), std::sin(setpoint.yaw), 0);
-  const Eigen::Vector3d b2d = b3d.cross(b1c).normalized();
-  Eigen::Matrix3d Rd;
-  Rd << b2d.cross(b3d), b2d, b3d;
-  const Eigen::Quaterniond qd(Rd);
+  const Eigen::Vector3d b1d = b3d.cross(b1c).normalized().cross(b3d);  // b2d x b3d
 
   // Collective: the part of F along the current body z (Lee et al. eq. (15)); none when the body
   // points away from F (e.g. while recovering from a large tilt).
   out.thrust = std::max(0.0, force.dot(R.col(2)));
 
   // Attitude error, tilt first: q_tilt turns the body z onto b3d by the shortest arc (body frame,
-  // axis perpendicular to body z), then q_yaw turns the tilted body about its z onto qd. Both are
-  // built from vectors and rotations, so q and -q give the same error; 2 vec(q) with w >= 0 is
-  // 2 sin(angle / 2) along the axis: no Euler angles, no singularity short of exactly 180 deg.
+  // axis perpendicular to body z), then q_yaw turns the tilted body about its z (= b3d) until its
+  // x axis lies on b1d. Both are built from vectors and rotations, so q and -q give the same
+  // error; 2 vec(q) with w >= 0 is 2 sin(angle / 2) along the axis: no Euler angles, no
+  // singularity short of exactly 180 deg.
   const Eigen::Vector3d b3d_body = R.transpose() * b3d;
   Eigen::Quaterniond q_tilt;
   if (1 + b3d_body.z() > 1e-9) {
@@ -183,10 +182,13 @@ Geometric::Output Geometric::Update(const VehicleState& state, const Setpoint& s
   } else {  // exactly upside down relative to F: any horizontal axis will do; take body x
     q_tilt = Eigen::Quaterniond(0, 1, 0, 0);
   }
-  const Eigen::Quaterniond q_yaw = (q * q_tilt).conjugate() * qd;  // about body z (x, y ~ 0)
-  const double yaw_sign = q_yaw.w() >= 0 ? 1 : -1;                 // shortest way round
-  const Eigen::Vector3d error(2 * q_tilt.x(), 2 * q_tilt.y(), 2 * yaw_sign * q_yaw.z());
-  const Eigen::Quaterniond q_ref = q * q_tilt * q_yaw;
+  const Eigen::Quaterniond q_tilted = q * q_tilt;
+  const Eigen::Vector3d x_tilted = q_tilted * Eigen::Vector3d::UnitX();  // world, normal to b3d
+  const double half_yaw =  // half the angle from x_tilted to b1d about b3d, in [-pi/2, pi/2]
+      0.5 * std::atan2(x_tilted.cross(b1d).dot(b3d), x_tilted.dot(b1d));
+  const Eigen::Quaterniond q_yaw(std::cos(half_yaw), 0, 0, std::sin(half_yaw));
+  const Eigen::Vector3d error(2 * q_tilt.x(), 2 * q_tilt.y(), 2 * q_yaw.z());
+  const Eigen::Quaterniond q_ref = q_tilted * q_yaw;
   out.quat_ref = {q_ref.w(), q_ref.x(), q_ref.y(), q_ref.z()};
   if (out.quat_ref[0] < 0) {
     for (double& c : out.quat_ref) c = -c;

@@ -58,6 +58,7 @@ class Geometric {
     double imax_z = 0;                    // m/s^2
     double thrust_max = 0;  // N, collective the tilt limit may use (ranges minus the margin)
     double thrust_min = 0;  // N, least vertical thrust the setpoint may ask for
+    double tan_tilt_max = 0;
   };
   struct Output {
     std::array<double, Mixer::kRotors> ctrl{};   // N, rotor thrust commands
