@@ -252,6 +252,39 @@ def discussion(rows: list[Row]) -> list[str]:
 # The report
 
 
+def _spread(values) -> str:
+    v = [x for x in (values or []) if isinstance(x, (int, float)) and math.isfinite(x)]
+    if not v:
+        return "—"
+    return f"{np.mean(v):.1f} [{min(v):.1f}, {max(v):.1f}]"
+
+
+def motion_lines(rows: list[Row]) -> list[str]:
+    """How much the followers rock in the metric window (summary.json keys of issue 12)."""
+    have = [r for r in rows if ((r.run.summary or {}).get("metrics") or {}).get(
+        "rms_tilt_deg_in_window") is not None]
+    if not have:
+        return []
+    L = ["## Follower motion in the metric window", "",
+         "Per follower, over the metric window: RMS tilt (angle of body z from vertical), the "
+         "dominant frequency of the tilt oscillation (0.3-5 Hz) and the RMS variation of the "
+         "collective thrust (control effort); mean [min, max] over the followers, frequency as "
+         "the median. A point mass never tilts.", "",
+         "| Run | Vehicle model | Attitude plugin | RMS tilt (deg) | Rocking (Hz) | "
+         "RMS thrust variation (N) | Max tilt in window (deg) |", "|---|---|---|---|---|---|---|"]
+    for r in have:
+        m = r.run.summary["metrics"]
+        hz = [x for x in m.get("tilt_oscillation_hz_in_window") or [] if isinstance(x, (int, float))]
+        plugin = (((r.run.summary.get("plugins") or {}).get("attitude") or {}).get("name")) or "—"
+        L.append(f"| `{r.run.name}` | {_esc(r.run.vehicle_model)} | {_esc(plugin)} | "
+                 f"{_spread(m.get('rms_tilt_deg_in_window'))} | "
+                 f"{f'{np.median(hz):.2f}' if hz else '—'} | "
+                 f"{_spread(m.get('rms_thrust_variation_n_in_window'))} | "
+                 f"{fmt(r.run.metric('max_follower_tilt_deg_in_window'), 1)} |")
+    L.append("")
+    return L
+
+
 def _copy(src: Path, dst: Path) -> Path:
     dst.parent.mkdir(parents=True, exist_ok=True)
     shutil.copyfile(src, dst)
@@ -362,6 +395,20 @@ def write_report(results_dir, out_dir) -> Path:
         L.append(f"| `{r.run.name}` | [{r.window[0]:g}, {r.window[1]:g}] | {fmt(r.sigma_summary)} "
                  f"| {fmt(r.sigma_csv)} | {fmt(r.sigma_states)} | {agree} |")
     L.append("")
+
+    # --- inner-loop motion (issue 12)
+    motion = motion_lines(rows)
+    if motion:
+        L.extend(motion)
+    robustness_md = results_dir / "robustness" / "map.md"
+    if robustness_md.is_file():
+        L.append("## Robustness map (experiment × tilt_max × attitude plugin)")
+        L.append("")
+        L.append("From `scripts/robustness_map.sh` (each plugin at its default gains; "
+                 "\"reached\": every follower within 1 m of its slot at the end):")
+        L.append("")
+        L.append(robustness_md.read_text().rstrip("\n"))
+        L.append("")
 
     # --- comparison figure
     comp = plots.fig_sigma_comparison(runs, fig_dir / "sigma_f_all_runs.png",

@@ -40,7 +40,8 @@ double MinimumSeparation(const std::vector<double>& xyz,
 OnlineMetrics::OnlineMetrics(const Simulation& sim)
     : window_{sim.config().metric_window[0], sim.config().metric_window[1]},
       min_separation_(kInf),
-      timestep_(sim.config().timestep) {
+      timestep_(sim.config().timestep),
+      motion_(sim.n_followers(), window_[0], window_[1]) {
   band_ = sim.config().reaching_band;
   if (band_ <= 0) {
     band_ = kDefaultReachingBand;
@@ -94,6 +95,7 @@ double OnlineMetrics::Sample(const Simulation& sim, std::vector<double>* slots, 
         const double cos_tilt = std::clamp(1 - 2 * (q[1] * q[1] + q[2] * q[2]), -1.0, 1.0);
         max_follower_tilt_in_window_ = std::max(max_follower_tilt_in_window_, std::acos(cos_tilt));
       }
+      SampleFollowerMotion(sim, t);
     }
   } else {
     for (int i = 1; i <= nf; ++i) {
@@ -128,6 +130,16 @@ double OnlineMetrics::Sample(const Simulation& sim, std::vector<double>* slots, 
   if (t > last_time_) sample_period_ = t - last_time_;
   last_time_ = t;
   return sigma_f;
+}
+
+void OnlineMetrics::SampleFollowerMotion(const Simulation& sim, double t) {
+  const int na = sim.actuators_per_vehicle();
+  motion_.Begin(t);
+  for (int i = 1; i < sim.n_vehicles(); ++i) {
+    const double* ctrl = &sim.controls()[static_cast<size_t>(i) * na];
+    motion_.Add(i - 1, sim.states()[i].quat,
+                CollectiveForce(ctrl, sim.binding(i).actuator_info.data(), na));
+  }
 }
 
 void OnlineMetrics::StepControls(const Simulation& sim) {
@@ -178,6 +190,7 @@ nlohmann::ordered_json OnlineMetrics::Summary(const Simulation& sim) const {
   m["saturation_time_s"] = static_cast<double>(saturated_steps_) * timestep_;
   // Chattering shows here: a steady formation needs only a few degrees of tilt.
   m["max_follower_tilt_deg_in_window"] = max_follower_tilt_in_window_ * 180.0 / M_PI;
+  motion_.AddTo(&m);
   (void)sim;
   return m;
 }

@@ -142,6 +142,17 @@ TEST(SetupErrorTest, UnknownAttributeListsDeclared) {
                     HasSubstr("its attributes:")));
 }
 
+// A gain the geometric attitude plugin refuses (att_bw above rate_bw / 2 breaks the cascade):
+// FILE:LINE: [attitude], the key and the reason, before the first step.
+TEST(SetupErrorTest, GeometricBadGainNamesFileSectionAndKey) {
+  std::string text = HoverExperiment();
+  text.replace(text.find("plugin = \"pd_cascade\""), 21, "plugin = \"geometric\"\natt_bw = 50.0");
+  ExperimentConfig c = Parse(text, "p.toml");
+  EXPECT_THAT(ErrorOf([&] { Simulation sim(c); }),
+              AllOf(HasSubstr("p.toml:"), HasSubstr("[attitude]"), HasSubstr("'geometric'"),
+                    HasSubstr("att_bw"), HasSubstr("cascade separation")));
+}
+
 TEST(SetupErrorTest, PluginOfWrongKind) {
   std::string text = HoverExperiment();
   text.replace(text.find("[leader]\nplugin = \"hover\""), 25, "[leader]\nplugin = \"pd_cascade\"");

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <mujoco/mujoco.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <string>
@@ -20,8 +21,10 @@ namespace mjf::test {
 
 class VehicleFixture : public ::testing::Test {
  protected:
+  // file: a name in mjcf/, or an absolute path (test-only models).
   void Load(const std::string& file) {
-    const std::string path = std::string(MJF_MJCF_DIR) + "/" + file;
+    const std::string path =
+        file.rfind('/', 0) == 0 ? file : std::string(MJF_MJCF_DIR) + "/" + file;
     char error[1024] = {0};
     m_ = mj_loadXML(path.c_str(), nullptr, error, sizeof(error));
     ASSERT_NE(m_, nullptr) << path << ": " << error;
@@ -96,6 +99,16 @@ class VehicleFixture : public ::testing::Test {
       rotors[k].ctrl_max = m_->actuator_ctrlrange[2 * a + 1];
     }
     return rotors;
+  }
+
+  // Slowest rotor's first-order time constant (dyntype filter), s.
+  double MotorLag() const {
+    double lag = 0;
+    for (int a = 0; a < m_->nu; ++a) {
+      if (m_->actuator_dyntype[a] == mjDYN_FILTER)
+        lag = std::max(lag, m_->actuator_dynprm[mjNDYN * a]);
+    }
+    return lag;
   }
 
   double Mass() const { return m_->body_subtreemass[body_]; }

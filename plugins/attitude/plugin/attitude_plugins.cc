@@ -1,19 +1,22 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
 // Plugin family libmjf_attitude.so: thin adapters from the plugin ABI to the pure controllers
-// PdCascade (quadrotor) and PointMassDirect (double integrator).
+// PdCascade and Geometric (quadrotor) and PointMassDirect (double integrator).
 #include <mjformation/plugin.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <mjformation/plugin_util.hpp>
 #include <string>
 
+#include "mjformation/attitude/geometric.hpp"
 #include "mjformation/attitude/pd_cascade.hpp"
 #include "mjformation/attitude/pointmass_direct.hpp"
 
 namespace {
 
+using mjf::attitude::Geometric;
 using mjf::attitude::Mixer;
 using mjf::attitude::PdCascade;
 using mjf::attitude::PointMassDirect;
@@ -54,6 +57,18 @@ const mjfVehicleInfo& RequireVehicle(const mjfCreateContext* ctx, int n_actuator
   return *ctx->vehicle_info;
 }
 
+std::array<mjf::attitude::RotorGeometry, Mixer::kRotors> ToRotors(const mjfVehicleInfo& info) {
+  std::array<mjf::attitude::RotorGeometry, Mixer::kRotors> rotors;
+  for (int k = 0; k < Mixer::kRotors; ++k) {
+    const mjfActuatorInfo& a = info.actuators[k];
+    for (int i = 0; i < 3; ++i) rotors[k].pos[i] = a.site_pos[i];
+    for (int i = 0; i < 6; ++i) rotors[k].gear[i] = a.gear[i];
+    rotors[k].ctrl_min = a.ctrl_min;
+    rotors[k].ctrl_max = a.ctrl_max;
+  }
+  return rotors;
+}
+
 // ---------------------------------------------------------------------------------------------
 // pd_cascade
 
@@ -66,6 +81,8 @@ constexpr const char* kKpZ = "kp_z";
 constexpr const char* kKiZ = "ki_z";
 constexpr const char* kKdZ = "kd_z";
 constexpr const char* kImaxZ = "imax_z";
+constexpr const char* kDamping = "damping";
+constexpr const char* kAllocation = "allocation";
 
 // Defaults equal PdCascade::Gains{} (checked by tests/vehicle/plugin_test.cc).
 const mjfAttribute kCascadeAttributes[] = {
@@ -78,6 +95,10 @@ const mjfAttribute kCascadeAttributes[] = {
     {kKiZ, "2", "1/s^3: altitude integral gain (0: none)"},
     {kKdZ, "5", "1/s: altitude derivative gain"},
     {kImaxZ, "2", "m/s^2: bound on the altitude integrator's acceleration (anti-windup)"},
+    {kDamping, "body_rates",
+     "roll/pitch damping on 'body_rates' (paper, near hover) or 'euler_rates' (large tilt)"},
+    {kAllocation, "thrust_first",
+     "mixer saturation priority: 'thrust_first' or 'roll_pitch_first' (large tilt)"},
 };
 const char* const kRotorNames[] = {"rotor0", "rotor1", "rotor2", "rotor3"};
 
@@ -106,20 +127,18 @@ void* CascadeCreate(const mjfCreateContext* ctx) {
       Require(s.may_be_zero ? *s.value >= 0 : *s.value > 0, s.key, s.may_be_zero ? ">= 0" : "> 0",
               *s.value);
     }
+    gains.euler_rate_damping =
+        attributes.Choice(kDamping, {"body_rates", "euler_rates"}) == "euler_rates";
+    gains.allocation =
+        attributes.Choice(kAllocation, {"thrust_first", "roll_pitch_first"}) == "roll_pitch_first"
+            ? Mixer::Priority::kRollPitchFirst
+            : Mixer::Priority::kThrustFirst;
     const mjfVehicleInfo& info = RequireVehicle(ctx, Mixer::kRotors);
     PdCascade::Vehicle vehicle;
     vehicle.mass = info.mass;
     vehicle.gravity = info.gravity;
     for (int i = 0; i < 3; ++i) vehicle.inertia[i] = info.inertia[i];
-    std::array<mjf::attitude::RotorGeometry, Mixer::kRotors> rotors;
-    for (int k = 0; k < Mixer::kRotors; ++k) {
-      const mjfActuatorInfo& a = info.actuators[k];
-      for (int i = 0; i < 3; ++i) rotors[k].pos[i] = a.site_pos[i];
-      for (int i = 0; i < 6; ++i) rotors[k].gear[i] = a.gear[i];
-      rotors[k].ctrl_min = a.ctrl_min;
-      rotors[k].ctrl_max = a.ctrl_max;
-    }
-    return new CascadeInstance{ctx->vehicle, PdCascade(gains, vehicle, rotors)};
+    return new CascadeInstance{ctx->vehicle, PdCascade(gains, vehicle, ToRotors(info))};
   });
 }
 
@@ -155,6 +174,108 @@ const mjfPlugin kPdCascade = {
     CascadeCompute,
     CascadeReset,
     CascadeDestroy,
+    nullptr};
+
+// ---------------------------------------------------------------------------------------------
+// geometric
+
+constexpr const char* kRateBw = "rate_bw";
+constexpr const char* kAttBw = "att_bw";
+constexpr const char* kYawBw = "yaw_bw";
+constexpr const char* kZBw = "z_bw";
+constexpr const char* kRateKi = "rate_ki";
+constexpr const char* kThrustMargin = "thrust_margin";
+
+// Defaults equal Geometric::Gains{} (checked by tests/vehicle/plugin_test.cc); 0 = derived from
+// the vehicle info (motor lag, inertia, mass, rotor limits).
+const mjfAttribute kGeometricAttributes[] = {
+    {kTiltMax, "0.78", "rad: limit on the angle of the thrust vector from the vertical"},
+    {kRateBw, "0", "rad/s: body-rate loop crossover (0: 0.9 / (motor lag + 2 timesteps))"},
+    {kAttBw, "0", "rad/s: roll/pitch attitude loop bandwidth (0: rate_bw / 4)"},
+    {kYawBw, "0", "rad/s: yaw attitude loop bandwidth (0: att_bw / 2)"},
+    {kZBw, "0", "rad/s: altitude loop natural frequency (0: att_bw / 2.5)"},
+    {kRateKi, "0.1", "rate integral zero as a fraction of rate_bw (0: no integral, <= 0.5)"},
+    {kThrustMargin, "0.1", "fraction of the rotors' total thrust kept for torque (0 .. 0.5)"},
+};
+
+struct GeometricInstance {
+  int vehicle;
+  Geometric controller;
+};
+
+void* GeometricCreate(const mjfCreateContext* ctx) {
+  return mjf::plugin::CreateOrExplain(ctx, [ctx]() -> void* {
+    const Attributes attributes(ctx);
+    Geometric::Gains gains;
+    gains.tilt_max = attributes.Number(kTiltMax);
+    Require(gains.tilt_max > 0 && gains.tilt_max < M_PI / 2, kTiltMax, "0 < tilt_max < pi/2",
+            gains.tilt_max);
+    const struct {
+      const char* key;
+      double* value;
+    } bandwidths[] = {{kRateBw, &gains.rate_bw},
+                      {kAttBw, &gains.att_bw},
+                      {kYawBw, &gains.yaw_bw},
+                      {kZBw, &gains.z_bw}};
+    for (const auto& b : bandwidths) {
+      *b.value = attributes.Number(b.key);
+      Require(*b.value >= 0, b.key, ">= 0 (0: derived from the vehicle)", *b.value);
+    }
+    gains.rate_ki = attributes.Number(kRateKi);
+    Require(gains.rate_ki >= 0 && gains.rate_ki <= 0.5, kRateKi, "0 <= rate_ki <= 0.5",
+            gains.rate_ki);
+    gains.thrust_margin = attributes.Number(kThrustMargin);
+    Require(gains.thrust_margin >= 0 && gains.thrust_margin < 0.5, kThrustMargin,
+            "0 <= thrust_margin < 0.5", gains.thrust_margin);
+    const mjfVehicleInfo& info = RequireVehicle(ctx, Mixer::kRotors);
+    Geometric::Vehicle vehicle;
+    vehicle.mass = info.mass;
+    vehicle.gravity = info.gravity;
+    for (int i = 0; i < 3; ++i) vehicle.inertia[i] = info.inertia[i];
+    for (int k = 0; k < Mixer::kRotors; ++k) {
+      vehicle.motor_lag = std::max(vehicle.motor_lag, info.actuators[k].time_constant);
+    }
+    vehicle.timestep = ctx->timestep;
+    // Geometric's own checks (derived bandwidths, hover authority) throw invalid_argument
+    // naming the key; CreateOrExplain passes the message on.
+    return new GeometricInstance{ctx->vehicle, Geometric(gains, vehicle, ToRotors(info))};
+  });
+}
+
+int GeometricCompute(void* instance, const mjfStepContext* ctx) {
+  auto* self = static_cast<GeometricInstance*>(instance);
+  if (self->vehicle >= ctx->n_vehicles || !ctx->controls) {
+    return mjf::plugin::Fail(ctx, "no controls for this vehicle");
+  }
+  mjf::attitude::Setpoint setpoint;
+  if (!ToSetpoint(ctx->setpoints[self->vehicle], &setpoint)) {
+    return mjf::plugin::Fail(ctx, "non-finite setpoint (acc, pos[2], vel[2] or yaw)", 2);
+  }
+  const Geometric::Output out =
+      self->controller.Update(ToState(ctx->states[self->vehicle]), setpoint, ctx->timestep);
+  for (int k = 0; k < Mixer::kRotors; ++k) ctx->controls[k] = out.ctrl[k];
+  return 0;
+}
+
+void GeometricReset(void* instance) {
+  static_cast<GeometricInstance*>(instance)->controller.Reset();
+}
+void GeometricDestroy(void* instance) { delete static_cast<GeometricInstance*>(instance); }
+
+const mjfPlugin kGeometric = {
+    MJF_ABI_VERSION,
+    "geometric",
+    MJF_KIND_ATTITUDE,
+    "quadrotor: acceleration -> thrust vector (nonlinear, tilt limit with altitude priority) -> "
+    "quaternion attitude -> body-rate PI -> mixer keeping roll/pitch; gains from the vehicle",
+    static_cast<int>(sizeof(kGeometricAttributes) / sizeof(kGeometricAttributes[0])),
+    kGeometricAttributes,
+    Mixer::kRotors,
+    kRotorNames,
+    GeometricCreate,
+    GeometricCompute,
+    GeometricReset,
+    GeometricDestroy,
     nullptr};
 
 // ---------------------------------------------------------------------------------------------
@@ -219,4 +340,4 @@ const mjfPlugin kPointMassDirect = {
 
 }  // namespace
 
-MJF_EXPORT_PLUGINS(&kPdCascade, &kPointMassDirect)
+MJF_EXPORT_PLUGINS(&kPdCascade, &kGeometric, &kPointMassDirect)

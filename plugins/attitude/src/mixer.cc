@@ -46,7 +46,71 @@ double Mixer::MaxScale(const Eigen::Vector4d& base, const Eigen::Vector4d& delta
   return std::max(s, 0.0);
 }
 
-Mixer::Result Mixer::Mix(const Wrench& wanted) const {
+bool Mixer::ThrustInterval(const Eigen::Vector4d& extra, double* lo, double* hi) const {
+  *lo = -INFINITY;
+  *hi = INFINITY;
+  for (int k = 0; k < kRotors; ++k) {
+    const double c = inverse_(k, 0);  // rotor k's share of one newton of collective
+    const double below = ctrl_min_[k] - extra[k], above = ctrl_max_[k] - extra[k];
+    if (c > 0) {
+      *lo = std::max(*lo, below / c);
+      *hi = std::min(*hi, above / c);
+    } else if (c < 0) {
+      *lo = std::max(*lo, above / c);
+      *hi = std::min(*hi, below / c);
+    } else if (below > 0 || above < 0) {
+      return false;
+    }
+  }
+  return *lo <= *hi;
+}
+
+Mixer::Result Mixer::MixRollPitchFirst(const Wrench& wanted) const {
+  Result result;
+  const Eigen::Vector4d u_roll_pitch = inverse_.col(1) * wanted[1] + inverse_.col(2) * wanted[2];
+  const Eigen::Vector4d u_yaw = inverse_.col(3) * wanted[3];
+  double lo = 0, hi = 0;
+  // Largest fraction s of the roll/pitch torque that fits at some collective t. With every rotor
+  // adding to the collective (c_k = inverse_(k, 0) > 0) rotor k allows
+  // t in [(min_k - s r_k) / c_k, (max_k - s r_k) / c_k]; the intervals meet iff for every pair
+  // (k, j): s (r_j / c_j - r_k / c_k) <= max_j / c_j - min_k / c_k. Closed form, no allocation.
+  double s = 1;
+  if (!ThrustInterval(u_roll_pitch, &lo, &hi)) {
+    bool all_positive = true;
+    for (int k = 0; k < kRotors; ++k) all_positive &= inverse_(k, 0) > 0;
+    if (all_positive) {
+      for (int k = 0; k < kRotors; ++k) {
+        for (int j = 0; j < kRotors; ++j) {
+          const double a = u_roll_pitch[j] / inverse_(j, 0) - u_roll_pitch[k] / inverse_(k, 0);
+          if (a > 0) {
+            s = std::min(s, (ctrl_max_[j] / inverse_(j, 0) - ctrl_min_[k] / inverse_(k, 0)) / a);
+          }
+        }
+      }
+      s = std::max(s, 0.0);
+    } else {
+      // Other geometries: feasibility is monotone in s (a convex set containing s = 0): bisect.
+      double feasible = 0, infeasible = 1;
+      for (int i = 0; i < 50; ++i) {
+        const double mid = 0.5 * (feasible + infeasible);
+        (ThrustInterval(mid * u_roll_pitch, &lo, &hi) ? feasible : infeasible) = mid;
+      }
+      s = feasible;
+    }
+  }
+  result.roll_pitch_scale = s;
+  if (s < 1) ThrustInterval(s * u_roll_pitch, &lo, &hi);  // else [lo, hi] is already for s = 1
+  result.thrust = std::clamp(wanted[0], lo, hi);  // the collective closest to the wanted one
+  result.thrust_saturated = result.thrust != wanted[0];
+  Eigen::Vector4d u = inverse_.col(0) * result.thrust + s * u_roll_pitch;
+  result.yaw_scale = MaxScale(u, u_yaw);
+  u += result.yaw_scale * u_yaw;
+  for (int k = 0; k < kRotors; ++k) result.ctrl[k] = std::clamp(u[k], ctrl_min_[k], ctrl_max_[k]);
+  return result;
+}
+
+Mixer::Result Mixer::Mix(const Wrench& wanted, Priority priority) const {
+  if (priority == Priority::kRollPitchFirst) return MixRollPitchFirst(wanted);
   Result result;
   // Split u = B^-1 w into the parts of thrust, roll/pitch torque and yaw torque.
   const Eigen::Vector4d u_thrust = inverse_.col(0) * wanted[0];
@@ -55,6 +119,7 @@ Mixer::Result Mixer::Mix(const Wrench& wanted) const {
 
   const double thrust_scale = MaxScale(Eigen::Vector4d::Zero(), u_thrust);
   result.thrust_saturated = thrust_scale < 1;
+  result.thrust = thrust_scale * wanted[0];
   Eigen::Vector4d u = thrust_scale * u_thrust;
   result.roll_pitch_scale = MaxScale(u, u_roll_pitch);
   u += result.roll_pitch_scale * u_roll_pitch;

@@ -35,6 +35,16 @@ PdCascade::PdCascade(const Gains& gains, const Vehicle& vehicle,
     throw std::invalid_argument("tilt_max must be in (0, pi/2) rad (got " +
                                 std::to_string(gains.tilt_max) + ")");
   }
+  const bool fixed =
+      gains.euler_rate_damping && gains.allocation == Mixer::Priority::kRollPitchFirst;
+  if (gains.tilt_max > kMaxTiltUnfixed && !fixed) {
+    throw std::invalid_argument(
+        "tilt_max " + std::to_string(gains.tilt_max) + " rad is above " +
+        std::to_string(kMaxTiltUnfixed) +
+        " rad: with body-rate damping and thrust-first allocation a follower flips there (Exp 2 "
+        "flips at 0.70 rad and above; docs/DISCUSSION.md). Set damping = \"euler_rates\" and "
+        "allocation = \"roll_pitch_first\", or use the geometric plugin");
+  }
   RequirePositive(gains.kp_att, "kp_att");
   RequirePositive(gains.kd_att, "kd_att");
   RequirePositive(gains.kp_yaw, "kp_yaw");
@@ -66,12 +76,21 @@ PdCascade::Output PdCascade::Update(const VehicleState& state, const Setpoint& s
   out.roll_ref = roll_ref;
   out.pitch_ref = pitch_ref;
 
-  // PD attitude (Fig. 2 inner loop): body rates stand for Euler rates near hover.
+  // PD attitude (Fig. 2 inner loop). By default the body rates stand for the Euler rates, which
+  // holds near hover only: tilted by theta and yawing at r, the roll angle also moves at
+  // r cos(phi) tan(theta), which body-rate damping does not see. euler_rate_damping damps the
+  // true ZYX Euler rates: phi' = p + (q sin phi + r cos phi) tan theta,
+  // theta' = q cos phi - r sin phi.
   const Vec3& rate = state.gyro;
+  double roll_rate = rate[0], pitch_rate = rate[1];
+  if (gains_.euler_rate_damping) {
+    roll_rate = rate[0] + (rate[1] * std::sin(roll) + rate[2] * std::cos(roll)) * std::tan(pitch);
+    pitch_rate = rate[1] * std::cos(roll) - rate[2] * std::sin(roll);
+  }
   out.torque[0] =
-      vehicle_.inertia[0] * (gains_.kp_att * (roll_ref - roll) - gains_.kd_att * rate[0]);
+      vehicle_.inertia[0] * (gains_.kp_att * (roll_ref - roll) - gains_.kd_att * roll_rate);
   out.torque[1] =
-      vehicle_.inertia[1] * (gains_.kp_att * (pitch_ref - pitch) - gains_.kd_att * rate[1]);
+      vehicle_.inertia[1] * (gains_.kp_att * (pitch_ref - pitch) - gains_.kd_att * pitch_rate);
   out.torque[2] =
       vehicle_.inertia[2] * (gains_.kp_yaw * WrapPi(setpoint.yaw - yaw) - gains_.kd_yaw * rate[2]);
 
@@ -82,12 +101,14 @@ PdCascade::Output PdCascade::Update(const VehicleState& state, const Setpoint& s
   const double tilt_cos = std::max(std::cos(roll) * std::cos(pitch), std::cos(gains_.tilt_max));
   out.thrust = std::max(0.0, vehicle_.mass * (g + az) / tilt_cos);
 
-  out.mix = mixer_.Mix(Wrench(out.thrust, out.torque[0], out.torque[1], out.torque[2]));
+  out.mix = mixer_.Mix(Wrench(out.thrust, out.torque[0], out.torque[1], out.torque[2]),
+                       gains_.allocation);
   out.ctrl = out.mix.ctrl;
 
   // Anti-windup: clamp, and do not integrate further into a saturated thrust.
   const bool pushing_saturation =
-      (out.mix.thrust_saturated && z_error > 0) || (out.thrust <= 0 && z_error < 0);
+      (out.mix.thrust_saturated && out.mix.thrust < out.thrust && z_error > 0) ||
+      ((out.thrust <= 0 || out.mix.thrust > out.thrust) && z_error < 0);
   if (!pushing_saturation) {
     integral_z_ =
         std::clamp(integral_z_ + gains_.ki_z * z_error * dt, -gains_.imax_z, gains_.imax_z);

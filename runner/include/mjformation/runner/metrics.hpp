@@ -9,6 +9,8 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
+#include "mjformation/runner/follower_motion.hpp"
+
 namespace mjf::runner {
 
 class Simulation;
@@ -25,6 +27,8 @@ class OnlineMetrics {
   nlohmann::ordered_json Summary(const Simulation& sim) const;
 
  private:
+  void SampleFollowerMotion(const Simulation& sim, double t);  // in the window, record ticks
+
   double window_[2];
   double band_;  // |s| band defining "reached"
   std::vector<double> follower_pv_, leader_pv_, shape_now_, sort_buffer_;
@@ -43,6 +47,7 @@ class OnlineMetrics {
   long saturated_steps_ = 0;
   double max_follower_tilt_in_window_ = 0;  // rad
   double timestep_;
+  FollowerMotion motion_;  // issue 12: RMS tilt, rocking frequency, thrust variation
 };
 
 // Smallest distance between any two of the points (x, y, z triples), O(N log N) by a sweep on x.

@@ -1,8 +1,8 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
 // Control allocation of a quadrotor: collective thrust and body torques <-> four rotor thrusts,
-// built from the rotor geometry (site position and actuator gear), with saturation that keeps
-// thrust first, then roll/pitch, then yaw.
+// built from the rotor geometry (site position and actuator gear), with a choice of what
+// saturation keeps first (Priority): yaw is always given up first.
 #ifndef MJFORMATION_ATTITUDE_MIXER_HPP_
 #define MJFORMATION_ATTITUDE_MIXER_HPP_
 
@@ -41,20 +41,36 @@ class Mixer {
   const Eigen::Matrix4d& inverse() const { return inverse_; }
   double condition_number() const { return condition_; }
 
+  // What Mix() keeps when the rotors cannot deliver the whole wrench.
+  enum class Priority {
+    // Collective thrust (scaled into range), then roll/pitch (scaled together), then yaw. At full
+    // thrust no rotor can speed up, so roll/pitch authority is lost (pd_cascade's historic mode).
+    kThrustFirst,
+    // Roll/pitch torque (scaled together, direction kept, only as far as the rotor ranges are too
+    // narrow for it at ANY collective), then the collective moved as little as possible to make
+    // room for it, then yaw. The vehicle keeps its attitude and gives up some thrust (PX4's
+    // desaturation idea): a quadrotor that loses attitude authority flips.
+    kRollPitchFirst,
+  };
+
   struct Result {
     std::array<double, kRotors> ctrl{};  // N, within [ctrl_min, ctrl_max]
-    bool thrust_saturated = false;       // the collective thrust was cut
+    bool thrust_saturated = false;       // the collective thrust was changed (cut or raised)
+    double thrust = 0;                   // N, collective thrust delivered
     double roll_pitch_scale = 1;         // fraction of the roll/pitch torque delivered
     double yaw_scale = 1;                // fraction of the yaw torque delivered
   };
 
-  // Rotor controls for a wanted wrench. Priority when saturating: collective thrust, then the
-  // roll/pitch torque (scaled down together, direction kept), then the yaw torque.
-  Result Mix(const Wrench& wanted) const;
+  // Rotor controls for a wanted wrench; what is kept when saturating: see Priority.
+  Result Mix(const Wrench& wanted, Priority priority = Priority::kThrustFirst) const;
 
  private:
   // Largest s in [0, 1] with base + s * delta inside the control ranges.
   double MaxScale(const Eigen::Vector4d& base, const Eigen::Vector4d& delta) const;
+  // Collectives t (N) with t * inverse_.col(0) + extra inside the control ranges: [*lo, *hi];
+  // false when there is none.
+  bool ThrustInterval(const Eigen::Vector4d& extra, double* lo, double* hi) const;
+  Result MixRollPitchFirst(const Wrench& wanted) const;
 
   Eigen::Matrix4d allocation_;
   Eigen::Matrix4d inverse_;

@@ -28,7 +28,14 @@ class PdCascade {
     double ki_z = 2;         // 1/s^3
     double kd_z = 5;         // 1/s
     double imax_z = 2;       // m/s^2, bound on the altitude integrator's acceleration
+    // The two large-tilt fixes (docs/DISCUSSION.md, "Why pd_cascade flips"); off by default so
+    // the experiments' results stay as published. Both are needed above kMaxTiltUnfixed.
+    bool euler_rate_damping = false;  // damp the Euler-angle rates, not the body rates p, q
+    Mixer::Priority allocation = Mixer::Priority::kThrustFirst;
   };
+  // Largest tilt_max accepted without both fixes: Exp 2 flips a follower at 0.70 rad and above
+  // with body-rate damping and thrust-first allocation (measured, docs/DISCUSSION.md).
+  static constexpr double kMaxTiltUnfixed = 0.65;
   struct Vehicle {
     double mass = 0;     // kg
     double gravity = 0;  // m/s^2, magnitude
@@ -43,7 +50,8 @@ class PdCascade {
   };
 
   // Throws std::invalid_argument on a non-positive mass, gravity, inertia or gain (ki_z, imax_z
-  // may be 0), tilt_max outside (0, pi/2), or a singular allocation.
+  // may be 0), tilt_max outside (0, pi/2), tilt_max above kMaxTiltUnfixed without both large-tilt
+  // fixes, or a singular allocation.
   PdCascade(const Gains& gains, const Vehicle& vehicle,
             const std::array<RotorGeometry, Mixer::kRotors>& rotors);
 
