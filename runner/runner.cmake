@@ -4,6 +4,7 @@ add_library(mjf_runner STATIC
   ${CMAKE_CURRENT_SOURCE_DIR}/src/cli.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/config.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/interrupt.cc
+  ${CMAKE_CURRENT_SOURCE_DIR}/src/leader_acceleration.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/metrics.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/output.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/paths.cc

@@ -291,6 +291,7 @@ ExperimentConfig ParseExperiment(const std::string& text, const std::string& pat
   }
   c.paper_experiment = static_cast<int>(run.Integer("paper_experiment", 0));
   c.reaching_band = run.Number("reaching_band", 0.0);
+  c.record_leader_acceleration = run.Bool("record_leader_acceleration", false);
   if (const toml::array* a = run.Array("plugin_path")) {
     for (const toml::node& item : *a) {
       auto v = item.value_exact<std::string>();

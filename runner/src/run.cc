@@ -17,6 +17,7 @@
 #include "mjformation/core/metrics.hpp"
 #include "mjformation/core/shape.hpp"
 #include "mjformation/render.hpp"
+#include "mjformation/runner/leader_acceleration.hpp"
 #include "mjformation/runner/metrics.hpp"
 #include "mjformation/runner/output.hpp"
 #include "mjformation/runner/simulation.hpp"
@@ -152,7 +153,11 @@ RunResult RunExperiment(const ExperimentConfig& config, const RunOptions& option
     dir = std::make_unique<RunDirectory>(options.out_dir, options.overwrite);
     dir->WriteText("config.toml", ConfigEcho(config));
     dir->WriteText("scene.xml", sim.scene_xml());
-    if (options.record) csv = std::make_unique<TimeseriesWriter>(dir->Path("timeseries.csv"), n);
+    if (options.record) {
+      std::vector<std::string> extra;  // issue 9: measured leader acceleration, when switched on
+      if (config.record_leader_acceleration) extra = {"leader_ax", "leader_ay"};
+      csv = std::make_unique<TimeseriesWriter>(dir->Path("timeseries.csv"), n, extra);
+    }
   }
 
   const bool want_snapshots = dir && options.render && !config.render.snapshots.empty();
@@ -179,6 +184,7 @@ RunResult RunExperiment(const ExperimentConfig& config, const RunOptions& option
   TrailKeeper trails(n, config.render.trail_seconds, trail_every * dt);
 
   OnlineMetrics metrics(sim);
+  LeaderAccelerationMonitor leader_acceleration(sim);
   std::vector<double> slots(2 * static_cast<size_t>(n));
   nlohmann::ordered_json snapshot_files = nlohmann::ordered_json::array();
   ProgressLine progress(options.progress, config.name, config.duration);
@@ -188,6 +194,7 @@ RunResult RunExperiment(const ExperimentConfig& config, const RunOptions& option
   try {
     for (int64_t step = 0; step <= sim.total_steps(); ++step) {
       sim.ComputeControls();
+      leader_acceleration.Step(sim);
       const bool record_tick = step % record_every == 0 || step == sim.total_steps();
       const bool snapshot_tick =
           want_snapshots &&
@@ -195,7 +202,11 @@ RunResult RunExperiment(const ExperimentConfig& config, const RunOptions& option
       const bool video_tick = want_video && step % video_every == 0;
       if (record_tick || snapshot_tick || video_tick) {
         const double sigma_f = metrics.Sample(sim, &slots, record_tick);
-        if (record_tick && csv) csv->Write(sim, sigma_f, slots);
+        if (record_tick && csv) {
+          csv->Write(
+              sim, sigma_f, slots,
+              config.record_leader_acceleration ? leader_acceleration.current().data() : nullptr);
+        }
         progress.Update(sim.time(), sigma_f, start);
       }
       metrics.StepControls(sim);
@@ -263,6 +274,7 @@ RunResult RunExperiment(const ExperimentConfig& config, const RunOptions& option
   nlohmann::ordered_json report = nlohmann::ordered_json::object();
   for (const auto& [k, v] : sim.FormationReport()) report[k] = JsonNumber(v);
   s["plugin_report"] = report;
+  s["leader_acceleration"] = leader_acceleration.Summary();
   s["snapshots"] = snapshot_files;
   // Timing varies run to run; it is the only part of the run directory that does.
   s["timing"] = {
