@@ -58,6 +58,7 @@ TEST(LeaderAccelerationTest, InsideTheBoundsMeasuredExactlyAndNoNewColumnsByDefa
   EXPECT_NEAR(a["x_min"].get<double>(), -1.0, 1e-9);
   EXPECT_EQ(a["fraction_outside"].get<double>(), 0.0);
   EXPECT_TRUE(a["first_violation_time_s"].is_null());
+  EXPECT_LT(a["max_excess"].get<double>(), 1e-9);
   EXPECT_TRUE(a["assumption1_holds"].get<bool>());
   const std::string csv = ReadFile(dir + "/timeseries.csv");
   EXPECT_EQ(csv.find("leader_a"), std::string::npos);
@@ -72,6 +73,7 @@ TEST(LeaderAccelerationTest, OutsideTheBoundsReportedWithFirstTimeAndColumns) {
   // bang_bang is always at +-1.5: every step is outside [-1, 1], from the first one.
   EXPECT_EQ(a["fraction_outside"].get<double>(), 1.0);
   EXPECT_EQ(a["first_violation_time_s"].get<double>(), 0.0);
+  EXPECT_NEAR(a["max_excess"].get<double>(), 0.5, 1e-9);
   const std::string csv = ReadFile(dir + "/timeseries.csv");
   const std::string header = csv.substr(0, csv.find('\n'));
   EXPECT_THAT(header, ::testing::EndsWith(",leader_ax,leader_ay"));

@@ -7,6 +7,7 @@
 #define MJFORMATION_RUNNER_LEADER_ACCELERATION_HPP_
 
 #include <array>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -26,7 +27,8 @@ class LeaderAccelerationMonitor {
   // The latest measured horizontal acceleration (m/s^2); NaN before the second step.
   const std::array<double, 2>& current() const { return current_; }
   // summary.json "leader_acceleration": per-axis min/max, the bounds and where they come from,
-  // the fraction of time outside them and the first time Assumption 1 is broken (null: never).
+  // the fraction of time outside them, the largest excess beyond them and the first time
+  // Assumption 1 is broken (null: never).
   nlohmann::ordered_json Summary() const;
 
   // Tolerance on the bounds (m/s^2): the finite difference of a body commanded exactly at a
@@ -44,6 +46,7 @@ class LeaderAccelerationMonitor {
   std::array<double, 2> current_;
   std::array<double, 2> min_, max_;
   long samples_ = 0, outside_ = 0;
+  double max_excess_ = -std::numeric_limits<double>::infinity();
   double first_violation_time_ = -1;
 };
 
