@@ -51,7 +51,34 @@ def mean_ci(values) -> tuple[float, float]:
 class SlidingStats:
     reaching_time: float = NAN  # s: the runner's (after it every |s_i| stays in its band)
     max_window: float = NAN     # max |s_i| over followers, axes and the metric window (m/s)
-    ratio: float = NAN          # max_window / Delta (discrete protocols)
+    ratio: float = NAN          # max_window / Delta, Delta the largest band (plugin's report)
+    ratio_own: float = NAN      # max over followers of max |s_i| / Delta_i (own band each)
+
+
+def follower_bands(run: Run) -> dict | None:
+    """Theorem 2's Delta_i per follower (eqs. (49)-(50)), transcribed here from the run's
+    config.toml (not the plugin's report, which gives only the largest):
+    Delta_i = max((eps T + a_i0 k2 T (u_max - u_min) + eta0) / (2 - qT),
+                  eps T + a_i0 k2 T (u_max - u_min)). None unless the protocol is discrete."""
+    if not plots._is_discrete(run) or not run.config:
+        return None
+    f = run.config.get("formation") or {}
+    topo = run.config.get("topology") or {}
+    k2 = float((f.get("k") or [3.0, 1.0])[1])
+    eps, q = float(f.get("eps", 0.05)), float(f.get("q", 4.5))
+    T, eta0 = float(f.get("period", 0.05)), float(f.get("eta0", 1e-6))
+    span = float(f.get("u_max", 1.0)) - float(f.get("u_min", -1.0))
+    links = topo.get("leader_links") or []
+    weights = topo.get("leader_weights") or [1.0] * len(links)
+    a0 = {int(i): float(w) for i, w in zip(links, weights)}
+    ts = run.timeseries
+    if ts is None:
+        return None
+    bands = {}
+    for i in M.followers(ts):
+        lead = a0.get(i, 0.0) * k2 * T * span
+        bands[i] = max((eps * T + lead + eta0) / (2.0 - q * T), eps * T + lead)
+    return bands
 
 
 def sliding_stats(run: Run) -> SlidingStats:
@@ -65,19 +92,24 @@ def sliding_stats(run: Run) -> SlidingStats:
     if ts is None:
         return out
     mask = M.window_mask(ts["t"], M.metric_window(run.summary, run.config))
-    worst, seen = 0.0, False
+    bands = follower_bands(run)
+    worst, worst_own, seen = 0.0, 0.0, False
     for i in M.followers(ts):
         for axis in ("x", "y"):
             s = ts.get(f"uav{i}_s{axis}")
             if s is None or not np.isfinite(s[mask]).any():
                 continue
             seen = True
-            worst = max(worst, float(np.nanmax(np.abs(s[mask]))))
+            m = float(np.nanmax(np.abs(s[mask])))
+            worst = max(worst, m)
+            if bands:
+                worst_own = max(worst_own, m / bands[i])
     if not seen:
         return out
     delta = run.plugin_report("delta")
     out.max_window = worst
     out.ratio = worst / delta if plots._is_discrete(run) and math.isfinite(delta) else NAN
+    out.ratio_own = worst_own if bands else NAN
     return out
 
 
@@ -121,9 +153,9 @@ def leader_acc(run: Run) -> dict:
 def table(cells: dict) -> list[str]:
     L = ["| Protocol | Leader | Vehicle | Runs | Mean σ_f on [25, 40] s (± 95 % CI) | "
          "Reaching time (s) | Max \\|s_i\\| on [25, 40] s | Max \\|s_i\\|/Δ on [25, 40] s | "
-         "Formation reached | Leader acc. outside [u_min, u_max]: time fraction, max excess "
-         "(m/s²) |",
-         "|---|---|---|---|---|---|---|---|---|---|"]
+         "Max \\|s_i\\|/Δ_i (own band) | Formation reached | Leader acc. outside "
+         "[u_min, u_max]: time fraction, max excess (m/s²) |",
+         "|---|---|---|---|---|---|---|---|---|---|---|"]
     order = {p: k for k, p in enumerate(PROTOCOLS)}
     for key in sorted(cells, key=lambda k: (k[2] != "quadrotor", LEADERS.index(k[1]),
                                             order[k[0]])):
@@ -149,6 +181,7 @@ def table(cells: dict) -> list[str]:
             PROTOCOLS[c.protocol], c.leader, c.vehicle, runs_cell, _fmt_ci(*sig), reach_cell,
             _fmt(max((s.max_window for s in stats), default=NAN)),
             _fmt(max((s.ratio for s in stats), default=NAN)),
+            _fmt(max((s.ratio_own for s in stats), default=NAN)),
             f"{reached}/{len(complete)}", acc_cell]) + " |")
     return L
 
@@ -361,7 +394,9 @@ def section(results_dir: Path, out_dir: Path) -> list[str]:
                  "stays inside Δ for the discrete protocol, 0.1 for the others; 'never' when it "
                  "does not). The band is tested on the window [25, 40] s, long after any "
                  "reaching phase: max |s_i| there over every follower and axis, and its ratio "
-                 "to Δ (the plugin's, the largest over followers). A reaching time defined from "
+                 "to Δ (the plugin's, the largest over followers) and to each follower's own "
+                 "Δ_i (eqs. (49)-(50) recomputed from config.toml: followers without a leader "
+                 "link have Δ_i = εT only). A reaching time defined from "
                  "the band itself would make 'after reaching' ≤ Δ by construction (last exit) "
                  "or be fooled by s_i crossing zero during the transient (first entry). "
                  f"Formation reached: max final slot error < {FORMATION_TOLERANCE_M:g} m. "

@@ -16,9 +16,13 @@ def _run(s1x, s1y, delta=0.1, discrete=True):
     t = np.arange(len(s1x)) * 0.01
     summary = {"complete": True, "plugin_report": {"delta": delta},
                "plugins": {"formation": {"name": "smc_discrete" if discrete else "smc_continuous"}}}
-    run = Run(path=Path("/nonexistent/run"), summary=summary)
+    config = {"formation": {"k": [3.0, 1.0], "eps": 0.05, "q": 4.5, "period": 0.05,
+                            "u_min": -1.0, "u_max": 1.0},
+              "topology": {"leader_links": [1]}}
+    run = Run(path=Path("/nonexistent/run"), summary=summary, config=config)
     run._ts = {"t": t, "uav0_px": 0 * t, "uav1_px": 0 * t, "uav1_sx": np.asarray(s1x, float),
-               "uav1_sy": np.asarray(s1y, float)}
+               "uav1_sy": np.asarray(s1y, float), "uav2_px": 0 * t,
+               "uav2_sx": np.full(len(t), 0.005), "uav2_sy": 0 * t}
     return run
 
 
@@ -31,6 +35,9 @@ def test_band_tested_on_the_window_against_delta():
     s = leaders.sliding_stats(_run(sx, sy))
     assert s.max_window == pytest.approx(0.25)
     assert s.ratio == pytest.approx(2.5)
+    # Follower 2 has no leader link: Delta_2 = eps T = 0.0025, and |s_2| = 0.005 is twice it;
+    # follower 1's own band is Delta2 = eps T + k2 T (u_max - u_min) = 0.1025.
+    assert s.ratio_own == pytest.approx(max(0.25 / 0.1025, 2.0))
     assert math.isnan(s.reaching_time)  # no reaching_time_s in the summary
 
 
@@ -38,8 +45,8 @@ def test_continuous_has_no_ratio():
     n = 4100
     s = leaders.sliding_stats(_run(np.full(n, 0.002), np.zeros(n), delta=float("nan"),
                                    discrete=False))
-    assert s.max_window == pytest.approx(0.002)
-    assert math.isnan(s.ratio)
+    assert s.max_window == pytest.approx(0.005)  # follower 2's
+    assert math.isnan(s.ratio) and math.isnan(s.ratio_own)
 
 
 def test_mean_ci_student_t():
