@@ -3,16 +3,20 @@
 # and the point mass (seeded leaders with seeds 1-5), sigma_f against the sample period T
 # (12 periods, 0.005-0.2 s, circle and bang_bang leaders), the theory curves of
 # leader_theory_test, and the report section: RESULTS/report/leaders.md.
-# Usage: scripts/leader_study.sh [--out DIR] [--jobs N]   (default DIR: results, N: 2)
+# Usage: scripts/leader_study.sh [--out DIR] [--jobs N] [--no-report]
+#   (default DIR: results, N: 2; --no-report: runs only, for scripts/reproduce.sh, whose
+#   report.py includes the same section)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 out=$root/results
 jobs=2
+report=1
 while (($#)); do
   case $1 in
     --out) out=$2; shift ;;
     --jobs) jobs=$2; shift ;;
-    -h|--help) sed -n 2,6p "$0"; exit 0 ;;
+    --no-report) report=0 ;;
+    -h|--help) sed -n 2,8p "$0"; exit 0 ;;
     *) echo "leader_study.sh: unknown argument '$1' (try --help)" >&2; exit 2 ;;
   esac
   shift
@@ -80,6 +84,8 @@ echo "leader_study: theory curves (model (40)) into $out/leaders/theory_curves.t
 "$root/build/tests/formation/leader_theory_test" \
   --gtest_filter='*CurvesLeaderOutsideTheBoundsAndMisdeclaredBounds' >"$out/leaders/theory_curves.txt" || status=1
 
-/usr/bin/python3 "$root/analysis/leader_report.py" "$out" --out "$out/report"
+if [ $report = 1 ]; then
+  /usr/bin/python3 "$root/analysis/leader_report.py" "$out" --out "$out/report"
+fi
 echo "leader_study: $(( $(date +%s) - start )) s in all"
 exit $status
