@@ -124,7 +124,7 @@ DiscreteOutcome RunDiscrete(const LeaderLaw& leader_law, double T, double u_min,
         TheoremTwoBand(w.graph.leader_weight(i), p.gains.k2, p.eps, p.q, p.eta0, T, u_min, u_max);
   }
   DiscreteOutcome out;
-  std::vector<char> reached(2 * w.n, 0);
+  std::vector<int> reached(2 * w.n, 0);  // (int: vector<char> trips a GCC 12 false warning)
   const int steps = static_cast<int>(std::lround(duration / T));
   long late = 0;
   for (int k = 0; k < steps; ++k) {
@@ -160,7 +160,7 @@ DiscreteOutcome RunDiscrete(const LeaderLaw& leader_law, double T, double u_min,
       }
     }
   }
-  for (char r : reached) out.all_reached &= r != 0;
+  for (int r : reached) out.all_reached &= r != 0;
   out.sigma_mean_late /= std::max(1L, late);
   return out;
 }
