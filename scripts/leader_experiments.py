@@ -68,7 +68,7 @@ def replace_section(text, section, body):
 
 def recorded_path():
     """A smooth path sampled at 2 Hz for 60 s (sum of slow sinusoids), starting at (20, 0);
-    peak acceleration ~0.6 m/s^2, so the clamped command rarely binds."""
+    peak accelerations 0.53 (x) and 0.96 (y) m/s^2, inside the bounds [-1, 1]."""
     rows = ["t,x,y"]
     for k in range(121):
         t = 0.5 * k
