@@ -186,6 +186,33 @@ def table(cells: dict) -> list[str]:
     return L
 
 
+def compact_table(cells: dict) -> list[str]:
+    """One row per leader and protocol, both vehicles side by side."""
+    L = ["| Leader | Protocol | quadrotor: mean σ_f | point mass: mean σ_f | point mass: max "
+         "\\|s_i\\|/Δ, /Δ_i on [25, 40] s | reached (quad / pm) |",
+         "|---|---|---|---|---|---|"]
+
+    def sigma(c):
+        return _fmt_ci(*mean_ci([r.metric("sigma_f_mean") for r in c.runs if r.complete]))
+
+    def reached(c):
+        ok = sum(1 for r in c.runs
+                 if r.complete and r.metric("max_final_slot_error_m") < FORMATION_TOLERANCE_M)
+        return f"{ok}/{len(c.runs)}"
+
+    for leader in LEADERS:
+        for p in PROTOCOLS:
+            q, m = cells.get((p, leader, "quadrotor")), cells.get((p, leader, "pointmass"))
+            if not q or not m:
+                continue
+            stats = [sliding_stats(r) for r in m.runs if r.complete]
+            ratio = _fmt(max((s.ratio for s in stats), default=NAN))
+            own = _fmt(max((s.ratio_own for s in stats), default=NAN))
+            L.append(f"| {leader} | {PROTOCOLS[p]} | {sigma(q)} | {sigma(m)} | {ratio}, {own} | "
+                     f"{reached(q)} / {reached(m)} |")
+    return L
+
+
 def fig_sigma_by_protocol(cells: dict, leader: str, vehicle: str, out_path: Path) -> Path:
     """sigma_f(t) of every protocol against one leader (first seed), log scale."""
     with plots.plt.rc_context(plots.STYLE):
@@ -402,6 +429,11 @@ def section(results_dir: Path, out_dir: Path) -> list[str]:
                  f"Formation reached: max final slot error < {FORMATION_TOLERANCE_M:g} m. "
                  "Leader acceleration: measured; max excess < 0 means inside the bounds by "
                  "that margin.")
+        L.append("")
+        L.extend(compact_table(cells))
+        L.append("")
+        L.append("In detail (reaching time, |s_i| on the window, the leader's measured "
+                 "acceleration):")
         L.append("")
         L.extend(table(cells))
         L.append("")

@@ -4,13 +4,18 @@
 // MuJoCo's velocity sensor, Assumption 1 checked against the formation plugin's bounds, the
 // timeseries columns only when [run] record_leader_acceleration = true, and the maneuvering
 // leaders' bad input refused before the run with FILE:LINE: [leader].
+#include <dirent.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <unistd.h>
 
+#include <algorithm>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
+#include <vector>
 
 #include "mjformation/runner/run.hpp"
+#include "mjformation/runner/simulation.hpp"
 #include "test_util.hpp"
 
 namespace mjf::runner {
@@ -97,6 +102,34 @@ TEST(LeaderAccelerationTest, BadLeaderInputRefusedWithFileLineAndKey) {
     EXPECT_THAT(e.what(), HasSubstr("[leader]"));
     EXPECT_THAT(e.what(), HasSubstr("dwell"));
   }
+}
+
+// Every experiment of experiments/leaders/ loads and creates its plugins (run from the source
+// folder: the trajectory leader's CSV path is relative to it).
+TEST(LeaderAccelerationTest, EveryLeaderExperimentIsAccepted) {
+  const std::string folder = std::string(MJF_SOURCE_DIR) + "/experiments/leaders";
+  std::vector<std::string> files;
+  if (DIR* d = opendir(folder.c_str())) {
+    while (dirent* e = readdir(d)) {
+      const std::string name = e->d_name;
+      if (name.size() > 5 && name.substr(name.size() - 5) == ".toml") files.push_back(name);
+    }
+    closedir(d);
+  }
+  std::sort(files.begin(), files.end());
+  ASSERT_EQ(files.size(), 20u);
+  char cwd[4096];
+  ASSERT_NE(getcwd(cwd, sizeof(cwd)), nullptr);
+  ASSERT_EQ(chdir(MJF_SOURCE_DIR), 0);
+  for (const auto& f : files) {
+    try {
+      Simulation sim(LoadExperiment(folder + "/" + f));
+      EXPECT_TRUE(sim.config().record_leader_acceleration) << f;
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << f << ": " << e.what();
+    }
+  }
+  ASSERT_EQ(chdir(cwd), 0);
 }
 
 }  // namespace
