@@ -7,6 +7,7 @@ add_library(mjf_runner STATIC
   ${CMAKE_CURRENT_SOURCE_DIR}/src/control_tick.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/follower_motion.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/interrupt.cc
+  ${CMAKE_CURRENT_SOURCE_DIR}/src/leader_acceleration.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/metrics.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/mujoco_errors.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/output.cc

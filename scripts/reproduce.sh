@@ -2,16 +2,20 @@
 # The main job: installs what is missing, builds, runs Experiments 1-3 of the paper (every
 # variant, on the quadrotor and on the ideal point-mass vehicle) and writes the report:
 # results/report/report.md (Table 1 beside the paper's, figures, snapshots).
-# Usage: scripts/reproduce.sh [--video] [--out DIR]
+# With the non-cooperative leader study (scripts/leader_study.sh: maneuvering leaders, sigma_f
+# against T; about 3.1 CPU-minutes) unless --no-leaders.
+# Usage: scripts/reproduce.sh [--video] [--no-leaders] [--out DIR]
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 out=$root/results
 video=()
+leaders=1
 while (($#)); do
   case $1 in
     --video) video=(--set render.video=true) ;;
+    --no-leaders) leaders=0 ;;
     --out) out=$2; shift ;;
-    -h|--help) sed -n 2,5p "$0"; exit 0 ;;
+    -h|--help) sed -n 2,7p "$0"; exit 0 ;;
     *) echo "reproduce.sh: unknown argument '$1' (try --help)" >&2; exit 2 ;;
   esac
   shift
@@ -52,6 +56,9 @@ for e in "${experiments[@]}"; do
   done
 done
 for p in "${pids[@]}"; do wait "$p" || status=1; done
+if [ $leaders = 1 ]; then
+  bash "$root/scripts/leader_study.sh" --out "$out" --no-report || status=1
+fi
 # The written discussion (docs/DISCUSSION.md) goes into the report, after the generated one.
 cp "$root/docs/DISCUSSION.md" "$out/discussion.md"
 /usr/bin/python3 "$root/analysis/report.py" "$out" --out "$out/report"

@@ -12,6 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
+from . import leaders
 from . import metrics as M
 from . import plots
 from .io import Run, find_runs
@@ -445,6 +446,9 @@ def write_report(results_dir, out_dir) -> Path:
         L.append("")
         L.append(disc.read_text().rstrip("\n"))
         L.append("")
+
+    # --- non-cooperative leaders (scripts/leader_study.sh), when they were run
+    L.extend(leaders.section(results_dir, out_dir))
 
     # --- per run
     L.append("## Runs in detail")

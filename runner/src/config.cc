@@ -203,6 +203,11 @@ PluginSection ReadPluginSection(const Reporter& reporter, const toml::table& roo
       if (k == "plugin" || reserved.count(k)) continue;
       out.attributes[k] = {AttributeText(reporter, value, "[" + name + "] " + k),
                            static_cast<int>(value.source().begin.line)};
+      // A plugin's `file` attribute is a path relative to the experiment file, like
+      // [formation.shape] file: the experiment runs the same from any working folder.
+      if (k == "file" && value.is_string()) {
+        out.attributes[k].text = ResolveRelative(out.attributes[k].text, reporter.path());
+      }
     }
   }
   if (out.plugin.empty()) {
@@ -303,6 +308,7 @@ void ParseRunSection(const Reporter& reporter, Section run, const std::string& p
   }
   c.paper_experiment = static_cast<int>(run.Integer("paper_experiment", 0));
   c.reaching_band = run.Number("reaching_band", 0.0);
+  c.record_leader_acceleration = run.Bool("record_leader_acceleration", false);
   if (const toml::array* a = run.Array("plugin_path")) {
     for (const toml::node& item : *a) {
       auto v = item.value_exact<std::string>();

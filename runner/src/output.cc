@@ -173,7 +173,9 @@ void RunDirectory::WriteText(const std::string& name, const std::string& text) c
   }
 }
 
-TimeseriesWriter::TimeseriesWriter(const std::string& path, int n_vehicles) : path_(path) {
+TimeseriesWriter::TimeseriesWriter(const std::string& path, int n_vehicles,
+                                   const std::vector<std::string>& extra_columns)
+    : path_(path), n_extra_(extra_columns.size()) {
   file_ = std::fopen(path.c_str(), "wb");
   if (!file_) throw OutputError(path + ": cannot write: " + std::strerror(errno));
   static const char* const kColumns[] = {"px",     "py",   "pz",    "vx",     "vy",
@@ -183,6 +185,7 @@ TimeseriesWriter::TimeseriesWriter(const std::string& path, int n_vehicles) : pa
   for (int i = 0; i < n_vehicles; ++i) {
     for (const char* c : kColumns) fmt::format_to(std::back_inserter(buffer_), ",uav{}_{}", i, c);
   }
+  for (const auto& c : extra_columns) buffer_ += "," + c;
   buffer_ += "\n";
 }
 
@@ -195,11 +198,11 @@ TimeseriesWriter::~TimeseriesWriter() {
 }
 
 void TimeseriesWriter::Write(const Simulation& sim, double sigma_f,
-                             const std::vector<double>& slots) {
+                             const std::vector<double>& slots, const double* extra) {
   // Numbers as "%.9g" (FormatG9: the bytes fmt's "{:.9g}" gave, at an eighth of its cost); a
   // row is written into the buffer's spare room directly, with no per-character appends.
   constexpr size_t kMaxNumber = 32;  // ",-1.23456789e-308" is 17 characters
-  const size_t numbers = 2 + 15 * static_cast<size_t>(sim.n_vehicles());
+  const size_t numbers = 2 + 15 * static_cast<size_t>(sim.n_vehicles()) + n_extra_;
   const size_t used = buffer_.size();
   buffer_.resize(used + kMaxNumber * numbers + 1);
   char* p = buffer_.data() + used;
@@ -225,6 +228,7 @@ void TimeseriesWriter::Write(const Simulation& sim, double sigma_f,
     number(slots[2 * i]);
     number(slots[2 * i + 1]);
   }
+  for (size_t k = 0; k < n_extra_ && extra; ++k) number(extra[k]);
   *p++ = '\n';
   buffer_.resize(p - buffer_.data());
   if (buffer_.size() > (1u << 20)) Flush();

@@ -8,6 +8,7 @@
 #include <deque>
 
 #include "mjformation/render.hpp"
+#include "mjformation/runner/leader_acceleration.hpp"
 #include "mjformation/runner/output.hpp"
 #include "mjformation/runner/simulation.hpp"
 
@@ -19,18 +20,43 @@ int64_t StepsPer(double period, double timestep) {
 
 namespace {
 
-// timeseries.csv at [run] record_rate, and always at the last step.
+// The leader's measured acceleration against Assumption 1 (summary.json "leader_acceleration").
+class LeaderAccelerationRecorder final : public Recorder {
+ public:
+  explicit LeaderAccelerationRecorder(const Simulation& sim) : monitor_(sim) {}
+  void OnStep(const Simulation& sim) override { monitor_.Step(sim); }
+  bool Wants(int64_t) const override { return false; }
+  void Record(const Frame&) override {}
+  void Summarize(nlohmann::ordered_json* summary) const override {
+    (*summary)["leader_acceleration"] = monitor_.Summary();
+  }
+  const LeaderAccelerationMonitor& monitor() const { return monitor_; }
+
+ private:
+  LeaderAccelerationMonitor monitor_;
+};
+
+// timeseries.csv at [run] record_rate, and always at the last step; with
+// [run] record_leader_acceleration the leader's measured acceleration as two more columns.
 class TimeseriesRecorder final : public Recorder {
  public:
-  TimeseriesRecorder(const Simulation& sim, const RunDirectory& dir)
-      : writer_(dir.Path("timeseries.csv"), sim.n_vehicles()),
+  TimeseriesRecorder(const Simulation& sim, const RunDirectory& dir,
+                     const LeaderAccelerationRecorder* leader)
+      : leader_(leader),
+        writer_(dir.Path("timeseries.csv"), sim.n_vehicles(),
+                leader ? std::vector<std::string>{"leader_ax", "leader_ay"}
+                       : std::vector<std::string>{}),
         every_(StepsPer(1.0 / sim.config().record_rate, sim.config().timestep)),
         last_(sim.total_steps()) {}
   bool Wants(int64_t step) const override { return step % every_ == 0 || step == last_; }
-  void Record(const Frame& f) override { writer_.Write(f.sim, f.sigma_f, f.slots); }
+  void Record(const Frame& f) override {
+    writer_.Write(f.sim, f.sigma_f, f.slots,
+                  leader_ ? leader_->monitor().current().data() : nullptr);
+  }
   void Finish() override { writer_.Close(); }
 
  private:
+  const LeaderAccelerationRecorder* leader_;  // owned by the same recorder list
   TimeseriesWriter writer_;
   int64_t every_, last_;
 };
@@ -196,7 +222,13 @@ std::vector<std::unique_ptr<Recorder>> MakeRecorders(const Simulation& sim, cons
                                                      const RecorderOptions& options) {
   std::vector<std::unique_ptr<Recorder>> out;
   if (!dir) return out;
-  if (options.record) out.push_back(std::make_unique<TimeseriesRecorder>(sim, *dir));
+  auto leader = std::make_unique<LeaderAccelerationRecorder>(sim);
+  const LeaderAccelerationRecorder* leader_columns =
+      sim.config().record_leader_acceleration ? leader.get() : nullptr;
+  out.push_back(std::move(leader));  // first: its OnStep runs before the CSV row is written
+  if (options.record) {
+    out.push_back(std::make_unique<TimeseriesRecorder>(sim, *dir, leader_columns));
+  }
   const RenderConfig& r = sim.config().render;
   auto scenery = std::make_shared<Scenery>(sim);
   if (options.render && !r.snapshots.empty()) {

@@ -74,6 +74,7 @@ void StepLoop(Simulation& sim, std::vector<std::unique_ptr<Recorder>>& recorders
       return;
     }
     sim.ComputeControls();
+    for (const auto& r : recorders) r->OnStep(sim);
     const bool record_tick = step % record_every == 0 || step == sim.total_steps();
     bool wanted = record_tick;
     for (const auto& r : recorders) wanted = wanted || r->Wants(step);

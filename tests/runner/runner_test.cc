@@ -224,5 +224,32 @@ TEST(RunTest, ConcurrentRunsMatchSoloRuns) {
   EXPECT_NE(ReadFile(root + "/solo_a/timeseries.csv"), ReadFile(root + "/solo_b/timeseries.csv"));
 }
 
+// A MuJoCo engine error ends the simulation on the thread that raised it, and only that one:
+// the run beside it on another thread completes with the bytes of its solo run.
+TEST(RunTest, EngineErrorOnOneThreadLeavesTheOtherRunIntact) {
+  const std::string root = TempDir("engine");
+  std::string faulty = SnapshotExperiment(1.0);
+  faulty.replace(faulty.find("[leader]\nplugin = \"hover\""), 25,
+                 "[leader]\nplugin = \"test_engine_error\"\nafter = 0.3");
+  const std::string healthy = SnapshotExperiment(1.0);
+  auto run = [&](const std::string& text, const std::string& out) {
+    RunOptions options;
+    options.out_dir = out;
+    return RunExperiment(Parse(text), options);
+  };
+  ASSERT_TRUE(run(healthy, root + "/solo").complete);
+  RunResult bad, good;
+  std::thread ta([&] { bad = run(faulty, root + "/faulty"); });
+  std::thread tb([&] { good = run(healthy, root + "/healthy"); });
+  ta.join();
+  tb.join();
+  EXPECT_FALSE(bad.complete);
+  EXPECT_THAT(bad.error, HasSubstr("MuJoCo error: test_engine_error"));
+  EXPECT_NEAR(bad.sim_time_s, 0.3, 1e-9);
+  EXPECT_FALSE(Summary(root + "/faulty")["complete"].get<bool>());
+  EXPECT_TRUE(good.complete) << good.error;
+  ExpectSameRunFiles(root + "/solo", root + "/healthy");
+}
+
 }  // namespace
 }  // namespace mjf::runner

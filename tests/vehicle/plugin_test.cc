@@ -12,6 +12,7 @@
 #include <limits>
 #include <map>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "mjformation/attitude/geometric.hpp"
@@ -312,7 +313,7 @@ TEST(AttitudePluginTest, GeometricRefusesBadGainsByName) {
 
 TEST(GuidancePluginTest, CircleWritesItsVehiclesSetpointOnly) {
   Library lib(MJF_GUIDANCE_PLUGIN);
-  ASSERT_EQ(lib.size(), 2u);
+  ASSERT_EQ(lib.size(), 7u);
   const mjfPlugin* p = lib.Get("circle");
   ASSERT_TRUE(p);
   EXPECT_EQ(p->kind, MJF_KIND_GUIDANCE);
@@ -397,3 +398,72 @@ TEST(GuidancePluginTest, HoverHoldsInitialPositionOrAttributes) {
 }
 
 }  // namespace
+
+// The maneuvering leaders through the ABI: defaults create and command inside the bounds; bad
+// input is refused at create() with the attribute's name (the host adds FILE:LINE: [leader]).
+TEST(GuidancePluginTest, ManeuveringLeadersCreateComputeAndRefuseBadInput) {
+  Library lib(MJF_GUIDANCE_PLUGIN);
+  const std::string csv = ::testing::TempDir() + "/leader_path.csv";
+  {
+    std::FILE* f = std::fopen(csv.c_str(), "w");
+    ASSERT_NE(f, nullptr);
+    std::fputs("t,x,y\n0,0,0\n5,3,1\n10,6,0\n", f);
+    std::fclose(f);
+  }
+  for (const char* name : {"random_accel", "bang_bang", "lemniscate", "waypoints", "trajectory"}) {
+    const mjfPlugin* p = lib.Get(name);
+    ASSERT_TRUE(p) << name;
+    EXPECT_EQ(p->kind, MJF_KIND_GUIDANCE);
+    std::map<std::string, std::string> attributes = {{"a_min", "-0.5"}, {"a_max", "0.7"}};
+    if (std::string(name) == "trajectory") attributes["file"] = csv;
+    if (std::string(name) == "lemniscate") attributes["omega"] = "0.1";  // 2 A w^2 = 0.4
+    if (std::string(name) == "waypoints") attributes["speed"] = "1";
+    Context c(*p, attributes, nullptr, 0, nullptr);
+    void* instance = p->create(&c.ctx);
+    ASSERT_NE(instance, nullptr) << name << ": " << c.error;
+    mjfVehicleState states[3] = {};
+    states[0].pos[0] = 3;
+    states[0].vel[1] = -2;
+    mjfSetpoint setpoints[3] = {NaNSetpoint(), NaNSetpoint(), NaNSetpoint()};
+    char error[128] = {0};
+    mjfStepContext step{};
+    step.timestep = 0.001;
+    step.n_vehicles = 3;
+    step.states = states;
+    step.setpoints = setpoints;
+    step.error = error;
+    step.error_size = sizeof(error);
+    for (int k = 0; k < 3000; ++k) {
+      step.time = k * 0.001;
+      step.step = k;
+      ASSERT_EQ(p->compute(instance, &step), 0) << name << ": " << error;
+      for (int i = 0; i < 2; ++i) {
+        ASSERT_GE(setpoints[0].acc[i], -0.5) << name;
+        ASSERT_LE(setpoints[0].acc[i], 0.7) << name;
+      }
+    }
+    EXPECT_TRUE(std::isnan(setpoints[1].acc[0]));
+    if (p->reset) p->reset(instance);
+    p->destroy(instance);
+
+    Context equal(*p, {{"a_min", "1"}, {"a_max", "1"}, {"file", csv}}, nullptr, 0, nullptr);
+    EXPECT_EQ(p->create(&equal.ctx), nullptr) << name;
+    EXPECT_NE(std::string(equal.error).find("a_min"), std::string::npos) << equal.error;
+  }
+  const std::vector<std::tuple<std::string, std::string, std::string>> bad = {
+      {"bang_bang", "dwell", "0 1"},
+      {"bang_bang", "dwell", "-1 1"},
+      {"random_accel", "seed", "-3"},
+      {"random_accel", "seed", "1.5"},
+      {"random_accel", "area", "0 0 -1 5"},
+      {"waypoints", "points", "0 0 1 0 1 1"},  // too close at 2 m/s
+      {"waypoints", "points", "0 0 1"},
+      {"trajectory", "file", "/nonexistent.csv"},
+      {"trajectory", "file", ""},
+  };
+  for (const auto& [name, key, value] : bad) {
+    Context c(*lib.Get(name), {{key, value}}, nullptr, 0, nullptr);
+    EXPECT_EQ(lib.Get(name)->create(&c.ctx), nullptr) << name << " " << key << " = " << value;
+    EXPECT_NE(std::string(c.error).find("'" + key + "'"), std::string::npos) << c.error;
+  }
+}

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "mjformation/guidance/guidance.hpp"
+#include "mjformation/guidance/leaders.hpp"
 
 namespace {
 
@@ -185,6 +186,321 @@ const mjfPlugin kHover = {
     HoverDestroy,
     nullptr};
 
+// ---------------------------------------------------------------------------------------------
+// Maneuvering leaders (leaders.hpp): every command per axis inside [a_min, a_max].
+
+constexpr const char* kAMin = "a_min";
+constexpr const char* kAMax = "a_max";
+constexpr const char* kSeed = "seed";
+constexpr const char* kSpeedMax = "speed_max";
+constexpr const char* kArea = "area";
+constexpr const char* kRamp = "ramp";
+
+mjf::guidance::AccelBounds ReadBounds(const Attributes& attributes) {
+  mjf::guidance::AccelBounds bounds{attributes.Number(kAMin), attributes.Number(kAMax)};
+  bounds.Validate();
+  return bounds;
+}
+
+uint64_t ReadSeed(const Attributes& attributes) {
+  const double seed = attributes.Number(kSeed);
+  Require(seed >= 0 && seed == std::floor(seed) && seed < 9007199254740992.0, kSeed,
+          "an integer >= 0", seed);
+  return static_cast<uint64_t>(seed);
+}
+
+mjf::guidance::Envelope::Config ReadEnvelope(const Attributes& attributes) {
+  mjf::guidance::Envelope::Config envelope;
+  envelope.speed_max = attributes.Number(kSpeedMax);
+  const auto area = attributes.Numbers(kArea, 4);
+  envelope.area_min = {area[0], area[1]};
+  envelope.area_max = {area[2], area[3]};
+  if (!(area[2] > area[0] && area[3] > area[1])) {
+    throw ConfigError(
+        "attribute 'area': expected 'x_min y_min x_max y_max' with x_min < x_max "
+        "and y_min < y_max");
+  }
+  envelope.ramp = attributes.Number(kRamp);
+  return envelope;
+}
+
+template <typename Law>
+struct LeaderInstance {
+  int vehicle;
+  Law law;
+};
+
+template <typename Law>
+int LeaderCompute(void* instance, const mjfStepContext* ctx) {
+  return mjf::plugin::ComputeOrExplain(ctx, [&]() {
+    auto* self = static_cast<LeaderInstance<Law>*>(instance);
+    if (self->vehicle >= ctx->n_vehicles) {
+      return mjf::plugin::Fail(ctx, "vehicle index outside the scene");
+    }
+    const mjfVehicleState& s = ctx->states[self->vehicle];
+    Write(self->law.Update(ctx->time, Get(s.pos), Get(s.vel)), &ctx->setpoints[self->vehicle]);
+    return 0;
+  });
+}
+
+template <typename Law>
+void LeaderDestroy(void* instance) {
+  delete static_cast<LeaderInstance<Law>*>(instance);
+}
+
+// random_accel
+
+constexpr const char* kCorrelationTime = "correlation_time";
+const mjfAttribute kRandomAccelAttributes[] = {
+    {kAMin, "-1", "m/s^2: lower bound of the commanded acceleration per axis (u_min)"},
+    {kAMax, "1", "m/s^2: upper bound of the commanded acceleration per axis (u_max)"},
+    {kCorrelationTime, "2", "s: spacing of the random knots (band limit ~ 1 / (2 x it) Hz)"},
+    {kSpeedMax, "3", "m/s: speed limit per axis"},
+    {kArea, "-40 -40 40 40", "m: box 'x_min y_min x_max y_max' the leader stays inside"},
+    {kRamp, "0.3", "m/s: speed band over which the envelope turns the acceleration around"},
+    {kSeed, "1", "integer >= 0: random seed (same seed, same path)"},
+    {kAltitude, "5", "m: altitude setpoint"},
+    {kYaw, "0", "rad: yaw setpoint"},
+};
+
+void* RandomAccelCreate(const mjfCreateContext* ctx) {
+  return mjf::plugin::CreateOrExplain(ctx, [ctx]() -> void* {
+    const Attributes attributes(ctx);
+    mjf::guidance::RandomAccelGuidance::Config config;
+    config.bounds = ReadBounds(attributes);
+    config.correlation_time = attributes.Number(kCorrelationTime);
+    config.envelope = ReadEnvelope(attributes);
+    config.seed = ReadSeed(attributes);
+    config.altitude = attributes.Number(kAltitude);
+    config.yaw = attributes.Number(kYaw);
+    return new LeaderInstance<mjf::guidance::RandomAccelGuidance>{
+        CheckVehicle(ctx), mjf::guidance::RandomAccelGuidance(config)};
+  });
+}
+
+const mjfPlugin kRandomAccel = {
+    MJF_ABI_VERSION,
+    "random_accel",
+    MJF_KIND_GUIDANCE,
+    "maneuvering leader: smooth seeded random acceleration per axis in [a_min, a_max], speed "
+    "limit and area kept",
+    static_cast<int>(sizeof(kRandomAccelAttributes) / sizeof(kRandomAccelAttributes[0])),
+    kRandomAccelAttributes,
+    0,
+    nullptr,
+    RandomAccelCreate,
+    LeaderCompute<mjf::guidance::RandomAccelGuidance>,
+    nullptr,
+    LeaderDestroy<mjf::guidance::RandomAccelGuidance>,
+    nullptr};
+
+// bang_bang
+
+constexpr const char* kDwell = "dwell";
+const mjfAttribute kBangBangAttributes[] = {
+    {kAMin, "-1", "m/s^2: lower bound of the commanded acceleration per axis (u_min)"},
+    {kAMax, "1", "m/s^2: upper bound of the commanded acceleration per axis (u_max)"},
+    {kDwell, "0.5 3", "s: 'min max' of the uniform random time between switches (min > 0)"},
+    {kSpeedMax, "3", "m/s: speed limit per axis"},
+    {kArea, "-40 -40 40 40", "m: box 'x_min y_min x_max y_max' the leader stays inside"},
+    {kRamp, "0.3", "m/s: speed band over which the envelope turns the acceleration around"},
+    {kSeed, "1", "integer >= 0: random seed (same seed, same path)"},
+    {kAltitude, "5", "m: altitude setpoint"},
+    {kYaw, "0", "rad: yaw setpoint"},
+};
+
+void* BangBangCreate(const mjfCreateContext* ctx) {
+  return mjf::plugin::CreateOrExplain(ctx, [ctx]() -> void* {
+    const Attributes attributes(ctx);
+    mjf::guidance::BangBangGuidance::Config config;
+    config.bounds = ReadBounds(attributes);
+    const auto dwell = attributes.Numbers(kDwell, 2);
+    config.dwell_min = dwell[0];
+    config.dwell_max = dwell[1];
+    config.envelope = ReadEnvelope(attributes);
+    config.seed = ReadSeed(attributes);
+    config.altitude = attributes.Number(kAltitude);
+    config.yaw = attributes.Number(kYaw);
+    return new LeaderInstance<mjf::guidance::BangBangGuidance>{
+        CheckVehicle(ctx), mjf::guidance::BangBangGuidance(config)};
+  });
+}
+
+void BangBangReset(void* instance) {
+  static_cast<LeaderInstance<mjf::guidance::BangBangGuidance>*>(instance)->law.Reset();
+}
+
+const mjfPlugin kBangBang = {
+    MJF_ABI_VERSION,
+    "bang_bang",
+    MJF_KIND_GUIDANCE,
+    "maneuvering leader: acceleration a_min or a_max per axis, switching after seeded random "
+    "dwell times; speed limit and area kept",
+    static_cast<int>(sizeof(kBangBangAttributes) / sizeof(kBangBangAttributes[0])),
+    kBangBangAttributes,
+    0,
+    nullptr,
+    BangBangCreate,
+    LeaderCompute<mjf::guidance::BangBangGuidance>,
+    BangBangReset,
+    LeaderDestroy<mjf::guidance::BangBangGuidance>,
+    nullptr};
+
+// lemniscate
+
+constexpr const char* kHalfWidth = "half_width";
+const mjfAttribute kLemniscateAttributes[] = {
+    {kAMin, "-1", "m/s^2: lower bound of the commanded acceleration per axis (u_min)"},
+    {kAMax, "1", "m/s^2: upper bound of the commanded acceleration per axis (u_max)"},
+    {kHalfWidth, "20", "m: A, x = cx + A sin(w t + phase), y = cy + A/2 sin(2 (w t + phase))"},
+    {kOmega, "0.15", "rad/s: w (peak accelerations A w^2 on x, 2 A w^2 on y)"},
+    {kCenter, "0 0", "m: centre x y"},
+    {kPhase, "0", "rad"},
+    {kAltitude, "5", "m: altitude setpoint"},
+    {kYaw, "0", "rad: yaw setpoint"},
+    {kKp, "1", "1/s^2: position error gain"},
+    {kKd, "2", "1/s: velocity error gain"},
+};
+
+void* LemniscateCreate(const mjfCreateContext* ctx) {
+  return mjf::plugin::CreateOrExplain(ctx, [ctx]() -> void* {
+    const Attributes attributes(ctx);
+    mjf::guidance::LemniscateGuidance::Config config;
+    config.bounds = ReadBounds(attributes);
+    config.half_width = attributes.Number(kHalfWidth);
+    config.omega = attributes.Number(kOmega);
+    const auto center = attributes.Numbers(kCenter, 2);
+    config.center = {center[0], center[1]};
+    config.phase = attributes.Number(kPhase);
+    config.altitude = attributes.Number(kAltitude);
+    config.yaw = attributes.Number(kYaw);
+    config.gains = ReadGains(attributes);
+    return new LeaderInstance<mjf::guidance::LemniscateGuidance>{
+        CheckVehicle(ctx), mjf::guidance::LemniscateGuidance(config)};
+  });
+}
+
+const mjfPlugin kLemniscate = {
+    MJF_ABI_VERSION,
+    "lemniscate",
+    MJF_KIND_GUIDANCE,
+    "leader figure-eight (Gerono), tracked by PD, command clamped to [a_min, a_max]",
+    static_cast<int>(sizeof(kLemniscateAttributes) / sizeof(kLemniscateAttributes[0])),
+    kLemniscateAttributes,
+    0,
+    nullptr,
+    LemniscateCreate,
+    LeaderCompute<mjf::guidance::LemniscateGuidance>,
+    nullptr,
+    LeaderDestroy<mjf::guidance::LemniscateGuidance>,
+    nullptr};
+
+// waypoints
+
+constexpr const char* kPoints = "points";
+constexpr const char* kSpeed = "speed";
+constexpr const char* kLoop = "loop";
+const mjfAttribute kWaypointAttributes[] = {
+    {kAMin, "-1", "m/s^2: lower bound of the commanded acceleration per axis (u_min)"},
+    {kAMax, "1", "m/s^2: upper bound of the commanded acceleration per axis (u_max)"},
+    {kPoints, "20 0 0 20 -20 0 0 -20", "m: waypoints 'x0 y0 x1 y1 ...' (at least two)"},
+    {kSpeed, "2", "m/s: cruise speed (segment time = length / speed)"},
+    {kLoop, "true", "'true': back to the first point and around again; 'false': stop at the last"},
+    {kAltitude, "5", "m: altitude setpoint"},
+    {kYaw, "0", "rad: yaw setpoint"},
+    {kKp, "1", "1/s^2: position error gain"},
+    {kKd, "2", "1/s: velocity error gain"},
+};
+
+void* WaypointCreate(const mjfCreateContext* ctx) {
+  return mjf::plugin::CreateOrExplain(ctx, [ctx]() -> void* {
+    const Attributes attributes(ctx);
+    mjf::guidance::WaypointGuidance::Config config;
+    config.bounds = ReadBounds(attributes);
+    const auto points = attributes.Numbers(kPoints);
+    if (points.size() < 4 || points.size() % 2 != 0) {
+      throw ConfigError(
+          "attribute 'points': expected pairs 'x0 y0 x1 y1 ...', at least two "
+          "waypoints (got " +
+          std::to_string(points.size()) + " numbers)");
+    }
+    for (size_t k = 0; k < points.size(); k += 2)
+      config.points.push_back({points[k], points[k + 1]});
+    config.speed = attributes.Number(kSpeed);
+    config.loop = attributes.Choice(kLoop, {"true", "false"}) == "true";
+    config.altitude = attributes.Number(kAltitude);
+    config.yaw = attributes.Number(kYaw);
+    config.gains = ReadGains(attributes);
+    return new LeaderInstance<mjf::guidance::WaypointGuidance>{
+        CheckVehicle(ctx), mjf::guidance::WaypointGuidance(config)};
+  });
+}
+
+const mjfPlugin kWaypoints = {
+    MJF_ABI_VERSION,
+    "waypoints",
+    MJF_KIND_GUIDANCE,
+    "leader on a smooth (C1 cubic) path through waypoints whose acceleration stays in [a_min, "
+    "a_max]",
+    static_cast<int>(sizeof(kWaypointAttributes) / sizeof(kWaypointAttributes[0])),
+    kWaypointAttributes,
+    0,
+    nullptr,
+    WaypointCreate,
+    LeaderCompute<mjf::guidance::WaypointGuidance>,
+    nullptr,
+    LeaderDestroy<mjf::guidance::WaypointGuidance>,
+    nullptr};
+
+// trajectory
+
+constexpr const char* kFile = "file";
+constexpr const char* kTimeOffset = "time_offset";
+const mjfAttribute kTrajectoryAttributes[] = {
+    {kAMin, "-1", "m/s^2: lower bound of the commanded acceleration per axis (u_min)"},
+    {kAMax, "1", "m/s^2: upper bound of the commanded acceleration per axis (u_max)"},
+    {kFile, "", "CSV of rows t,x,y[,z] (optional header; a relative path is relative to the experiment file)"},
+    {kTimeOffset, "0", "s: the file's time at simulation time 0"},
+    {kAltitude, "5", "m: altitude setpoint when the file has no z"},
+    {kYaw, "0", "rad: yaw setpoint"},
+    {kKp, "1", "1/s^2: position error gain"},
+    {kKd, "2", "1/s: velocity error gain"},
+};
+
+void* TrajectoryCreate(const mjfCreateContext* ctx) {
+  return mjf::plugin::CreateOrExplain(ctx, [ctx]() -> void* {
+    const Attributes attributes(ctx);
+    mjf::guidance::TrajectoryGuidance::Config config;
+    config.bounds = ReadBounds(attributes);
+    const std::string file = attributes.String(kFile);
+    if (Blank(file)) throw ConfigError("attribute 'file' is required: a CSV of t,x,y[,z] rows");
+    const auto table = mjf::guidance::ReadTrajectoryCsv(file);
+    config.time_offset = attributes.Number(kTimeOffset);
+    config.altitude = attributes.Number(kAltitude);
+    config.yaw = attributes.Number(kYaw);
+    config.gains = ReadGains(attributes);
+    return new LeaderInstance<mjf::guidance::TrajectoryGuidance>{
+        CheckVehicle(ctx), mjf::guidance::TrajectoryGuidance(config, table)};
+  });
+}
+
+const mjfPlugin kTrajectory = {
+    MJF_ABI_VERSION,
+    "trajectory",
+    MJF_KIND_GUIDANCE,
+    "leader on a recorded path (CSV t,x,y[,z]) interpolated by a C1 spline, command clamped "
+    "to [a_min, a_max]",
+    static_cast<int>(sizeof(kTrajectoryAttributes) / sizeof(kTrajectoryAttributes[0])),
+    kTrajectoryAttributes,
+    0,
+    nullptr,
+    TrajectoryCreate,
+    LeaderCompute<mjf::guidance::TrajectoryGuidance>,
+    nullptr,
+    LeaderDestroy<mjf::guidance::TrajectoryGuidance>,
+    nullptr};
+
 }  // namespace
 
-MJF_EXPORT_PLUGINS(&kCircle, &kHover)
+MJF_EXPORT_PLUGINS(&kCircle, &kHover, &kRandomAccel, &kBangBang, &kLemniscate, &kWaypoints,
+                   &kTrajectory)

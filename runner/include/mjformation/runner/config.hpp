@@ -98,6 +98,8 @@ struct ExperimentConfig {
   int paper_experiment = 0;              // 1..3 when this reproduces one
   std::vector<std::string> plugin_path;  // extra plugin folders
   double reaching_band = 0.0;            // |s| band for the reaching time; 0: the plugin's "delta"
+  // Adds leader_ax, leader_ay (measured, m/s^2) to timeseries.csv; off keeps the old columns.
+  bool record_leader_acceleration = false;
 
   // [vehicles]
   std::string model = "quadrotor";  // "quadrotor", "pointmass" or a path to an MJCF file

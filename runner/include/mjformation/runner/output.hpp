@@ -38,9 +38,13 @@ class RunDirectory {
 // not grow with run length.
 class TimeseriesWriter {
  public:
-  TimeseriesWriter(const std::string& path, int n_vehicles);
+  // extra_columns: names appended after the standard columns (features switched on).
+  TimeseriesWriter(const std::string& path, int n_vehicles,
+                   const std::vector<std::string>& extra_columns = {});
   ~TimeseriesWriter();
-  void Write(const Simulation& sim, double sigma_f, const std::vector<double>& slots);
+  // extra: one value per extra column (NaN: an empty cell), or nullptr when there are none.
+  void Write(const Simulation& sim, double sigma_f, const std::vector<double>& slots,
+             const double* extra = nullptr);
   void Close();
 
  private:
@@ -48,6 +52,7 @@ class TimeseriesWriter {
   std::string path_;
   std::FILE* file_ = nullptr;
   std::string buffer_;
+  size_t n_extra_ = 0;
 };
 
 // Writes finite v as std::to_chars(general, precision 9) would (printf's "%.9g") at p and

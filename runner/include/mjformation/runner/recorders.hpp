@@ -31,6 +31,8 @@ struct Frame {
 class Recorder {
  public:
   virtual ~Recorder() = default;
+  // Every step, after the controls are computed (cheap bookkeeping only).
+  virtual void OnStep(const Simulation& sim) { (void)sim; }
   // True when this recorder needs the frame of `step`.
   virtual bool Wants(int64_t step) const = 0;
   virtual void Record(const Frame& frame) = 0;
