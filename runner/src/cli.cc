@@ -58,6 +58,7 @@ int CheckCommand(const CliCommands& c) {
       c.experiment.c_str(), config.followers, config.model_path.c_str(), sim.model()->nbody,
       config.leader.plugin.c_str(), config.formation.plugin.c_str(),
       config.attitude.plugin.c_str());
+  for (const auto& note : sim.vehicle_notes()) std::printf("  vehicle model: %s\n", note.c_str());
   return 0;
 }
 

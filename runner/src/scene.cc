@@ -62,6 +62,17 @@ std::string FormatVec(const std::array<double, 3>& v) {
   return buf;
 }
 
+// Bring your own quadrotor: what the adapter did to the model, for the scene's header comment.
+std::string AdapterNotes(const SceneRequest& request) {
+  if (request.vehicle_xml.empty()) return "";
+  std::string out = ",\n  adapted to the vehicle contract (docs/VEHICLES.md):";
+  for (std::string n : request.vehicle_notes) {
+    for (size_t k; (k = n.find("--")) != std::string::npos;) n.replace(k, 2, "-");  // XML comment
+    out += "\n    " + n;
+  }
+  return out + "\n";
+}
+
 }  // namespace
 
 std::string VehiclePrefix(int vehicle) { return "uav" + std::to_string(vehicle) + "_"; }
@@ -69,7 +80,11 @@ std::string VehiclePrefix(int vehicle) { return "uav" + std::to_string(vehicle) 
 std::string ComposeScene(const SceneRequest& request) {
   XMLDocument scene, vehicle;
   Load(scene, request.scene_path, "scene model");
-  Load(vehicle, request.vehicle_path, "vehicle model");
+  if (request.vehicle_xml.empty()) {
+    Load(vehicle, request.vehicle_path, "vehicle model");
+  } else if (vehicle.Parse(request.vehicle_xml.c_str()) != tinyxml2::XML_SUCCESS) {
+    throw SceneError(request.vehicle_path + " (adapted): " + vehicle.ErrorStr());
+  }
   XMLElement* root = scene.RootElement();
   const XMLElement* vroot = vehicle.RootElement();
   root->SetAttribute("model", "mjformation");
@@ -163,8 +178,8 @@ std::string ComposeScene(const SceneRequest& request) {
   tinyxml2::XMLPrinter printer;
   scene.Print(&printer);
   return std::string("<!-- Composed by mjformation from ") + request.scene_path + " and " +
-         std::to_string(n_vehicles) + " copies of " + request.vehicle_path + " -->\n" +
-         printer.CStr();
+         std::to_string(n_vehicles) + " copies of " + request.vehicle_path + AdapterNotes(request) +
+         " -->\n" + printer.CStr();
 }
 
 mjModel_* CompileModel(const std::string& xml, const std::string& name) {

@@ -13,6 +13,7 @@
 #include "mjformation/core/shape.hpp"
 #include "mjformation/runner/paths.hpp"
 #include "mjformation/runner/scene.hpp"
+#include "mjformation/runner/vehicle_adapter.hpp"
 
 namespace mjf::runner {
 namespace {
@@ -132,6 +133,9 @@ Simulation::Simulation(const ExperimentConfig& config) : config_(config) {
   request.offscreen_height = std::max(config_.render.height, config_.render.video_height);
   request.strip_actuators = config_.rotor_model == "wrench";
   request.disable_contacts = !config_.contacts;
+  AdaptForeignVehicle(*attitude.descriptor);  // [vehicles] body / rotors (docs/VEHICLES.md)
+  request.vehicle_xml = vehicle_xml_;
+  request.vehicle_notes = vehicle_notes_;
   scene_xml_ = ComposeScene(request);
   model_owner_.reset(model_ = CompileModel(scene_xml_, "composed scene of " + config_.model_path));
   data_owner_.reset(data_ = mj_makeData(model_));
@@ -149,12 +153,32 @@ Simulation::~Simulation() {
   leader_.reset();
 }
 
+void Simulation::AdaptForeignVehicle(const mjfPlugin& attitude) {
+  if (config_.vehicle_body.empty() && config_.vehicle_rotors.empty()) return;
+  VehicleMapping m;
+  m.model_path = config_.model_path;
+  m.body = config_.vehicle_body.empty() ? "vehicle" : config_.vehicle_body;
+  for (int k = 0; k < attitude.n_actuators; ++k) m.actuator_names.push_back(attitude.actuators[k]);
+  m.rotors = config_.vehicle_rotors.empty() ? m.actuator_names : config_.vehicle_rotors;
+  auto where = [&](int line, const char* key) {
+    return config_.source_path + (line > 0 ? ":" + std::to_string(line) : "") + ": [vehicles] " +
+           key;
+  };
+  m.body_where = where(config_.vehicle_body_line, "body");
+  m.rotors_where = where(config_.vehicle_rotors_line, "rotors");
+  AdaptedVehicle adapted = AdaptVehicle(m);
+  vehicle_xml_ = std::move(adapted.xml);
+  vehicle_notes_ = std::move(adapted.notes);
+}
+
 void Simulation::BindVehicles(const mjfPlugin& attitude) {
   // The vehicle model alone gives mass, inertia and actuator geometry (same for every copy).
   mjModel* vehicle = nullptr;
   {
     char error[1024] = {0};
-    vehicle = mj_loadXML(config_.model_path.c_str(), nullptr, error, sizeof(error));
+    vehicle = vehicle_xml_.empty()
+                  ? mj_loadXML(config_.model_path.c_str(), nullptr, error, sizeof(error))
+                  : CompileModel(vehicle_xml_, config_.model_path + " (adapted)");
     if (!vehicle) throw SceneError(config_.model_path + ": MuJoCo cannot load it: " + error);
   }
   std::vector<std::string> site_names;

@@ -80,8 +80,12 @@ class Simulation {
   const PluginRegistry& registry() const { return *registry_; }
   // The formation plugin's scalar report ("delta", "error_bound", ...), if any.
   std::vector<std::pair<std::string, double>> FormationReport() const;
+  // Bring your own quadrotor: what adapting the model dropped, renamed and added (empty for a
+  // model that follows the vehicle contract).
+  const std::vector<std::string>& vehicle_notes() const { return vehicle_notes_; }
 
  private:
+  void AdaptForeignVehicle(const mjfPlugin& attitude);
   void BindVehicles(const mjfPlugin& attitude);
   void CreatePlugins();
   void ReadStates();
@@ -92,6 +96,8 @@ class Simulation {
   ExperimentConfig config_;
   std::unique_ptr<PluginRegistry> registry_;
   std::string scene_xml_;
+  std::string vehicle_xml_;  // adapted foreign model ([vehicles] body/rotors), else empty
+  std::vector<std::string> vehicle_notes_;
   mjModel* model_ = nullptr;
   mjData* data_ = nullptr;
   // Owners of model_ and data_, so that a constructor that throws (bad plugin configuration,
