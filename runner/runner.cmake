@@ -13,7 +13,10 @@ add_library(mjf_runner STATIC
   ${CMAKE_CURRENT_SOURCE_DIR}/src/shape_config.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/simulation.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/sweep.cc
-  ${CMAKE_CURRENT_SOURCE_DIR}/src/vehicle_adapter.cc)
+  ${CMAKE_CURRENT_SOURCE_DIR}/src/vehicle_adapter.cc
+  ${CMAKE_CURRENT_SOURCE_DIR}/src/frame_view.cc
+  ${CMAKE_CURRENT_SOURCE_DIR}/src/replay.cc
+  ${CMAKE_CURRENT_SOURCE_DIR}/src/replay_cli.cc)
 target_include_directories(mjf_runner PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include)
 target_compile_definitions(mjf_runner PRIVATE
   MJF_VERSION="${PROJECT_VERSION}"
