@@ -3,10 +3,13 @@
 // `mjformation replay` and `mjformation view`. Windows are drawn by mjformation-view (GLFW, GLX),
 // a separate executable next to this one: the runner itself renders offscreen with OSMesa, and
 // one process should not load two GL implementations.
+#include <fmt/format.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cstdio>
 
+#include "mjformation/render.hpp"
 #include "mjformation/runner/cli.hpp"
 #include "mjformation/runner/paths.hpp"
 #include "mjformation/runner/replay.hpp"
@@ -32,7 +35,66 @@ int ExecViewer(const std::vector<std::string>& args) {
   return 1;
 }
 
+constexpr double kTrailPeriod = 0.1;  // s, as run.cc and TrailsAt
+
 }  // namespace
+
+// Offscreen (OSMesa), so here and not in replay.cc, which the window executable links.
+std::vector<std::string> RenderReplay(const Recording& rec, const std::vector<double>& times,
+                                      const std::string& out_dir, const std::string& video_path) {
+  ReplayScene scene(rec);
+  std::vector<std::string> written;
+  auto overlay = [&](const TrailBuffer& trails, int frame) {
+    return FrameOverlay(trails, rec.pos[frame], rec.slot[frame], rec.altitude, rec.ring_radius,
+                        FrameLabel(rec.name, rec.t[frame]));
+  };
+  if (!times.empty()) {
+    render::OffscreenRenderer renderer(scene.model(), rec.render.width, rec.render.height,
+                                       rec.render.shadows);
+    mkdir(out_dir.c_str(), 0755);
+    for (double time : times) {
+      const int frame = rec.Frame(time);
+      scene.Pose(frame);
+      const Vec3 target = CameraTarget(rec.render, rec.pos[frame]);
+      const auto& rgb =
+          renderer.Render(scene.data(), FollowingCamera(rec.render, rec.pos[frame], target),
+                          overlay(TrailsAt(rec, frame), frame), target.data());
+      const std::string path = fmt::format("{}/replay_t{:06.2f}.png", out_dir, rec.t[frame]);
+      render::WritePng(path, rgb.data(), rec.render.width, rec.render.height);
+      written.push_back(path);
+    }
+  }
+  if (!video_path.empty()) {
+    render::OffscreenRenderer renderer(scene.model(), rec.render.video_width,
+                                       rec.render.video_height, rec.render.video_shadows);
+    render::VideoWriter video(video_path, rec.render.video_width, rec.render.video_height,
+                              rec.render.video_fps);
+    TrailBuffer trails(rec.n_vehicles, rec.render.trail_seconds, kTrailPeriod);
+    double next_trail = 0;
+    int last = -1;
+    for (int64_t k = 0;; ++k) {
+      const double time = static_cast<double>(k) / rec.render.video_fps;
+      if (time > rec.t.back() + 1e-9) break;
+      const int frame = rec.Frame(time);
+      for (int j = last + 1; j <= frame; ++j) {
+        if (rec.t[j] >= next_trail - 1e-9) {
+          trails.Add(rec.pos[j]);
+          next_trail = rec.t[j] + kTrailPeriod;
+        }
+      }
+      last = frame;
+      scene.Pose(frame);
+      const Vec3 target = CameraTarget(rec.render, rec.pos[frame]);
+      video.AddFrame(renderer
+                         .Render(scene.data(), FollowingCamera(rec.render, rec.pos[frame], target),
+                                 overlay(trails, frame), target.data())
+                         .data());
+    }
+    video.Close();
+    written.push_back(video_path);
+  }
+  return written;
+}
 
 void AddReplayCommand(CLI::App& app, CliCommands* c) {
   c->replay = app.add_subcommand(
