@@ -289,9 +289,9 @@ class Viewer {
     const std::string status = fmt::format(
         "{}{}", paused_ ? "PAUSED" : fmt::format("speed x{:g}", speed_),
         src_->finished() ? (src_->error().empty() ? "  (end)" : "  (stopped: see terminal)") : "");
-    const std::string title = fmt::format("{}\nt \nsigma_f \ncamera \n", src_->name());
+    const std::string title = "experiment\nstate\ntime\nsigma_f (68)\ncamera";
     const std::string values = fmt::format(
-        "{}\n{:.2f} / {:.1f} s\n{}\n{}\n", status, src_->time(), src_->duration(),
+        "{}\n{}\n{:.2f} / {:.1f} s\n{}\n{}", src_->name(), status, src_->time(), src_->duration(),
         std::isnan(src_->sigma_f()) ? std::string("n/a") : fmt::format("{:.4f} m", src_->sigma_f()),
         follow_ ? "following (c: free)" : "free (c: follow)");
     mjr_overlay(mjFONT_NORMAL, mjGRID_TOPLEFT, viewport, title.c_str(), values.c_str(), &con_);
@@ -333,6 +333,12 @@ class Viewer {
     return true;
   }
 
+  // One line per key action on stdout: what the user did, and where the run is.
+  void Log(const char* what) const {
+    std::printf("%s: t = %.3f s, speed x%g\n", what, src_->time(), speed_);
+    std::fflush(stdout);
+  }
+
   void Key(int key, int action) {
     if (action == GLFW_RELEASE) return;
     switch (key) {
@@ -342,17 +348,23 @@ class Viewer {
         break;
       case GLFW_KEY_SPACE:
         paused_ = !paused_;
+        Log(paused_ ? "paused" : "running");
         break;
       case GLFW_KEY_RIGHT:
-        if (paused_) src_->StepOnce();
+        if (paused_) {
+          src_->StepOnce();
+          Log("step");
+        }
         break;
       case GLFW_KEY_EQUAL:
       case GLFW_KEY_KP_ADD:
         speed_ = std::min(64.0, speed_ * 2);
+        Log("speed");
         break;
       case GLFW_KEY_MINUS:
       case GLFW_KEY_KP_SUBTRACT:
         speed_ = std::max(1.0 / 64, speed_ / 2);
+        Log("speed");
         break;
       case GLFW_KEY_BACKSPACE:
         try {
@@ -361,6 +373,7 @@ class Viewer {
           mjr_freeContext(&con_);
           mjv_freeScene(&scn_);
           MakeScene();
+          Log("reset");
         } catch (const std::exception& e) {
           std::fprintf(stderr, "mjformation view: reset failed: %s\n", e.what());
           glfwSetWindowShouldClose(window_, 1);
@@ -368,6 +381,7 @@ class Viewer {
         break;
       case GLFW_KEY_C:
         follow_ = !follow_;
+        Log(follow_ ? "camera following" : "camera free");
         break;
       default:
         break;

@@ -8,7 +8,7 @@ trap 'echo "viewer_xvfb.sh: failed at line $LINENO: $BASH_COMMAND" >&2' ERR
 build=$1 src=$2 work=$3
 bin="$build/runner/mjformation"
 rm -rf "$work" && mkdir -p "$work"
-exp=(view "$src/experiments/exp2.toml" --set run.duration=4.0 --set 'render.snapshots=[]'
+exp=(view "$src/experiments/exp2.toml" --set run.duration=30.0 --set 'render.snapshots=[]'
      --set render.shadows=false)
 
 # 1. No display: a clear message and exit 1, not a crash.
@@ -76,6 +76,11 @@ for _ in $(seq 300); do [ -s "$shot.json" ] && break; sleep 0.2; done
 [ -s "$shot.json" ] || { cat "$work/view.log"; false; }
 # The key goes to the window through the X server, as a user's would.
 win=$(xdotool search --sync --name "mjformation: exp2" | head -1)
+# Keys act: pause, two single steps of 1 ms, double speed, reset to t = 0, then quit.
+for key in space Right Right plus BackSpace; do
+  xdotool key --window "$win" $key
+  sleep 1
+done
 xdotool key --window "$win" Escape
 for _ in $(seq 100); do kill -0 $viewer 2>/dev/null || break; sleep 0.1; done
 if kill -0 $viewer 2>/dev/null; then
@@ -85,6 +90,18 @@ if kill -0 $viewer 2>/dev/null; then
 fi
 wait $viewer || { echo "viewer exit $?"; cat "$work/view.log"; false; }
 
+/usr/bin/python3 - "$work/view.log" <<'PY'
+import re, sys
+lines = [l for l in open(sys.argv[1]) if re.match(r"\w[\w ]*: t = ", l)]
+got = {l.split(":")[0]: float(re.search(r"t = ([0-9.]+)", l).group(1)) for l in lines}
+print("".join(lines), end="")
+kinds = [l.split(":")[0] for l in lines]
+assert kinds == ["paused", "step", "step", "speed", "reset"], kinds
+steps = [float(re.search(r"t = ([0-9.]+)", l).group(1)) for l in lines[:3]]
+assert abs(steps[1] - steps[0] - 0.001) < 1e-6 and abs(steps[2] - steps[1] - 0.001) < 1e-6, steps
+assert "speed x2" in lines[3], lines[3]
+assert got["reset"] == 0.0, got
+PY
 # The picture: not blank, and vehicle pixels where the camera projects the vehicles.
 /usr/bin/python3 "$work/check_screenshot.py" "$shot"
 
