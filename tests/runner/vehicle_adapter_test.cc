@@ -122,6 +122,26 @@ TEST(VehicleAdapterTest, ComposedSceneHasTheAdaptedVehicles) {
   }
 }
 
+// A Menagerie-style scene.xml that <include>s the vehicle file and adds its own floor and light.
+TEST(VehicleAdapterTest, SceneFileIncludingTheVehicleWorks) {
+  const std::string vehicle = EditedModel("<keyframe>", "<keyframe>");
+  const std::string dir = vehicle.substr(0, vehicle.find_last_of('/'));
+  const std::string scene = WriteFile(dir + "/scene.xml", R"(<mujoco model="demo scene">
+  <include file="model.xml"/>
+  <worldbody>
+    <light name="scene_light" pos="0 0 3"/>
+    <geom name="scene_floor" type="plane" size="2 2 0.1"/>
+  </worldbody>
+</mujoco>)");
+  const AdaptedVehicle a = AdaptVehicle(BumblebeeMapping(scene));
+  std::unique_ptr<mjModel, ModelDeleter> m(CompileModel(a.xml, "adapted"));
+  EXPECT_EQ(m->nbody, 2);
+  EXPECT_EQ(m->nmesh, 1);
+  EXPECT_EQ(m->nlight, 0);
+  EXPECT_EQ(mj_name2id(m.get(), mjOBJ_GEOM, "scene_floor"), -1);
+  EXPECT_GE(mj_name2id(m.get(), mjOBJ_ACTUATOR, "rotor0"), 0);
+}
+
 TEST(VehicleAdapterTest, PermutedNamesOfTheOwnModelWork) {
   VehicleMapping m = BumblebeeMapping(std::string(MJF_SOURCE_DIR) + "/mjcf/quadrotor.xml");
   m.body = "vehicle";
