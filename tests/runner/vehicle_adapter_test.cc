@@ -215,6 +215,27 @@ TEST(VehicleAdapterTest, ConfigRefusesRepeatedRotorWithItsLine) {
   }
 }
 
+// Rotors whose yaw reactions all have one sign: yaw torque and thrust are dependent, and the
+// attitude plugin's allocation refuses the vehicle before the run.
+TEST(VehicleAdapterTest, SingularRotorLayoutIsRefusedBeforeTheRun) {
+  const std::string model = EditedModel("site=\"prop_b\" gear=\"0 0 1 0 0 -0.011\"",
+                                        "site=\"prop_b\" gear=\"0 0 1 0 0 0.011\"");
+  std::string xml = mjf::testing::ReadFile(model);
+  const std::string d_gear = "site=\"prop_d\" gear=\"0 0 1 0 0 -0.011\"";
+  xml.replace(xml.find(d_gear), d_gear.size(), "site=\"prop_d\" gear=\"0 0 1 0 0 0.011\"");
+  WriteFile(model, xml);
+  const ExperimentConfig c =
+      LoadExperiment(std::string(MJF_SOURCE_DIR) + "/experiments/exp2.toml",
+                     {"vehicles.model=\"" + model + "\"", "vehicles.body=\"bumblebee\"",
+                      "vehicles.rotors=[\"prop_a\",\"prop_b\",\"prop_c\",\"prop_d\"]"});
+  try {
+    Simulation sim(c);
+    FAIL() << "a singular rotor layout was accepted";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("singular"), std::string::npos) << e.what();
+  }
+}
+
 // Exp 2 (experiments/exp2.toml) flown by the bumblebee with only the three mapping lines.
 TEST(VehicleAdapterTest, BumblebeeFliesExp2ToTheFormation) {
   const std::string exp2 = std::string(MJF_SOURCE_DIR) + "/experiments/exp2.toml";
