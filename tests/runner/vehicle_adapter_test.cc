@@ -44,8 +44,10 @@ std::string EditedModel(const std::string& from, const std::string& to) {
   const auto at = xml.find(from);
   EXPECT_NE(at, std::string::npos) << from;
   if (at != std::string::npos) xml.replace(at, from.size(), to);
-  const std::string meshdir = "meshdir=\"assets\"";
-  xml.replace(xml.find(meshdir), meshdir.size(), "meshdir=\"" + kBumblebeeDir + "/assets\"");
+  for (const std::string dir : {"meshdir", "texturedir"}) {
+    const std::string attr = dir + "=\"assets\"";
+    xml.replace(xml.find(attr), attr.size(), dir + "=\"" + kBumblebeeDir + "/assets\"");
+  }
   return WriteFile(TempDir("adapter") + "/model.xml", xml);
 }
 
@@ -91,6 +93,8 @@ TEST(VehicleAdapterTest, BumblebeeBecomesAContractVehicle) {
   EXPECT_EQ(m->nu, 4);
   // The mesh is kept (found through meshdir); the floor, light, sky and keyframe are not.
   EXPECT_EQ(m->nmesh, 1);
+  EXPECT_EQ(m->ntex, 1);  // the PNG stripes, found through texturedir
+  EXPECT_GE(mj_name2id(m.get(), mjOBJ_TEXTURE, "bb_stripes"), 0);
   EXPECT_EQ(m->nlight, 0);
   EXPECT_EQ(m->nkey, 0);
   EXPECT_EQ(mj_name2id(m.get(), mjOBJ_GEOM, "demo_floor"), -1);
@@ -195,6 +199,14 @@ TEST(VehicleAdapterTest, MissingMeshFileNamesTheMeshElement) {
   EXPECT_NE(e.find("<mesh name=\"bb_canopy\">"), std::string::npos) << e;
   EXPECT_NE(e.find("nose.obj"), std::string::npos) << e;
   EXPECT_NE(e.find("file not found"), std::string::npos) << e;
+}
+
+TEST(VehicleAdapterTest, MissingTextureFileNamesTheTextureElement) {
+  VehicleMapping m = BumblebeeMapping(EditedModel("file=\"stripes.png\"", "file=\"spots.png\""));
+  const std::string e = ErrorOf(m);
+  EXPECT_NE(e.find("<texture name=\"bb_stripes\">"), std::string::npos) << e;
+  EXPECT_NE(e.find("spots.png"), std::string::npos) << e;
+  EXPECT_NE(e.find("texturedir"), std::string::npos) << e;
 }
 
 TEST(VehicleAdapterTest, ConfigRefusesRepeatedRotorWithItsLine) {
