@@ -76,6 +76,8 @@ class Adapter {
     InlineIncludes(root_, &includes);
     MergeRepeatedSections();
     XMLElement* body = FindBody();
+    ScopeDefaults(body);
+    ScopeSizes();
     DropWorldExtras(body);
     DropSections();
     RenameBody(body);
@@ -174,6 +176,59 @@ class Adapter {
     throw SceneError(
         m_.body_where + ": " + m_.model_path + " has no top-level body named '" + m_.body +
         "' in <worldbody> (its top-level bodies: " + (top.empty() ? "none" : top) + ")");
+  }
+
+  // The model's top-level defaults would apply to the whole shared scene (the floor too, through
+  // scene.cc's merge): they move into a class of their own, which the vehicle's elements use.
+  void ScopeDefaults(XMLElement* body) {
+    XMLElement* def = root_->FirstChildElement("default");
+    if (!def) return;
+    bool has_main = false;
+    for (XMLElement* c = def->FirstChildElement(); c; c = c->NextSiblingElement()) {
+      has_main |= std::strcmp(c->Name(), "default") != 0;
+    }
+    if (!has_main) return;
+    const char* kClass = "mjf_vehicle_defaults";
+    XMLElement* scoped = doc_.NewElement("default");
+    scoped->SetAttribute("class", kClass);
+    while (XMLElement* c = def->FirstChildElement()) scoped->InsertEndChild(c);
+    def->InsertEndChild(scoped);
+    // Elements that used the top-level defaults now name the class: the body's subtree through
+    // childclass (a childclass it has already is nested in the class and inherits from it), the
+    // sections outside the body and the assets that take defaults.
+    if (!body->Attribute("childclass")) body->SetAttribute("childclass", kClass);
+    for (const char* tag : {"actuator", "tendon", "equality", "contact"}) {
+      XMLElement* section = root_->FirstChildElement(tag);
+      for (XMLElement* e = section ? section->FirstChildElement() : nullptr; e;
+           e = e->NextSiblingElement()) {
+        if (!e->Attribute("class") && std::strcmp(e->Name(), "exclude") != 0) {
+          e->SetAttribute("class", kClass);
+        }
+      }
+    }
+    if (XMLElement* asset = root_->FirstChildElement("asset")) {
+      for (XMLElement* e = asset->FirstChildElement(); e; e = e->NextSiblingElement()) {
+        const bool takes_class =
+            std::strcmp(e->Name(), "mesh") == 0 || std::strcmp(e->Name(), "material") == 0;
+        if (takes_class && !e->Attribute("class")) e->SetAttribute("class", kClass);
+      }
+    }
+    Note(std::string("scoped the model's top-level <default> settings to the vehicle (class ") +
+         kClass + "), so they do not reach the shared scene");
+  }
+
+  // Memory sizes written for one vehicle would be too small for a swarm of them: MuJoCo sizes
+  // the composed scene itself.
+  void ScopeSizes() {
+    XMLElement* size = root_->FirstChildElement("size");
+    if (!size) return;
+    for (const char* a : {"njmax", "nconmax", "nstack", "memory"}) {
+      if (size->Attribute(a)) {
+        Note(std::string("dropped <size ") + a + "=\"" + size->Attribute(a) +
+             "\">: sized for one vehicle, not the swarm");
+        size->DeleteAttribute(a);
+      }
+    }
   }
 
   // Everything in <worldbody> but the vehicle: floors, lights, cameras, other bodies; and the

@@ -146,6 +146,31 @@ TEST(VehicleAdapterTest, SceneFileIncludingTheVehicleWorks) {
   EXPECT_GE(mj_name2id(m.get(), mjOBJ_ACTUATOR, "rotor0"), 0);
 }
 
+// Top-level defaults of the model stay with the vehicle: the scene's floor keeps colliding, the
+// vehicle's mesh gets the default scale.
+TEST(VehicleAdapterTest, TopLevelDefaultsDoNotReachTheScene) {
+  const std::string edited = EditedModel(
+      "<default>\n", "<default>\n<geom contype=\"0\" conaffinity=\"0\"/><mesh scale=\"2 2 2\"/>\n");
+  SceneRequest r;
+  r.scene_path = std::string(MJF_SOURCE_DIR) + "/mjcf/scene.xml";
+  r.positions = {{0, 0, 1}};
+  auto compose = [&](const std::string& model) {
+    const AdaptedVehicle a = AdaptVehicle(BumblebeeMapping(model));
+    r.vehicle_path = model;
+    r.vehicle_xml = a.xml;
+    return std::unique_ptr<mjModel, ModelDeleter>(CompileModel(ComposeScene(r), "composed"));
+  };
+  const auto plain = compose(kBumblebee);
+  const auto scoped = compose(edited);
+  const int floor = mj_name2id(scoped.get(), mjOBJ_GEOM, "scene_floor");
+  ASSERT_GE(floor, 0);
+  EXPECT_EQ(scoped->geom_contype[floor], 1);
+  EXPECT_EQ(scoped->geom_conaffinity[floor], 1);
+  const int canopy = mj_name2id(scoped.get(), mjOBJ_GEOM, "uav0_bb_canopy");
+  ASSERT_GE(canopy, 0);
+  EXPECT_NEAR(scoped->geom_rbound[canopy], 2 * plain->geom_rbound[canopy], 1e-9);
+}
+
 TEST(VehicleAdapterTest, PermutedNamesOfTheOwnModelWork) {
   VehicleMapping m = BumblebeeMapping(std::string(MJF_SOURCE_DIR) + "/mjcf/quadrotor.xml");
   m.body = "vehicle";
