@@ -5,6 +5,7 @@
 #include <tinyxml2.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <set>
 
@@ -51,9 +52,16 @@ void PrefixNames(XMLElement* e, const std::string& prefix) {
   }
 }
 
+// Absolute, so that scene.xml written into a run directory finds the vehicle's asset files from
+// anywhere (mjformation replay, mujoco-testspeed).
 std::string Directory(const std::string& path) {
   const auto slash = path.find_last_of('/');
-  return slash == std::string::npos ? "." : path.substr(0, slash);
+  const std::string dir = slash == std::string::npos ? "." : path.substr(0, slash);
+  char* real = realpath(dir.c_str(), nullptr);
+  if (!real) return dir;
+  const std::string out(real);
+  std::free(real);
+  return out;
 }
 
 std::string FormatVec(const std::array<double, 3>& v) {
