@@ -21,7 +21,11 @@ add_library(mjf_runner STATIC
   ${CMAKE_CURRENT_SOURCE_DIR}/src/stage_factory.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/summary.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/sweep.cc
-  ${CMAKE_CURRENT_SOURCE_DIR}/src/vehicle_binding.cc)
+  ${CMAKE_CURRENT_SOURCE_DIR}/src/vehicle_binding.cc
+  ${CMAKE_CURRENT_SOURCE_DIR}/src/vehicle_adapter.cc
+  ${CMAKE_CURRENT_SOURCE_DIR}/src/frame_view.cc
+  ${CMAKE_CURRENT_SOURCE_DIR}/src/replay.cc
+  ${CMAKE_CURRENT_SOURCE_DIR}/src/replay_cli.cc)
 target_include_directories(mjf_runner PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include)
 target_compile_definitions(mjf_runner PRIVATE
   MJF_VERSION="${PROJECT_VERSION}"
@@ -50,3 +54,20 @@ endforeach()
 install(TARGETS mjformation RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(DIRECTORY ${CMAKE_SOURCE_DIR}/mjcf/ DESTINATION ${CMAKE_INSTALL_DATADIR}/mjformation/mjcf
         FILES_MATCHING PATTERN "*.xml" PATTERN "*.png" PATTERN "*.stl" PATTERN "*.obj")
+
+# mjformation-view: the window of `mjformation view` and `mjformation replay` (GLFW + GLX). A
+# separate executable, so that the runner (OSMesa, headless) never loads a second GL
+# implementation; it links no offscreen code (--as-needed drops libOSMesa).
+find_package(glfw3 3.3 QUIET)
+if(TARGET glfw)
+  add_executable(mjformation-view ${CMAKE_CURRENT_SOURCE_DIR}/viewer/viewer.cc)
+  target_link_libraries(mjformation-view PRIVATE mjf_runner mjf_render glfw fmt::fmt
+                        nlohmann_json::nlohmann_json CLI11::CLI11)
+  target_link_options(mjformation-view PRIVATE -Wl,--as-needed)
+  set_target_properties(mjformation-view PROPERTIES RUNTIME_OUTPUT_DIRECTORY
+                                                    ${CMAKE_CURRENT_BINARY_DIR})
+  add_dependencies(mjformation mjformation-view)
+  install(TARGETS mjformation-view RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+else()
+  message(STATUS "GLFW not found (Debian: libglfw3-dev): no mjformation-view window")
+endif()

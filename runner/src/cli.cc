@@ -64,6 +64,7 @@ int CheckCommand(const CliCommands& c) {
       c.experiment.c_str(), config.followers, config.model_path.c_str(), sim.model()->nbody,
       config.leader.plugin.c_str(), config.formation.plugin.c_str(),
       config.attitude.plugin.c_str());
+  for (const auto& note : sim.vehicle_notes()) std::printf("  vehicle model: %s\n", note.c_str());
   return 0;
 }
 
@@ -127,6 +128,8 @@ void AddCommands(CLI::App& app, CliCommands* c) {
   c->plugins->add_option("--plugin-path", c->plugin_path, "extra folder to search for plugins");
   AddBenchCommand(app, c);
   AddSweepCommand(app, c);
+  AddReplayCommand(app, c);
+  AddViewCommand(app, c);
 }
 
 int Dispatch(const CLI::App& app, const CliCommands& c) {
@@ -137,6 +140,8 @@ int Dispatch(const CLI::App& app, const CliCommands& c) {
     if (c.plugins->parsed()) return PluginsCommand(c);
     if (c.bench && c.bench->parsed()) return BenchCommand(c);
     if (c.sweep->parsed()) return SweepCommand(c);
+    if (c.replay && c.replay->parsed()) return ReplayCommand(c);
+    if (c.view && c.view->parsed()) return ViewCommand(c);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "mjformation: error: %s\n", e.what());
     return 1;

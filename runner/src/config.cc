@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -157,6 +158,33 @@ class Section {
   std::string name_;
   std::set<std::string> used_;
 };
+
+// [vehicles] body and rotors: how a foreign quadrotor model maps onto the vehicle contract
+// (docs/VEHICLES.md); whether the model has them is checked when the model is adapted.
+void ParseVehicleMapping(Section& vehicles, const Reporter& reporter, ExperimentConfig* c) {
+  auto line = [&](const char* key) {
+    const toml::node* n = vehicles.Node(key);
+    return n ? static_cast<int>(n->source().begin.line) : 0;
+  };
+  c->vehicle_body = vehicles.String("body", "");
+  c->vehicle_body_line = line("body");
+  if (vehicles.Has("body") && c->vehicle_body.empty()) vehicles.Fail("body", "must not be empty");
+  if (const toml::array* a = vehicles.Array("rotors")) {
+    c->vehicle_rotors_line = line("rotors");
+    for (const toml::node& item : *a) {
+      auto v = item.value_exact<std::string>();
+      if (!v || v->empty()) {
+        reporter.Fail(&item, "[vehicles] rotors", "expected actuator names, e.g. [\"m1\", \"m2\"]");
+      }
+      if (std::find(c->vehicle_rotors.begin(), c->vehicle_rotors.end(), *v) !=
+          c->vehicle_rotors.end()) {
+        reporter.Fail(&item, "[vehicles] rotors", "'" + *v + "' is listed twice");
+      }
+      c->vehicle_rotors.push_back(*v);
+    }
+    if (c->vehicle_rotors.empty()) vehicles.Fail("rotors", "must name the model's rotors");
+  }
+}
 
 // TOML value -> the ABI's attribute string ("3 1" for arrays of numbers).
 std::string AttributeText(const Reporter& reporter, const toml::node& node,
@@ -370,6 +398,7 @@ void ParseVehiclesSection(const Reporter& reporter, Section vehicles, const std:
       vehicles.Enum("rotor_model", c.rotor_model,
                     {{"actuator", RotorModel::kActuator}, {"wrench", RotorModel::kWrench}});
   c.contacts = vehicles.Bool("contacts", c.contacts);
+  ParseVehicleMapping(vehicles, reporter, &c);
   vehicles.RejectUnknown();
   if (c.followers < 1 || c.followers > 100000) vehicles.Fail("followers", "must be in [1, 100000]");
   if (!c.follower_start.empty() && static_cast<int>(c.follower_start.size()) != c.followers) {

@@ -48,8 +48,10 @@ std::string ResolveModel(const std::string& name, const std::string& experiment_
   }
   std::vector<std::string> dirs;
   if (const char* env = std::getenv("MJF_MJCF_DIR")) dirs.push_back(env);
-  dirs.push_back(MJF_SOURCE_MJCF_DIR);
+  // An installed runner uses the models of its own prefix, wherever the prefix was moved; the
+  // build tree's runner (no such folder next to it) those of the source tree.
   dirs.push_back(ExecutableDir() + "/../share/mjformation/mjcf");
+  dirs.push_back(MJF_SOURCE_MJCF_DIR);
   std::string looked;
   for (const auto& dir : dirs) {
     const std::string candidate = dir + "/" + name + ".xml";
@@ -73,8 +75,9 @@ std::vector<std::string> PluginSearchPath(const std::vector<std::string>& extra)
       start = colon + 1;
     }
   }
-  dirs.push_back(MJF_PLUGIN_BUILD_DIR);
+  // Installed: the prefix's own plugins first (the build tree may hold newer, other ones).
   dirs.push_back(ExecutableDir() + "/../lib/mjformation/plugins");
+  dirs.push_back(MJF_PLUGIN_BUILD_DIR);
   return dirs;
 }
 

@@ -8,6 +8,7 @@
 #include <deque>
 
 #include "mjformation/render.hpp"
+#include "mjformation/runner/frame_view.hpp"
 #include "mjformation/runner/leader_acceleration.hpp"
 #include "mjformation/runner/output.hpp"
 #include "mjformation/runner/simulation.hpp"
@@ -61,95 +62,49 @@ class TimeseriesRecorder final : public Recorder {
   int64_t every_, last_;
 };
 
-// The vehicles' recent paths, the desired slots and circle: what snapshots and video draw.
+std::vector<Vec3> Positions(const Simulation& sim) {
+  std::vector<Vec3> out;
+  for (const auto& s : sim.states()) out.push_back({s.pos[0], s.pos[1], s.pos[2]});
+  return out;
+}
+
+// The vehicles' recent paths, the desired slots and circle: what snapshots and video draw, by
+// the rules replay and the live viewer share (frame_view.hpp).
 class Scenery {
  public:
-  Scenery(const Simulation& sim)
-      : trails_(sim.n_vehicles()),
-        every_(StepsPer(0.1, sim.config().timestep)),
-        capacity_(static_cast<size_t>(sim.config().render.trail_seconds /
-                                      (every_ * sim.config().timestep)) +
-                  1) {}
+  explicit Scenery(const Simulation& sim)
+      : every_(StepsPer(0.1, sim.config().timestep)),
+        trails_(sim.n_vehicles(), sim.config().render.trail_seconds,
+                every_ * sim.config().timestep) {}
   // Called every step by the recorders that draw; keeps a point every 0.1 s.
   void Update(const Simulation& sim) {
     if (sim.step_index() % every_ != 0 || sim.step_index() == last_step_) return;
     last_step_ = sim.step_index();
-    for (int i = 0; i < sim.n_vehicles(); ++i) {
-      const auto& p = sim.states()[i].pos;
-      trails_[i].push_back({p[0], p[1], p[2]});
-      if (trails_[i].size() > capacity_) trails_[i].pop_front();
-    }
+    trails_.Add(Positions(sim));
   }
   int64_t every() const { return every_; }
-  render::Overlay Overlay(const Simulation& sim, const std::vector<double>& slots) const;
+  render::Overlay Overlay(const Simulation& sim, const std::vector<double>& slots) const {
+    std::vector<std::array<double, 2>> vehicle_slots;  // [vehicle]; the leader's is not drawn
+    for (int i = 0; i < sim.n_vehicles(); ++i)
+      vehicle_slots.push_back({slots[2 * i], slots[2 * i + 1]});
+    const ExperimentConfig& c = sim.config();
+    const double ring = sim.shape() && c.shape.type == ShapeType::kCircle ? c.shape.radius : 0.0;
+    return FrameOverlay(trails_, Positions(sim), vehicle_slots, c.altitude, ring,
+                        FrameLabel(c.name, sim.time()));
+  }
 
  private:
-  std::vector<std::deque<std::array<double, 3>>> trails_;
   int64_t every_;
-  size_t capacity_;
+  TrailBuffer trails_;
   int64_t last_step_ = -1;
 };
-
-render::Overlay Scenery::Overlay(const Simulation& sim, const std::vector<double>& slots) const {
-  render::Overlay o;
-  for (const auto& t : trails_) o.trails.emplace_back(t.begin(), t.end());
-  for (const auto& s : sim.states()) o.markers.push_back({s.pos[0], s.pos[1], s.pos[2]});
-  const double z = sim.config().altitude;
-  for (int i = 1; i < sim.n_vehicles(); ++i) {
-    if (!std::isnan(slots[2 * i])) o.slots.push_back({slots[2 * i], slots[2 * i + 1], z});
-  }
-  if (sim.shape() && sim.config().shape.type == ShapeType::kCircle) {
-    const auto& leader = sim.states()[0].pos;
-    const double r = sim.config().shape.radius;
-    for (int k = 0; k <= 96; ++k) {
-      const double a = 2 * M_PI * k / 96;
-      o.ring_points.push_back({leader[0] + r * std::cos(a), leader[1] + r * std::sin(a), z});
-    }
-  }
-  o.label = fmt::format("{}   t = {:.1f} s", sim.config().name, sim.time());
-  return o;
-}
-
-// Camera target: the formation's centroid (follow, fixed) or the leader.
-std::array<double, 3> CameraTarget(const Simulation& sim) {
-  std::array<double, 3> c = {0, 0, 0};
-  if (sim.config().render.camera == CameraMode::kLeader) {
-    for (int k = 0; k < 3; ++k) c[k] = sim.states()[0].pos[k];
-    return c;
-  }
-  for (const auto& s : sim.states()) {
-    for (int k = 0; k < 3; ++k) c[k] += s.pos[k];
-  }
-  for (double& v : c) v /= sim.n_vehicles();
-  return c;
-}
-
-// The configured camera; a following camera backs off so that every vehicle stays in the
-// picture: MuJoCo's 45 degree field of view shows about 0.35 x distance around the target,
-// hence distance >= 2.8 x the farthest vehicle from it.
-render::CameraSpec Camera(const RenderConfig& r, const Simulation& sim,
-                          const std::array<double, 3>& target) {
-  render::CameraSpec cam;
-  cam.mode = r.camera == CameraMode::kFixed ? "fixed" : "follow";
-  cam.distance = r.distance;
-  if (r.camera != CameraMode::kFixed) {
-    double farthest = 0;
-    for (const auto& s : sim.states()) {
-      farthest = std::max(farthest, std::hypot(s.pos[0] - target[0], s.pos[1] - target[1]));
-    }
-    cam.distance = std::max(r.distance, 2.8 * farthest);
-  }
-  cam.azimuth = r.azimuth;
-  cam.elevation = r.elevation;
-  for (int k = 0; k < 3; ++k) cam.lookat[k] = r.lookat[k];
-  return cam;
-}
 
 // An offscreen view of the scene with its overlay, for snapshots and video.
 const std::vector<unsigned char>& RenderFrame(render::OffscreenRenderer& renderer,
                                               const Scenery& scenery, const Frame& f) {
-  const auto target = CameraTarget(f.sim);
-  return renderer.Render(f.sim.data(), Camera(f.sim.config().render, f.sim, target),
+  const std::vector<Vec3> positions = Positions(f.sim);
+  const Vec3 target = CameraTarget(f.sim.config().render, positions);
+  return renderer.Render(f.sim.data(), FollowingCamera(f.sim.config().render, positions, target),
                          scenery.Overlay(f.sim, f.slots), target.data());
 }
 

@@ -5,6 +5,7 @@
 #include <tinyxml2.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <set>
 
@@ -51,15 +52,33 @@ void PrefixNames(XMLElement* e, const std::string& prefix) {
   }
 }
 
+// Absolute, so that scene.xml written into a run directory finds the vehicle's asset files from
+// anywhere (mjformation replay, mujoco-testspeed).
 std::string Directory(const std::string& path) {
   const auto slash = path.find_last_of('/');
-  return slash == std::string::npos ? "." : path.substr(0, slash);
+  const std::string dir = slash == std::string::npos ? "." : path.substr(0, slash);
+  char* real = realpath(dir.c_str(), nullptr);
+  if (!real) return dir;
+  const std::string out(real);
+  std::free(real);
+  return out;
 }
 
 std::string FormatVec(const std::array<double, 3>& v) {
   char buf[128];
   std::snprintf(buf, sizeof(buf), "%.17g %.17g %.17g", v[0], v[1], v[2]);
   return buf;
+}
+
+// Bring your own quadrotor: what the adapter did to the model, for the scene's header comment.
+std::string AdapterNotes(const SceneRequest& request) {
+  if (request.vehicle_xml.empty()) return "";
+  std::string out = ",\n  adapted to the vehicle contract (docs/VEHICLES.md):";
+  for (std::string n : request.vehicle_notes) {
+    for (size_t k; (k = n.find("--")) != std::string::npos;) n.replace(k, 2, "-");  // XML comment
+    out += "\n    " + n;
+  }
+  return out + "\n";
 }
 
 }  // namespace
@@ -69,7 +88,11 @@ std::string VehiclePrefix(int vehicle) { return "uav" + std::to_string(vehicle) 
 std::string ComposeScene(const SceneRequest& request) {
   XMLDocument scene, vehicle;
   Load(scene, request.scene_path, "scene model");
-  Load(vehicle, request.vehicle_path, "vehicle model");
+  if (request.vehicle_xml.empty()) {
+    Load(vehicle, request.vehicle_path, "vehicle model");
+  } else if (vehicle.Parse(request.vehicle_xml.c_str()) != tinyxml2::XML_SUCCESS) {
+    throw SceneError(request.vehicle_path + " (adapted): " + vehicle.ErrorStr());
+  }
   XMLElement* root = scene.RootElement();
   const XMLElement* vroot = vehicle.RootElement();
   root->SetAttribute("model", "mjformation");
@@ -163,8 +186,8 @@ std::string ComposeScene(const SceneRequest& request) {
   tinyxml2::XMLPrinter printer;
   scene.Print(&printer);
   return std::string("<!-- Composed by mjformation from ") + request.scene_path + " and " +
-         std::to_string(n_vehicles) + " copies of " + request.vehicle_path + " -->\n" +
-         printer.CStr();
+         std::to_string(n_vehicles) + " copies of " + request.vehicle_path + AdapterNotes(request) +
+         " -->\n" + printer.CStr();
 }
 
 mjModel_* CompileModel(const std::string& xml, const std::string& name) {

@@ -12,6 +12,7 @@
 #include "mjformation/runner/mujoco_errors.hpp"
 #include "mjformation/runner/paths.hpp"
 #include "mjformation/runner/scene.hpp"
+#include "mjformation/runner/vehicle_adapter.hpp"
 
 namespace mjf::runner {
 namespace {
@@ -36,7 +37,9 @@ const LoadedPlugin& FindPlugin(const PluginRegistry& registry, const ExperimentC
 }
 
 SceneRequest MakeSceneRequest(const ExperimentConfig& c,
-                              const std::vector<std::array<double, 3>>& positions) {
+                              const std::vector<std::array<double, 3>>& positions,
+                              const std::string& vehicle_xml,
+                              const std::vector<std::string>& vehicle_notes) {
   SceneRequest request;
   request.scene_path = c.scene_path;
   request.vehicle_path = c.model_path;
@@ -46,6 +49,8 @@ SceneRequest MakeSceneRequest(const ExperimentConfig& c,
   request.offscreen_height = std::max(c.render.height, c.render.video_height);
   request.strip_actuators = c.rotor_model == RotorModel::kWrench;
   request.disable_contacts = !c.contacts;
+  request.vehicle_xml = vehicle_xml;
+  request.vehicle_notes = vehicle_notes;
   return request;
 }
 
@@ -69,12 +74,14 @@ Simulation::Simulation(const ExperimentConfig& config) : config_(config) {
   ResolveAttributes(*attitude.descriptor, config_.attitude, config_.source_path);
 
   initial_positions_ = InitialPositions(config_);
-  scene_xml_ = ComposeScene(MakeSceneRequest(config_, initial_positions_));
+  AdaptForeignVehicle(*attitude.descriptor);  // [vehicles] body / rotors (docs/VEHICLES.md)
+  scene_xml_ =
+      ComposeScene(MakeSceneRequest(config_, initial_positions_, vehicle_xml_, vehicle_notes_));
   model_.reset(CompileModel(scene_xml_, "composed scene of " + config_.model_path));
   data_.reset(mj_makeData(model_.get()));
   total_steps_ = std::llround(config_.duration / config_.timestep);
 
-  bindings_ = BindVehicles(model_.get(), config_, *attitude.descriptor);
+  bindings_ = BindVehicles(model_.get(), config_, *attitude.descriptor, vehicle_xml_);
   truth_.resize(config_.followers + 1);
   BuildGraphAndShape();
   tick_ = std::make_unique<ControlTick>(CreatePlugins(attitude), MakeSensorStage(config_),
@@ -86,6 +93,24 @@ Simulation::Simulation(const ExperimentConfig& config) : config_(config) {
 }
 
 Simulation::~Simulation() = default;
+
+void Simulation::AdaptForeignVehicle(const mjfPlugin& attitude) {
+  if (config_.vehicle_body.empty() && config_.vehicle_rotors.empty()) return;
+  VehicleMapping m;
+  m.model_path = config_.model_path;
+  m.body = config_.vehicle_body.empty() ? "vehicle" : config_.vehicle_body;
+  for (int k = 0; k < attitude.n_actuators; ++k) m.actuator_names.push_back(attitude.actuators[k]);
+  m.rotors = config_.vehicle_rotors.empty() ? m.actuator_names : config_.vehicle_rotors;
+  auto where = [&](int line, const char* key) {
+    return config_.source_path + (line > 0 ? ":" + std::to_string(line) : "") + ": [vehicles] " +
+           key;
+  };
+  m.body_where = where(config_.vehicle_body_line, "body");
+  m.rotors_where = where(config_.vehicle_rotors_line, "rotors");
+  AdaptedVehicle adapted = AdaptVehicle(m);
+  vehicle_xml_ = std::move(adapted.xml);
+  vehicle_notes_ = std::move(adapted.notes);
+}
 
 // Graph and shape: checked here so a bad topology fails before any step.
 void Simulation::BuildGraphAndShape() {

@@ -90,9 +90,12 @@ void RequireWrenchCompatible(const mjModel* vehicle, const ExperimentConfig& con
   }
 }
 
-VehicleModelInfo ReadVehicleModel(const ExperimentConfig& config, const mjfPlugin& attitude) {
+VehicleModelInfo ReadVehicleModel(const ExperimentConfig& config, const mjfPlugin& attitude,
+                                  const std::string& vehicle_xml) {
   char error[1024] = {0};
-  mjModel* vehicle = mj_loadXML(config.model_path.c_str(), nullptr, error, sizeof(error));
+  mjModel* vehicle = vehicle_xml.empty()
+                         ? mj_loadXML(config.model_path.c_str(), nullptr, error, sizeof(error))
+                         : CompileModel(vehicle_xml, config.model_path + " (adapted)");
   if (!vehicle) throw SceneError(config.model_path + ": MuJoCo cannot load it: " + error);
   VehicleModelInfo info;
   try {
@@ -165,8 +168,8 @@ std::vector<std::array<double, 3>> InitialPositions(const ExperimentConfig& c) {
 }
 
 VehicleBindings BindVehicles(const mjModel* composed, const ExperimentConfig& config,
-                             const mjfPlugin& attitude) {
-  const VehicleModelInfo vehicle = ReadVehicleModel(config, attitude);
+                             const mjfPlugin& attitude, const std::string& vehicle_xml) {
+  const VehicleModelInfo vehicle = ReadVehicleModel(config, attitude, vehicle_xml);
   VehicleBindings out;
   out.wrench_gain = vehicle.gains;
   out.actuators_per_vehicle = attitude.n_actuators;

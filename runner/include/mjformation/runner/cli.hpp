@@ -32,6 +32,11 @@ struct CliCommands {
   // sweep
   std::vector<std::string> sweep_vary;
   int sweep_jobs = 2;
+  // replay (replay.cc) and view (viewer_cli.cc)
+  CLI::App* replay = nullptr;
+  CLI::App* view = nullptr;
+  std::string replay_dir, replay_video, replay_out;
+  std::vector<double> replay_snapshots;
 };
 
 void AddCommands(CLI::App& app, CliCommands* commands);
@@ -46,6 +51,13 @@ int BenchCommand(const CliCommands& commands);
 // `mjformation sweep` (runner/src/sweep.cc).
 void AddSweepCommand(CLI::App& app, CliCommands* commands);
 int SweepCommand(const CliCommands& commands);
+
+// `mjformation replay` (runner/src/replay_cli.cc) and `mjformation view`: both windows are
+// drawn by the separate executable mjformation-view (GLFW), which the runner does not link.
+void AddReplayCommand(CLI::App& app, CliCommands* commands);
+int ReplayCommand(const CliCommands& commands);
+void AddViewCommand(CLI::App& app, CliCommands* commands);
+int ViewCommand(const CliCommands& commands);
 
 }  // namespace mjf::runner
 

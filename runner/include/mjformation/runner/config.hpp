@@ -115,6 +115,11 @@ struct ExperimentConfig {
   // mjcf/README.md), and MuJoCo 2.2.2's broadphase costs O(bodies^2) per step even with no
   // contact: at 1000 vehicles it is the largest single cost (docs/PERFORMANCE.md).
   bool contacts = true;
+  // Bring your own quadrotor (docs/VEHICLES.md): the model's vehicle body and rotor actuators,
+  // in the attitude plugin's order. Empty body and rotors: the model follows the contract.
+  std::string vehicle_body;
+  std::vector<std::string> vehicle_rotors;
+  int vehicle_body_line = 0, vehicle_rotors_line = 0;  // for messages; 0: not in the file
 
   // [topology]
   std::vector<double> leader_weight;  // a_i0 per follower (0-based)

@@ -29,6 +29,10 @@ struct SceneRequest {
   int offscreen_height = 720;
   bool strip_actuators = false;   // wrench rotor model: rotors become body wrenches, no actuators
   bool disable_contacts = false;  // <option><flag contact="disable"/>: no collision detection
+  // Bring your own quadrotor: the vehicle as adapted MJCF text (vehicle_adapter.hpp), used
+  // instead of reading vehicle_path when not empty; the notes go into the scene's header.
+  std::string vehicle_xml;
+  std::vector<std::string> vehicle_notes;
 };
 
 // The composed MJCF text. Throws SceneError naming the file (and XML line) on bad input.

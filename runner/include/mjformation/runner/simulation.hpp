@@ -75,8 +75,12 @@ class Simulation {
   const PluginRegistry& registry() const { return *registry_; }
   // The formation plugin's scalar report ("delta", "error_bound", ...), if any.
   std::vector<std::pair<std::string, double>> FormationReport() const;
+  // Bring your own quadrotor: what adapting the model dropped, renamed and added (empty for a
+  // model that follows the vehicle contract).
+  const std::vector<std::string>& vehicle_notes() const { return vehicle_notes_; }
 
  private:
+  void AdaptForeignVehicle(const mjfPlugin& attitude);
   void BuildGraphAndShape();
   ControlPlugins CreatePlugins(const LoadedPlugin& attitude) const;
   std::unique_ptr<PluginInstance> CreateFormation(const LoadedPlugin& formation,
@@ -97,6 +101,8 @@ class Simulation {
   ExperimentConfig config_;
   std::unique_ptr<PluginRegistry> registry_;  // outlives every plugin instance
   std::string scene_xml_;
+  std::string vehicle_xml_;  // adapted foreign model ([vehicles] body/rotors), else empty
+  std::vector<std::string> vehicle_notes_;
   // Freed in reverse order: the tick (plugins may hold pointers into the model) goes first.
   std::unique_ptr<mjModel, ModelDeleter> model_;
   std::unique_ptr<mjData, DataDeleter> data_;

@@ -37,10 +37,11 @@ struct VehicleBindings {
 // start_jitter adds a seeded uniform perturbation (same seed, same positions).
 std::vector<std::array<double, 3>> InitialPositions(const ExperimentConfig& config);
 
-// Reads mass, inertia and actuator geometry from the vehicle model alone, then binds every
-// vehicle of the composed model. Throws SceneError / PluginError naming what is missing.
+// Reads mass, inertia and actuator geometry from the vehicle model alone (`vehicle_xml`, the
+// adapted foreign model, or else the file [vehicles] model), then binds every vehicle of the
+// composed model. Throws SceneError / PluginError naming what is missing.
 VehicleBindings BindVehicles(const mjModel* composed, const ExperimentConfig& config,
-                             const mjfPlugin& attitude);
+                             const mjfPlugin& attitude, const std::string& vehicle_xml = "");
 
 // The vehicles' true states from MuJoCo's sensors (after mj_step1 or mj_forward).
 void ReadTrueStates(const mjData* data, const VehicleBindings& bindings,

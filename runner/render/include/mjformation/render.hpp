@@ -44,6 +44,13 @@ struct Overlay {
   std::string label;  // optional text in the top-left corner (e.g. "t = 10.0 s")
 };
 
+// Appends the overlay to a scene already filled by mjv_updateScene, as decor geoms (lines a few
+// pixels wide for an image `viewport_height` pixels high, slot spheres and vehicle discs sized
+// with the camera distance). Returns the number of geoms skipped because the scene was full.
+// Needs no GL context: the offscreen renderer and the live viewer share it.
+int AddOverlayGeoms(mjvScene* scene, const Overlay& overlay, double cam_distance,
+                    int viewport_height);
+
 class OffscreenRenderer {
  public:
   // Creates its own OSMesa context and MuJoCo render context for m (m must outlive the

@@ -1,0 +1,25 @@
+# Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+#
+# mjformation_add_plugin(<target> SOURCES <files>... [LIBS <libraries>...] [NO_INSTALL])
+#
+# A plugin family as a module the runner dlopen()s: lib<target>.so, linked against
+# mjformation::plugin, C++17, symbols hidden but the entry point (MJF_EXPORT_PLUGINS of
+# plugin_util.hpp, or an explicitly visible mjf_plugin_entry in C), no undefined symbols. `cmake --install` puts it in
+# <prefix>/lib/mjformation/plugins, where an mjformation installed in the same prefix finds it
+# without --plugin-path. Installed with mjformation's package (find_package(mjformation)).
+function(mjformation_add_plugin target)
+  cmake_parse_arguments(ARG "NO_INSTALL" "" "SOURCES;LIBS" ${ARGN})
+  if(NOT ARG_SOURCES)
+    message(FATAL_ERROR "mjformation_add_plugin(${target}): SOURCES is required")
+  endif()
+  add_library(${target} MODULE ${ARG_SOURCES})
+  target_link_libraries(${target} PRIVATE mjformation::plugin ${ARG_LIBS})
+  target_compile_features(${target} PRIVATE cxx_std_17)
+  set_target_properties(${target} PROPERTIES PREFIX "lib" CXX_VISIBILITY_PRESET hidden
+                                             C_VISIBILITY_PRESET hidden)
+  target_link_options(${target} PRIVATE -Wl,--no-undefined)
+  if(NOT ARG_NO_INSTALL)
+    include(GNUInstallDirs)
+    install(TARGETS ${target} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/mjformation/plugins)
+  endif()
+endfunction()
