@@ -58,57 +58,74 @@ OnlineMetrics::OnlineMetrics(const Simulation& sim)
 }
 
 double OnlineMetrics::Sample(const Simulation& sim, std::vector<double>* slots, bool accumulate) {
-  const int nf = sim.n_followers();
-  const double t = sim.time();
-  const auto& states = sim.states();
-  const mjfVehicleState& leader = states[0];
   (*slots)[0] = sim.setpoints()[0].pos[0];
   (*slots)[1] = sim.setpoints()[0].pos[1];
-  double sigma_f = kNaN;
-  if (sim.shape()) {
-    sim.shape()->Evaluate(t, shape_now_.data());
-    leader_pv_ = {leader.pos[0], leader.pos[1], leader.vel[0], leader.vel[1]};
-    for (int i = 0; i < nf; ++i) {
-      const mjfVehicleState& s = states[i + 1];
-      follower_pv_[4 * i + 0] = s.pos[0];
-      follower_pv_[4 * i + 1] = s.pos[1];
-      follower_pv_[4 * i + 2] = s.vel[0];
-      follower_pv_[4 * i + 3] = s.vel[1];
-      const double sx = leader.pos[0] + shape_now_[6 * i + 0];
-      const double sy = leader.pos[1] + shape_now_[6 * i + 1];
-      (*slots)[2 * (i + 1)] = sx;
-      (*slots)[2 * (i + 1) + 1] = sy;
-      final_errors_[i] = std::hypot(s.pos[0] - sx, s.pos[1] - sy);
-    }
-    // eq. (68)
-    sigma_f = core::FormationError(nf, follower_pv_.data(), leader_pv_.data(), shape_now_.data());
-    if (!accumulate) return sigma_f;
-    if (!have_initial_) sigma_initial_ = sigma_f;
-    have_initial_ = true;
-    sigma_final_ = sigma_f;
-    if (t >= window_[0] - 1e-9 && t <= window_[1] + 1e-9) {
-      sigma_sum_ += sigma_f;
-      ++sigma_count_;
-      // Tilt = angle between body z and world z: 1 - 2 (x^2 + y^2) is its cosine.
-      for (int i = 1; i <= nf; ++i) {
-        const double* q = states[i].quat;
-        const double cos_tilt = std::clamp(1 - 2 * (q[1] * q[1] + q[2] * q[2]), -1.0, 1.0);
-        max_follower_tilt_in_window_ = std::max(max_follower_tilt_in_window_, std::acos(cos_tilt));
-      }
-      SampleFollowerMotion(sim, t);
-    }
-  } else {
-    for (int i = 1; i <= nf; ++i) {
-      (*slots)[2 * i] = sim.setpoints()[i].pos[0];
-      (*slots)[2 * i + 1] = sim.setpoints()[i].pos[1];
-      final_errors_[i - 1] =
-          std::hypot(states[i].pos[0] - (*slots)[2 * i], states[i].pos[1] - (*slots)[2 * i + 1]);
-    }
+  if (!sim.shape()) {
+    HeldSlots(sim, slots);
+    if (accumulate) AccumulateSample(sim);
+    return kNaN;
   }
+  const double sigma_f = FormationSlots(sim, slots);
   if (!accumulate) return sigma_f;
+  const double t = sim.time();
+  if (!have_initial_) sigma_initial_ = sigma_f;
+  have_initial_ = true;
+  sigma_final_ = sigma_f;
+  if (t >= window_[0] - 1e-9 && t <= window_[1] + 1e-9) {
+    sigma_sum_ += sigma_f;
+    ++sigma_count_;
+    // Tilt = angle between body z and world z: 1 - 2 (x^2 + y^2) is its cosine.
+    for (int i = 1; i < sim.n_vehicles(); ++i) {
+      const double* q = sim.states()[i].quat;
+      const double cos_tilt = std::clamp(1 - 2 * (q[1] * q[1] + q[2] * q[2]), -1.0, 1.0);
+      max_follower_tilt_in_window_ = std::max(max_follower_tilt_in_window_, std::acos(cos_tilt));
+    }
+    SampleFollowerMotion(sim, t);
+  }
+  AccumulateSample(sim);
+  return sigma_f;
+}
+
+// Slots = leader + f_i(t) (Definition 1) and sigma_f, eq. (68).
+double OnlineMetrics::FormationSlots(const Simulation& sim, std::vector<double>* slots) {
+  const int nf = sim.n_followers();
+  const auto& states = sim.states();
+  const mjfVehicleState& leader = states[0];
+  sim.shape()->Evaluate(sim.time(), shape_now_.data());
+  leader_pv_ = {leader.pos[0], leader.pos[1], leader.vel[0], leader.vel[1]};
+  for (int i = 0; i < nf; ++i) {
+    const mjfVehicleState& s = states[i + 1];
+    follower_pv_[4 * i + 0] = s.pos[0];
+    follower_pv_[4 * i + 1] = s.pos[1];
+    follower_pv_[4 * i + 2] = s.vel[0];
+    follower_pv_[4 * i + 3] = s.vel[1];
+    const double sx = leader.pos[0] + shape_now_[6 * i + 0];
+    const double sy = leader.pos[1] + shape_now_[6 * i + 1];
+    (*slots)[2 * (i + 1)] = sx;
+    (*slots)[2 * (i + 1) + 1] = sy;
+    final_errors_[i] = std::hypot(s.pos[0] - sx, s.pos[1] - sy);
+  }
+  // eq. (68)
+  return core::FormationError(nf, follower_pv_.data(), leader_pv_.data(), shape_now_.data());
+}
+
+// Without a formation the slots are the followers' own held setpoints.
+void OnlineMetrics::HeldSlots(const Simulation& sim, std::vector<double>* slots) {
+  const auto& states = sim.states();
+  for (int i = 1; i < sim.n_vehicles(); ++i) {
+    (*slots)[2 * i] = sim.setpoints()[i].pos[0];
+    (*slots)[2 * i + 1] = sim.setpoints()[i].pos[1];
+    final_errors_[i - 1] =
+        std::hypot(states[i].pos[0] - (*slots)[2 * i], states[i].pos[1] - (*slots)[2 * i + 1]);
+  }
+}
+
+// Record ticks: the sliding band (reaching), minimum separation, sample period.
+void OnlineMetrics::AccumulateSample(const Simulation& sim) {
+  const double t = sim.time();
   // Sliding variables, where the formation plugin reports them.
   double max_abs_s = -1;
-  for (int i = 1; i <= nf; ++i) {
+  for (int i = 1; i < sim.n_vehicles(); ++i) {
     for (double s : sim.setpoints()[i].sliding) {
       if (std::isfinite(s)) max_abs_s = std::max(max_abs_s, std::abs(s));
     }
@@ -124,12 +141,11 @@ double OnlineMetrics::Sample(const Simulation& sim, std::vector<double>* slots, 
     }
   }
   for (int i = 0; i < sim.n_vehicles(); ++i) {
-    for (int k = 0; k < 3; ++k) sort_buffer_[3 * i + k] = states[i].pos[k];
+    for (int k = 0; k < 3; ++k) sort_buffer_[3 * i + k] = sim.states()[i].pos[k];
   }
   min_separation_ = std::min(min_separation_, MinimumSeparation(sort_buffer_, &order_));
   if (t > last_time_) sample_period_ = t - last_time_;
   last_time_ = t;
-  return sigma_f;
 }
 
 void OnlineMetrics::SampleFollowerMotion(const Simulation& sim, double t) {

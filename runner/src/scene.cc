@@ -85,65 +85,70 @@ std::string AdapterNotes(const SceneRequest& request) {
 
 std::string VehiclePrefix(int vehicle) { return "uav" + std::to_string(vehicle) + "_"; }
 
-std::string ComposeScene(const SceneRequest& request) {
-  XMLDocument scene, vehicle;
-  Load(scene, request.scene_path, "scene model");
-  if (request.vehicle_xml.empty()) {
-    Load(vehicle, request.vehicle_path, "vehicle model");
-  } else if (vehicle.Parse(request.vehicle_xml.c_str()) != tinyxml2::XML_SUCCESS) {
-    throw SceneError(request.vehicle_path + " (adapted): " + vehicle.ErrorStr());
-  }
-  XMLElement* root = scene.RootElement();
-  const XMLElement* vroot = vehicle.RootElement();
-  root->SetAttribute("model", "mjformation");
+namespace {
 
-  // The vehicle's top-level body: exactly one, named "vehicle".
+// The vehicle's top-level body: exactly one, named "vehicle".
+const XMLElement* VehicleBody(const XMLElement* vroot, const std::string& vehicle_path) {
   const XMLElement* vworld = vroot->FirstChildElement("worldbody");
   const XMLElement* body = nullptr;
   for (const XMLElement* b = vworld ? vworld->FirstChildElement("body") : nullptr; b;
        b = b->NextSiblingElement("body")) {
     if (b->Attribute("name", "vehicle")) {
-      if (body) throw SceneError(request.vehicle_path + ": two top-level bodies named 'vehicle'");
+      if (body) throw SceneError(vehicle_path + ": two top-level bodies named 'vehicle'");
       body = b;
     }
   }
   if (!body) {
-    throw SceneError(request.vehicle_path +
+    throw SceneError(vehicle_path +
                      ": no top-level <body name=\"vehicle\"> in <worldbody> (see "
                      "docs/ARCHITECTURE.md, vehicle model contract)");
   }
+  return body;
+}
 
-  // Global sections: the vehicle's settings are merged into the scene's.
-  const std::string vdir = Directory(request.vehicle_path);
+// <default> or <asset> of the vehicle added to the scene's, skipping names it already has; asset
+// files are found relative to the vehicle file, wherever the scene is written.
+void MergeNamedChildren(XMLDocument& scene, XMLElement* root, const XMLElement* s,
+                        const std::string& vdir) {
+  const std::string tag = s->Name();
+  XMLElement* target = ChildOrNew(scene, root, tag.c_str());
+  if (tag == "default") CopyAttributes(s, target);
+  std::set<std::string> existing;
+  for (XMLElement* c = target->FirstChildElement(); c; c = c->NextSiblingElement()) {
+    if (const char* n = c->Attribute("name")) existing.insert(std::string(c->Name()) + n);
+    if (const char* n = c->Attribute("class")) existing.insert(std::string(c->Name()) + n);
+  }
+  for (const XMLElement* c = s->FirstChildElement(); c; c = c->NextSiblingElement()) {
+    const char* n = c->Attribute(tag == "default" ? "class" : "name");
+    if (n && existing.count(std::string(c->Name()) + n)) continue;
+    XMLElement* copy = c->DeepClone(&scene)->ToElement();
+    if (const char* file = copy->Attribute("file"); file && file[0] != '/') {
+      copy->SetAttribute("file", (vdir + "/" + file).c_str());
+    }
+    target->InsertEndChild(copy);
+  }
+}
+
+// Global sections: the vehicle's compiler, option, size, default and asset merged into the scene.
+void MergeGlobalSections(XMLDocument& scene, XMLElement* root, const XMLElement* vroot,
+                         const std::string& vehicle_path) {
+  const std::string vdir = Directory(vehicle_path);
   for (const XMLElement* s = vroot->FirstChildElement(); s; s = s->NextSiblingElement()) {
     const std::string tag = s->Name();
     if (tag == "compiler" || tag == "option" || tag == "size") {
       XMLElement* target = ChildOrNew(scene, root, tag.c_str());
       CopyAttributes(s, target);
       for (const XMLElement* c = s->FirstChildElement(); c; c = c->NextSiblingElement()) {
-        XMLElement* t = ChildOrNew(scene, target, c->Name());
-        CopyAttributes(c, t);
+        CopyAttributes(c, ChildOrNew(scene, target, c->Name()));
       }
     } else if (tag == "default" || tag == "asset") {
-      XMLElement* target = ChildOrNew(scene, root, tag.c_str());
-      if (tag == "default") CopyAttributes(s, target);
-      std::set<std::string> existing;
-      for (XMLElement* c = target->FirstChildElement(); c; c = c->NextSiblingElement()) {
-        if (const char* n = c->Attribute("name")) existing.insert(std::string(c->Name()) + n);
-        if (const char* n = c->Attribute("class")) existing.insert(std::string(c->Name()) + n);
-      }
-      for (const XMLElement* c = s->FirstChildElement(); c; c = c->NextSiblingElement()) {
-        const char* n = c->Attribute(tag == "default" ? "class" : "name");
-        if (n && existing.count(std::string(c->Name()) + n)) continue;
-        XMLElement* copy = c->DeepClone(&scene)->ToElement();
-        // Asset files are found relative to the vehicle file, wherever the scene is written.
-        if (const char* file = copy->Attribute("file"); file && file[0] != '/') {
-          copy->SetAttribute("file", (vdir + "/" + file).c_str());
-        }
-        target->InsertEndChild(copy);
-      }
+      MergeNamedChildren(scene, root, s, vdir);
     }
   }
+}
+
+// Time step, integrator, contacts and the offscreen buffer the renderers need.
+void SetSimulationOptions(XMLDocument& scene, XMLElement* root, const SceneRequest& request) {
   // mj_step1/mj_step2 (the split the controllers need to read sensors of the current state)
   // integrates with semi-implicit Euler in MuJoCo 2.2.2 whatever the model says: say so here.
   XMLElement* option = ChildOrNew(scene, root, "option");
@@ -151,16 +156,21 @@ std::string ComposeScene(const SceneRequest& request) {
   std::snprintf(ts, sizeof(ts), "%.17g", request.timestep);
   option->SetAttribute("timestep", ts);
   option->SetAttribute("integrator", "Euler");
-  if (request.disable_contacts)
+  if (request.disable_contacts) {
     ChildOrNew(scene, option, "flag")->SetAttribute("contact", "disable");
-
+  }
   XMLElement* visual = ChildOrNew(scene, root, "visual");
   XMLElement* global = ChildOrNew(scene, visual, "global");
   global->SetAttribute("offwidth",
                        std::max(request.offscreen_width, global->IntAttribute("offwidth")));
   global->SetAttribute("offheight",
                        std::max(request.offscreen_height, global->IntAttribute("offheight")));
+}
 
+// 1 + N prefixed copies of the vehicle body and of its per-vehicle sections (actuators, sensors,
+// contact pairs/excludes, tendons, equalities).
+void AddVehicleCopies(XMLDocument& scene, XMLElement* root, const XMLElement* vroot,
+                      const XMLElement* body, const SceneRequest& request) {
   XMLElement* world = ChildOrNew(scene, root, "worldbody");
   const int n_vehicles = static_cast<int>(request.positions.size());
   for (int i = 0; i < n_vehicles; ++i) {
@@ -169,7 +179,6 @@ std::string ComposeScene(const SceneRequest& request) {
     copy->SetAttribute("pos", FormatVec(request.positions[i]).c_str());
     world->InsertEndChild(copy);
   }
-  // Per-vehicle sections: actuators, sensors, contact pairs/excludes, tendons, equalities.
   for (const char* tag : {"actuator", "sensor", "contact", "tendon", "equality"}) {
     const XMLElement* s = vroot->FirstChildElement(tag);
     if (!s) continue;
@@ -183,11 +192,30 @@ std::string ComposeScene(const SceneRequest& request) {
       }
     }
   }
+}
+
+}  // namespace
+
+std::string ComposeScene(const SceneRequest& request) {
+  XMLDocument scene, vehicle;
+  Load(scene, request.scene_path, "scene model");
+  if (request.vehicle_xml.empty()) {
+    Load(vehicle, request.vehicle_path, "vehicle model");
+  } else if (vehicle.Parse(request.vehicle_xml.c_str()) != tinyxml2::XML_SUCCESS) {
+    throw SceneError(request.vehicle_path + " (adapted): " + vehicle.ErrorStr());
+  }
+  XMLElement* root = scene.RootElement();
+  const XMLElement* vroot = vehicle.RootElement();
+  root->SetAttribute("model", "mjformation");
+  const XMLElement* body = VehicleBody(vroot, request.vehicle_path);
+  MergeGlobalSections(scene, root, vroot, request.vehicle_path);
+  SetSimulationOptions(scene, root, request);
+  AddVehicleCopies(scene, root, vroot, body, request);
   tinyxml2::XMLPrinter printer;
   scene.Print(&printer);
   return std::string("<!-- Composed by mjformation from ") + request.scene_path + " and " +
-         std::to_string(n_vehicles) + " copies of " + request.vehicle_path + AdapterNotes(request) +
-         " -->\n" + printer.CStr();
+         std::to_string(request.positions.size()) + " copies of " + request.vehicle_path +
+         AdapterNotes(request) + " -->\n" + printer.CStr();
 }
 
 mjModel_* CompileModel(const std::string& xml, const std::string& name) {

@@ -28,6 +28,9 @@ class OnlineMetrics {
 
  private:
   void SampleFollowerMotion(const Simulation& sim, double t);  // in the window, record ticks
+  double FormationSlots(const Simulation& sim, std::vector<double>* slots);
+  void HeldSlots(const Simulation& sim, std::vector<double>* slots);
+  void AccumulateSample(const Simulation& sim);
 
   double window_[2];
   double band_;  // |s| band defining "reached"
