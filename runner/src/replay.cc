@@ -52,7 +52,10 @@ void ReadConfig(const std::string& path, Recording* r) {
   const auto render = t["render"];
   v.width = render["width"].value_or(v.width);
   v.height = render["height"].value_or(v.height);
-  v.camera = render["camera"].value_or(v.camera);
+  const std::string camera = render["camera"].value_or(std::string(ToString(v.camera)));
+  v.camera = camera == "leader" ? CameraMode::kLeader
+             : camera == "fixed" ? CameraMode::kFixed
+                                 : CameraMode::kFollow;
   v.distance = render["distance"].value_or(v.distance);
   v.azimuth = render["azimuth"].value_or(v.azimuth);
   v.elevation = render["elevation"].value_or(v.elevation);
