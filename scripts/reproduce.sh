@@ -2,16 +2,19 @@
 # The main job: installs what is missing, builds, runs Experiments 1-3 of the paper (every
 # variant, on the quadrotor and on the ideal point-mass vehicle) and writes the report:
 # results/report/report.md (Table 1 beside the paper's, figures, snapshots).
-# Usage: scripts/reproduce.sh [--video] [--out DIR]
+# Also the robustness map of issue 12 (results/robustness, 45 short runs) unless --no-map.
+# Usage: scripts/reproduce.sh [--video] [--no-map] [--out DIR]
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 out=$root/results
 video=()
+map=1
 while (($#)); do
   case $1 in
     --video) video=(--set render.video=true) ;;
+    --no-map) map=0 ;;
     --out) out=$2; shift ;;
-    -h|--help) sed -n 2,5p "$0"; exit 0 ;;
+    -h|--help) sed -n 2,6p "$0"; exit 0 ;;
     *) echo "reproduce.sh: unknown argument '$1' (try --help)" >&2; exit 2 ;;
   esac
   shift
@@ -52,6 +55,10 @@ for e in "${experiments[@]}"; do
   done
 done
 for p in "${pids[@]}"; do wait "$p" || status=1; done
+if ((map)); then
+  echo "reproduce: robustness map (experiment x tilt_max x attitude plugin) into $out/robustness"
+  bash "$root/scripts/robustness_map.sh" "$out/robustness" || status=1
+fi
 # The written discussion (docs/DISCUSSION.md) goes into the report, after the generated one.
 cp "$root/docs/DISCUSSION.md" "$out/discussion.md"
 /usr/bin/python3 "$root/analysis/report.py" "$out" --out "$out/report"
