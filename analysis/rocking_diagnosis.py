@@ -140,8 +140,9 @@ def main(argv=None) -> int:
     for (exp, lim), pts in sorted(curves.items()):
         pts.sort(key=lambda p: p[0])
         taus = [p[0] for p in pts]
-        style = "-o" if lim == 0 else "--s"
-        label = f"{exp} point mass, " + ("no limit" if lim == 0 else f"|a_x|,|a_y| <= {lim:g}")
+        style = "-o" if lim == 0 else ("--s" if abs(lim - 6.0) < 1e-9 else ":x")
+        label = (f"{exp} point mass, " + ("no limit" if lim == 0 else f"|a_x|,|a_y| <= {lim:g}")
+                 + (f" (g tan {math.atan(lim / G):.2f})" if lim else ""))
         axes[0].plot(taus, [p[1]["tilt_needed_rms_deg"] for p in pts], style,
                      color=colors.get(exp), label=label)
         axes[1].plot(taus, [p[1]["accel_hz"] for p in pts], style, color=colors.get(exp))

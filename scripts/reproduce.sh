@@ -3,19 +3,22 @@
 # variant, on the quadrotor and on the ideal point-mass vehicle) and writes the report:
 # results/report/report.md (Table 1 beside the paper's, figures, snapshots).
 # With the non-cooperative leader study (scripts/leader_study.sh: maneuvering leaders, sigma_f
-# against T; about 3.1 CPU-minutes) unless --no-leaders.
-# Usage: scripts/reproduce.sh [--video] [--no-leaders] [--out DIR]
+# against T; about 3.1 CPU-minutes) unless --no-leaders, and the robustness map of issue 12
+# (results/robustness, 45 short runs) unless --no-map.
+# Usage: scripts/reproduce.sh [--video] [--no-leaders] [--no-map] [--out DIR]
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 out=$root/results
 video=()
 leaders=1
+map=1
 while (($#)); do
   case $1 in
     --video) video=(--set render.video=true) ;;
     --no-leaders) leaders=0 ;;
+    --no-map) map=0 ;;
     --out) out=$2; shift ;;
-    -h|--help) sed -n 2,7p "$0"; exit 0 ;;
+    -h|--help) sed -n 2,8p "$0"; exit 0 ;;
     *) echo "reproduce.sh: unknown argument '$1' (try --help)" >&2; exit 2 ;;
   esac
   shift
@@ -58,6 +61,10 @@ done
 for p in "${pids[@]}"; do wait "$p" || status=1; done
 if [ $leaders = 1 ]; then
   bash "$root/scripts/leader_study.sh" --out "$out" --no-report || status=1
+fi
+if ((map)); then
+  echo "reproduce: robustness map (experiment x tilt_max x attitude plugin) into $out/robustness"
+  bash "$root/scripts/robustness_map.sh" "$out/robustness" || status=1
 fi
 # The written discussion (docs/DISCUSSION.md) goes into the report, after the generated one.
 cp "$root/docs/DISCUSSION.md" "$out/discussion.md"

@@ -4,7 +4,7 @@
 # bandwidths give tau = 0.088 s for pd_cascade and 0.141 s for geometric), with and without an
 # acceleration limit equal to the quadrotor's g tan(0.55 rad) = 6.0 m/s^2 per axis, beside the
 # quadrotor with each attitude plugin. Then the table and figure (analysis/rocking_diagnosis.py).
-# Usage: scripts/rocking_diagnosis.sh [OUT_DIR]   (default results/rocking; about 1 minute)
+# Usage: scripts/rocking_diagnosis.sh [OUT_DIR]   (default results/rocking; 60 runs, about 2 minutes)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 out=${1:-$root/results/rocking}
@@ -39,11 +39,14 @@ for e in exp2 exp3; do
     run "$e" "pm_tau${tau}_lim6.0" --set "vehicles.model=\"$(model "$tau" 6.0)\"" "${pm[@]}"
     wait
   done
-  # Authority alone: the ideal point mass (no lag) limited to what tilt_max 0.35 and 0.45 rad
-  # give, g tan(tilt_max) per axis.
-  run "$e" pm_tau0_lim3.57 --set "vehicles.model=\"$(model 0 3.57)\"" "${pm[@]}" &
-  run "$e" pm_tau0_lim4.86 --set "vehicles.model=\"$(model 0 4.86)\"" "${pm[@]}"
-  wait
+  # Authority: the point mass limited to what tilt_max 0.35 and 0.45 rad give, g tan(tilt_max)
+  # per axis (a box: up to sqrt(2) more along the diagonals than the tilt's disc), first ideal.
+  # Then with the two plugins' lags (0.088, 0.141 s).
+  for tau in 0 0.088 0.141; do
+    run "$e" "pm_tau${tau}_lim3.57" --set "vehicles.model=\"$(model "$tau" 3.57)\"" "${pm[@]}" &
+    run "$e" "pm_tau${tau}_lim4.86" --set "vehicles.model=\"$(model "$tau" 4.86)\"" "${pm[@]}"
+    wait
+  done
   run "$e" quad_pd_cascade &
   run "$e" quad_geometric --set 'attitude={plugin="geometric", tilt_max=0.55}'
   wait

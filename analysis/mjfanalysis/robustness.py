@@ -141,6 +141,32 @@ def markdown(cells: list[Cell]) -> list[str]:
     return lines
 
 
+def compact_markdown(cells: list[Cell]) -> list[str]:
+    """One row per (experiment, tilt_max), one column per plugin:
+    "reached? · mean sigma_f · RMS tilt (deg) · max tilt over the run (deg)"."""
+    plugins = list(dict.fromkeys(c.plugin for c in cells))
+    lines = ["| experiment | tilt_max (rad / deg) | " + " | ".join(f"`{p}`" for p in plugins) + " |",
+             "|---|---|" + "---|" * len(plugins)]
+    keys = sorted({(c.experiment, c.tilt_max) for c in cells})
+    by = {(c.experiment, c.tilt_max, c.plugin): c for c in cells}
+    for experiment, tilt in keys:
+        row = [f"`{experiment}`", f"{tilt:.2f} / {math.degrees(tilt):.0f}"]
+        for p in plugins:
+            c = by.get((experiment, tilt, p))
+            if c is None:
+                row.append("")
+            elif not c.complete:
+                row.append("refused" if c.refused else "failed")
+            else:
+                reached = "**yes**" if c.reached else "no"
+                over = c.over_limit_deg
+                flag = f" (**{over:+.0f} over**)" if over > TILT_MARGIN_DEG else ""
+                row.append(f"{reached} · {_f(c.sigma_f_mean, 2)} · {_f(c.rms_tilt_mean, 1)} · "
+                           f"{_f(c.max_tilt_deg_run, 1)}{flag}")
+        lines.append("| " + " | ".join(row) + " |")
+    return lines
+
+
 def write_csv(cells: list[Cell], path: Path) -> None:
     with open(path, "w", newline="") as f:
         w = csv.writer(f)

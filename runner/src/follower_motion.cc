@@ -14,12 +14,13 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 FollowerMotion::FollowerMotion(int n_followers, double t0, double t1)
     : n_(n_followers),
+      n_spectra_(std::min(n_followers, kMaxSpectra)),
       bins_(static_cast<int>(std::lround((kMaxHz - kMinHz) / kStepHz)) + 1),
       t0_(t0),
       t1_(t1),
       phasor_(bins_),
       phasor_sum_(bins_),
-      spectrum_(static_cast<size_t>(n_followers) * bins_ * 2),
+      spectrum_(static_cast<size_t>(n_spectra_) * bins_ * 2),
       tilt_sq_sum_(n_followers),
       tilt_x_sum_(n_followers),
       tilt_y_sum_(n_followers),
@@ -60,7 +61,7 @@ void FollowerMotion::Add(int i, const double q[4], double thrust) {
   tilt_x_sum_[i] += weight_ * x;
   tilt_y_sum_[i] += weight_ * y;
   std::complex<double>* s = &spectrum_[static_cast<size_t>(i) * bins_ * 2];
-  for (int b = 0; b < bins_; ++b) {  // real x complex: no __muldc3
+  for (int b = 0; b < (i < n_spectra_ ? bins_ : 0); ++b) {  // real x complex: no __muldc3
     s[2 * b] += phasor_[b] * x;
     s[2 * b + 1] += phasor_[b] * y;
   }
@@ -70,7 +71,7 @@ void FollowerMotion::Add(int i, const double q[4], double thrust) {
 }
 
 double FollowerMotion::DominantHz(int i) const {
-  if (samples_ == 0 || !(weight_sum_ > 0)) return kNaN;
+  if (samples_ == 0 || !(weight_sum_ > 0) || i >= n_spectra_) return kNaN;
   const double n = static_cast<double>(samples_);
   const double mx = tilt_x_sum_[i] / weight_sum_, my = tilt_y_sum_[i] / weight_sum_;
   const std::complex<double>* s = &spectrum_[static_cast<size_t>(i) * bins_ * 2];
@@ -89,6 +90,9 @@ double FollowerMotion::DominantHz(int i) const {
     }
   }
   if (!(best_power > 1e-12 * n * n)) return kNaN;  // no motion (e.g. a point mass)
+  // Largest at the band's lower edge: the spectrum falls from below the band, no oscillation
+  // peak inside it (the formation's own slow motion leaking in).
+  if (best == 0) return kNaN;
   double offset = 0;  // vertex of the parabola through the peak and its neighbours, in bins
   if (best > 0 && best < bins_ - 1) {
     const double a = power(best - 1), c = power(best + 1);

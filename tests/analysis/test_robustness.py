@@ -43,6 +43,9 @@ def test_map_reads_sweeps_and_flags_reach_refusal_and_limit(tmp_path):
     text = "\n".join(robustness.markdown(list(cells.values())))
     assert "**refused**" in text and "| yes |" in text and "**no**" in text
     assert "**+14.9**" in text  # beyond the limit by more than 10 deg is flagged
+    compact = "\n".join(robustness.compact_markdown(list(cells.values())))
+    assert "**yes** · 1.50 · 15.0 · 30.0" in compact and "refused" in compact
+    assert "no · 1.50 · 15.0 · 35.0 (**+15 over**)" in compact
     robustness.write_csv(list(cells.values()), tmp_path / "map.csv")
     assert (tmp_path / "map.csv").read_text().count("\n") == 4
 

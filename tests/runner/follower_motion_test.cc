@@ -47,8 +47,38 @@ TEST(FollowerMotionTest, RmsTiltFrequencyAndThrustVariationOfKnownSignals) {
   EXPECT_NEAR(m["tilt_oscillation_hz_in_window"][1].get<double>(), 0.6, 0.05 + 0.01);
   EXPECT_NEAR(m["rms_tilt_deg_in_window"][1].get<double>(), 0.15 * 180 / M_PI, 0.1);
   EXPECT_TRUE(m["tilt_oscillation_hz_in_window"][2].is_null());
+  // Only the slow turn of a steady tilt (below the band): no peak inside it, null.
+  FollowerMotion slow(1, 25, 40);
+  for (int k = 0; k <= 1500; ++k) {
+    const double t = 25 + 0.01 * k;
+    slow.Begin(t);
+    double q[4];
+    TiltQuat(0.15, 2 * M_PI * 0.05 * t, q);
+    slow.Add(0, q, 15);
+  }
+  EXPECT_TRUE(std::isnan(slow.DominantHz(0)));
   EXPECT_DOUBLE_EQ(m["rms_thrust_variation_n_in_window"][2].get<double>(), 0);
   EXPECT_DOUBLE_EQ(m["rms_tilt_deg_in_window"][2].get<double>(), 0);
+}
+
+// Large swarms: spectra only for the first kMaxSpectra followers, RMS for all.
+TEST(FollowerMotionTest, FrequencyOnlyForTheFirstFollowersOfALargeSwarm) {
+  const int n = FollowerMotion::kMaxSpectra + 2;
+  FollowerMotion motion(n, 0, 10);
+  for (int k = 0; k <= 1000; ++k) {
+    const double t = 0.01 * k;
+    motion.Begin(t);
+    double q[4];
+    TiltQuat(0.2 * std::sin(2 * M_PI * 1.0 * t), 0, q);
+    for (int i = 0; i < n; ++i) motion.Add(i, q, 10);
+  }
+  EXPECT_NEAR(motion.DominantHz(0), 1.0, 0.02);
+  EXPECT_NEAR(motion.DominantHz(n - 3), 1.0, 0.02);
+  EXPECT_TRUE(std::isnan(motion.DominantHz(n - 1)));
+  nlohmann::ordered_json m;
+  motion.AddTo(&m);
+  EXPECT_NEAR(m["rms_tilt_deg_in_window"][n - 1].get<double>(),
+              m["rms_tilt_deg_in_window"][0].get<double>(), 1e-12);
 }
 
 TEST(FollowerMotionTest, CollectiveForceOfRotorsAndOfAPointMass) {

@@ -333,6 +333,14 @@ TEST(PdCascadeTest, RefusesBadConfiguration) {
   EXPECT_THROW(PdCascade(bad, ok, rotors), std::invalid_argument);
   EXPECT_THROW(PdCascade(PdCascade::Gains{}, PdCascade::Vehicle{0, 9.81, {1, 1, 1}}, rotors),
                std::invalid_argument);
+  // Above 0.65 rad only with both large-tilt fixes (Exp 2 flips otherwise).
+  PdCascade::Gains wide;
+  wide.tilt_max = 0.78;
+  EXPECT_THROW(PdCascade(wide, ok, rotors), std::invalid_argument);
+  wide.euler_rate_damping = true;
+  EXPECT_THROW(PdCascade(wide, ok, rotors), std::invalid_argument);
+  wide.allocation = Mixer::Priority::kRollPitchFirst;
+  EXPECT_NO_THROW(PdCascade(wide, ok, rotors));
   auto coplanar = rotors;  // all rotors on the x axis: no roll authority
   for (auto& r : coplanar) r.pos[1] = 0;
   EXPECT_THROW(PdCascade(PdCascade::Gains{}, ok, coplanar), std::invalid_argument);

@@ -20,6 +20,9 @@ class FollowerMotion {
   // Frequency bins of the tilt spectrum, Hz. Below 0.3 Hz is the formation's own motion (circle
   // rates 0.025-0.075 Hz turn the steady tilt vector); above 5 Hz nothing of the closed loops.
   static constexpr double kMinHz = 0.3, kMaxHz = 5.0, kStepHz = 0.02;
+  // Spectra are kept for the first kMaxSpectra followers only (7.5 kB each): a 100000-vehicle
+  // swarm would otherwise need 750 MB. Beyond them the frequency is null; RMS values are kept.
+  static constexpr int kMaxSpectra = 256;
 
   // window: [t0, t1] s, the metric window; the spectrum is Hann-weighted over it so the slow
   // turning of the steady tilt does not leak into the band.
@@ -35,13 +38,14 @@ class FollowerMotion {
   void AddTo(nlohmann::ordered_json* metrics) const;
 
   // Dominant frequency (Hz) of follower i's tilt vector (the horizontal part of body z), mean
-  // removed; NaN with no samples or no motion. Parabolic interpolation between bins. World-frame
-  // components: a rocking at f of a tilt whose direction turns at f_c (the formation's rate, <=
-  // 0.075 Hz here) shows at f +- f_c.
+  // removed; NaN with no samples, no motion, no peak inside the band (largest at its lower edge)
+  // or i >= kMaxSpectra. Parabolic interpolation between
+  // bins. World-frame components: a rocking at f of a tilt whose direction turns at f_c (the
+  // formation's rate, <= 0.075 Hz here) shows at f +- f_c.
   double DominantHz(int follower) const;
 
  private:
-  int n_, bins_;
+  int n_, n_spectra_, bins_;
   double t0_, t1_;
   long samples_ = 0;
   double weight_ = 0, weight_sum_ = 0;            // Hann weight of this sample, and the sum
