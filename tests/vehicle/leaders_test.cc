@@ -345,6 +345,40 @@ TEST(TrajectoryTest, BadFilesRefusedWithLineAndReason) {
   }
 }
 
+// The tracking leaders are functions of (t, state): two instances from the same configuration
+// give the same commands bit for bit.
+TEST(TrackingLeadersTest, SameConfigurationSameCommands) {
+  LemniscateGuidance::Config lc;
+  WaypointGuidance::Config wc;
+  wc.points = {{20, 0}, {0, 20}, {-20, 0}, {0, -20}};
+  wc.loop = true;
+  const TrajectoryTable table =
+      ReadTrajectoryCsv(WriteTemp("traj_det.csv", "0,0,0\n3,2,1\n6,5,1\n9,5,4\n"));
+  const std::vector<std::function<GuidanceOutput(double, const Vec3&, const Vec3&)>> pairs[] = {
+      {[l = LemniscateGuidance(lc)](double t, const Vec3& p, const Vec3& v) {
+         return l.Update(t, p, v);
+       },
+       [l = LemniscateGuidance(lc)](double t, const Vec3& p, const Vec3& v) {
+         return l.Update(t, p, v);
+       }},
+      {[w = WaypointGuidance(wc)](double t, const Vec3& p, const Vec3& v) {
+         return w.Update(t, p, v);
+       },
+       [w = WaypointGuidance(wc)](double t, const Vec3& p, const Vec3& v) {
+         return w.Update(t, p, v);
+       }},
+      {[g = TrajectoryGuidance({}, table)](double t, const Vec3& p, const Vec3& v) {
+         return g.Update(t, p, v);
+       },
+       [g = TrajectoryGuidance({}, table)](double t, const Vec3& p, const Vec3& v) {
+         return g.Update(t, p, v);
+       }},
+  };
+  for (const auto& pair : pairs) {
+    EXPECT_EQ(Fly(pair[0], {3, -2, 5}, 0.01, 60.0).ax, Fly(pair[1], {3, -2, 5}, 0.01, 60.0).ax);
+  }
+}
+
 TEST(HashUniformTest, UniformAndIndependentOfCallOrder) {
   double sum = 0, lo = 1, hi = 0;
   for (uint64_t k = 0; k < 100000; ++k) {
