@@ -359,8 +359,11 @@ void ParseRunSection(const Reporter& reporter, Section run, const std::string& p
   }
   // A window reaching past the run would average fewer samples than the user asked for.
   if (c.metric_window[0] < 0 || c.metric_window[1] > c.duration + 1e-9) {
-    run.Fail("metric_window", fmt::format("[{}, {}] s lies outside the run [0, {}] s",
-                                          c.metric_window[0], c.metric_window[1], c.duration));
+    run.Fail("metric_window",
+             fmt::format("[{}, {}] s lies outside the run [0, {}] s (a shortened run needs its "
+                         "window too, e.g. --set 'run.metric_window=[{}, {}]')",
+                         c.metric_window[0], c.metric_window[1], c.duration, 0.625 * c.duration,
+                         c.duration));
   }
   if (c.paper_experiment < 0 || c.paper_experiment > 3) {
     run.Fail("paper_experiment", "must be 1, 2 or 3 (or 0: none)");

@@ -8,7 +8,7 @@ trap 'echo "viewer_xvfb.sh: failed at line $LINENO: $BASH_COMMAND" >&2' ERR
 build=$1 src=$2 work=$3
 bin="$build/runner/mjformation"
 rm -rf "$work" && mkdir -p "$work"
-exp=(view "$src/experiments/exp2.toml" --set run.duration=30.0 --set 'render.snapshots=[]'
+exp=(view "$src/experiments/exp2.toml" --set run.duration=30.0 --set 'run.metric_window=[20.0, 30.0]' --set 'render.snapshots=[]'
      --set render.shadows=false)
 
 # 1. No display: a clear message and exit 1, not a crash.
@@ -106,7 +106,7 @@ PY
 /usr/bin/python3 "$work/check_screenshot.py" "$shot"
 
 # 3. `mjformation replay RUN_DIR` shows a recorded run in the same window, closes the same way.
-"$bin" run "$src/experiments/exp2.toml" --set run.duration=4.0 --set 'render.snapshots=[]' \
+"$bin" run "$src/experiments/exp2.toml" --set run.duration=4.0 --set 'run.metric_window=[2.0, 4.0]' --set 'render.snapshots=[]' \
   --set render.shadows=false --out "$work/run" --no-render -q
 # `mjformation replay RUN_DIR` opens the window (mjformation-view --replay) and closes on Escape.
 "$bin" replay "$work/run" > "$work/replay_cli.log" 2>&1 &
