@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "mjformation/runner/paths.hpp"
+#include "realism_config.hpp"
 
 namespace mjf::runner {
 namespace {
@@ -253,13 +254,14 @@ ExperimentConfig ParseExperiment(const std::string& text, const std::string& pat
   }
   ApplyOverrides(root, overrides);
 
-  const std::set<std::string> known_sections = {"run",       "vehicles", "topology", "leader",
-                                                "formation", "attitude", "render"};
+  const std::set<std::string> known_sections = {"run",    "vehicles",  "topology",
+                                                "leader", "formation", "attitude",
+                                                "render", "sensors",   "wind"};
   for (auto&& [key, node] : root) {
     if (!known_sections.count(std::string(key.str()))) {
       reporter.Fail(&node, "[" + std::string(key.str()) + "]",
                     "unknown section (known: run, vehicles, topology, leader, formation, "
-                    "attitude, render)");
+                    "attitude, render, sensors, wind)");
     }
     if (!node.is_table()) {
       reporter.Fail(&node, std::string(key.str()), "expected a [section] table");
@@ -493,6 +495,7 @@ ExperimentConfig ParseExperiment(const std::string& text, const std::string& pat
     render.Fail("video_width", "video size must be even and in [16, 4096] pixels");
   }
   if (c.render.trail_seconds < 0) render.Fail("trail_seconds", "must be >= 0 s");
+  ParseRealismSections(root, path, &c);  // [sensors], [wind] (issue 11)
   return c;
 }
 

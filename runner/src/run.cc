@@ -20,6 +20,7 @@
 #include "mjformation/runner/metrics.hpp"
 #include "mjformation/runner/output.hpp"
 #include "mjformation/runner/simulation.hpp"
+#include "realism_config.hpp"
 
 #ifndef MJF_VERSION
 #define MJF_VERSION "0.0.0"
@@ -152,7 +153,10 @@ RunResult RunExperiment(const ExperimentConfig& config, const RunOptions& option
     dir = std::make_unique<RunDirectory>(options.out_dir, options.overwrite);
     dir->WriteText("config.toml", ConfigEcho(config));
     dir->WriteText("scene.xml", sim.scene_xml());
-    if (options.record) csv = std::make_unique<TimeseriesWriter>(dir->Path("timeseries.csv"), n);
+    if (options.record) {
+      csv = std::make_unique<TimeseriesWriter>(dir->Path("timeseries.csv"), n,
+                                               config.sensors.enabled(), config.wind.enabled());
+    }
   }
 
   const bool want_snapshots = dir && options.render && !config.render.snapshots.empty();
@@ -259,6 +263,7 @@ RunResult RunExperiment(const ExperimentConfig& config, const RunOptions& option
   s["plugins"]["attitude"] = plugin_json(sim.attitude_plugin(0));
   s["shape"] = {
       {"type", config.shape.type}, {"radius", config.shape.radius}, {"omega", config.shape.omega}};
+  AddRealismSummary(config, &s);  // issue 11: "sensors" / "wind", only when switched on
   s["metrics"] = metrics.Summary(sim);
   nlohmann::ordered_json report = nlohmann::ordered_json::object();
   for (const auto& [k, v] : sim.FormationReport()) report[k] = JsonNumber(v);

@@ -139,6 +139,7 @@ Simulation::Simulation(const ExperimentConfig& config) : config_(config) {
 
   BindVehicles(*attitude.descriptor);
   CreatePlugins();
+  CreateRealismStages();
 }
 
 Simulation::~Simulation() {
@@ -356,12 +357,13 @@ void Simulation::ReadStates() {
 void Simulation::ComputeControls() {
   mj_step1(model_, data_);
   ReadStates();
+  MeasureStates();  // issue 11: the plugins see measured_states(), the truth stays in states_
   mjfStepContext ctx{};
   ctx.time = time();
   ctx.step = step_;
   ctx.timestep = config_.timestep;
   ctx.n_vehicles = n_vehicles();
-  ctx.states = states_.data();
+  ctx.states = measured_states().data();
   ctx.setpoints = setpoints_.data();
   ctx.model = reinterpret_cast<const struct mjModel_*>(model_);
   ctx.data = reinterpret_cast<const struct mjData_*>(data_);
@@ -424,6 +426,7 @@ void Simulation::ComputeControls() {
       for (int k = 0; k < actuators_per_vehicle_; ++k) data_->ctrl[b.actuators[k]] = c[k];
     }
   }
+  ApplyWind();  // issue 11
 }
 
 // The wrench rotor model: what MuJoCo's site transmission with a filter actuator would apply,
@@ -549,6 +552,63 @@ void Simulation::CheckState() const {
     }
   }
 }
+
+// ---------------------------------------------------------------------------------------------
+// Sensor and wind stages (issue 11). With [sensors] ideal and [wind] calm none of this runs and
+// the bytes of a run are those from before these stages existed.
+
+void Simulation::CreateRealismStages() {
+  const int n = n_vehicles();
+  if (config_.sensors.enabled()) {
+    measured_.resize(n);
+    sensors_.reserve(n);
+    for (int i = 0; i < n; ++i) {
+      sensors_.emplace_back(config_.sensors.params, config_.timestep,
+                            realism::StreamSeed(config_.seed, i, /*stream=*/1));
+    }
+  }
+  if (config_.wind.enabled()) {
+    wind_ = std::make_unique<realism::WindField>(config_.wind.params, n, config_.timestep,
+                                                 config_.seed);
+    wind_now_.assign(n, {0, 0, 0});
+  }
+}
+
+void Simulation::MeasureStates() {
+  for (size_t i = 0; i < sensors_.size(); ++i)
+    sensors_[i].Measure(step_, states_[i], &measured_[i]);
+}
+
+void Simulation::ApplyWind() {
+  if (!wind_) return;
+  // The wrench rotor model has just refilled qfrc_applied; otherwise nothing else writes it.
+  if (config_.rotor_model != "wrench") mju_zero(data_->qfrc_applied, model_->nv);
+  wind_now_ = wind_->Update(step_);
+  for (int i = 0; i < n_vehicles(); ++i) {
+    // Air-relative velocity from the true velocity of the vehicle's imu site (its centre of mass
+    // in the vehicle models here).
+    const auto f = config_.wind.drag.Force(states_[i].vel, wind_now_[i].data());
+    // J^T f for a force at the centre of mass, over the dofs that move this body: the
+    // translational half of ApplyRotorWrenches' loop (mj_jac's maths, without its dense 3 x nv
+    // Jacobian).
+    int body = bindings_[i].body;
+    while (body && !model_->body_dofnum[body]) body = model_->body_parentid[body];
+    if (!body) continue;
+    const mjtNum* com = data_->xipos + 3 * bindings_[i].body;
+    const mjtNum* root_com = data_->subtree_com + 3 * model_->body_rootid[body];
+    mjtNum offset[3];
+    for (int j = 0; j < 3; ++j) offset[j] = com[j] - root_com[j];
+    for (int j = model_->body_dofadr[body] + model_->body_dofnum[body] - 1; j >= 0;
+         j = model_->dof_parentid[j]) {
+      const mjtNum* cdof = data_->cdof + 6 * j;
+      mjtNum lin[3];
+      Cross(lin, cdof, offset);
+      for (int k = 0; k < 3; ++k) lin[k] += cdof[3 + k];
+      data_->qfrc_applied[j] += Dot3(lin, f.data());
+    }
+  }
+}
+// --------------------------------------------------------------------------- end of issue 11
 
 std::string Simulation::TimeTag() const { return fmt::format("t = {:.3f} s", time()); }
 

@@ -38,7 +38,11 @@ class RunDirectory {
 // not grow with run length.
 class TimeseriesWriter {
  public:
-  TimeseriesWriter(const std::string& path, int n_vehicles);
+  // measured / wind (issue 11): append per vehicle what the controllers measured
+  // (uav<i>_px_meas .. _yaw_meas) / the wind it felt (uav<i>_wind_x, _y, _z), after the usual
+  // columns; off by default, so existing runs keep their bytes.
+  TimeseriesWriter(const std::string& path, int n_vehicles, bool measured = false,
+                   bool wind = false);
   ~TimeseriesWriter();
   void Write(const Simulation& sim, double sigma_f, const std::vector<double>& slots);
   void Close();
@@ -48,6 +52,7 @@ class TimeseriesWriter {
   std::string path_;
   std::FILE* file_ = nullptr;
   std::string buffer_;
+  bool measured_ = false, wind_ = false;  // issue 11 columns
 };
 
 // The experiment file as run: its text plus the command-line overrides, as a TOML comment.

@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include "mjformation/realism/sensor_model.hpp"
+#include "mjformation/realism/wind_field.hpp"
 #include "mjformation/runner/config.hpp"
 #include "mjformation/runner/plugin_host.hpp"
 
@@ -81,6 +83,15 @@ class Simulation {
   // The formation plugin's scalar report ("delta", "error_bound", ...), if any.
   std::vector<std::pair<std::string, double>> FormationReport() const;
 
+  // --- Sensor and wind stages (issue 11) ---
+  // What the plugins saw this step: the sensor model's output, or the truth (states()) when
+  // [sensors] is ideal.
+  const std::vector<mjfVehicleState>& measured_states() const {
+    return sensors_.empty() ? states_ : measured_;
+  }
+  // The wind at each vehicle this step (m/s, world); empty when [wind] is calm.
+  const std::vector<std::array<double, 3>>& wind() const { return wind_now_; }
+
  private:
   void BindVehicles(const mjfPlugin& attitude);
   void CreatePlugins();
@@ -88,6 +99,10 @@ class Simulation {
   void ApplyRotorWrenches();
   void CheckState() const;
   std::string TimeTag() const;  // "t = 1.234 s", for messages
+  // --- Sensor and wind stages (issue 11) ---
+  void CreateRealismStages();  // none when [sensors] is ideal and [wind] calm
+  void MeasureStates();        // states_ -> measured_ (the sensor stage)
+  void ApplyWind();            // drag force at each vehicle's centre of mass, into qfrc_applied
 
   ExperimentConfig config_;
   std::unique_ptr<PluginRegistry> registry_;
@@ -127,6 +142,12 @@ class Simulation {
   std::unique_ptr<PluginInstance> formation_;                       // formation-kind plugin, or
   std::vector<std::unique_ptr<PluginInstance>> follower_guidance_;  // a guidance per follower
   std::vector<std::unique_ptr<PluginInstance>> attitude_;
+
+  // --- Sensor and wind stages (issue 11) ---
+  std::vector<realism::SensorModel> sensors_;  // per vehicle; empty: ideal
+  std::vector<mjfVehicleState> measured_;
+  std::unique_ptr<realism::WindField> wind_;  // null: calm
+  std::vector<std::array<double, 3>> wind_now_;
 };
 
 // Euler angles (roll, pitch, yaw; ZYX convention, rad) of a w-x-y-z quaternion.
