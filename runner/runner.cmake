@@ -13,7 +13,8 @@ add_library(mjf_runner STATIC
   ${CMAKE_CURRENT_SOURCE_DIR}/src/scene.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/shape_config.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/simulation.cc
-  ${CMAKE_CURRENT_SOURCE_DIR}/src/sweep.cc)
+  ${CMAKE_CURRENT_SOURCE_DIR}/src/sweep.cc
+  ${CMAKE_CURRENT_SOURCE_DIR}/src/sweep_stats.cc)
 target_include_directories(mjf_runner PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include)
 target_compile_definitions(mjf_runner PRIVATE
   MJF_VERSION="${PROJECT_VERSION}"
@@ -42,3 +43,24 @@ endforeach()
 install(TARGETS mjformation RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(DIRECTORY ${CMAKE_SOURCE_DIR}/mjcf/ DESTINATION ${CMAKE_INSTALL_DATADIR}/mjformation/mjcf
         FILES_MATCHING PATTERN "*.xml" PATTERN "*.png" PATTERN "*.stl" PATTERN "*.obj")
+
+# The MPI transport of `sweep` (issue 11): a module the runner dlopen()s only under mpirun, so
+# the executable never needs MPI. Built when Open MPI (libopenmpi-dev) is installed. Kept out of
+# the plugin folder, whose every library the plugin registry loads.
+find_package(MPI COMPONENTS C QUIET)
+set(MJF_MPI_MODULE_BUILD_PATH ${CMAKE_BINARY_DIR}/lib/libmjf_sweep_mpi.so)
+target_compile_definitions(mjf_runner PRIVATE
+  MJF_MPI_MODULE_BUILD_PATH="${MJF_MPI_MODULE_BUILD_PATH}"
+  MJF_MPI_MODULE_INSTALL_PATH="${CMAKE_INSTALL_FULL_LIBDIR}/mjformation/libmjf_sweep_mpi.so")
+if(MPI_C_FOUND)
+  add_library(mjf_sweep_mpi MODULE ${CMAKE_CURRENT_SOURCE_DIR}/mpi/sweep_mpi.cc)
+  target_include_directories(mjf_sweep_mpi PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/include)
+  target_link_libraries(mjf_sweep_mpi PRIVATE MPI::MPI_C)
+  set_target_properties(mjf_sweep_mpi PROPERTIES PREFIX "lib"
+    LIBRARY_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/lib CXX_VISIBILITY_PRESET hidden)
+  add_dependencies(mjformation mjf_sweep_mpi)
+  install(TARGETS mjf_sweep_mpi LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/mjformation)
+else()
+  message(STATUS "Open MPI not found: `mpirun ... mjformation sweep` unavailable "
+                 "(apt-get install libopenmpi-dev)")
+endif()

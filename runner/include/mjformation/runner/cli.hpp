@@ -32,6 +32,8 @@ struct CliCommands {
   // sweep
   std::vector<std::string> sweep_vary;
   int sweep_jobs = 2;
+  int sweep_seeds = 0;        // --seeds N (issue 11): N seeds per grid cell; 0: the config's seed
+  bool sweep_resume = false;  // --resume: rerun only runs missing or incomplete
 };
 
 void AddCommands(CLI::App& app, CliCommands* commands);
