@@ -56,6 +56,9 @@ if(MPI_C_FOUND)
   add_library(mjf_sweep_mpi MODULE ${CMAKE_CURRENT_SOURCE_DIR}/mpi/sweep_mpi.cc)
   target_include_directories(mjf_sweep_mpi PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/include)
   target_link_libraries(mjf_sweep_mpi PRIVATE MPI::MPI_C)
+  # The C API only (mpi.h pulls in the removed C++ bindings otherwise); unresolved = link error.
+  target_compile_definitions(mjf_sweep_mpi PRIVATE OMPI_SKIP_MPICXX=1 MPICH_SKIP_MPICXX=1)
+  target_link_options(mjf_sweep_mpi PRIVATE -Wl,--no-undefined)
   set_target_properties(mjf_sweep_mpi PROPERTIES PREFIX "lib"
     LIBRARY_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/lib CXX_VISIBILITY_PRESET hidden)
   add_dependencies(mjformation mjf_sweep_mpi)

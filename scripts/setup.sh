@@ -6,6 +6,7 @@ PACKAGES=(
   libmujoco-dev libmujoco-samples libqhull-dev libeigen3-dev libosmesa6-dev
   libtomlplusplus-dev libtinyxml2-dev libcli11-dev nlohmann-json3-dev libfmt-dev libpng-dev libssl-dev
   libgtest-dev libgmock-dev libbenchmark-dev ffmpeg
+  libopenmpi-dev openmpi-bin
   python3 python3-numpy python3-matplotlib python3-pytest
 )
 missing=()
