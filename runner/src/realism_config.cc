@@ -135,6 +135,14 @@ void ParseWind(const toml::table* table, const std::string& path, ExperimentConf
   const double horizontal = std::hypot(p.mean[0], p.mean[1]);
   // Taylor's frozen turbulence is carried past a hovering vehicle by the mean wind; 1 m/s floor.
   const double airspeed = keys.Number("airspeed", std::max(1.0, horizontal));
+  p.turbulence_rate_hz = keys.Number("turbulence_rate", p.turbulence_rate_hz);
+  {
+    const double steps = 1.0 / (p.turbulence_rate_hz * c->timestep);
+    if (!(p.turbulence_rate_hz > 0) || steps < 1 - 1e-9 ||
+        std::abs(steps - std::round(steps)) > 1e-6 * steps) {
+      keys.Fail("turbulence_rate", "1 / rate must be a whole number (>= 1) of physics steps");
+    }
+  }
   const bool has_sigma = keys.Has("sigma"), has_length = keys.Has("scale_length");
   const auto sigma = keys.Vector3("sigma", {0, 0, 0});
   const auto length = keys.Vector3("scale_length", {0, 0, 0});
@@ -249,6 +257,7 @@ void AddRealismSummary(const ExperimentConfig& c, nlohmann::ordered_json* summar
       wind["sigma"] = p.dryden.sigma;
       wind["scale_length"] = p.dryden.scale_length;
       wind["airspeed"] = p.dryden.airspeed;
+      wind["turbulence_rate_hz"] = p.turbulence_rate_hz;
     }
     nlohmann::ordered_json gusts = nlohmann::ordered_json::array();
     for (const auto& g : p.gusts) {

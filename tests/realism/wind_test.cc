@@ -183,6 +183,25 @@ TEST(WindField, CalmMeanGustAndTurbulenceAxes) {
   EXPECT_LT(cross, 10) << "vehicles get independent realisations";
 }
 
+// Turbulence is sampled at turbulence_rate_hz and held in between.
+TEST(WindField, TurbulenceIsHeldBetweenSamples) {
+  WindParams p;
+  p.turbulence = true;
+  p.dryden = DrydenParams::LowAltitude(5, 15.4, 3.0);
+  p.turbulence_rate_hz = 100.0;  // every 10 steps of 1 ms
+  WindField f(p, 1, 0.001, 4);
+  std::array<double, 3> previous = f.Update(0)[0];
+  for (int64_t k = 1; k < 200; ++k) {
+    const auto v = f.Update(k)[0];
+    if (k % 10 == 0) {
+      EXPECT_NE(v[0], previous[0]) << k;
+    } else {
+      EXPECT_EQ(v, previous) << k;
+    }
+    previous = v;
+  }
+}
+
 TEST(WindField, SameSeedSameBytes) {
   WindParams p;
   p.mean = {3, 1, 0};

@@ -1,6 +1,7 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 #include "mjformation/realism/wind_field.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace mjf::realism {
@@ -16,10 +17,14 @@ WindField::WindField(const WindParams& params, int n_vehicles, double timestep, 
                ? std::array<double, 2>{params.mean[0] / horizontal, params.mean[1] / horizontal}
                : std::array<double, 2>{1.0, 0.0};
   if (params.turbulence) {
+    turbulence_period_ =
+        std::max<int64_t>(1, std::llround(1.0 / (params.turbulence_rate_hz * timestep)));
     turbulence_.reserve(n_vehicles);
     for (int i = 0; i < n_vehicles; ++i) {
-      turbulence_.emplace_back(params.dryden, timestep, StreamSeed(seed, i, /*stream=*/2));
+      turbulence_.emplace_back(params.dryden, turbulence_period_ * timestep,
+                               StreamSeed(seed, i, /*stream=*/2));
     }
+    gust_uvw_.assign(n_vehicles, {0, 0, 0});
   }
 }
 
@@ -33,7 +38,8 @@ const std::vector<std::array<double, 3>>& WindField::Update(int64_t step) {
   for (size_t i = 0; i < wind_.size(); ++i) {
     wind_[i] = common;
     if (turbulence_.empty()) continue;
-    const auto uvw = turbulence_[i].Step();
+    if (step % turbulence_period_ == 0) gust_uvw_[i] = turbulence_[i].Step();
+    const auto& uvw = gust_uvw_[i];
     wind_[i][0] += along_[0] * uvw[0] - along_[1] * uvw[1];
     wind_[i][1] += along_[1] * uvw[0] + along_[0] * uvw[1];
     wind_[i][2] += uvw[2];

@@ -3,7 +3,7 @@
 // Seeded normal draws that give the same bytes on every platform: std::mt19937_64 is fully
 // specified by the standard, std::normal_distribution is not (its algorithm is the library's),
 // so the uniform comes from raw 53-bit draws (as runner/src/simulation.cc InitialPositions) and
-// the normal from our own Box-Muller transform.
+// the normal from our own transform (Marsaglia's polar form of Box-Muller).
 #ifndef MJFORMATION_REALISM_GAUSSIAN_HPP_
 #define MJFORMATION_REALISM_GAUSSIAN_HPP_
 
@@ -27,22 +27,29 @@ class Gaussian {
  public:
   explicit Gaussian(uint64_t seed) : rng_(seed) {}
 
+  // Marsaglia's polar method: a point uniform in the unit disc gives two independent normals
+  // with one log and one square root (no sine or cosine: half the cost of Box-Muller).
   double Next() {
     if (has_spare_) {
       has_spare_ = false;
       return spare_;
     }
-    // u1 in (0, 1] so log(u1) is finite; u2 in [0, 1).
-    const double u1 = (static_cast<double>(rng_() >> 11) + 1.0) * 0x1.0p-53;
-    const double u2 = static_cast<double>(rng_() >> 11) * 0x1.0p-53;
-    const double r = std::sqrt(-2.0 * std::log(u1));
-    const double a = 2.0 * M_PI * u2;
-    spare_ = r * std::sin(a);
+    double x, y, r2;
+    do {
+      x = 2.0 * Uniform() - 1.0;
+      y = 2.0 * Uniform() - 1.0;
+      r2 = x * x + y * y;
+    } while (r2 >= 1.0 || r2 == 0.0);
+    const double scale = std::sqrt(-2.0 * std::log(r2) / r2);
+    spare_ = y * scale;
     has_spare_ = true;
-    return r * std::cos(a);
+    return x * scale;
   }
 
  private:
+  // Uniform in [0, 1) from the raw 53 high bits of a draw.
+  double Uniform() { return static_cast<double>(rng_() >> 11) * 0x1.0p-53; }
+
   std::mt19937_64 rng_;
   double spare_ = 0.0;
   bool has_spare_ = false;
