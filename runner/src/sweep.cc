@@ -22,6 +22,7 @@
 #include <fstream>
 #include <mutex>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 #include <thread>
 
@@ -42,24 +43,41 @@ struct Axis {
   std::vector<std::string> values;  // TOML values
 };
 
-// "formation.q=1,2.5,4.5" -> {formation.q, [1, 2.5, 4.5]}. Values may not contain commas.
+// "formation.q=1,2.5,4.5" -> {formation.q, [1, 2.5, 4.5]}. Commas inside [], {} or quotes do
+// not split: "wind.mean=[3,0,0],[6,0,0]" or "sensors={preset=\"typical\", scale=3.0},{...}".
 Axis ParseAxis(const std::string& text) {
   const auto eq = text.find('=');
   if (eq == std::string::npos || eq == 0 || eq + 1 == text.size()) {
     throw ConfigError("--vary '" + text + "': expected section.key=v1,v2,...");
   }
   Axis axis{text.substr(0, eq), {}};
-  std::string rest = text.substr(eq + 1);
-  size_t start = 0;
-  while (true) {
-    const size_t comma = rest.find(',', start);
-    const std::string v = rest.substr(start, comma - start);
-    if (v.empty()) throw ConfigError("--vary '" + text + "': empty value");
-    axis.values.push_back(v);
-    if (comma == std::string::npos) break;
-    start = comma + 1;
+  const std::string rest = text.substr(eq + 1);
+  int depth = 0;
+  bool quoted = false;
+  std::string value;
+  for (size_t i = 0; i <= rest.size(); ++i) {
+    const char ch = i < rest.size() ? rest[i] : ',';
+    if (ch == '"') quoted = !quoted;
+    if (!quoted && (ch == '[' || ch == '{')) ++depth;
+    if (!quoted && (ch == ']' || ch == '}')) --depth;
+    if (ch == ',' && depth == 0 && !quoted) {
+      if (value.empty()) throw ConfigError("--vary '" + text + "': empty value");
+      axis.values.push_back(value);
+      value.clear();
+    } else {
+      value += ch;
+    }
   }
+  if (depth != 0 || quoted) throw ConfigError("--vary '" + text + "': unbalanced [ { or \"");
   return axis;
+}
+
+// A CSV field: as is, or quoted (RFC 4180) when it holds a comma, quote or newline.
+std::string CsvField(const std::string& v) {
+  if (v.find_first_of(",\"\n") == std::string::npos) return v;
+  std::string out = "\"";
+  for (char ch : v) out += ch == '"' ? std::string("\"\"") : std::string(1, ch);
+  return out + "\"";
 }
 
 // A name for a point's run directory: key values joined, safe for a file name.
@@ -146,6 +164,13 @@ SweepPlan PlanSweep(const CliCommands& c) {
       }
       for (const auto& path : c.plugin_path) run.config.plugin_path.push_back(path);
       plan.runs.push_back(std::move(run));
+    }
+  }
+  std::set<std::string> names;
+  for (const RunSpec& run : plan.runs) {
+    if (!names.insert(run.name).second) {
+      throw ConfigError("sweep: two runs would share the directory '" + run.name +
+                        "' (values that differ only in punctuation); write them apart");
     }
   }
   plan.out = c.out.empty() ? "runs/" + plan.runs.front().config.name + "_sweep" : c.out;
@@ -262,7 +287,7 @@ std::string RunsCsv(const SweepPlan& plan, const std::vector<RunOutcome>& outcom
   for (size_t i = 0; i < plan.runs.size(); ++i) {
     const RunSpec& run = plan.runs[i];
     for (size_t a = 0; a < plan.axes.size(); ++a) {
-      csv += plan.axes[a].values[plan.cells[run.cell][a]] + ",";
+      csv += CsvField(plan.axes[a].values[plan.cells[run.cell][a]]) + ",";
     }
     if (plan.seeds) csv += std::to_string(run.seed) + ",";
     csv += outcomes[i].complete() ? "true" : "false";
@@ -360,7 +385,7 @@ void WriteTables(const SweepPlan& plan, const std::vector<RunOutcome>& outcomes)
     for (size_t cell = 0; cell < plan.cells.size(); ++cell) {
       Json entry;
       for (size_t a = 0; a < plan.axes.size(); ++a) {
-        csv += plan.axes[a].values[plan.cells[cell][a]] + ",";
+        csv += CsvField(plan.axes[a].values[plan.cells[cell][a]]) + ",";
         entry[plan.axes[a].key] = plan.axes[a].values[plan.cells[cell][a]];
       }
       csv += fmt::format("{},{}", plan.seeds, completed[cell]);

@@ -28,8 +28,13 @@ SampleStats Describe(const std::vector<double>& samples) {
   s.mean = s.std = s.ci95_low = s.ci95_high = kNaN;
   if (s.n == 0) return s;
   double sum = 0;
-  for (double v : samples) sum += v;
-  s.mean = sum / s.n;
+  bool all_equal = true;
+  for (double v : samples) {
+    sum += v;
+    all_equal = all_equal && v == samples[0];
+  }
+  // Identical samples (a deterministic cell): exactly that value, no rounding residue.
+  s.mean = all_equal ? samples[0] : sum / s.n;
   if (s.n < 2) return s;
   double squares = 0;
   for (double v : samples) squares += (v - s.mean) * (v - s.mean);

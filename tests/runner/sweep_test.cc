@@ -110,6 +110,24 @@ TEST(SweepSeeds, PerCellStatisticsOverSeeds) {
   EXPECT_EQ(Cli({"sweep", exp, "--out", dir + "/nothing"}), 1);  // neither --vary nor --seeds
 }
 
+// Values with commas inside [], {} or quotes are one value; the CSV quotes them.
+TEST(SweepSeeds, TableAndArrayValuesOnAnAxis) {
+  const std::string dir = TempDir("axis");
+  const std::string exp = Experiment(dir);
+  ASSERT_EQ(Cli({"sweep", exp, "--vary", "wind.mean=[0.0,0.0,0.0],[2.0,0.0,0.0]", "--vary",
+                 "sensors={preset=\"ideal\"},{preset=\"typical\", scale=3.0}", "--seeds", "2",
+                 "--out", dir + "/s", "--no-render"}),
+            0);
+  const std::string csv = ReadFile(dir + "/s/sweep.csv");
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 4);
+  EXPECT_THAT(csv, HasSubstr("\n\"[2.0,0.0,0.0]\",\"{preset=\"\"typical\"\", scale=3.0}\",2,2,"));
+  const auto summary = nlohmann::json::parse(ReadFile(
+      dir + "/s/mean=_2.0_0.0_0.0__sensors=_preset=_typical___scale=3.0__seed=2/summary.json"));
+  EXPECT_EQ(summary["sensors"]["scale"], 3.0);
+  EXPECT_EQ(summary["wind"]["mean"][0], 2.0);
+  EXPECT_EQ(Cli({"sweep", exp, "--vary", "wind.mean=[1.0,0.0", "--out", dir + "/bad"}), 1);
+}
+
 // An interrupted sweep marks what did not run, tables complete = false; --resume finishes it
 // and gives the bytes of an uninterrupted sweep; it reruns only missing or changed runs.
 TEST(SweepResume, InterruptedThenResumedGivesTheUninterruptedBytes) {
