@@ -119,6 +119,28 @@ TEST(RealismRun, IdealAndCalmSectionsKeepTheDefaultBytes) {
   EXPECT_EQ(a, ReadFile(root + "/explicit/timeseries.csv"));
 }
 
+// Noise and wind are seeded: the same seed gives the same bytes, another seed other bytes.
+TEST(RealismRun, SameSeedSameBytesWithNoiseAndWind) {
+  const std::string root = TempDir("realism_seed");
+  const std::string text = HoverExperiment(2, 1.0) +
+                           "[sensors]\npreset = \"typical\"\n[wind]\nmean = [3.0, 0.0, 0.0]\n"
+                           "turbulence = \"moderate\"\naltitude = 5.0\n";
+  RunOptions options;
+  options.render = false;
+  for (const char* name : {"a", "b"}) {
+    options.out_dir = root + "/" + name;
+    ASSERT_TRUE(RunExperiment(Parse(text), options).complete);
+  }
+  options.out_dir = root + "/c";
+  std::string other = text;
+  other.insert(other.find("[vehicles]"), "seed = 2\n");
+  ASSERT_TRUE(RunExperiment(Parse(other), options).complete);
+  const std::string a = ReadFile(root + "/a/timeseries.csv");
+  EXPECT_THAT(a.substr(0, a.find('\n')), HasSubstr("uav2_wind_z"));
+  EXPECT_EQ(a, ReadFile(root + "/b/timeseries.csv"));
+  EXPECT_NE(a, ReadFile(root + "/c/timeseries.csv"));
+}
+
 // The plugins get the measurement; the truth is what is recorded, the measurement beside it.
 TEST(RealismRun, ControllersSeeTheMeasurementAndBothAreRecorded) {
   const std::string text = HoverExperiment(2, 1.0) + "[sensors]\npreset = \"typical\"\n";

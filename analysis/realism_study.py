@@ -1,0 +1,99 @@
+#!/usr/bin/env python3
+# Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+"""Table and figure of the sensor-noise x wind study (scripts/study_realism.sh, issue 11).
+
+Reads <study>/<exp>/sweep.json (mjformation sweep --seeds) and prints a Markdown table of the
+mean sigma_f over [25, 40] s with its 95 % confidence interval (Student t over the seeds that
+completed) per noise level and mean wind; a cell where runs stopped early (diverged) says how
+many completed.
+Usage: realism_study.py <study folder> [--figure out.png]
+"""
+import argparse
+import json
+import re
+from pathlib import Path
+
+
+def noise_label(value):
+    if "ideal" in value:
+        return "ideal"
+    scale = re.search(r"scale\s*=\s*([0-9.]+)", value)
+    return f"{float(scale.group(1)):g}x typical" if scale else "typical"
+
+
+def wind_speed(value):
+    mean = re.search(r"mean\s*=\s*\[\s*([-0-9.]+)", value)
+    return float(mean.group(1)) if mean else 0.0
+
+
+def load(folder):
+    sweep = json.loads((folder / "sweep.json").read_text())
+    cells = {}
+    for cell in sweep["cells"]:
+        m = cell["metrics"].get("sigma_f_mean", {"n": 0, "mean": None, "ci95": [None, None]})
+        cells[(noise_label(cell["sensors"]), wind_speed(cell["wind"]))] = {
+            "mean": m["mean"], "ci": m["ci95"], "n": cell["complete_runs"],
+            "seeds": cell["seeds"]}
+    return sweep["complete"], cells
+
+
+def fmt(c):
+    if c["n"] == 0 or c["mean"] is None:
+        return f"diverged (0/{c['seeds']})"
+    text = f"{c['mean']:.3g}"
+    if c["ci"][0] is not None:
+        text += f" [{c['ci'][0]:.3g}, {c['ci'][1]:.3g}]"
+    if c["n"] < c["seeds"]:
+        text += f" ({c['n']}/{c['seeds']} completed)"
+    return text
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("study", type=Path)
+    parser.add_argument("--figure", type=Path)
+    args = parser.parse_args()
+    results = {}
+    for folder in sorted(p for p in args.study.iterdir() if (p / "sweep.json").exists()):
+        results[folder.name] = load(folder)
+    noises = ["ideal", "typical", "3x typical"]
+    for name, (complete, cells) in results.items():
+        winds = sorted({w for _, w in cells})
+        print(f"\n{name}: mean sigma_f on [25, 40] s, 95 % CI"
+              + ("" if complete else " (SWEEP INCOMPLETE)"))
+        print("| sensors | " + " | ".join(f"wind {w:g} m/s" for w in winds) + " |")
+        print("|---|" + "---|" * len(winds))
+        for noise in noises:
+            row = [fmt(cells[(noise, w)]) if (noise, w) in cells else "-" for w in winds]
+            print(f"| {noise} | " + " | ".join(row) + " |")
+    if args.figure:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        fig, axes = plt.subplots(1, len(results), figsize=(5.5 * len(results), 4), squeeze=False)
+        for ax, (name, (_, cells)) in zip(axes[0], results.items()):
+            for noise, marker in zip(noises, "osd"):
+                pts = sorted((w, c) for (n, w), c in cells.items() if n == noise and c["n"] > 0)
+                if not pts:
+                    continue
+                w = [p[0] for p in pts]
+                mean = [p[1]["mean"] for p in pts]
+                low = [p[1]["mean"] - (p[1]["ci"][0] if p[1]["ci"][0] is not None else p[1]["mean"])
+                       for p in pts]
+                high = [(p[1]["ci"][1] if p[1]["ci"][1] is not None else p[1]["mean"]) - p[1]["mean"]
+                        for p in pts]
+                ax.errorbar(w, mean, yerr=[low, high], marker=marker, capsize=3, label=noise)
+            ax.set_yscale("log")
+            ax.set_xlabel("mean wind (m/s), moderate Dryden turbulence")
+            ax.set_ylabel("mean sigma_f on [25, 40] s")
+            ax.set_title(f"{name}: mean and 95 % CI over seeds")
+            ax.grid(True, which="both", alpha=0.3)
+            ax.legend()
+        fig.tight_layout()
+        args.figure.parent.mkdir(parents=True, exist_ok=True)
+        fig.savefig(args.figure, dpi=110)
+        print(f"\nfigure: {args.figure}")
+
+
+if __name__ == "__main__":
+    main()
