@@ -22,4 +22,5 @@ for exp in ${STUDY_EXPERIMENTS:-exp2 exp3}; do
   "$exe" sweep "experiments/$exp.toml" --seeds "$seeds" --no-render -j "$jobs" --resume \
     --set vehicles.start_jitter=0.5 --vary "$noise" --vary "$wind" -o "$out/$exp" > /dev/null
 done
-/usr/bin/python3 analysis/realism_study.py "$out" --figure docs/img/realism_study.png
+/usr/bin/python3 analysis/realism_study.py "$out" --figure docs/img/realism_study.png \
+  --bands docs/img/realism_sigma_f_bands.png

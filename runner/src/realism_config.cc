@@ -143,6 +143,10 @@ void ParseWind(const toml::table* table, const std::string& path, ExperimentConf
       keys.Fail("turbulence_rate", "1 / rate must be a whole number (>= 1) of physics steps");
     }
   }
+  p.turbulence_correlation = keys.Number("turbulence_correlation", 0.0);
+  if (!(p.turbulence_correlation >= 0 && p.turbulence_correlation <= 1)) {
+    keys.Fail("turbulence_correlation", "must be in [0, 1]");
+  }
   const bool has_sigma = keys.Has("sigma"), has_length = keys.Has("scale_length");
   const auto sigma = keys.Vector3("sigma", {0, 0, 0});
   const auto length = keys.Vector3("scale_length", {0, 0, 0});
@@ -258,6 +262,7 @@ void AddRealismSummary(const ExperimentConfig& c, nlohmann::ordered_json* summar
       wind["scale_length"] = p.dryden.scale_length;
       wind["airspeed"] = p.dryden.airspeed;
       wind["turbulence_rate_hz"] = p.turbulence_rate_hz;
+      wind["turbulence_correlation"] = p.turbulence_correlation;
     }
     nlohmann::ordered_json gusts = nlohmann::ordered_json::array();
     for (const auto& g : p.gusts) {

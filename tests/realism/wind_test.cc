@@ -183,6 +183,29 @@ TEST(WindField, CalmMeanGustAndTurbulenceAxes) {
   EXPECT_LT(cross, 10) << "vehicles get independent realisations";
 }
 
+// Partly shared turbulence: the stated correlation between vehicles, the variance unchanged.
+TEST(WindField, TurbulenceCorrelationBetweenVehicles) {
+  WindParams p;
+  p.turbulence = true;
+  p.dryden.sigma = {2.0, 1.0, 1.0};
+  p.dryden.scale_length = {10, 10, 10};
+  p.dryden.airspeed = 5;
+  p.turbulence_correlation = 0.7;
+  WindField field(p, 2, 0.05, 12);
+  const int n = 400000;
+  double s00 = 0, s11 = 0, s01 = 0;
+  for (int64_t k = 0; k < n; ++k) {
+    const auto& w = field.Update(k);
+    s00 += w[0][0] * w[0][0];
+    s11 += w[1][0] * w[1][0];
+    s01 += w[0][0] * w[1][0];
+  }
+  // ~ n dt / (2 tau) = 2000 effective samples: a few percent of scatter.
+  EXPECT_NEAR(s00 / n, 4.0, 0.4);
+  EXPECT_NEAR(s11 / n, 4.0, 0.4);
+  EXPECT_NEAR(s01 / std::sqrt(s00 * s11), 0.7, 0.05);
+}
+
 // Turbulence is sampled at turbulence_rate_hz and held in between.
 TEST(WindField, TurbulenceIsHeldBetweenSamples) {
   WindParams p;

@@ -24,6 +24,10 @@ WindField::WindField(const WindParams& params, int n_vehicles, double timestep, 
       turbulence_.emplace_back(params.dryden, turbulence_period_ * timestep,
                                StreamSeed(seed, i, /*stream=*/2));
     }
+    if (params.turbulence_correlation > 0) {
+      turbulence_.emplace_back(params.dryden, turbulence_period_ * timestep,
+                               StreamSeed(seed, n_vehicles, /*stream=*/2));
+    }
     gust_uvw_.assign(n_vehicles, {0, 0, 0});
   }
 }
@@ -35,10 +39,19 @@ const std::vector<std::array<double, 3>>& WindField::Update(int64_t step) {
     const auto v = g.Velocity(t);
     for (int k = 0; k < 3; ++k) common[k] += v[k];
   }
+  const double rho = params_.turbulence_correlation;
+  const bool sample = !turbulence_.empty() && step % turbulence_period_ == 0;
+  if (sample && rho > 0) shared_uvw_ = turbulence_.back().Step();
+  const double own = std::sqrt(1 - rho), shared = std::sqrt(rho);
   for (size_t i = 0; i < wind_.size(); ++i) {
     wind_[i] = common;
     if (turbulence_.empty()) continue;
-    if (step % turbulence_period_ == 0) gust_uvw_[i] = turbulence_[i].Step();
+    if (sample) {
+      const auto mine = turbulence_[i].Step();
+      for (int k = 0; k < 3; ++k) {
+        gust_uvw_[i][k] = rho > 0 ? own * mine[k] + shared * shared_uvw_[k] : mine[k];
+      }
+    }
     const auto& uvw = gust_uvw_[i];
     wind_[i][0] += along_[0] * uvw[0] - along_[1] * uvw[1];
     wind_[i][1] += along_[1] * uvw[0] + along_[0] * uvw[1];

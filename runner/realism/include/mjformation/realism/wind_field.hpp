@@ -24,6 +24,11 @@ struct WindParams {
   // at this rate). Dryden spectra at these altitudes fall off above ~1 rad/s, so 100 Hz loses
   // nothing a vehicle responds to and costs a tenth of updating every 1 ms step.
   double turbulence_rate_hz = 100.0;
+  // Correlation rho in [0, 1] of the turbulence between any two vehicles: each vehicle's is
+  // sqrt(rho) x a shared realisation + sqrt(1 - rho) x its own (same spectrum, same variance).
+  // 0: independent (an upper bound on the differential disturbance); 1: one field for all.
+  // For vehicles a distance d apart, exp(-d / L_u) is the along-wind correlation of the model.
+  double turbulence_correlation = 0.0;
   std::vector<OneCosineGust> gusts;
 
   bool IsCalm() const;  // no mean, no turbulence, no gusts
@@ -47,7 +52,8 @@ class WindField {
   int64_t turbulence_period_ = 1;  // steps between turbulence samples
   std::array<double, 2> along_;
   std::vector<std::array<double, 3>> gust_uvw_;  // the held turbulence sample per vehicle
-  std::vector<DrydenTurbulence> turbulence_;
+  std::vector<DrydenTurbulence> turbulence_;     // per vehicle, then the shared one if rho > 0
+  std::array<double, 3> shared_uvw_{};
   std::vector<std::array<double, 3>> wind_;
 };
 
