@@ -69,14 +69,17 @@ TEST(SensorModel, WhiteNoiseMeanAndStdWithinConfidenceIntervals) {
   }
 }
 
-// var(b(t)) = q^2 t: over many independent vehicles, at several times, with held samples.
-TEST(SensorModel, BiasWalkVarianceGrowsLinearlyInTime) {
+// var(b(t)) = q^2 t: over many independent vehicles, at several times, with held samples
+// (10 Hz) and with samples every step (the walk then steps every 10 ms).
+class BiasWalk : public ::testing::TestWithParam<double> {};
+INSTANTIATE_TEST_SUITE_P(Rates, BiasWalk, ::testing::Values(100.0, 0.0));
+TEST_P(BiasWalk, VarianceGrowsLinearlyInTime) {
   const double q = 0.2;  // m/sqrt(s)
   const int vehicles = 3000;
   const int64_t checkpoints[] = {100, 400, 1600};  // steps (0.1, 0.4, 1.6 s)
   std::vector<double> sum2(3, 0.0);
   for (int v = 0; v < vehicles; ++v) {
-    SensorModel model(Only(Channel::kPosition, {0, q, 100.0, 0}), kDt, StreamSeed(5, v, 1));
+    SensorModel model(Only(Channel::kPosition, {0, q, GetParam(), 0}), kDt, StreamSeed(5, v, 1));
     int c = 0;
     for (int64_t k = 0; k <= checkpoints[2]; ++k) {
       mjfVehicleState m;

@@ -123,23 +123,34 @@ SensorModel::SensorModel(const SensorParams& params, double timestep, uint64_t s
     ch.dim = static_cast<Channel>(k) == Channel::kAttitude ? 4 : 3;
     ch.period_steps = ch.noise.rate_hz > 0 ? WholeSteps(1.0 / ch.noise.rate_hz, timestep) : 1;
     ch.latency_steps = WholeSteps(ch.noise.latency_s, timestep);
+    ch.bias_every = std::max<int64_t>(
+        1, static_cast<int64_t>(std::floor(0.01 / (ch.period_steps * timestep) + 1e-9)));
     ch.history.assign(static_cast<size_t>(ch.latency_steps + 1) * ch.dim, 0.0);
   }
 }
 
 void SensorModel::StepChannel(ChannelState& ch, int64_t step, const double* truth) {
   const int64_t slots = ch.latency_steps + 1;
-  std::memcpy(ch.history.data() + (step % slots) * ch.dim, truth, sizeof(double) * ch.dim);
-  // The truth the sensor reports now is `latency` steps old (step 0's before that much history).
-  const int64_t seen = std::max<int64_t>(step - ch.latency_steps, 0);
-  if (seen % ch.period_steps != 0 || seen == ch.last_sample) return;  // hold
-  const double* delayed = ch.history.data() + (seen % slots) * ch.dim;
-  if (ch.last_sample >= 0 && ch.noise.bias_walk > 0) {
-    // Bias random walk over the sample period: b += q sqrt(period) n, so var(b(t)) = q^2 t.
-    const double scale = ch.noise.bias_walk * std::sqrt(ch.period_steps * timestep_);
+  std::memcpy(ch.history.data() + ch.write_slot * ch.dim, truth, sizeof(double) * ch.dim);
+  // The truth the sensor reports now is `latency` steps old: the slot after this step's in the
+  // ring (step 0's, in slot 0, until that much history exists).
+  const int64_t read_slot =
+      step < ch.latency_steps ? 0 : (ch.write_slot + 1 == slots ? 0 : ch.write_slot + 1);
+  ch.write_slot = ch.write_slot + 1 == slots ? 0 : ch.write_slot + 1;
+  // Truth step seen = max(step - latency, 0); a new sample when it is a multiple of the period.
+  if (step <= ch.latency_steps && ch.last_sample == 0) return;      // still step 0's sample: hold
+  if (ch.last_sample >= 0 && ++ch.phase < ch.period_steps) return;  // hold
+  ch.phase = 0;
+  const double* delayed = ch.history.data() + read_slot * ch.dim;
+  if (ch.last_sample >= 0 && ch.noise.bias_walk > 0 && ++ch.bias_count == ch.bias_every) {
+    // Bias random walk over bias_every sample periods: b += q sqrt(interval) n, so
+    // var(b(t)) = q^2 t.
+    ch.bias_count = 0;
+    const double scale =
+        ch.noise.bias_walk * std::sqrt(ch.bias_every * ch.period_steps * timestep_);
     for (double& b : ch.bias) b += scale * normal_.Next();
   }
-  ch.last_sample = seen;
+  ch.last_sample = std::max<int64_t>(step - ch.latency_steps, 0);
   double error[3];
   for (int a = 0; a < 3; ++a) {
     error[a] = ch.bias[a] + (ch.noise.white_std > 0 ? ch.noise.white_std * normal_.Next() : 0.0);

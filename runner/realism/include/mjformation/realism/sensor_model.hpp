@@ -70,6 +70,13 @@ class SensorModel {
     std::array<double, 4> held{};  // the last sample (dim values), true value + errors
     std::array<double, 3> bias{};  // current bias, per axis
     int64_t last_sample = -1;      // truth step of the held sample
+    // Counters instead of step % n (integer division was most of a channel's cost per step).
+    int64_t write_slot = 0;  // where this step's truth goes in history
+    int64_t phase = 0;       // steps since the last sample, once the delay has passed
+    // The bias walks every `bias_every` samples (at least every 10 ms: a drift that matters over
+    // seconds need not cost three normal draws per 1 kHz gyro sample); var(b) = q^2 t at those
+    // times, held in between.
+    int64_t bias_every = 1, bias_count = 0;
   };
   void StepChannel(ChannelState& ch, int64_t step, const double* truth);
 
