@@ -14,6 +14,7 @@ add_library(mjf_runner STATIC
   ${CMAKE_CURRENT_SOURCE_DIR}/src/paths.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/plugin_host.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/recorders.cc
+  ${CMAKE_CURRENT_SOURCE_DIR}/src/realism_config.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/run.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/scene.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/shape_config.cc
@@ -25,7 +26,8 @@ add_library(mjf_runner STATIC
   ${CMAKE_CURRENT_SOURCE_DIR}/src/vehicle_adapter.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/frame_view.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/replay.cc
-  ${CMAKE_CURRENT_SOURCE_DIR}/src/replay_cli.cc)
+  ${CMAKE_CURRENT_SOURCE_DIR}/src/replay_cli.cc
+  ${CMAKE_CURRENT_SOURCE_DIR}/src/sweep_stats.cc)
 target_include_directories(mjf_runner PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include)
 target_compile_definitions(mjf_runner PRIVATE
   MJF_VERSION="${PROJECT_VERSION}"
@@ -39,7 +41,7 @@ else()
   set(MJF_TINYXML2 tinyxml2)
 endif()
 target_link_libraries(mjf_runner
-  PUBLIC mjf_plugin_abi mujoco::mujoco nlohmann_json::nlohmann_json CLI11::CLI11
+  PUBLIC mjf_plugin_abi mjf_realism mujoco::mujoco nlohmann_json::nlohmann_json CLI11::CLI11
   PRIVATE mjf_formation_core mjf_render PkgConfig::TOMLPP fmt::fmt OpenSSL::Crypto ${MJF_TINYXML2}
           ${CMAKE_DL_LIBS} Threads::Threads)
 
@@ -70,4 +72,26 @@ if(TARGET glfw)
   install(TARGETS mjformation-view RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 else()
   message(STATUS "GLFW not found (Debian: libglfw3-dev): no mjformation-view window")
+# The MPI transport of `sweep` (issue 11): a module the runner dlopen()s only under mpirun, so
+# the executable never needs MPI. Built when Open MPI (libopenmpi-dev) is installed. Kept out of
+# the plugin folder, whose every library the plugin registry loads.
+find_package(MPI COMPONENTS C QUIET)
+set(MJF_MPI_MODULE_BUILD_PATH ${CMAKE_BINARY_DIR}/lib/libmjf_sweep_mpi.so)
+target_compile_definitions(mjf_runner PRIVATE
+  MJF_MPI_MODULE_BUILD_PATH="${MJF_MPI_MODULE_BUILD_PATH}"
+  MJF_MPI_MODULE_INSTALL_PATH="${CMAKE_INSTALL_FULL_LIBDIR}/mjformation/libmjf_sweep_mpi.so")
+if(MPI_C_FOUND)
+  add_library(mjf_sweep_mpi MODULE ${CMAKE_CURRENT_SOURCE_DIR}/mpi/sweep_mpi.cc)
+  target_include_directories(mjf_sweep_mpi PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/include)
+  target_link_libraries(mjf_sweep_mpi PRIVATE MPI::MPI_C)
+  # The C API only (mpi.h pulls in the removed C++ bindings otherwise); unresolved = link error.
+  target_compile_definitions(mjf_sweep_mpi PRIVATE OMPI_SKIP_MPICXX=1 MPICH_SKIP_MPICXX=1)
+  target_link_options(mjf_sweep_mpi PRIVATE -Wl,--no-undefined)
+  set_target_properties(mjf_sweep_mpi PROPERTIES PREFIX "lib"
+    LIBRARY_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/lib CXX_VISIBILITY_PRESET hidden)
+  add_dependencies(mjformation mjf_sweep_mpi)
+  install(TARGETS mjf_sweep_mpi LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/mjformation)
+else()
+  message(STATUS "Open MPI not found: `mpirun ... mjformation sweep` unavailable "
+                 "(apt-get install libopenmpi-dev)")
 endif()

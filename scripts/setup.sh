@@ -7,6 +7,7 @@ PACKAGES=(
   libtomlplusplus-dev libtinyxml2-dev libcli11-dev nlohmann-json3-dev libfmt-dev libpng-dev libssl-dev
   libgtest-dev libgmock-dev libbenchmark-dev ffmpeg
   libglfw3-dev xvfb xdotool
+  libopenmpi-dev openmpi-bin
   python3 python3-numpy python3-matplotlib python3-pytest
 )
 missing=()

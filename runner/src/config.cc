@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "mjformation/runner/paths.hpp"
+#include "realism_config.hpp"
 
 namespace mjf::runner {
 namespace {
@@ -306,13 +307,14 @@ toml::table ParseDocument(const std::string& text, const std::string& path,
 }
 
 void RejectUnknownSections(const Reporter& reporter, const toml::table& root) {
-  static const std::set<std::string> kKnown = {"run",       "vehicles", "topology", "leader",
-                                               "formation", "attitude", "render"};
+  static const std::set<std::string> kKnown = {"run",    "vehicles",  "topology",
+                                               "leader", "formation", "attitude",
+                                               "render", "sensors",   "wind"};
   for (auto&& [key, node] : root) {
     if (!kKnown.count(std::string(key.str()))) {
       reporter.Fail(&node, "[" + std::string(key.str()) + "]",
                     "unknown section (known: run, vehicles, topology, leader, formation, "
-                    "attitude, render)");
+                    "attitude, render, sensors, wind)");
     }
     if (!node.is_table()) {
       reporter.Fail(&node, std::string(key.str()), "expected a [section] table");
@@ -619,6 +621,7 @@ ExperimentConfig ParseExperiment(const std::string& text, const std::string& pat
   c.attitude = ReadPluginSection(reporter, root, "attitude", "pd_cascade", {});
   ParseShapeSection(reporter, table_of("formation"), path, c);
   ParseRenderSection(Section(reporter, table_of("render"), "render"), c.duration, c.render);
+  ParseRealismSections(root, path, &c);  // [sensors], [wind] (issue 11)
   return c;
 }
 

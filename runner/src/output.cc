@@ -173,9 +173,9 @@ void RunDirectory::WriteText(const std::string& name, const std::string& text) c
   }
 }
 
-TimeseriesWriter::TimeseriesWriter(const std::string& path, int n_vehicles,
-                                   const std::vector<std::string>& extra_columns)
-    : path_(path), n_extra_(extra_columns.size()) {
+TimeseriesWriter::TimeseriesWriter(const std::string& path, int n_vehicles, bool measured,
+                                   bool wind, const std::vector<std::string>& extra_columns)
+    : path_(path), n_extra_(extra_columns.size()), measured_(measured), wind_(wind) {
   file_ = std::fopen(path.c_str(), "wb");
   if (!file_) throw OutputError(path + ": cannot write: " + std::strerror(errno));
   static const char* const kColumns[] = {"px",     "py",   "pz",    "vx",     "vy",
@@ -184,6 +184,17 @@ TimeseriesWriter::TimeseriesWriter(const std::string& path, int n_vehicles,
   buffer_ = "t,sigma_f";
   for (int i = 0; i < n_vehicles; ++i) {
     for (const char* c : kColumns) fmt::format_to(std::back_inserter(buffer_), ",uav{}_{}", i, c);
+  }
+  // Issue 11: what the controllers measured, and the wind, after every usual column.
+  static const char* const kMeasured[] = {"px", "py",   "pz",    "vx", "vy",
+                                          "vz", "roll", "pitch", "yaw"};
+  for (int i = 0; measured_ && i < n_vehicles; ++i) {
+    for (const char* c : kMeasured) {
+      fmt::format_to(std::back_inserter(buffer_), ",uav{}_{}_meas", i, c);
+    }
+  }
+  for (int i = 0; wind_ && i < n_vehicles; ++i) {
+    fmt::format_to(std::back_inserter(buffer_), ",uav{0}_wind_x,uav{0}_wind_y,uav{0}_wind_z", i);
   }
   for (const auto& c : extra_columns) buffer_ += "," + c;
   buffer_ += "\n";
@@ -202,7 +213,8 @@ void TimeseriesWriter::Write(const Simulation& sim, double sigma_f,
   // Numbers as "%.9g" (FormatG9: the bytes fmt's "{:.9g}" gave, at an eighth of its cost); a
   // row is written into the buffer's spare room directly, with no per-character appends.
   constexpr size_t kMaxNumber = 32;  // ",-1.23456789e-308" is 17 characters
-  const size_t numbers = 2 + 15 * static_cast<size_t>(sim.n_vehicles()) + n_extra_;
+  const size_t numbers =
+      2 + (15 + 9 * measured_ + 3 * wind_) * static_cast<size_t>(sim.n_vehicles()) + n_extra_;
   const size_t used = buffer_.size();
   buffer_.resize(used + kMaxNumber * numbers + 1);
   char* p = buffer_.data() + used;
@@ -227,6 +239,15 @@ void TimeseriesWriter::Write(const Simulation& sim, double sigma_f,
     number(sp.sliding[1]);
     number(slots[2 * i]);
     number(slots[2 * i + 1]);
+  }
+  for (int i = 0; measured_ && i < sim.n_vehicles(); ++i) {  // issue 11
+    const mjfVehicleState& m = sim.measured_states()[i];
+    for (double v : m.pos) number(v);
+    for (double v : m.vel) number(v);
+    for (double v : EulerZYX(m.quat)) number(v);
+  }
+  for (int i = 0; wind_ && i < sim.n_vehicles(); ++i) {
+    for (double v : sim.wind()[i]) number(v);
   }
   for (size_t k = 0; k < n_extra_ && extra; ++k) number(extra[k]);
   *p++ = '\n';

@@ -44,7 +44,8 @@ class TimeseriesRecorder final : public Recorder {
   TimeseriesRecorder(const Simulation& sim, const RunDirectory& dir,
                      const LeaderAccelerationRecorder* leader)
       : leader_(leader),
-        writer_(dir.Path("timeseries.csv"), sim.n_vehicles(),
+        writer_(dir.Path("timeseries.csv"), sim.n_vehicles(), sim.config().sensors.enabled(),
+                sim.config().wind.enabled(),
                 leader ? std::vector<std::string>{"leader_ax", "leader_ay"}
                        : std::vector<std::string>{}),
         every_(StepsPer(1.0 / sim.config().record_rate, sim.config().timestep)),

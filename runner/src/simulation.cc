@@ -266,6 +266,14 @@ void Simulation::CheckState() const {
   }
 }
 
+const std::vector<std::array<double, 3>>& Simulation::wind() const {
+  static const std::vector<std::array<double, 3>> kCalm;
+  for (const auto& stage : force_stages_) {
+    if (const auto* w = dynamic_cast<const WindStage*>(stage.get())) return w->wind();
+  }
+  return kCalm;
+}
+
 std::string Simulation::TimeTag() const { return fmt::format("t = {:.3f} s", time()); }
 
 std::vector<std::pair<std::string, double>> Simulation::FormationReport() const {

@@ -5,6 +5,7 @@
 
 #include "mjformation/runner/output.hpp"
 #include "mjformation/runner/simulation.hpp"
+#include "realism_config.hpp"
 
 #ifndef MJF_VERSION
 #define MJF_VERSION "0.0.0"
@@ -40,6 +41,7 @@ void DescribeExperiment(const Simulation& sim, Json& s) {
   s["shape"] = {{"type", ToString(config.shape.type)},
                 {"radius", config.shape.radius},
                 {"omega", config.shape.omega}};
+  AddRealismSummary(config, &s);  // "sensors" / "wind", only when switched on
 }
 
 }  // namespace

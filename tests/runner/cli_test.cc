@@ -57,7 +57,9 @@ TEST(CliTest, SweepRunsEveryPointAndWritesTheTable) {
   const std::string csv = ReadFile(dir + "/s/sweep.csv");
   EXPECT_THAT(csv, HasSubstr("vehicles.altitude,run.seed,complete,sigma_f_mean"));
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 4);
-  const auto table = nlohmann::json::parse(ReadFile(dir + "/s/sweep.json"));
+  const auto json = nlohmann::json::parse(ReadFile(dir + "/s/sweep.json"));
+  EXPECT_TRUE(json["complete"].get<bool>());
+  const auto& table = json["runs"];
   ASSERT_EQ(table.size(), 4u);
   EXPECT_EQ(table[3]["vehicles.altitude"], "3.0");
   EXPECT_EQ(table[3]["run.seed"], "2");

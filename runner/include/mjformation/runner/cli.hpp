@@ -37,6 +37,8 @@ struct CliCommands {
   CLI::App* view = nullptr;
   std::string replay_dir, replay_video, replay_out;
   std::vector<double> replay_snapshots;
+  int sweep_seeds = 0;        // --seeds N (issue 11): N seeds per grid cell; 0: the config's seed
+  bool sweep_resume = false;  // --resume: rerun only runs missing or incomplete
 };
 
 void AddCommands(CLI::App& app, CliCommands* commands);

@@ -14,6 +14,8 @@
 #include <utility>
 #include <vector>
 
+#include "mjformation/runner/realism_config.hpp"
+
 namespace mjf::core {
 class Shape;
 }  // namespace mjf::core
@@ -135,6 +137,8 @@ struct ExperimentConfig {
   PluginSection attitude;
   ShapeConfig shape;
   RenderConfig render;
+  SensorsConfig sensors;  // [sensors] (realism_config.hpp)
+  WindConfig wind;        // [wind]
 };
 
 // Follower edges of a generated topology ([topology] generate): the chain 1 -> 2 -> ... -> n,

@@ -38,9 +38,12 @@ class RunDirectory {
 // not grow with run length.
 class TimeseriesWriter {
  public:
-  // extra_columns: names appended after the standard columns (features switched on).
-  TimeseriesWriter(const std::string& path, int n_vehicles,
-                   const std::vector<std::string>& extra_columns = {});
+  // measured / wind (issue 11): append per vehicle what the controllers measured
+  // (uav<i>_px_meas .. _yaw_meas) / the wind it felt (uav<i>_wind_x, _y, _z); extra_columns:
+  // further names (e.g. leader_ax, leader_ay), all after the usual columns and only when
+  // switched on, so existing runs keep their bytes.
+  TimeseriesWriter(const std::string& path, int n_vehicles, bool measured = false,
+                   bool wind = false, const std::vector<std::string>& extra_columns = {});
   ~TimeseriesWriter();
   // extra: one value per extra column (NaN: an empty cell), or nullptr when there are none.
   void Write(const Simulation& sim, double sigma_f, const std::vector<double>& slots,
@@ -53,6 +56,7 @@ class TimeseriesWriter {
   std::FILE* file_ = nullptr;
   std::string buffer_;
   size_t n_extra_ = 0;
+  bool measured_ = false, wind_ = false;  // issue 11 columns
 };
 
 // Writes finite v as std::to_chars(general, precision 9) would (printf's "%.9g") at p and

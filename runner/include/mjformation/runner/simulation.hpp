@@ -61,6 +61,9 @@ class Simulation {
   const std::vector<mjfVehicleState>& states() const { return truth_; }
   // What the controllers saw (the truth with ideal sensors).
   const std::vector<mjfVehicleState>& measured() const { return tick_->measured(); }
+  const std::vector<mjfVehicleState>& measured_states() const { return measured(); }
+  // The wind at each vehicle this step (m/s, world); empty when [wind] is calm.
+  const std::vector<std::array<double, 3>>& wind() const;
   const std::vector<mjfSetpoint>& setpoints() const { return tick_->setpoints(); }
   const std::vector<double>& controls() const { return tick_->controls(); }
   int actuators_per_vehicle() const { return bindings_.actuators_per_vehicle; }

@@ -10,6 +10,7 @@
 
 #include <mjformation/plugin.h>
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -42,6 +43,13 @@ class ForceStage {
   // Adds this stage's force (N, world frame) to force[3 * i + k] for every vehicle i.
   virtual void AddForces(int64_t step, double time, const std::vector<mjfVehicleState>& truth,
                          std::vector<double>* force) = 0;
+};
+
+// A force stage that knows the wind at each vehicle (recorded with [wind] on).
+class WindStage : public ForceStage {
+ public:
+  // m/s, world frame, per vehicle, as of the last AddForces (empty before it).
+  virtual const std::vector<std::array<double, 3>>& wind() const = 0;
 };
 
 // The stages the experiment asks for (ideal sensors and no force stage by default).

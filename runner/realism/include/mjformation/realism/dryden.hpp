@@ -1,0 +1,64 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// Dryden turbulence after MIL-F-8785C (section 3.7.2) / MIL-HDBK-1797: three gust velocity
+// components u (along the mean wind), v (across it, horizontal) and w (vertical), each white
+// noise through the Dryden shaping filter, discretised exactly (the discrete sequence has the
+// continuous process's autocorrelation at the sample times).
+#ifndef MJFORMATION_REALISM_DRYDEN_HPP_
+#define MJFORMATION_REALISM_DRYDEN_HPP_
+
+#include <array>
+#include <cstdint>
+
+#include "mjformation/realism/gaussian.hpp"
+
+namespace mjf::realism {
+
+struct DrydenParams {
+  std::array<double, 3> sigma{};         // m/s, intensity of u, v, w
+  std::array<double, 3> scale_length{};  // m, L_u, L_v, L_w
+  double airspeed = 1.0;                 // m/s, V: the speed the frozen field passes the vehicle
+
+  // The low-altitude model (h < 1000 ft) of MIL-F-8785C, with h and L in feet there:
+  //   L_w = h, L_u = L_v = h / (0.177 + 0.000823 h)^1.2,
+  //   sigma_w = 0.1 W20, sigma_u = sigma_v = sigma_w / (0.177 + 0.000823 h)^0.4,
+  // W20 the wind speed at 20 ft (light 15 kt = 7.7 m/s, moderate 30 kt = 15.4 m/s, severe 45 kt).
+  // altitude in m (throws std::invalid_argument outside the model's 10..1000 ft), w20 in m/s.
+  static DrydenParams LowAltitude(double altitude_m, double w20_mps, double airspeed_mps);
+
+  // Two-sided power spectral density S(omega) (m^2/s^2 per rad/s) of component k, with
+  // var = (1 / 2 pi) * integral over all omega. MIL-F-8785C's one-sided Phi(omega) = S / pi:
+  //   u: Phi = sigma^2 (2 L / (pi V)) / (1 + (L omega / V)^2)
+  //   v, w: Phi = sigma^2 (L / (pi V)) (1 + 3 (L omega / V)^2) / (1 + (L omega / V)^2)^2
+  double TwoSidedPsd(int k, double omega) const;
+};
+
+class DrydenTurbulence {
+ public:
+  // timestep: s between Step() calls. Starts in the stationary distribution (no transient).
+  DrydenTurbulence(const DrydenParams& params, double timestep, uint64_t seed);
+
+  // The gust velocity (u, v, w) in m/s now; then advances one timestep.
+  std::array<double, 3> Step();
+
+ private:
+  // u: x' = -x/tau + sigma sqrt(2/tau) eta (eta unit white noise), exact: x+ = e x + s n.
+  double phi_u_ = 0, noise_u_ = 0, x_u_ = 0;
+  // v, w: x1' = -x1/tau + eta, x2' = -x2/tau + x1, y = g (sqrt(3) x1 + (1 - sqrt(3)) x2 / tau),
+  // g = sigma / sqrt(tau): transfer function sigma sqrt(tau) (1 + sqrt(3) tau s) / (1 + tau s)^2.
+  struct Second {
+    double decay = 0, lag = 0;         // discrete transition e^{-T/tau} [[1, 0], [T, 1]]
+    double l11 = 0, l21 = 0, l22 = 0;  // Cholesky factor of the discrete noise covariance
+    double c1 = 0, c2 = 0;             // output y = c1 x1 + c2 x2
+    double x1 = 0, x2 = 0;
+  };
+  static Second MakeSecond(double sigma, double tau, double timestep, Gaussian& normal);
+  double StepSecond(Second& f);
+
+  Gaussian normal_;
+  Second v_, w_;
+};
+
+}  // namespace mjf::realism
+
+#endif  // MJFORMATION_REALISM_DRYDEN_HPP_

@@ -1,0 +1,62 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// The wind each vehicle feels: a uniform mean wind, Dryden turbulence (an independent seeded
+// realisation per vehicle, rotated from the mean wind's axes into the world frame) and discrete
+// 1-cosine gusts that hit every vehicle at the same time.
+#ifndef MJFORMATION_REALISM_WIND_FIELD_HPP_
+#define MJFORMATION_REALISM_WIND_FIELD_HPP_
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "mjformation/realism/dryden.hpp"
+#include "mjformation/realism/gust.hpp"
+
+namespace mjf::realism {
+
+struct WindParams {
+  std::array<double, 3> mean{};  // m/s, world frame
+  bool turbulence = false;
+  DrydenParams dryden;  // used when turbulence
+  // Turbulence samples per second, held in between (the shaping filters are discretised exactly
+  // at this rate). Dryden spectra at these altitudes fall off above ~1 rad/s, so 100 Hz loses
+  // nothing a vehicle responds to and costs a tenth of updating every 1 ms step.
+  double turbulence_rate_hz = 100.0;
+  // Correlation rho in [0, 1] of the turbulence between any two vehicles: each vehicle's is
+  // sqrt(rho) x a shared realisation + sqrt(1 - rho) x its own (same spectrum, same variance).
+  // 0: independent (an upper bound on the differential disturbance); 1: one field for all.
+  // For vehicles a distance d apart, exp(-d / L_u) is the along-wind correlation of the model.
+  double turbulence_correlation = 0.0;
+  std::vector<OneCosineGust> gusts;
+
+  bool IsCalm() const;  // no mean, no turbulence, no gusts
+};
+
+class WindField {
+ public:
+  WindField(const WindParams& params, int n_vehicles, double timestep, uint64_t seed);
+
+  // Advances to physics step `step` (0, 1, 2, ...; time = step * timestep) and returns the wind
+  // velocity (m/s, world frame) at each vehicle.
+  const std::vector<std::array<double, 3>>& Update(int64_t step);
+
+  // The rotation of the turbulence's (u, v, w) axes into the world: u along the horizontal mean
+  // wind (world x when calm), v horizontal to its left, w up.
+  const std::array<double, 2>& along() const { return along_; }
+
+ private:
+  WindParams params_;
+  double timestep_;
+  int64_t turbulence_period_ = 1;  // steps between turbulence samples
+  std::array<double, 2> along_;
+  std::vector<std::array<double, 3>> gust_uvw_;  // the held turbulence sample per vehicle
+  std::vector<DrydenTurbulence> turbulence_;     // per vehicle, then the shared one if rho > 0
+  std::array<double, 3> shared_uvw_{};
+  std::vector<std::array<double, 3>> wind_;
+};
+
+}  // namespace mjf::realism
+
+#endif  // MJFORMATION_REALISM_WIND_FIELD_HPP_

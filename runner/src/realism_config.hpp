@@ -1,0 +1,26 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+// Internal: parsing of [sensors] and [wind], called by ParseExperiment (config.cc).
+#ifndef MJFORMATION_RUNNER_SRC_REALISM_CONFIG_HPP_
+#define MJFORMATION_RUNNER_SRC_REALISM_CONFIG_HPP_
+
+#include <toml++/toml.h>
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "mjformation/runner/config.hpp"
+
+namespace mjf::runner {
+
+// Reads root's [sensors] and [wind] tables (either may be absent) into c->sensors and c->wind.
+// Needs c->timestep, c->duration and c->altitude already parsed. Throws ConfigError as
+// "FILE:LINE: [section] key: reason".
+void ParseRealismSections(const toml::table& root, const std::string& path, ExperimentConfig* c);
+
+// summary.json's "sensors" and "wind" entries (the resolved parameters), each only when that
+// stage is switched on, so default runs keep their summary bytes.
+void AddRealismSummary(const ExperimentConfig& c, nlohmann::ordered_json* summary);
+
+}  // namespace mjf::runner
+
+#endif  // MJFORMATION_RUNNER_SRC_REALISM_CONFIG_HPP_
