@@ -72,6 +72,8 @@ if(TARGET glfw)
   install(TARGETS mjformation-view RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 else()
   message(STATUS "GLFW not found (Debian: libglfw3-dev): no mjformation-view window")
+endif()
+
 # The MPI transport of `sweep` (issue 11): a module the runner dlopen()s only under mpirun, so
 # the executable never needs MPI. Built when Open MPI (libopenmpi-dev) is installed. Kept out of
 # the plugin folder, whose every library the plugin registry loads.
