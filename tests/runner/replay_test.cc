@@ -54,7 +54,8 @@ class ReplayTest : public ::testing::Test {
     run_dir_ = new std::string(mjf::testing::TempDir("replay") + "/run");
     const ExperimentConfig c =
         LoadExperiment(std::string(MJF_SOURCE_DIR) + "/experiments/exp2.toml",
-                       {"run.duration=8.0", "render.snapshots=[0.0, 4.0, 8.0]", "render.width=640",
+                       {"run.duration=8.0", "run.metric_window=[5.0, 8.0]",
+                        "render.snapshots=[0.0, 4.0, 8.0]", "render.width=640",
                         "render.height=360", "render.video_width=320", "render.video_height=240",
                         "render.video_fps=5.0"});
     RunOptions o;
