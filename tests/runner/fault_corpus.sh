@@ -85,6 +85,27 @@ for sig in INT TERM; do
   fi
 done
 
+case="SIGINT mid-sweep, then --resume"
+experiment test_fail_message 1e9 40 > e.toml
+"$bin" sweep e.toml --vary run.seed=1,2,3,4,5,6 --out sw --no-render --plugin-path "$plugins" \
+  -j 1 >/dev/null 2>&1 & pid=$!
+for _ in $(seq 300); do [ -f sw/fault_000/summary.json ] || [ -n "$(ls sw/*/summary.json 2>/dev/null)" ] && break; sleep 0.1; done
+kill -s INT $pid; wait $pid; code=$?
+finished=$(ls sw/*/summary.json 2>/dev/null | wc -l)
+if [ $code != 130 ]; then
+  fail "exit $code, expected 130"
+elif [ ! -f sw/sweep.csv ]; then
+  fail "no sweep.csv after the interrupt"
+elif ! grep -qi "incomplete\|missing\|interrupted\|false" sw/sweep.csv; then
+  fail "sweep.csv does not mark the unfinished runs: $(head -3 sw/sweep.csv)"
+else
+  "$bin" sweep e.toml --vary run.seed=1,2,3,4,5,6 --out sw --no-render --plugin-path "$plugins" \
+    --resume >/dev/null 2>&1; code=$?
+  complete=$(for f in sw/*/summary.json; do field "$(dirname "$f")" "['complete']"; done | grep -c True)
+  [ $code = 0 ] && [ "$complete" = 6 ] && [ "$finished" -ge 1 ] && ok ||
+    fail "resume exit $code, $complete of 6 runs complete ($finished finished before the interrupt)"
+fi
+
 case="ffmpeg dies mid-video"
 mkdir -p fakebin
 printf '#!/bin/sh\nhead -c 200000 >/dev/null\necho "fake ffmpeg: dying" >&2\nexit 1\n' > fakebin/ffmpeg
