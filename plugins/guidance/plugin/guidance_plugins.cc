@@ -248,6 +248,26 @@ void LeaderDestroy(void* instance) {
   delete static_cast<LeaderInstance<Law>*>(instance);
 }
 
+// The descriptor of a leader guidance plugin whose instance is LeaderInstance<Guidance>.
+template <typename Guidance, size_t kAttributes>
+constexpr mjfPlugin LeaderPlugin(const char* name, const char* doc,
+                                 const mjfAttribute (&attributes)[kAttributes],
+                                 void* (*create)(const mjfCreateContext*)) {
+  return {MJF_ABI_VERSION,
+          name,
+          MJF_KIND_GUIDANCE,
+          doc,
+          static_cast<int>(kAttributes),
+          attributes,
+          0,
+          nullptr,
+          create,
+          LeaderCompute<Guidance>,
+          nullptr,
+          LeaderDestroy<Guidance>,
+          nullptr};
+}
+
 // random_accel
 
 constexpr const char* kCorrelationTime = "correlation_time";
@@ -278,21 +298,11 @@ void* RandomAccelCreate(const mjfCreateContext* ctx) {
   });
 }
 
-const mjfPlugin kRandomAccel = {
-    MJF_ABI_VERSION,
+const mjfPlugin kRandomAccel = LeaderPlugin<mjf::guidance::RandomAccelGuidance>(
     "random_accel",
-    MJF_KIND_GUIDANCE,
     "maneuvering leader: smooth seeded random acceleration per axis in [a_min, a_max], speed "
     "limit and area kept",
-    static_cast<int>(sizeof(kRandomAccelAttributes) / sizeof(kRandomAccelAttributes[0])),
-    kRandomAccelAttributes,
-    0,
-    nullptr,
-    RandomAccelCreate,
-    LeaderCompute<mjf::guidance::RandomAccelGuidance>,
-    nullptr,
-    LeaderDestroy<mjf::guidance::RandomAccelGuidance>,
-    nullptr};
+    kRandomAccelAttributes, RandomAccelCreate);
 
 // bang_bang
 
@@ -380,20 +390,9 @@ void* LemniscateCreate(const mjfCreateContext* ctx) {
   });
 }
 
-const mjfPlugin kLemniscate = {
-    MJF_ABI_VERSION,
-    "lemniscate",
-    MJF_KIND_GUIDANCE,
-    "leader figure-eight (Gerono), tracked by PD, command clamped to [a_min, a_max]",
-    static_cast<int>(sizeof(kLemniscateAttributes) / sizeof(kLemniscateAttributes[0])),
-    kLemniscateAttributes,
-    0,
-    nullptr,
-    LemniscateCreate,
-    LeaderCompute<mjf::guidance::LemniscateGuidance>,
-    nullptr,
-    LeaderDestroy<mjf::guidance::LemniscateGuidance>,
-    nullptr};
+const mjfPlugin kLemniscate = LeaderPlugin<mjf::guidance::LemniscateGuidance>(
+    "lemniscate", "leader figure-eight (Gerono), tracked by PD, command clamped to [a_min, a_max]",
+    kLemniscateAttributes, LemniscateCreate);
 
 // waypoints
 
@@ -436,21 +435,11 @@ void* WaypointCreate(const mjfCreateContext* ctx) {
   });
 }
 
-const mjfPlugin kWaypoints = {
-    MJF_ABI_VERSION,
+const mjfPlugin kWaypoints = LeaderPlugin<mjf::guidance::WaypointGuidance>(
     "waypoints",
-    MJF_KIND_GUIDANCE,
     "leader on a smooth (C1 cubic) path through waypoints whose acceleration stays in [a_min, "
     "a_max]",
-    static_cast<int>(sizeof(kWaypointAttributes) / sizeof(kWaypointAttributes[0])),
-    kWaypointAttributes,
-    0,
-    nullptr,
-    WaypointCreate,
-    LeaderCompute<mjf::guidance::WaypointGuidance>,
-    nullptr,
-    LeaderDestroy<mjf::guidance::WaypointGuidance>,
-    nullptr};
+    kWaypointAttributes, WaypointCreate);
 
 // trajectory
 
@@ -459,7 +448,8 @@ constexpr const char* kTimeOffset = "time_offset";
 const mjfAttribute kTrajectoryAttributes[] = {
     {kAMin, "-1", "m/s^2: lower bound of the commanded acceleration per axis (u_min)"},
     {kAMax, "1", "m/s^2: upper bound of the commanded acceleration per axis (u_max)"},
-    {kFile, "", "CSV of rows t,x,y[,z] (optional header; a relative path is relative to the experiment file)"},
+    {kFile, "",
+     "CSV of rows t,x,y[,z] (optional header; a relative path is relative to the experiment file)"},
     {kTimeOffset, "0", "s: the file's time at simulation time 0"},
     {kAltitude, "5", "m: altitude setpoint when the file has no z"},
     {kYaw, "0", "rad: yaw setpoint"},
@@ -484,21 +474,11 @@ void* TrajectoryCreate(const mjfCreateContext* ctx) {
   });
 }
 
-const mjfPlugin kTrajectory = {
-    MJF_ABI_VERSION,
+const mjfPlugin kTrajectory = LeaderPlugin<mjf::guidance::TrajectoryGuidance>(
     "trajectory",
-    MJF_KIND_GUIDANCE,
     "leader on a recorded path (CSV t,x,y[,z]) interpolated by a C1 spline, command clamped "
     "to [a_min, a_max]",
-    static_cast<int>(sizeof(kTrajectoryAttributes) / sizeof(kTrajectoryAttributes[0])),
-    kTrajectoryAttributes,
-    0,
-    nullptr,
-    TrajectoryCreate,
-    LeaderCompute<mjf::guidance::TrajectoryGuidance>,
-    nullptr,
-    LeaderDestroy<mjf::guidance::TrajectoryGuidance>,
-    nullptr};
+    kTrajectoryAttributes, TrajectoryCreate);
 
 }  // namespace
 
