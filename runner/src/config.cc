@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "mjformation/runner/paths.hpp"
+#include "network_config.hpp"
 
 namespace mjf::runner {
 namespace {
@@ -273,13 +274,14 @@ toml::table ParseDocument(const std::string& text, const std::string& path,
 }
 
 void RejectUnknownSections(const Reporter& reporter, const toml::table& root) {
-  static const std::set<std::string> kKnown = {"run",       "vehicles", "topology", "leader",
-                                               "formation", "attitude", "render"};
+  static const std::set<std::string> kKnown = {"run",       "vehicles", "topology",
+                                               "leader",    "formation", "attitude",
+                                               "render",    "execution", "network"};
   for (auto&& [key, node] : root) {
     if (!kKnown.count(std::string(key.str()))) {
       reporter.Fail(&node, "[" + std::string(key.str()) + "]",
                     "unknown section (known: run, vehicles, topology, leader, formation, "
-                    "attitude, render)");
+                    "attitude, render, execution, network)");
     }
     if (!node.is_table()) {
       reporter.Fail(&node, std::string(key.str()), "expected a [section] table");
@@ -581,6 +583,7 @@ ExperimentConfig ParseExperiment(const std::string& text, const std::string& pat
   c.attitude = ReadPluginSection(reporter, root, "attitude", "pd_cascade", {});
   ParseShapeSection(reporter, table_of("formation"), path, c);
   ParseRenderSection(Section(reporter, table_of("render"), "render"), c.duration, c.render);
+  ParseNetworkSections(root, c);
   return c;
 }
 
