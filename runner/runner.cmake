@@ -1,6 +1,7 @@
 # Included from runner/CMakeLists.txt.
 add_library(mjf_runner STATIC
   ${CMAKE_CURRENT_SOURCE_DIR}/src/actuation.cc
+  ${CMAKE_CURRENT_SOURCE_DIR}/src/agent_channel.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/bench.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/cli.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/config.cc

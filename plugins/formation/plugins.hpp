@@ -6,9 +6,10 @@
 
 namespace mjf::formation {
 
-extern const mjfPlugin kSmcContinuous;    // smc_continuous.cc: eq. (30) / (33)
-extern const mjfPlugin kSmcDiscrete;      // smc_discrete.cc: eq. (48) / (53), zero-order hold
-extern const mjfPlugin kConsensusLinear;  // consensus_linear.cc: linear baseline
+extern const mjfPlugin kSmcContinuous;     // smc_continuous.cc: eq. (30) / (33)
+extern const mjfPlugin kSmcDiscrete;       // smc_discrete.cc: eq. (48) / (53), zero-order hold
+extern const mjfPlugin kConsensusLinear;   // consensus_linear.cc: linear baseline
+extern const mjfPlugin kSmcDiscreteAgent;  // smc_discrete_agent.cc: eq. (48), per follower
 
 }  // namespace mjf::formation
 
