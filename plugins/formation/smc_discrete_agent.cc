@@ -7,8 +7,9 @@
 //   - agent->solved (coupling = central_solve): the host's exact solve, the reference;
 //   - round r > 0 (coupling = jacobi): the neighbours' round r-1 iterates w_j (payload[0..1]);
 //   - otherwise (round 0, or a round message lost): the neighbours' last inputs u_j.
-// Outgoing payload: [0..1] w_i of this round, [2..3] R_i, [4..7] the leader's px, py, vx, vy
-// as this follower knows it (relayed for the reference slots of followers without a leader link).
+// Outgoing payload, on sample steps only (n_payload = 0 in between): [0..1] w_i of this round,
+// [2..3] R_i, [4..7] the leader's px, py, vx, vy as this follower knows it (relayed, one hop per
+// sample, for the reference slots of followers without a leader link).
 #include <cmath>
 #include <cstdint>
 #include <mjformation/core/discrete_smc_agent.hpp>
@@ -151,7 +152,8 @@ int Compute(void* instance, const mjfStepContext* ctx) {
     const bool sample_step = !a.has_sample || ctx->step % a.steps_per_sample == 0;
     // A sample needs a message from every neighbour (and the leader when a_i0 > 0): until
     // each has been heard once, the initial setpoint holds.
-    if (ready && sample_step) Sample(a, *ctx);
+    const bool sampled = ready && sample_step;
+    if (sampled) Sample(a, *ctx);
     mjfSetpoint& sp = *ctx->setpoints;
     for (int axis = 0; axis < 2; ++axis) {
       // The reference slot x_0 + f_i (a diagnostic: attitude plugins use acc and pos[2]); the
@@ -163,7 +165,8 @@ int Compute(void* instance, const mjfStepContext* ctx) {
       sp.sliding[axis] = a.core.sliding()[axis];
     }
     mjfMessage& out = *in.outgoing;
-    out.n_payload = kPayloadUsed;
+    // Between samples there is nothing new to exchange (no Jacobi round, no central solve).
+    out.n_payload = sampled ? kPayloadUsed : 0;
     out.payload[0] = a.core.coupling()[0];
     out.payload[1] = a.core.coupling()[1];
     out.payload[2] = a.core.rhs()[0];

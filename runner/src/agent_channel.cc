@@ -158,7 +158,10 @@ void AgentChannel::EndRound(int round, const std::vector<mjfSetpoint>& setpoints
     CentralSolve();
     return;
   }
-  for (int i = 0; i < n_followers_; ++i) network_.ExchangeRound(i + 1, outgoing_[i]);
+  for (int i = 0; i < n_followers_; ++i) {
+    // A follower with nothing new this round (between samples) sends no round message.
+    if (outgoing_[i].n_payload > 0) network_.ExchangeRound(i + 1, outgoing_[i]);
+  }
 }
 
 // The reference: L_H W = R solved at once for the R_i the followers published (payload[2..3]).
@@ -182,6 +185,45 @@ void AgentChannel::CentralSolve() {
     solved_[2 * i + 1] = central_->rhs(i, 1);
   }
   have_solution_ = true;
+}
+
+nlohmann::json AgentChannel::Summary() const {
+  using Json = nlohmann::json;
+  Json links = Json::array();
+  for (int l = 0; l < network_.n_links(); ++l) {
+    const network::LinkStats& st = network_.link(l).stats();
+    const int64_t arrived = st.delivered;
+    links.push_back({{"from", network_.spec(l).from},
+                     {"to", network_.spec(l).to},
+                     {"sent", st.sent},
+                     {"delivered", st.delivered},
+                     {"lost", st.lost},
+                     {"stale_dropped", st.stale},
+                     {"out_of_range", st.out_of_range},
+                     {"latency_mean_s", arrived > 0 ? st.latency_sum / arrived : 0.0},
+                     {"latency_max_s", st.latency_max},
+                     {"round_messages_sent", st.rounds_sent},
+                     {"round_messages_lost", st.rounds_lost}});
+  }
+  Json age = Json::array();
+  for (int v = 1; v <= n_followers_; ++v) {
+    age.push_back(
+        {{"follower", v}, {"mean_s", network_.age(v).mean()}, {"max_s", network_.age(v).max}});
+  }
+  Json events = Json::array();
+  for (const auto& e : network_.events()) {
+    if (events.size() >= 1000) break;  // the count below is complete
+    events.push_back({{"time_s", e.time}, {"from", e.from}, {"to", e.to}, {"up", e.up}});
+  }
+  return {{"execution", ToString(config_.execution)},
+          {"coupling", ToString(config_.coupling)},
+          {"rounds_per_step", n_rounds_},
+          {"jacobi_spectral_radius", spectral_radius_},
+          {"links", links},
+          {"age_of_information", age},
+          {"topology_switches", network_.events().size()},
+          {"topology_events", events},
+          {"time_without_spanning_tree_s", network_.time_without_spanning_tree()}};
 }
 
 }  // namespace mjf::runner

@@ -15,6 +15,7 @@
 
 #include <array>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
 #include <vector>
@@ -47,6 +48,9 @@ class AgentChannel {
   void EndRound(int round, const std::vector<mjfSetpoint>& setpoints);
 
   const network::Network& network() const { return network_; }
+  // summary.json "network": coupling, Jacobi spectral radius, per-link counts and measured
+  // latency, age of information per follower, topology switches, time without a spanning tree.
+  nlohmann::json Summary() const;
   double jacobi_spectral_radius() const { return spectral_radius_; }
 
  private:
