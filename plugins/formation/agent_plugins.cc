@@ -1,9 +1,11 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
-// smc_discrete_agent: the discrete sliding-mode protocol (48) run by one follower, for
-// distributed execution ([execution] mode = "per_agent"). Same attributes and sampling as
-// smc_discrete; the maths is core::DiscreteSmcAgent. The u_j(k) coupling of (48) is closed by
-// what the host hands this instance (docs/NETWORK.md):
+// The per-agent formation plugins, for distributed execution ([execution] mode = "per_agent"):
+// smc_discrete_agent (eq. (48), core::DiscreteSmcAgent, sampled every T and held),
+// smc_continuous_agent (eq. (30), core::ContinuousSmcAgent, every step) and
+// consensus_linear_agent (core::LinearConsensusAgent, every step), with the attributes of their
+// swarm-level versions. One adapter, a template over the law. The u_j coupling is closed by what
+// the host hands the instance (docs/NETWORK.md):
 //   - agent->solved (coupling = central_solve): the host's exact solve, the reference;
 //   - round r > 0 (coupling = jacobi): the neighbours' round r-1 iterates w_j (payload[0..1]);
 //   - otherwise (round 0, or a round message lost): the neighbours' last inputs u_j.
@@ -12,6 +14,7 @@
 // sample, for the reference slots of followers without a leader link).
 #include <cmath>
 #include <cstdint>
+#include <mjformation/core/agent_laws.hpp>
 #include <mjformation/core/discrete_smc_agent.hpp>
 #include <vector>
 
@@ -23,8 +26,11 @@ namespace {
 
 constexpr int kPayloadUsed = 8;
 
+template <typename Law>
 struct Agent {
-  Agent(const mjfCreateContext* ctx, const core::DiscreteSmcParams& params, int64_t steps)
+  // horizon: the law's look-ahead (T for the discrete law: F(k+1) at t + T), 0 otherwise.
+  template <typename Params>
+  Agent(const mjfCreateContext* ctx, const Params& params, int64_t steps, double horizon_s)
       : follower(ctx->neighbourhood->follower),
         leader_weight(ctx->neighbourhood->leader_weight),
         neighbours(ctx->neighbourhood->neighbours,
@@ -34,6 +40,7 @@ struct Agent {
                                  ctx->neighbourhood->weights + ctx->neighbourhood->n_neighbours)),
         shape(*ctx->shape),
         steps_per_sample(steps),
+        horizon(horizon_s),
         shape_now(6 * static_cast<size_t>(shape.num_followers())),
         shape_next(shape_now.size()),
         neighbour_pv(4 * neighbours.size()),
@@ -44,9 +51,10 @@ struct Agent {
   int follower;
   double leader_weight;         // a_i0
   std::vector<int> neighbours;  // follower indices j, 0-based
-  core::DiscreteSmcAgent core;
+  Law core;
   core::AbiShape shape;
   int64_t steps_per_sample;
+  double horizon;
   bool has_sample = false;
   double leader_pv[4] = {0, 0, 0, 0};
   bool knows_leader = false;
@@ -55,14 +63,36 @@ struct Agent {
   std::vector<const mjfMessage*> found;  // [m] the message of neighbour m this call
 };
 
-void* Create(const mjfCreateContext* ctx) {
+void RequireNeighbourhood(const mjfCreateContext* ctx) {
+  if (!ctx->neighbourhood || !ctx->shape) {
+    throw std::invalid_argument(
+        "per-agent formation plugin: the host passed no neighbourhood or shape (per-agent "
+        "execution)");
+  }
+}
+
+void* CreateDiscrete(const mjfCreateContext* ctx) {
   return plugin::CreateOrExplain(ctx, [&]() -> void* {
-    if (!ctx->neighbourhood || !ctx->shape) {
-      throw std::invalid_argument(
-          "smc_discrete_agent: the host passed no neighbourhood or shape (per-agent execution)");
-    }
+    RequireNeighbourhood(ctx);
     const core::DiscreteSmcParams params = ParseDiscreteParams(plugin::Attributes(ctx));
-    return new Agent(ctx, params, StepsPerSample(params.period, ctx->timestep));
+    return new Agent<core::DiscreteSmcAgent>(
+        ctx, params, StepsPerSample(params.period, ctx->timestep), params.period);
+  });
+}
+
+void* CreateContinuous(const mjfCreateContext* ctx) {
+  return plugin::CreateOrExplain(ctx, [&]() -> void* {
+    RequireNeighbourhood(ctx);
+    const core::ContinuousSmcParams params = ParseContinuousParams(plugin::Attributes(ctx));
+    return new Agent<core::ContinuousSmcAgent>(ctx, params, 1, 0.0);
+  });
+}
+
+void* CreateConsensus(const mjfCreateContext* ctx) {
+  return plugin::CreateOrExplain(ctx, [&]() -> void* {
+    RequireNeighbourhood(ctx);
+    const core::LinearConsensusParams params = ParseConsensusParams(plugin::Attributes(ctx));
+    return new Agent<core::LinearConsensusAgent>(ctx, params, 1, 0.0);
   });
 }
 
@@ -75,7 +105,8 @@ void ReadPv(const mjfVehicleState& s, double* pv) {
 
 // Finds each neighbour's message and the leader's state (own link, else a neighbour's relay);
 // false while something the protocol needs has not arrived yet.
-bool Gather(Agent& a, const mjfAgentInput& in) {
+template <typename Law>
+bool Gather(Agent<Law>& a, const mjfAgentInput& in) {
   std::fill(a.found.begin(), a.found.end(), nullptr);
   for (int k = 0; k < in.n_messages; ++k) {
     for (size_t m = 0; m < a.neighbours.size(); ++m) {
@@ -102,7 +133,8 @@ bool Gather(Agent& a, const mjfAgentInput& in) {
 }
 
 // w_j for every neighbour: this round's iterate when it got through, else from u_j.
-void NeighbourCoupling(Agent& a, const mjfAgentInput& in, double time) {
+template <typename Law>
+void NeighbourCoupling(Agent<Law>& a, const mjfAgentInput& in, double time) {
   for (size_t m = 0; m < a.neighbours.size(); ++m) {
     const mjfMessage& msg = *a.found[m];
     const bool fresh_round =
@@ -116,10 +148,11 @@ void NeighbourCoupling(Agent& a, const mjfAgentInput& in, double time) {
   }
 }
 
-void Sample(Agent& a, const mjfStepContext& ctx) {
+template <typename Law>
+void Sample(Agent<Law>& a, const mjfStepContext& ctx) {
   const mjfAgentInput& in = *ctx.agent;
   const int i = a.follower;
-  a.shape.Evaluate(ctx.time + a.core.params().period, a.shape_next.data());  // F(k+1)
+  a.shape.Evaluate(ctx.time + a.horizon, a.shape_next.data());  // F(k+1) for the discrete law
   for (size_t m = 0; m < a.neighbours.size(); ++m) {
     const int j = a.neighbours[m];
     ReadPv(a.found[m]->state, &a.neighbour_pv[4 * m]);
@@ -139,11 +172,13 @@ void Sample(Agent& a, const mjfStepContext& ctx) {
   a.has_sample = true;
 }
 
+template <typename Law>
 int Compute(void* instance, const mjfStepContext* ctx) {
   return plugin::ComputeOrExplain(ctx, [&] {
-    auto& a = *static_cast<Agent*>(instance);
+    auto& a = *static_cast<Agent<Law>*>(instance);
     if (!ctx->agent || !ctx->agent->self || !ctx->setpoints || !ctx->agent->outgoing) {
-      return plugin::Fail(ctx, "smc_discrete_agent needs per-agent execution (ctx->agent)");
+      return plugin::Fail(ctx,
+                          "a per-agent formation plugin needs per-agent execution (ctx->agent)");
     }
     const mjfAgentInput& in = *ctx->agent;
     const bool ready = Gather(a, in);
@@ -162,7 +197,7 @@ int Compute(void* instance, const mjfStepContext* ctx) {
       sp.pos[axis] = a.knows_leader ? a.leader_pv[axis] + f[axis] : in.self->pos[axis];
       sp.vel[axis] = a.knows_leader ? a.leader_pv[2 + axis] + f[2 + axis] : in.self->vel[axis];
       sp.acc[axis] = a.core.acceleration()[axis];  // zero-order hold between samples
-      sp.sliding[axis] = a.core.sliding()[axis];
+      if (a.core.sliding()) sp.sliding[axis] = a.core.sliding()[axis];
     }
     mjfMessage& out = *in.outgoing;
     // Between samples there is nothing new to exchange (no Jacobi round, no central solve).
@@ -176,33 +211,55 @@ int Compute(void* instance, const mjfStepContext* ctx) {
   });
 }
 
-void Reset(void* instance) { static_cast<Agent*>(instance)->has_sample = false; }
+template <typename Law>
+void Reset(void* instance) {
+  static_cast<Agent<Law>*>(instance)->has_sample = false;
+}
 
-void Destroy(void* instance) { delete static_cast<Agent*>(instance); }
+template <typename Law>
+void Destroy(void* instance) {
+  delete static_cast<Agent<Law>*>(instance);
+}
 
-void Report(void* instance, mjfReportFn emit, void* user) {
-  const auto& a = *static_cast<const Agent*>(instance);
+void ReportDiscrete(void* instance, mjfReportFn emit, void* user) {
+  const auto& a = *static_cast<const Agent<core::DiscreteSmcAgent>*>(instance);
   emit(user, "delta", a.core.delta());  // the host reports the largest over the followers
   emit(user, "period", a.core.params().period);
   emit(user, "steps_per_sample", static_cast<double>(a.steps_per_sample));
 }
 
+template <typename Law>
+constexpr mjfPlugin AgentPlugin(const char* name, const char* doc, int n_attributes,
+                                const mjfAttribute* attributes,
+                                void* (*create)(const mjfCreateContext*),
+                                void (*report)(void*, mjfReportFn, void*)) {
+  return {MJF_ABI_VERSION,
+          name,
+          MJF_KIND_FORMATION_AGENT,
+          doc,
+          n_attributes,
+          attributes,
+          0,
+          nullptr,
+          create,
+          &Compute<Law>,
+          &Reset<Law>,
+          &Destroy<Law>,
+          report};
+}
+
 }  // namespace
 
-const mjfPlugin kSmcDiscreteAgent = {
-    MJF_ABI_VERSION,
+const mjfPlugin kSmcDiscreteAgent = AgentPlugin<core::DiscreteSmcAgent>(
     "smc_discrete_agent",
-    MJF_KIND_FORMATION_AGENT,
     "discrete sliding-mode formation tracking, eq. (48), one instance per follower",
-    kDiscreteAttributeCount,
-    kDiscreteAttributes,
-    0,
-    nullptr,
-    &Create,
-    &Compute,
-    &Reset,
-    &Destroy,
-    &Report,
-};
+    kDiscreteAttributeCount, kDiscreteAttributes, &CreateDiscrete, &ReportDiscrete);
+const mjfPlugin kSmcContinuousAgent = AgentPlugin<core::ContinuousSmcAgent>(
+    "smc_continuous_agent",
+    "continuous sliding-mode formation tracking, eq. (30), one instance per follower",
+    kContinuousAttributeCount, kContinuousAttributes, &CreateContinuous, nullptr);
+const mjfPlugin kConsensusLinearAgent = AgentPlugin<core::LinearConsensusAgent>(
+    "consensus_linear_agent", "linear consensus formation tracking, one instance per follower",
+    kConsensusAttributeCount, kConsensusAttributes, &CreateConsensus, nullptr);
 
 }  // namespace mjf::formation
