@@ -56,6 +56,7 @@ struct Agent {
   int64_t steps_per_sample;
   double horizon;
   bool has_sample = false;
+  int64_t last_sample = -1;  // step of the last sample (later rounds of it sample again)
   double leader_pv[4] = {0, 0, 0, 0};
   bool knows_leader = false;
   std::vector<double> shape_now, shape_next;
@@ -134,11 +135,12 @@ bool Gather(Agent<Law>& a, const mjfAgentInput& in) {
 
 // w_j for every neighbour: this round's iterate when it got through, else from u_j.
 template <typename Law>
-void NeighbourCoupling(Agent<Law>& a, const mjfAgentInput& in, double time) {
+void NeighbourCoupling(Agent<Law>& a, const mjfAgentInput& in) {
   for (size_t m = 0; m < a.neighbours.size(); ++m) {
     const mjfMessage& msg = *a.found[m];
-    const bool fresh_round =
-        in.round > 0 && msg.round == in.round - 1 && msg.send_time == time && msg.n_payload >= 2;
+    // The host marks a neighbour's message with round r - 1 only when that round's message got
+    // through this tick (its state part stays the newest one held, which may be older).
+    const bool fresh_round = in.round > 0 && msg.round == in.round - 1 && msg.n_payload >= 2;
     for (int axis = 0; axis < 2; ++axis) {
       const double u_j = std::isfinite(msg.input[axis]) ? msg.input[axis] : 0.0;
       a.neighbour_w[2 * m + axis] = fresh_round
@@ -166,10 +168,11 @@ void Sample(Agent<Law>& a, const mjfStepContext& ctx) {
   if (in.solved) {
     a.core.UseSolved(in.solved);
   } else {
-    NeighbourCoupling(a, in, ctx.time);
+    NeighbourCoupling(a, in);
     a.core.Solve(a.neighbour_w.data());
   }
   a.has_sample = true;
+  a.last_sample = ctx.step;
 }
 
 template <typename Law>
@@ -184,7 +187,8 @@ int Compute(void* instance, const mjfStepContext* ctx) {
     const bool ready = Gather(a, in);
     if (!ready && !a.has_sample) return 0;  // nothing heard yet: hold the initial setpoint
     a.shape.Evaluate(ctx->time, a.shape_now.data());
-    const bool sample_step = !a.has_sample || ctx->step % a.steps_per_sample == 0;
+    const bool sample_step =
+        !a.has_sample || ctx->step % a.steps_per_sample == 0 || ctx->step == a.last_sample;
     // A sample needs a message from every neighbour (and the leader when a_i0 > 0): until
     // each has been heard once, the initial setpoint holds.
     const bool sampled = ready && sample_step;
