@@ -99,11 +99,11 @@ void AgentChannel::BeginTick(int64_t step, double time, const std::vector<mjfVeh
                              const std::vector<mjfVehicleState>& measured,
                              const std::vector<mjfSetpoint>& setpoints) {
   time_ = time;
-  std::vector<std::array<double, 3>> positions(truth.size());
+  positions_.resize(truth.size());  // allocates on the first tick only
   for (size_t v = 0; v < truth.size(); ++v) {
-    positions[v] = {truth[v].pos[0], truth[v].pos[1], truth[v].pos[2]};
+    positions_[v] = {truth[v].pos[0], truth[v].pos[1], truth[v].pos[2]};
   }
-  network_.UpdateTopology(step, positions);
+  network_.UpdateTopology(step, positions_);
   network_.ClearRounds();
   for (int v = 0; v <= n_followers_; ++v) {
     mjfMessage m = v == 0 ? mjfMessage{} : outgoing_[v - 1];
