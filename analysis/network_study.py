@@ -55,6 +55,14 @@ def mean_ci(values):
 def main():
     binary, out = sys.argv[1], sys.argv[2]
     os.makedirs(out, exist_ok=True)
+    if binary == "--plot-only":  # redraw from <out>/study.csv
+        with open(os.path.join(out, "study.csv")) as f:
+            rows = [[r[0], float(r[1]) if r[1] != "-" else "-", float(r[2]) if r[2] != "-"
+                     else "-", int(r[3]), int(r[4]), float(r[5]), float(r[6])]
+                    for r in list(csv.reader(f))[1:]]
+        write_table(rows, os.path.join(out, "study.md"))
+        plot(rows, "docs/img/network_sigma_f.png")
+        return
     rows = []
     central = sweep(binary, os.path.join(out, "central"), POINT_MASS,
                     ["run.seed=" + ",".join(map(str, SEEDS))])
@@ -95,7 +103,7 @@ def write_table(rows, path):
         f.write("| mode | latency | " + " | ".join("loss %g %%" % (100 * l) for l in LOSSES) +
                 " |\n")
         f.write("|---|---|" + "---|" * len(LOSSES) + "\n")
-        f.write("| central (ideal) | - | %s |\n" % cell_text(rows[0]) + "" )
+        f.write("| central (ideal) | - | %s |%s\n" % (cell_text(rows[0]), " |" * (len(LOSSES) - 1)))
         for mode in MODES:
             for lat in LATENCIES:
                 cells = [r for r in rows if r[0] == mode and r[1] == lat]
@@ -121,9 +129,10 @@ def plot(rows, path):
         ax.set_title("loss %g %%" % (100 * loss))
         ax.set_xlabel("latency + 0.5 ms [ms]")
     axes[0].set_ylabel("mean sigma_f, t in [25, 40] s [m]")
-    axes[-1].legend(fontsize=7)
-    fig.suptitle("Exp 2, point mass, per-agent over a network (completed runs, 95 % CI); "
-                 "missing points: every run diverged", fontsize=9)
+    axes[0].legend(fontsize=7)
+    fig.suptitle("Exp 2, point mass, per-agent over a network (mean over completed runs, 95 % CI;"
+                 " missing points: every run diverged; last_input diverged everywhere)",
+                 fontsize=9)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
 
