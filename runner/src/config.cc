@@ -274,9 +274,9 @@ toml::table ParseDocument(const std::string& text, const std::string& path,
 }
 
 void RejectUnknownSections(const Reporter& reporter, const toml::table& root) {
-  static const std::set<std::string> kKnown = {"run",       "vehicles", "topology",
-                                               "leader",    "formation", "attitude",
-                                               "render",    "execution", "network"};
+  static const std::set<std::string> kKnown = {"run",    "vehicles",  "topology",
+                                               "leader", "formation", "attitude",
+                                               "render", "execution", "network"};
   for (auto&& [key, node] : root) {
     if (!kKnown.count(std::string(key.str()))) {
       reporter.Fail(&node, "[" + std::string(key.str()) + "]",

@@ -185,9 +185,9 @@ std::map<std::string, const mjfPlugin*> FormationPluginTest::plugins_;
 
 TEST_F(FormationPluginTest, ExportsThreeFormationPluginsAndTheirPerAgentVersions) {
   ASSERT_EQ(plugins_.size(), 6u);
-  for (const char* name : {"smc_continuous", "smc_discrete", "consensus_linear",
-                           "smc_continuous_agent", "smc_discrete_agent",
-                           "consensus_linear_agent"}) {
+  for (const char* name :
+       {"smc_continuous", "smc_discrete", "consensus_linear", "smc_continuous_agent",
+        "smc_discrete_agent", "consensus_linear_agent"}) {
     const mjfPlugin* p = Plugin(name);
     EXPECT_EQ(p->abi_version, MJF_ABI_VERSION);
     EXPECT_EQ(p->kind, std::string(name).find("_agent") == std::string::npos

@@ -68,7 +68,7 @@ class AgentChannel {
   std::vector<mjfMessage> outgoing_;  // [follower] the last thing each follower wrote
   std::vector<mjfVehicleState> self_;
   std::vector<std::array<double, 3>> positions_;  // true positions, for range limits
-  std::vector<std::vector<mjfMessage>> inbox_;  // [follower]
+  std::vector<std::vector<mjfMessage>> inbox_;    // [follower]
   std::vector<mjfAgentInput> inputs_;
   struct CentralSolver;                     // L_H factor and its right-hand side
   std::unique_ptr<CentralSolver> central_;  // central_solve only
