@@ -1,6 +1,7 @@
 # Included from runner/CMakeLists.txt.
 add_library(mjf_runner STATIC
   ${CMAKE_CURRENT_SOURCE_DIR}/src/actuation.cc
+  ${CMAKE_CURRENT_SOURCE_DIR}/src/agent_channel.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/bench.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/cli.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/config.cc
@@ -10,6 +11,7 @@ add_library(mjf_runner STATIC
   ${CMAKE_CURRENT_SOURCE_DIR}/src/leader_acceleration.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/metrics.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/mujoco_errors.cc
+  ${CMAKE_CURRENT_SOURCE_DIR}/src/network_config.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/output.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/paths.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/plugin_host.cc
@@ -41,7 +43,7 @@ else()
   set(MJF_TINYXML2 tinyxml2)
 endif()
 target_link_libraries(mjf_runner
-  PUBLIC mjf_plugin_abi mjf_realism mujoco::mujoco nlohmann_json::nlohmann_json CLI11::CLI11
+  PUBLIC mjf_plugin_abi mjf_realism mjf_network mujoco::mujoco nlohmann_json::nlohmann_json CLI11::CLI11
   PRIVATE mjf_formation_core mjf_render PkgConfig::TOMLPP fmt::fmt OpenSSL::Crypto ${MJF_TINYXML2}
           ${CMAKE_DL_LIBS} Threads::Threads)
 

@@ -151,6 +151,11 @@ typedef struct mjfAgentInput_ {
   mjfMessage* outgoing;     /* what this follower broadcasts next: the host fills sender,
                                time, state and input (from the setpoint written); the plugin
                                may fill round-specific payload */
+  /* Added at the end in this wave (issue 10): with [execution] coupling = "central_solve", in
+   * the last round of a sample the host's exact solve of L_H W = R for this follower (W_i for
+   * x and y, where R_i is what the plugin published in outgoing->payload[2..3] in round 0; see
+   * docs/NETWORK.md); NULL otherwise. The ideal-network reference, not a distributed scheme. */
+  const double* solved;
 } mjfAgentInput;
 
 typedef struct mjfCreateContext_ {

@@ -7,7 +7,10 @@
 
 #include <mjformation/plugin.h>
 
+#include <mjformation/core/continuous_smc.hpp>
+#include <mjformation/core/discrete_smc.hpp>
 #include <mjformation/core/graph.hpp>
+#include <mjformation/core/linear_consensus.hpp>
 #include <mjformation/core/shape.hpp>
 #include <mjformation/core/sliding.hpp>
 #include <mjformation/plugin_util.hpp>
@@ -40,6 +43,20 @@ struct SwarmSetup {
 };
 
 core::SlidingGains ParseGains(const plugin::Attributes& attributes);
+
+// smc_discrete's attributes, shared by its swarm-level and per-agent plugins (smc_discrete.cc).
+extern const mjfAttribute kDiscreteAttributes[];
+extern const int kDiscreteAttributeCount;
+core::DiscreteSmcParams ParseDiscreteParams(const plugin::Attributes& attributes);
+// smc_continuous's and consensus_linear's, likewise.
+extern const mjfAttribute kContinuousAttributes[];
+extern const int kContinuousAttributeCount;
+core::ContinuousSmcParams ParseContinuousParams(const plugin::Attributes& attributes);
+extern const mjfAttribute kConsensusAttributes[];
+extern const int kConsensusAttributeCount;
+core::LinearConsensusParams ParseConsensusParams(const plugin::Attributes& attributes);
+// Physics steps per sample period T; throws when T is not a whole number of steps.
+int64_t StepsPerSample(double period, double timestep);
 
 // Preallocated buffers in the core's layout, filled from a step context.
 class SwarmBuffers {

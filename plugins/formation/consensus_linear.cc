@@ -8,22 +8,29 @@
 #include "plugins.hpp"
 
 namespace mjf::formation {
-namespace {
 
-const mjfAttribute kAttributes[] = {
+const mjfAttribute kConsensusAttributes[] = {
     {kKeyKp, "1", "position gain kp > 0, 1/s^2"},
     {kKeyKv, "2", "velocity gain kv > 0, 1/s"},
 };
+const int kConsensusAttributeCount =
+    static_cast<int>(sizeof(kConsensusAttributes) / sizeof(kConsensusAttributes[0]));
+
+core::LinearConsensusParams ParseConsensusParams(const plugin::Attributes& attributes) {
+  core::LinearConsensusParams params;
+  params.kp = attributes.Number(kKeyKp);
+  params.kv = attributes.Number(kKeyKv);
+  params.Validate();
+  return params;
+}
+
+namespace {
 
 using Instance = SwarmInstance<core::LinearConsensus>;
 
 void* Create(const mjfCreateContext* ctx) {
   return plugin::CreateOrExplain(ctx, [&]() -> void* {
-    const plugin::Attributes attributes(ctx);
-    core::LinearConsensusParams params;
-    params.kp = attributes.Number(kKeyKp);
-    params.kv = attributes.Number(kKeyKv);
-    params.Validate();
+    const core::LinearConsensusParams params = ParseConsensusParams(plugin::Attributes(ctx));
     const SwarmSetup setup(ctx);
     return new Instance(setup, params);
   });
@@ -53,8 +60,8 @@ const mjfPlugin kConsensusLinear = {
     "consensus_linear",
     MJF_KIND_FORMATION,
     "linear consensus-based time-varying formation tracking (baseline)",
-    static_cast<int>(sizeof(kAttributes) / sizeof(kAttributes[0])),
-    kAttributes,
+    static_cast<int>(sizeof(kConsensusAttributes) / sizeof(kConsensusAttributes[0])),
+    kConsensusAttributes,
     0,
     nullptr,
     &Create,

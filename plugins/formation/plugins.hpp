@@ -6,9 +6,12 @@
 
 namespace mjf::formation {
 
-extern const mjfPlugin kSmcContinuous;    // smc_continuous.cc: eq. (30) / (33)
-extern const mjfPlugin kSmcDiscrete;      // smc_discrete.cc: eq. (48) / (53), zero-order hold
-extern const mjfPlugin kConsensusLinear;  // consensus_linear.cc: linear baseline
+extern const mjfPlugin kSmcContinuous;         // smc_continuous.cc: eq. (30) / (33)
+extern const mjfPlugin kSmcDiscrete;           // smc_discrete.cc: eq. (48) / (53), zero-order hold
+extern const mjfPlugin kConsensusLinear;       // consensus_linear.cc: linear baseline
+extern const mjfPlugin kSmcDiscreteAgent;      // agent_plugins.cc: eq. (48), per follower
+extern const mjfPlugin kSmcContinuousAgent;    // agent_plugins.cc: eq. (30), per follower
+extern const mjfPlugin kConsensusLinearAgent;  // agent_plugins.cc: linear, per follower
 
 }  // namespace mjf::formation
 

@@ -4,4 +4,5 @@
 #include "plugins.hpp"
 
 MJF_EXPORT_PLUGINS(&mjf::formation::kSmcContinuous, &mjf::formation::kSmcDiscrete,
-                   &mjf::formation::kConsensusLinear)
+                   &mjf::formation::kConsensusLinear, &mjf::formation::kSmcDiscreteAgent,
+                   &mjf::formation::kSmcContinuousAgent, &mjf::formation::kConsensusLinearAgent)

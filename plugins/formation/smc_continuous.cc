@@ -8,9 +8,8 @@
 #include "plugins.hpp"
 
 namespace mjf::formation {
-namespace {
 
-const mjfAttribute kAttributes[] = {
+const mjfAttribute kContinuousAttributes[] = {
     {kKeyGains, "3 1", "K = [k1 k2] of the sliding variable s_i = K e_i, eq. (17); both > 0"},
     {kKeyRho, "0.05", "switching gain rho > 0 of eq. (30)"},
     {kKeyQ, "4.5", "exponential reaching gain q > 0, 1/s (reaching = exponential only)"},
@@ -23,23 +22,31 @@ const mjfAttribute kAttributes[] = {
     {kKeySign, "sgn", "sign function: sgn (paper) or sat (boundary layer)"},
     {kKeyBoundaryLayer, "0.1", "boundary-layer width phi of sat (sign = sat only)"},
 };
+const int kContinuousAttributeCount =
+    static_cast<int>(sizeof(kContinuousAttributes) / sizeof(kContinuousAttributes[0]));
+
+core::ContinuousSmcParams ParseContinuousParams(const plugin::Attributes& attributes) {
+  core::ContinuousSmcParams params;
+  params.gains = ParseGains(attributes);
+  params.rho = attributes.Number(kKeyRho);
+  params.q = attributes.Number(kKeyQ);
+  params.u_min = attributes.Number(kKeyUMin);
+  params.u_max = attributes.Number(kKeyUMax);
+  params.compensation = core::ParseCompensation(attributes.String(kKeyCompensation));
+  params.reaching = core::ParseReaching(attributes.String(kKeyReaching));
+  params.sign = core::ParseSignFunction(attributes.String(kKeySign));
+  params.boundary_layer = attributes.Number(kKeyBoundaryLayer);
+  params.Validate();
+  return params;
+}
+
+namespace {
 
 using Instance = SwarmInstance<core::ContinuousSmc>;
 
 void* Create(const mjfCreateContext* ctx) {
   return plugin::CreateOrExplain(ctx, [&]() -> void* {
-    const plugin::Attributes attributes(ctx);
-    core::ContinuousSmcParams params;
-    params.gains = ParseGains(attributes);
-    params.rho = attributes.Number(kKeyRho);
-    params.q = attributes.Number(kKeyQ);
-    params.u_min = attributes.Number(kKeyUMin);
-    params.u_max = attributes.Number(kKeyUMax);
-    params.compensation = core::ParseCompensation(attributes.String(kKeyCompensation));
-    params.reaching = core::ParseReaching(attributes.String(kKeyReaching));
-    params.sign = core::ParseSignFunction(attributes.String(kKeySign));
-    params.boundary_layer = attributes.Number(kKeyBoundaryLayer);
-    params.Validate();
+    const core::ContinuousSmcParams params = ParseContinuousParams(plugin::Attributes(ctx));
     const SwarmSetup setup(ctx);
     return new Instance(setup, params);
   });
@@ -80,8 +87,8 @@ const mjfPlugin kSmcContinuous = {
     "smc_continuous",
     MJF_KIND_FORMATION,
     "continuous sliding-mode formation tracking, eq. (30) via compact form (33)",
-    static_cast<int>(sizeof(kAttributes) / sizeof(kAttributes[0])),
-    kAttributes,
+    static_cast<int>(sizeof(kContinuousAttributes) / sizeof(kContinuousAttributes[0])),
+    kContinuousAttributes,
     0,
     nullptr,
     &Create,

@@ -14,9 +14,8 @@
 #include "plugins.hpp"
 
 namespace mjf::formation {
-namespace {
 
-const mjfAttribute kAttributes[] = {
+const mjfAttribute kDiscreteAttributes[] = {
     {kKeyGains, "3 1", "K = [k1 k2] of the sliding variable s_i = K e_i, eq. (17); both > 0"},
     {kKeyEps, "0.05", "switching gain eps > 0 of eq. (48)"},
     {kKeyQ, "4.5", "reaching gain q > 0 of eq. (48), 1/s; 1 - q T > 0"},
@@ -27,13 +26,23 @@ const mjfAttribute kAttributes[] = {
     {kKeyBoundaryLayer, "0.1", "boundary-layer width phi of sat (sign = sat only)"},
     {kKeyEta0, "1e-6", "the small eta_0 > 0 of Delta_1, eq. (49) (reporting only)"},
 };
+const int kDiscreteAttributeCount =
+    static_cast<int>(sizeof(kDiscreteAttributes) / sizeof(kDiscreteAttributes[0]));
 
-struct Instance : SwarmInstance<core::DiscreteSmc> {
-  Instance(const SwarmSetup& setup, const core::DiscreteSmcParams& params, int64_t steps)
-      : SwarmInstance(setup, params), steps_per_sample(steps) {}
-  int64_t steps_per_sample;  // zero-order hold: physics steps per sample period T
-  bool has_sample = false;
-};
+core::DiscreteSmcParams ParseDiscreteParams(const plugin::Attributes& attributes) {
+  core::DiscreteSmcParams params;
+  params.gains = ParseGains(attributes);
+  params.eps = attributes.Number(kKeyEps);
+  params.q = attributes.Number(kKeyQ);
+  params.period = attributes.Number(kKeyPeriod);
+  params.u_min = attributes.Number(kKeyUMin);
+  params.u_max = attributes.Number(kKeyUMax);
+  params.sign = core::ParseSignFunction(attributes.String(kKeySign));
+  params.boundary_layer = attributes.Number(kKeyBoundaryLayer);
+  params.eta0 = attributes.Number(kKeyEta0);
+  params.Validate();
+  return params;
+}
 
 int64_t StepsPerSample(double period, double timestep) {
   if (!(timestep > 0.0) || !std::isfinite(timestep)) {
@@ -51,20 +60,18 @@ int64_t StepsPerSample(double period, double timestep) {
   return steps;
 }
 
+namespace {
+
+struct Instance : SwarmInstance<core::DiscreteSmc> {
+  Instance(const SwarmSetup& setup, const core::DiscreteSmcParams& params, int64_t steps)
+      : SwarmInstance(setup, params), steps_per_sample(steps) {}
+  int64_t steps_per_sample;  // zero-order hold: physics steps per sample period T
+  bool has_sample = false;
+};
+
 void* Create(const mjfCreateContext* ctx) {
   return plugin::CreateOrExplain(ctx, [&]() -> void* {
-    const plugin::Attributes attributes(ctx);
-    core::DiscreteSmcParams params;
-    params.gains = ParseGains(attributes);
-    params.eps = attributes.Number(kKeyEps);
-    params.q = attributes.Number(kKeyQ);
-    params.period = attributes.Number(kKeyPeriod);
-    params.u_min = attributes.Number(kKeyUMin);
-    params.u_max = attributes.Number(kKeyUMax);
-    params.sign = core::ParseSignFunction(attributes.String(kKeySign));
-    params.boundary_layer = attributes.Number(kKeyBoundaryLayer);
-    params.eta0 = attributes.Number(kKeyEta0);
-    params.Validate();
+    const core::DiscreteSmcParams params = ParseDiscreteParams(plugin::Attributes(ctx));
     const int64_t steps = StepsPerSample(params.period, ctx->timestep);
     const SwarmSetup setup(ctx);
     return new Instance(setup, params, steps);
@@ -120,8 +127,8 @@ const mjfPlugin kSmcDiscrete = {
     "smc_discrete",
     MJF_KIND_FORMATION,
     "discrete sliding-mode formation tracking, eq. (48) via compact form (53), zero-order hold",
-    static_cast<int>(sizeof(kAttributes) / sizeof(kAttributes[0])),
-    kAttributes,
+    static_cast<int>(sizeof(kDiscreteAttributes) / sizeof(kDiscreteAttributes[0])),
+    kDiscreteAttributes,
     0,
     nullptr,
     &Create,

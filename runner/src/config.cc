@@ -13,6 +13,7 @@
 
 #include "mjformation/runner/paths.hpp"
 #include "realism_config.hpp"
+#include "network_config.hpp"
 
 namespace mjf::runner {
 namespace {
@@ -309,12 +310,13 @@ toml::table ParseDocument(const std::string& text, const std::string& path,
 void RejectUnknownSections(const Reporter& reporter, const toml::table& root) {
   static const std::set<std::string> kKnown = {"run",    "vehicles",  "topology",
                                                "leader", "formation", "attitude",
-                                               "render", "sensors",   "wind"};
+                                               "render", "sensors",   "wind",
+                                               "execution", "network"};
   for (auto&& [key, node] : root) {
     if (!kKnown.count(std::string(key.str()))) {
       reporter.Fail(&node, "[" + std::string(key.str()) + "]",
                     "unknown section (known: run, vehicles, topology, leader, formation, "
-                    "attitude, render, sensors, wind)");
+                    "attitude, render, sensors, wind, execution, network)");
     }
     if (!node.is_table()) {
       reporter.Fail(&node, std::string(key.str()), "expected a [section] table");
@@ -622,6 +624,7 @@ ExperimentConfig ParseExperiment(const std::string& text, const std::string& pat
   ParseShapeSection(reporter, table_of("formation"), path, c);
   ParseRenderSection(Section(reporter, table_of("render"), "render"), c.duration, c.render);
   ParseRealismSections(root, path, &c);  // [sensors], [wind] (issue 11)
+  ParseNetworkSections(root, c);
   return c;
 }
 

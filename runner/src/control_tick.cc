@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "mjformation/runner/agent_channel.hpp"
 #include "mjformation/runner/errors.hpp"
 
 namespace mjf::runner {
@@ -28,9 +29,10 @@ bool IsFinite(const mjfSetpoint& sp) {
 
 ControlTick::ControlTick(ControlPlugins plugins, std::unique_ptr<SensorStage> sensors,
                          std::vector<mjfSetpoint> initial_setpoints, int actuators_per_vehicle,
-                         double altitude, double timestep)
+                         double altitude, double timestep, std::unique_ptr<AgentChannel> channel)
     : plugins_(std::move(plugins)),
       sensors_(std::move(sensors)),
+      channel_(std::move(channel)),
       measured_(initial_setpoints.size()),
       setpoints_(std::move(initial_setpoints)),
       controls_(setpoints_.size() * static_cast<size_t>(actuators_per_vehicle), 0.0),
@@ -42,6 +44,7 @@ ControlTick::~ControlTick() {
   // Attitude and follower plugins first, the leader last: the reverse of creation.
   plugins_.attitude.clear();
   plugins_.follower_guidance.clear();
+  plugins_.formation_agents.clear();
   plugins_.formation.reset();
   plugins_.leader.reset();
 }
@@ -61,20 +64,43 @@ void ControlTick::Run(int64_t step, const std::vector<mjfVehicleState>& truth,
   ctx.data = data;
   ctx.error = plugin_error_.data();
   ctx.error_size = plugin_error_.size();
-  RunGuidanceAndFormation(ctx);
+  RunGuidanceAndFormation(ctx, truth);
   RequireFiniteSetpoints(time);
   RunAttitude(ctx);
 }
 
-void ControlTick::RunGuidanceAndFormation(mjfStepContext& ctx) {
+void ControlTick::RunGuidanceAndFormation(mjfStepContext& ctx,
+                                          const std::vector<mjfVehicleState>& truth) {
   Call(*plugins_.leader, ctx, 0);
   ResetFollowerSetpoints();
   if (plugins_.formation) {
     Call(*plugins_.formation, ctx, -1);
     return;
   }
+  if (!plugins_.formation_agents.empty()) {
+    RunAgents(ctx, truth);
+    return;
+  }
   for (size_t i = 0; i < plugins_.follower_guidance.size(); ++i) {
     Call(*plugins_.follower_guidance[i], ctx, static_cast<int>(i) + 1);
+  }
+}
+
+// Per-agent execution: the channel delivers, then each follower's instance runs each round with
+// its own state, its received messages and its own setpoint only (plugin.h, mjfAgentInput).
+void ControlTick::RunAgents(const mjfStepContext& ctx, const std::vector<mjfVehicleState>& truth) {
+  channel_->BeginTick(ctx.step, ctx.time, truth, measured_, setpoints_);
+  mjfStepContext agent_ctx = ctx;
+  agent_ctx.states = nullptr;
+  agent_ctx.model = nullptr;
+  agent_ctx.data = nullptr;
+  for (int round = 0; round < channel_->n_rounds(); ++round) {
+    for (size_t i = 0; i < plugins_.formation_agents.size(); ++i) {
+      agent_ctx.setpoints = &setpoints_[i + 1];
+      agent_ctx.agent = &channel_->Input(static_cast<int>(i), round);
+      Call(*plugins_.formation_agents[i], agent_ctx, static_cast<int>(i) + 1);
+    }
+    channel_->EndRound(round, setpoints_);
   }
 }
 
@@ -96,9 +122,11 @@ void ControlTick::ResetFollowerSetpoints() {
 void ControlTick::RequireFiniteSetpoints(double time) const {
   for (int i = 0; i < n_vehicles(); ++i) {
     if (IsFinite(setpoints_[i])) continue;
-    const PluginInstance& writer =
-        i == 0 ? *plugins_.leader
-               : (plugins_.formation ? *plugins_.formation : *plugins_.follower_guidance[i - 1]);
+    const PluginInstance& writer = i == 0               ? *plugins_.leader
+                                   : plugins_.formation ? *plugins_.formation
+                                   : !plugins_.formation_agents.empty()
+                                       ? *plugins_.formation_agents[i - 1]
+                                       : *plugins_.follower_guidance[i - 1];
     throw SimulationError(TimeTag(time) + ": plugin '" + writer.descriptor().name +
                           "' wrote a non-finite setpoint for vehicle " + std::to_string(i));
   }

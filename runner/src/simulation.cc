@@ -5,10 +5,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "mjformation/core/graph.hpp"
 #include "mjformation/core/shape.hpp"
+#include "mjformation/runner/agent_channel.hpp"
 #include "mjformation/runner/mujoco_errors.hpp"
 #include "mjformation/runner/paths.hpp"
 #include "mjformation/runner/scene.hpp"
@@ -84,9 +86,11 @@ Simulation::Simulation(const ExperimentConfig& config) : config_(config) {
   bindings_ = BindVehicles(model_.get(), config_, *attitude.descriptor, vehicle_xml_);
   truth_.resize(config_.followers + 1);
   BuildGraphAndShape();
-  tick_ = std::make_unique<ControlTick>(CreatePlugins(attitude), MakeSensorStage(config_),
+  std::unique_ptr<AgentChannel> channel = MakeChannel();  // per-agent execution only
+  ControlPlugins plugins = CreatePlugins(attitude, channel.get());
+  tick_ = std::make_unique<ControlTick>(std::move(plugins), MakeSensorStage(config_),
                                         InitialSetpoints(), bindings_.actuators_per_vehicle,
-                                        config_.altitude, config_.timestep);
+                                        config_.altitude, config_.timestep, std::move(channel));
   actuation_ = MakeActuation(config_.rotor_model, model_.get(), bindings_, config_.timestep);
   force_stages_ = MakeForceStages(config_);
   external_force_.assign(3 * truth_.size(), 0.0);
@@ -144,7 +148,53 @@ mjfCreateContext Simulation::VehicleContext(const mjfCreateContext& base, int ve
   return ctx;
 }
 
-ControlPlugins Simulation::CreatePlugins(const LoadedPlugin& attitude) const {
+// Per-agent execution ([execution] mode = "per_agent"): the channel stage over the simulated
+// network. Jacobi exchange is refused (or warned about) where it diverges.
+std::unique_ptr<AgentChannel> Simulation::MakeChannel() const {
+  if (config_.network.execution != Execution::kPerAgent) return nullptr;
+  auto channel =
+      std::make_unique<AgentChannel>(*graph_, config_.network, config_.timestep, config_.seed);
+  const double rho = channel->jacobi_spectral_radius();
+  if (config_.network.coupling != Coupling::kJacobi) return channel;
+  // Exact (dense eigenvalues) up to 400 followers; above, a power-iteration estimate that
+  // cannot resolve rho from 1 on long rings (rho < 1 holds whenever L_H has a spanning tree).
+  const bool exact = n_followers() <= 400;
+  if (!(rho < 1.0)) {
+    const std::string what = fmt::format(
+        "{}: [execution] coupling: Jacobi exchange {} on this graph: the spectral radius of "
+        "(D + H)^-1 A is {:.9f}{}",
+        config_.source_path, exact ? "diverges" : "may not converge", rho,
+        exact ? " >= 1" : " (power-iteration estimate, not resolved from 1)");
+    if (exact && config_.network.refuse_divergent) {
+      throw ConfigError(what + " (set jacobi_divergence = \"warn\" to run it anyway)");
+    }
+    std::fprintf(stderr, "warning: %s\n", what.c_str());
+  } else if (std::pow(rho, config_.network.jacobi_rounds) > 0.9) {
+    std::fprintf(stderr,
+                 "warning: %s: [execution] jacobi_rounds = %d reduce the coupling error by less "
+                 "than 10 %% per sample (spectral radius %.6f)\n",
+                 config_.source_path.c_str(), config_.network.jacobi_rounds, rho);
+  }
+  return channel;
+}
+
+// The per-agent plugin for section [formation]: the named one if it is per-agent, else
+// "<name>_agent" (so that --set execution.mode="per_agent" switches an experiment over).
+const LoadedPlugin& Simulation::FindAgentPlugin(const LoadedPlugin& named) const {
+  if (named.descriptor->kind == MJF_KIND_FORMATION_AGENT) return named;
+  const std::string agent_name = config_.formation.plugin + "_agent";
+  for (const LoadedPlugin& p : registry_->plugins()) {
+    if (p.descriptor->name == agent_name && p.descriptor->kind == MJF_KIND_FORMATION_AGENT) {
+      return p;
+    }
+  }
+  throw PluginError(Where(config_, config_.formation) + " plugin: '" + config_.formation.plugin +
+                    "' has no per-agent version ('" + agent_name +
+                    "') for [execution] mode = \"per_agent\"");
+}
+
+ControlPlugins Simulation::CreatePlugins(const LoadedPlugin& attitude,
+                                         const AgentChannel* channel) const {
   mjfCreateContext base{};
   base.timestep = config_.timestep;
   base.n_vehicles = n_vehicles();
@@ -156,10 +206,16 @@ ControlPlugins Simulation::CreatePlugins(const LoadedPlugin& attitude) const {
   plugins.leader = std::make_unique<PluginInstance>(leader, config_.leader, config_.source_path,
                                                     VehicleContext(base, 0));
   const LoadedPlugin& formation =
-      FindPlugin(*registry_, config_, config_.formation, {MJF_KIND_FORMATION, MJF_KIND_GUIDANCE},
-                 "followers need a formation or guidance plugin (per-agent formation plugins need "
-                 "distributed execution, which this runner does not provide yet)");
-  if (formation.descriptor->kind == MJF_KIND_FORMATION) {
+      FindPlugin(*registry_, config_, config_.formation,
+                 {MJF_KIND_FORMATION, MJF_KIND_GUIDANCE, MJF_KIND_FORMATION_AGENT},
+                 "followers need a formation, per-agent formation or guidance plugin");
+  if (channel) {
+    plugins.formation_agents = CreateAgents(FindAgentPlugin(formation), base, *channel);
+  } else if (formation.descriptor->kind == MJF_KIND_FORMATION_AGENT) {
+    throw ConfigError(Where(config_, config_.formation) + " plugin: '" + config_.formation.plugin +
+                      "' runs one instance per follower: it needs [execution] mode = "
+                      "\"per_agent\"");
+  } else if (formation.descriptor->kind == MJF_KIND_FORMATION) {
     plugins.formation = CreateFormation(formation, base);
   } else {
     // A guidance plugin per follower (e.g. hover): flies the vehicles without a formation law.
@@ -177,6 +233,16 @@ ControlPlugins Simulation::CreatePlugins(const LoadedPlugin& attitude) const {
 
 std::unique_ptr<PluginInstance> Simulation::CreateFormation(const LoadedPlugin& formation,
                                                             const mjfCreateContext& base) const {
+  RequireFormationInputs();
+  mjfCreateContext ctx = base;
+  ctx.vehicle = -1;
+  ctx.graph = &abi_graph_;
+  ctx.shape = &abi_shape_;
+  return std::make_unique<PluginInstance>(formation, config_.formation, config_.source_path, ctx);
+}
+
+// A formation law needs a spanning tree and a consistent desired formation.
+void Simulation::RequireFormationInputs() const {
   try {
     graph_->RequireSpanningTree();
   } catch (const std::invalid_argument& e) {
@@ -192,11 +258,24 @@ std::unique_ptr<PluginInstance> Simulation::CreateFormation(const LoadedPlugin& 
   } catch (const std::invalid_argument& e) {
     throw ConfigError(config_.source_path + ": [formation.shape]: " + e.what());
   }
-  mjfCreateContext ctx = base;
-  ctx.vehicle = -1;
-  ctx.graph = &abi_graph_;
-  ctx.shape = &abi_shape_;
-  return std::make_unique<PluginInstance>(formation, config_.formation, config_.source_path, ctx);
+}
+
+// One instance per follower, each created with its own row of L_H only (plus the shape, which
+// is mission data every vehicle carries).
+std::vector<std::unique_ptr<PluginInstance>> Simulation::CreateAgents(
+    const LoadedPlugin& agent, const mjfCreateContext& base, const AgentChannel& channel) const {
+  RequireFormationInputs();
+  std::vector<std::unique_ptr<PluginInstance>> agents;
+  for (int i = 0; i < n_followers(); ++i) {
+    mjfCreateContext ctx = base;
+    ctx.vehicle = i + 1;
+    ctx.shape = &abi_shape_;
+    ctx.neighbourhood = &channel.neighbourhood(i);
+    ctx.model = nullptr;  // a per-agent instance sees no swarm-wide data
+    agents.push_back(
+        std::make_unique<PluginInstance>(agent, config_.formation, config_.source_path, ctx));
+  }
+  return agents;
 }
 
 // Before the first tick every vehicle holds its initial position at the altitude.
@@ -278,7 +357,21 @@ std::string Simulation::TimeTag() const { return fmt::format("t = {:.3f} s", tim
 
 std::vector<std::pair<std::string, double>> Simulation::FormationReport() const {
   const PluginInstance* formation = formation_plugin();
-  return formation ? formation->Report() : std::vector<std::pair<std::string, double>>{};
+  if (formation) return formation->Report();
+  // Per-agent execution: each key's largest value over the followers (e.g. Theorem 2's delta).
+  std::vector<std::pair<std::string, double>> merged;
+  for (const auto& agent : tick_->plugins().formation_agents) {
+    for (const auto& [key, value] : agent->Report()) {
+      auto it = std::find_if(merged.begin(), merged.end(),
+                             [&](const auto& kv) { return kv.first == key; });
+      if (it == merged.end()) {
+        merged.emplace_back(key, value);
+      } else {
+        it->second = std::max(it->second, value);
+      }
+    }
+  }
+  return merged;
 }
 
 }  // namespace mjf::runner

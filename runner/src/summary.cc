@@ -64,6 +64,7 @@ Json BuildSummary(const Simulation& sim, const RunResult& result, const Json& re
   for (const auto& [k, v] : sim.FormationReport()) report[k] = JsonNumber(v);
   s["plugin_report"] = report;
   s["snapshots"] = recorded.contains("snapshots") ? recorded["snapshots"] : Json::array();
+  if (sim.channel()) s["network"] = sim.channel()->Summary();  // per-agent execution only
   for (const auto& [k, v] : recorded.items()) {
     if (!s.contains(k)) s[k] = v;  // further recorders' keys, after the established ones
   }

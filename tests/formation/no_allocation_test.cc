@@ -91,6 +91,16 @@ TEST(NoAllocationTest, PluginComputeDoesNotAllocate) {
     ctx.n_vehicles = 7;
     ctx.graph = &swarm.graph;
     ctx.shape = &swarm.abi_shape;
+    // Per-agent plugins: follower 0 hears the leader and follower 1 (messages built below).
+    const bool agent = plugin->kind == MJF_KIND_FORMATION_AGENT;
+    const int neighbours[1] = {1};
+    const double weights[1] = {1.0};
+    const mjfNeighbourhood hood{0, 6, 1.0, 1, neighbours, weights};
+    if (agent) {
+      ctx.graph = nullptr;
+      ctx.vehicle = 1;
+      ctx.neighbourhood = &hood;
+    }
     ctx.error = error;
     ctx.error_size = sizeof(error);
     void* instance = plugin->create(&ctx);
@@ -100,6 +110,23 @@ TEST(NoAllocationTest, PluginComputeDoesNotAllocate) {
     step.n_vehicles = 7;
     step.states = swarm.states.data();
     step.setpoints = swarm.setpoints.data();
+    mjfMessage messages[2] = {};  // [0] follower 1, [1] the leader
+    messages[0].sender = 2;
+    messages[1].sender = 0;
+    mjfMessage outgoing{};
+    mjfAgentInput input{};
+    input.follower = 0;
+    input.self = &swarm.states[1];
+    input.n_messages = 1;
+    input.messages = messages;
+    input.leader = &messages[1];
+    input.n_rounds = 1;
+    input.outgoing = &outgoing;
+    if (agent) {
+      step.states = nullptr;
+      step.setpoints = &swarm.setpoints[1];
+      step.agent = &input;
+    }
     for (int i = 1; i <= 6; ++i) swarm.states[i].pos[0] = i;
     allocations = 0;
     counting = true;
@@ -108,6 +135,8 @@ TEST(NoAllocationTest, PluginComputeDoesNotAllocate) {
       step.step = s;
       step.time = 0.01 * s;
       swarm.states[0].pos[0] = 20 * std::cos(0.157 * step.time);
+      messages[1].state = swarm.states[0];
+      messages[0].state = swarm.states[2];
       status |= plugin->compute(instance, &step);
     }
     counting = false;

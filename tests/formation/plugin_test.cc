@@ -183,12 +183,16 @@ class FormationPluginTest : public ::testing::Test {
 void* FormationPluginTest::handle_ = nullptr;
 std::map<std::string, const mjfPlugin*> FormationPluginTest::plugins_;
 
-TEST_F(FormationPluginTest, ExportsThreeFormationPlugins) {
-  ASSERT_EQ(plugins_.size(), 3u);
-  for (const char* name : {"smc_continuous", "smc_discrete", "consensus_linear"}) {
+TEST_F(FormationPluginTest, ExportsThreeFormationPluginsAndTheirPerAgentVersions) {
+  ASSERT_EQ(plugins_.size(), 6u);
+  for (const char* name :
+       {"smc_continuous", "smc_discrete", "consensus_linear", "smc_continuous_agent",
+        "smc_discrete_agent", "consensus_linear_agent"}) {
     const mjfPlugin* p = Plugin(name);
     EXPECT_EQ(p->abi_version, MJF_ABI_VERSION);
-    EXPECT_EQ(p->kind, MJF_KIND_FORMATION);
+    EXPECT_EQ(p->kind, std::string(name).find("_agent") == std::string::npos
+                           ? MJF_KIND_FORMATION
+                           : MJF_KIND_FORMATION_AGENT);
     EXPECT_NE(p->create, nullptr);
     EXPECT_NE(p->compute, nullptr);
     EXPECT_NE(p->destroy, nullptr);

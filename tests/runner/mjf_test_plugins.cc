@@ -5,9 +5,11 @@
 // engine error (mju_error) from inside the step, each from a given time on.
 #include <mujoco/mujoco.h>
 
+#include <cstdio>
 #include <limits>
 #include <mjformation/plugin_util.hpp>
 #include <stdexcept>
+#include <vector>
 
 namespace {
 
@@ -138,6 +140,79 @@ const mjfPlugin kThrow =
 const mjfPlugin kEngineError =
     FaultPlugin<Fault::kEngineError>("test_engine_error", "holds position, then calls mju_error");
 
+// test_agent_recorder: a per-agent formation plugin that records what the host hands it. It fails
+// the run on any swarm-wide data (states, model, data) or on a message from a vehicle that is
+// not one of its in-neighbours (or the leader without a leader link); it reports whether it ever
+// saw a non-neighbour (must stay 0) and whether some neighbour was never heard (0 proves the
+// check was not vacuous). It commands zero horizontal acceleration.
+struct Recorder {
+  std::vector<int> allowed;  // vehicle indices it may hear
+  std::vector<bool> heard;   // [allowed]
+  bool saw_non_neighbour = false;
+  int64_t messages = 0;
+};
+
+void* CreateRecorder(const mjfCreateContext* ctx) {
+  if (!ctx->neighbourhood || ctx->graph) {
+    std::snprintf(ctx->error, ctx->error_size, "expected a neighbourhood and no graph");
+    return nullptr;
+  }
+  auto* r = new Recorder;
+  const mjfNeighbourhood& n = *ctx->neighbourhood;
+  for (int k = 0; k < n.n_neighbours; ++k) r->allowed.push_back(n.neighbours[k] + 1);
+  if (n.leader_weight > 0) r->allowed.push_back(0);
+  r->heard.assign(r->allowed.size(), false);
+  return r;
+}
+
+int ComputeRecorder(void* instance, const mjfStepContext* ctx) {
+  auto* r = static_cast<Recorder*>(instance);
+  if (ctx->states || ctx->model || ctx->data || !ctx->agent) {
+    return mjf::plugin::Fail(ctx, "handed swarm-wide data (states, model or data)");
+  }
+  auto check = [&](const mjfMessage& m) {
+    ++r->messages;
+    bool ok = false;
+    for (size_t k = 0; k < r->allowed.size(); ++k) {
+      if (r->allowed[k] == m.sender) ok = r->heard[k] = true;
+    }
+    if (!ok) r->saw_non_neighbour = true;
+    return ok;
+  };
+  for (int k = 0; k < ctx->agent->n_messages; ++k) {
+    if (!check(ctx->agent->messages[k])) return mjf::plugin::Fail(ctx, "saw a non-neighbour");
+  }
+  if (ctx->agent->leader && !check(*ctx->agent->leader)) {
+    return mjf::plugin::Fail(ctx, "saw the leader without a leader link");
+  }
+  ctx->setpoints->acc[0] = ctx->setpoints->acc[1] = 0.0;
+  return 0;
+}
+
+void ReportRecorder(void* instance, mjfReportFn emit, void* user) {
+  const auto* r = static_cast<const Recorder*>(instance);
+  bool missing = false;
+  for (bool h : r->heard) missing = missing || !h;
+  emit(user, "saw_non_neighbour", r->saw_non_neighbour ? 1.0 : 0.0);
+  emit(user, "missing_neighbour", missing ? 1.0 : 0.0);
+  emit(user, "messages", static_cast<double>(r->messages));
+}
+
+const mjfPlugin kAgentRecorder = {MJF_ABI_VERSION,
+                                  "test_agent_recorder",
+                                  MJF_KIND_FORMATION_AGENT,
+                                  "records the messages a per-agent instance is handed",
+                                  0,
+                                  nullptr,
+                                  0,
+                                  nullptr,
+                                  CreateRecorder,
+                                  ComputeRecorder,
+                                  nullptr,
+                                  [](void* p) { delete static_cast<Recorder*>(p); },
+                                  ReportRecorder};
+
 }  // namespace
 
-MJF_EXPORT_PLUGINS(&kRequired, &kNan, &kHuge, &kFailMessage, &kThrow, &kEngineError)
+MJF_EXPORT_PLUGINS(&kRequired, &kNan, &kHuge, &kFailMessage, &kThrow, &kEngineError,
+                   &kAgentRecorder)

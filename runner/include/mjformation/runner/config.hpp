@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "mjformation/runner/realism_config.hpp"
+#include "mjformation/network/link.hpp"
 
 namespace mjf::core {
 class Shape;
@@ -36,6 +37,29 @@ enum class ShapeType { kCircle, kOffsets, kTable, kNone };
 const char* ToString(RotorModel value);
 const char* ToString(CameraMode value);
 const char* ToString(ShapeType value);
+
+// [execution] and [network] (runner/src/network_config.cc, docs/NETWORK.md): how the formation
+// protocol runs (one swarm-level instance, or one instance per follower over a simulated network)
+// and how the per-agent form closes its u_j(k) loop.
+enum class Execution { kCentral, kPerAgent };
+enum class Coupling { kLastInput, kJacobi, kCentralSolve };
+const char* ToString(Execution value);
+const char* ToString(Coupling value);
+
+struct NetworkConfig {
+  Execution execution = Execution::kCentral;
+  Coupling coupling = Coupling::kLastInput;
+  int jacobi_rounds = 1;         // exchange rounds per sample (coupling = "jacobi")
+  bool refuse_divergent = true;  // jacobi_divergence = "refuse" (else "warn")
+  network::LinkParams defaults;  // [network]: every link (ideal when the section is absent)
+  struct LinkOverride {
+    int from = 0;  // vehicle: 0 = leader, 1..N followers (the paper's numbering)
+    int to = 1;
+    int line = 0;
+    network::LinkParams params;
+  };
+  std::vector<LinkOverride> links;  // [[network.link]]
+};
 
 // One plugin attribute as written in the experiment file.
 struct AttributeValue {
@@ -139,6 +163,7 @@ struct ExperimentConfig {
   RenderConfig render;
   SensorsConfig sensors;  // [sensors] (realism_config.hpp)
   WindConfig wind;        // [wind]
+  NetworkConfig network;  // [execution] + [network]
 };
 
 // Follower edges of a generated topology ([topology] generate): the chain 1 -> 2 -> ... -> n,

@@ -16,26 +16,30 @@
 #include <string>
 #include <vector>
 
+#include "mjformation/runner/agent_channel.hpp"
 #include "mjformation/runner/plugin_host.hpp"
 #include "mjformation/runner/stages.hpp"
 
 namespace mjf::runner {
 
-// The plugin instances of one simulation. Exactly one of `formation` and `follower_guidance`
-// is used: a formation-kind plugin for the swarm, or a guidance plugin per follower.
+// The plugin instances of one simulation. Exactly one of `formation`, `formation_agents` and
+// `follower_guidance` is used: a formation-kind plugin for the swarm, a per-agent formation
+// plugin per follower (over an AgentChannel), or a guidance plugin per follower.
 struct ControlPlugins {
   std::unique_ptr<PluginInstance> leader;
   std::unique_ptr<PluginInstance> formation;
   std::vector<std::unique_ptr<PluginInstance>> follower_guidance;  // [followers]
+  std::vector<std::unique_ptr<PluginInstance>> formation_agents;   // [followers]
   std::vector<std::unique_ptr<PluginInstance>> attitude;           // [vehicles]
 };
 
 class ControlTick {
  public:
   // initial_setpoints: the bus before the first tick (positions held, sliding NaN).
+  // channel: the communication stage, required with formation_agents (null otherwise).
   ControlTick(ControlPlugins plugins, std::unique_ptr<SensorStage> sensors,
               std::vector<mjfSetpoint> initial_setpoints, int actuators_per_vehicle,
-              double altitude, double timestep);
+              double altitude, double timestep, std::unique_ptr<AgentChannel> channel = nullptr);
   ~ControlTick();
   ControlTick(const ControlTick&) = delete;
   ControlTick& operator=(const ControlTick&) = delete;
@@ -52,10 +56,13 @@ class ControlTick {
   const std::vector<mjfSetpoint>& setpoints() const { return setpoints_; }
   const std::vector<double>& controls() const { return controls_; }  // [vehicle][actuator]
   const ControlPlugins& plugins() const { return plugins_; }
+  const AgentChannel* channel() const { return channel_.get(); }
 
  private:
-  void RunGuidanceAndFormation(mjfStepContext& ctx);
+  void RunGuidanceAndFormation(mjfStepContext& ctx, const std::vector<mjfVehicleState>& truth);
   void RunAttitude(mjfStepContext& ctx);
+  // The channel stage: each follower's instance, handed only its own state and messages.
+  void RunAgents(const mjfStepContext& ctx, const std::vector<mjfVehicleState>& truth);
   void ResetFollowerSetpoints();
   void RequireFiniteSetpoints(double time) const;
   // Calls the plugin and turns a failure code or a C++ exception into a SimulationError.
@@ -63,6 +70,7 @@ class ControlTick {
 
   ControlPlugins plugins_;
   std::unique_ptr<SensorStage> sensors_;
+  std::unique_ptr<AgentChannel> channel_;
   std::vector<mjfVehicleState> measured_;
   std::vector<mjfSetpoint> setpoints_;
   std::vector<double> controls_;

@@ -72,6 +72,8 @@ class Simulation {
   const core::Shape* shape() const { return shape_.get(); }
   const PluginInstance& leader_plugin() const { return *tick_->plugins().leader; }
   const PluginInstance* formation_plugin() const { return tick_->plugins().formation.get(); }
+  // Per-agent execution: the channel stage (network, links, metrics); nullptr in central mode.
+  const AgentChannel* channel() const { return tick_->channel(); }
   const PluginInstance& attitude_plugin(int vehicle) const {
     return *tick_->plugins().attitude[vehicle];
   }
@@ -85,7 +87,13 @@ class Simulation {
  private:
   void AdaptForeignVehicle(const mjfPlugin& attitude);
   void BuildGraphAndShape();
-  ControlPlugins CreatePlugins(const LoadedPlugin& attitude) const;
+  std::unique_ptr<AgentChannel> MakeChannel() const;
+  ControlPlugins CreatePlugins(const LoadedPlugin& attitude, const AgentChannel* channel) const;
+  const LoadedPlugin& FindAgentPlugin(const LoadedPlugin& named) const;
+  std::vector<std::unique_ptr<PluginInstance>> CreateAgents(const LoadedPlugin& agent,
+                                                            const mjfCreateContext& base,
+                                                            const AgentChannel& channel) const;
+  void RequireFormationInputs() const;
   std::unique_ptr<PluginInstance> CreateFormation(const LoadedPlugin& formation,
                                                   const mjfCreateContext& base) const;
   mjfCreateContext VehicleContext(const mjfCreateContext& base, int vehicle) const;

@@ -1,0 +1,269 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// The per-agent formation plugins, for distributed execution ([execution] mode = "per_agent"):
+// smc_discrete_agent (eq. (48), core::DiscreteSmcAgent, sampled every T and held),
+// smc_continuous_agent (eq. (30), core::ContinuousSmcAgent, every step) and
+// consensus_linear_agent (core::LinearConsensusAgent, every step), with the attributes of their
+// swarm-level versions. One adapter, a template over the law. The u_j coupling is closed by what
+// the host hands the instance (docs/NETWORK.md):
+//   - agent->solved (coupling = central_solve): the host's exact solve, the reference;
+//   - round r > 0 (coupling = jacobi): the neighbours' round r-1 iterates w_j (payload[0..1]);
+//   - otherwise (round 0, or a round message lost): the neighbours' last inputs u_j.
+// Outgoing payload, on sample steps only (n_payload = 0 in between): [0..1] w_i of this round,
+// [2..3] R_i, [4..7] the leader's px, py, vx, vy as this follower knows it (relayed, one hop per
+// sample, for the reference slots of followers without a leader link).
+#include <cmath>
+#include <cstdint>
+#include <mjformation/core/agent_laws.hpp>
+#include <mjformation/core/discrete_smc_agent.hpp>
+#include <vector>
+
+#include "adapter.hpp"
+#include "plugins.hpp"
+
+namespace mjf::formation {
+namespace {
+
+constexpr int kPayloadUsed = 8;
+
+template <typename Law>
+struct Agent {
+  // horizon: the law's look-ahead (T for the discrete law: F(k+1) at t + T), 0 otherwise.
+  template <typename Params>
+  Agent(const mjfCreateContext* ctx, const Params& params, int64_t steps, double horizon_s)
+      : follower(ctx->neighbourhood->follower),
+        leader_weight(ctx->neighbourhood->leader_weight),
+        neighbours(ctx->neighbourhood->neighbours,
+                   ctx->neighbourhood->neighbours + ctx->neighbourhood->n_neighbours),
+        core(params, ctx->neighbourhood->leader_weight,
+             std::vector<double>(ctx->neighbourhood->weights,
+                                 ctx->neighbourhood->weights + ctx->neighbourhood->n_neighbours)),
+        shape(*ctx->shape),
+        steps_per_sample(steps),
+        horizon(horizon_s),
+        shape_now(6 * static_cast<size_t>(shape.num_followers())),
+        shape_next(shape_now.size()),
+        neighbour_pv(4 * neighbours.size()),
+        neighbour_f_now(6 * neighbours.size()),
+        neighbour_f_next(6 * neighbours.size()),
+        neighbour_w(2 * neighbours.size()),
+        found(neighbours.size()) {}
+  int follower;
+  double leader_weight;         // a_i0
+  std::vector<int> neighbours;  // follower indices j, 0-based
+  Law core;
+  core::AbiShape shape;
+  int64_t steps_per_sample;
+  double horizon;
+  bool has_sample = false;
+  int64_t last_sample = -1;  // step of the last sample (later rounds of it sample again)
+  double leader_pv[4] = {0, 0, 0, 0};
+  bool knows_leader = false;
+  std::vector<double> shape_now, shape_next;
+  std::vector<double> neighbour_pv, neighbour_f_now, neighbour_f_next, neighbour_w;
+  std::vector<const mjfMessage*> found;  // [m] the message of neighbour m this call
+};
+
+void RequireNeighbourhood(const mjfCreateContext* ctx) {
+  if (!ctx->neighbourhood || !ctx->shape) {
+    throw std::invalid_argument(
+        "per-agent formation plugin: the host passed no neighbourhood or shape (per-agent "
+        "execution)");
+  }
+}
+
+void* CreateDiscrete(const mjfCreateContext* ctx) {
+  return plugin::CreateOrExplain(ctx, [&]() -> void* {
+    RequireNeighbourhood(ctx);
+    const core::DiscreteSmcParams params = ParseDiscreteParams(plugin::Attributes(ctx));
+    return new Agent<core::DiscreteSmcAgent>(
+        ctx, params, StepsPerSample(params.period, ctx->timestep), params.period);
+  });
+}
+
+void* CreateContinuous(const mjfCreateContext* ctx) {
+  return plugin::CreateOrExplain(ctx, [&]() -> void* {
+    RequireNeighbourhood(ctx);
+    const core::ContinuousSmcParams params = ParseContinuousParams(plugin::Attributes(ctx));
+    return new Agent<core::ContinuousSmcAgent>(ctx, params, 1, 0.0);
+  });
+}
+
+void* CreateConsensus(const mjfCreateContext* ctx) {
+  return plugin::CreateOrExplain(ctx, [&]() -> void* {
+    RequireNeighbourhood(ctx);
+    const core::LinearConsensusParams params = ParseConsensusParams(plugin::Attributes(ctx));
+    return new Agent<core::LinearConsensusAgent>(ctx, params, 1, 0.0);
+  });
+}
+
+void ReadPv(const mjfVehicleState& s, double* pv) {
+  pv[0] = s.pos[0];
+  pv[1] = s.pos[1];
+  pv[2] = s.vel[0];
+  pv[3] = s.vel[1];
+}
+
+// Finds each neighbour's message and the leader's state (own link, else a neighbour's relay);
+// false while something the protocol needs has not arrived yet.
+template <typename Law>
+bool Gather(Agent<Law>& a, const mjfAgentInput& in) {
+  std::fill(a.found.begin(), a.found.end(), nullptr);
+  for (int k = 0; k < in.n_messages; ++k) {
+    for (size_t m = 0; m < a.neighbours.size(); ++m) {
+      if (in.messages[k].sender == a.neighbours[m] + 1) a.found[m] = &in.messages[k];
+    }
+  }
+  if (in.leader) {
+    ReadPv(in.leader->state, a.leader_pv);
+    a.knows_leader = true;
+  } else {
+    for (const mjfMessage* m : a.found) {
+      if (m && m->n_payload >= kPayloadUsed) {
+        std::copy(m->payload + 4, m->payload + 8, a.leader_pv);
+        a.knows_leader = true;
+        break;
+      }
+    }
+  }
+  for (const mjfMessage* m : a.found) {
+    if (!m) return false;
+  }
+  // a_i0 > 0: (48) needs the leader's own message; otherwise its state only feeds the slots.
+  return a.leader_weight <= 0.0 || in.leader != nullptr;
+}
+
+// w_j for every neighbour: this round's iterate when it got through, else from u_j.
+template <typename Law>
+void NeighbourCoupling(Agent<Law>& a, const mjfAgentInput& in) {
+  for (size_t m = 0; m < a.neighbours.size(); ++m) {
+    const mjfMessage& msg = *a.found[m];
+    // The host marks a neighbour's message with round r - 1 only when that round's message got
+    // through this tick (its state part stays the newest one held, which may be older).
+    const bool fresh_round = in.round > 0 && msg.round == in.round - 1 && msg.n_payload >= 2;
+    for (int axis = 0; axis < 2; ++axis) {
+      const double u_j = std::isfinite(msg.input[axis]) ? msg.input[axis] : 0.0;
+      a.neighbour_w[2 * m + axis] = fresh_round
+                                        ? msg.payload[axis]
+                                        : a.core.CouplingFromInput(static_cast<int>(m), axis, u_j);
+    }
+  }
+}
+
+template <typename Law>
+void Sample(Agent<Law>& a, const mjfStepContext& ctx) {
+  const mjfAgentInput& in = *ctx.agent;
+  const int i = a.follower;
+  a.shape.Evaluate(ctx.time + a.horizon, a.shape_next.data());  // F(k+1) for the discrete law
+  for (size_t m = 0; m < a.neighbours.size(); ++m) {
+    const int j = a.neighbours[m];
+    ReadPv(a.found[m]->state, &a.neighbour_pv[4 * m]);
+    std::copy_n(&a.shape_now[6 * j], 6, &a.neighbour_f_now[6 * m]);
+    std::copy_n(&a.shape_next[6 * j], 6, &a.neighbour_f_next[6 * m]);
+  }
+  double own_pv[4];
+  ReadPv(*in.self, own_pv);
+  a.core.Prepare(own_pv, a.leader_pv, &a.shape_now[6 * i], &a.shape_next[6 * i],
+                 a.neighbour_pv.data(), a.neighbour_f_now.data(), a.neighbour_f_next.data());
+  if (in.solved) {
+    a.core.UseSolved(in.solved);
+  } else {
+    NeighbourCoupling(a, in);
+    a.core.Solve(a.neighbour_w.data());
+  }
+  a.has_sample = true;
+  a.last_sample = ctx.step;
+}
+
+template <typename Law>
+int Compute(void* instance, const mjfStepContext* ctx) {
+  return plugin::ComputeOrExplain(ctx, [&] {
+    auto& a = *static_cast<Agent<Law>*>(instance);
+    if (!ctx->agent || !ctx->agent->self || !ctx->setpoints || !ctx->agent->outgoing) {
+      return plugin::Fail(ctx,
+                          "a per-agent formation plugin needs per-agent execution (ctx->agent)");
+    }
+    const mjfAgentInput& in = *ctx->agent;
+    const bool ready = Gather(a, in);
+    if (!ready && !a.has_sample) return 0;  // nothing heard yet: hold the initial setpoint
+    a.shape.Evaluate(ctx->time, a.shape_now.data());
+    const bool sample_step =
+        !a.has_sample || ctx->step % a.steps_per_sample == 0 || ctx->step == a.last_sample;
+    // A sample needs a message from every neighbour (and the leader when a_i0 > 0): until
+    // each has been heard once, the initial setpoint holds.
+    const bool sampled = ready && sample_step;
+    if (sampled) Sample(a, *ctx);
+    mjfSetpoint& sp = *ctx->setpoints;
+    for (int axis = 0; axis < 2; ++axis) {
+      // The reference slot x_0 + f_i (a diagnostic: attitude plugins use acc and pos[2]); the
+      // own state until the leader's state has been heard or relayed.
+      const double* f = &a.shape_now[6 * a.follower];
+      sp.pos[axis] = a.knows_leader ? a.leader_pv[axis] + f[axis] : in.self->pos[axis];
+      sp.vel[axis] = a.knows_leader ? a.leader_pv[2 + axis] + f[2 + axis] : in.self->vel[axis];
+      sp.acc[axis] = a.core.acceleration()[axis];  // zero-order hold between samples
+      if (a.core.sliding()) sp.sliding[axis] = a.core.sliding()[axis];
+    }
+    mjfMessage& out = *in.outgoing;
+    // Between samples there is nothing new to exchange (no Jacobi round, no central solve).
+    out.n_payload = sampled ? kPayloadUsed : 0;
+    out.payload[0] = a.core.coupling()[0];
+    out.payload[1] = a.core.coupling()[1];
+    out.payload[2] = a.core.rhs()[0];
+    out.payload[3] = a.core.rhs()[1];
+    std::copy(a.leader_pv, a.leader_pv + 4, out.payload + 4);
+    return 0;
+  });
+}
+
+template <typename Law>
+void Reset(void* instance) {
+  static_cast<Agent<Law>*>(instance)->has_sample = false;
+}
+
+template <typename Law>
+void Destroy(void* instance) {
+  delete static_cast<Agent<Law>*>(instance);
+}
+
+void ReportDiscrete(void* instance, mjfReportFn emit, void* user) {
+  const auto& a = *static_cast<const Agent<core::DiscreteSmcAgent>*>(instance);
+  emit(user, "delta", a.core.delta());  // the host reports the largest over the followers
+  emit(user, "period", a.core.params().period);
+  emit(user, "steps_per_sample", static_cast<double>(a.steps_per_sample));
+}
+
+template <typename Law>
+constexpr mjfPlugin AgentPlugin(const char* name, const char* doc, int n_attributes,
+                                const mjfAttribute* attributes,
+                                void* (*create)(const mjfCreateContext*),
+                                void (*report)(void*, mjfReportFn, void*)) {
+  return {MJF_ABI_VERSION,
+          name,
+          MJF_KIND_FORMATION_AGENT,
+          doc,
+          n_attributes,
+          attributes,
+          0,
+          nullptr,
+          create,
+          &Compute<Law>,
+          &Reset<Law>,
+          &Destroy<Law>,
+          report};
+}
+
+}  // namespace
+
+const mjfPlugin kSmcDiscreteAgent = AgentPlugin<core::DiscreteSmcAgent>(
+    "smc_discrete_agent",
+    "discrete sliding-mode formation tracking, eq. (48), one instance per follower",
+    kDiscreteAttributeCount, kDiscreteAttributes, &CreateDiscrete, &ReportDiscrete);
+const mjfPlugin kSmcContinuousAgent = AgentPlugin<core::ContinuousSmcAgent>(
+    "smc_continuous_agent",
+    "continuous sliding-mode formation tracking, eq. (30), one instance per follower",
+    kContinuousAttributeCount, kContinuousAttributes, &CreateContinuous, nullptr);
+const mjfPlugin kConsensusLinearAgent = AgentPlugin<core::LinearConsensusAgent>(
+    "consensus_linear_agent", "linear consensus formation tracking, one instance per follower",
+    kConsensusAttributeCount, kConsensusAttributes, &CreateConsensus, nullptr);
+
+}  // namespace mjf::formation

@@ -1,0 +1,227 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// The network model alone: exact latency, loss statistics (Bernoulli, Gilbert-Elliott bursts),
+// jitter statistics, determinism, thread independence, newer-message-wins and range limits.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <mjformation/network/link.hpp>
+#include <mjformation/network/network.hpp>
+#include <thread>
+#include <vector>
+
+namespace mjf::network {
+namespace {
+
+constexpr double kDt = 0.001;
+
+mjfMessage MessageAt(int sender, int64_t step) {
+  mjfMessage m{};
+  m.sender = sender;
+  m.send_time = static_cast<double>(step) * kDt;
+  m.state.pos[0] = static_cast<double>(step);
+  return m;
+}
+
+TEST(LinkTest, DeliversExactlyTheConfiguredLatency) {
+  for (double latency : {0.0, 0.001, 0.01, 0.02, 0.05, 0.1}) {
+    LinkSpec spec{0, 1, {}};
+    spec.params.latency = latency;
+    Network net(1, {spec}, kDt, 7);
+    std::vector<mjfMessage> inbox;
+    const mjfMessage* leader = nullptr;
+    double first_arrival = -1.0;
+    for (int64_t step = 0; step < 200; ++step) {
+      if (step == 0) net.Broadcast(step, 0, MessageAt(0, step));
+      net.Deliver(step);
+      net.Inbox(1, -1, &inbox, &leader);
+      if (leader && first_arrival < 0) first_arrival = static_cast<double>(step) * kDt;
+    }
+    // Measured on timestamps: arrival time - send time equals the latency to the step.
+    EXPECT_NEAR(first_arrival - 0.0, latency, 1e-12) << latency;
+    EXPECT_NEAR(net.link(0).stats().latency_max, latency, 1e-12);
+  }
+}
+
+TEST(LinkTest, BernoulliLossWithinBinomialInterval) {
+  const int n = 100000;
+  for (double p : {0.0, 0.05, 0.2, 0.5, 1.0}) {
+    LinkParams params;
+    params.loss = p;
+    Link link(params, kDt, LinkSeed(3, 0));
+    int lost = 0;
+    for (int k = 0; k < n; ++k) lost += link.Transmit(k) ? 0 : 1;
+    // 99 % interval of Binomial(n, p): +- 2.576 sigma.
+    const double sigma = std::sqrt(n * p * (1 - p));
+    EXPECT_LE(std::abs(lost - n * p), 2.576 * sigma + 1e-9) << "p = " << p;
+    EXPECT_EQ(link.stats().lost, lost);
+  }
+}
+
+TEST(LinkTest, GilbertElliottMeanBurstLength) {
+  LinkParams params;
+  params.loss_model = LossModel::kGilbertElliott;
+  params.burst_enter = 0.02;
+  params.burst_exit = 0.25;  // mean burst 1 / 0.25 = 4 messages
+  params.loss = 0.0;
+  params.burst_loss = 1.0;
+  Link link(params, kDt, LinkSeed(11, 2));
+  const int n = 200000;
+  int bursts = 0, lost = 0, run = 0;
+  for (int k = 0; k < n; ++k) {
+    if (!link.Transmit(k)) {
+      ++lost;
+      ++run;
+    } else if (run > 0) {
+      ++bursts;
+      run = 0;
+    }
+  }
+  const double mean_burst = static_cast<double>(lost) / bursts;
+  // Burst length is geometric with mean 1/exit = 4, sd sqrt(1-exit)/exit = 3.46; with ~1500
+  // bursts the standard error is 0.09: allow 4 standard errors.
+  EXPECT_NEAR(mean_burst, 4.0, 4 * 3.46 / std::sqrt(bursts));
+  // Stationary loss = enter / (enter + exit) = 0.0741.
+  const double expected = 0.02 / 0.27;
+  EXPECT_NEAR(static_cast<double>(lost) / n, expected,
+              4 * std::sqrt(expected * (1 - expected) / n) * std::sqrt(2 * mean_burst));
+}
+
+TEST(LinkTest, JitterStatistics) {
+  LinkParams params;
+  params.latency = 0.01;
+  params.jitter = 0.04;
+  Link link(params, 1e-6, LinkSeed(5, 1));  // a fine step so quantisation is negligible
+  const int n = 100000;
+  double sum = 0, sum2 = 0, lo = 1e9, hi = -1e9;
+  for (int k = 0; k < n; ++k) {
+    const double d = static_cast<double>(*link.Transmit(0)) * 1e-6 - params.latency;
+    sum += d;
+    sum2 += d * d;
+    lo = std::min(lo, d);
+    hi = std::max(hi, d);
+  }
+  const double mean = sum / n, var = sum2 / n - mean * mean;
+  // Uniform [0, J]: mean J/2 (standard error J / sqrt(12 n)), variance J^2/12.
+  EXPECT_NEAR(mean, 0.02, 4 * 0.04 / std::sqrt(12.0 * n) + 1e-6);
+  EXPECT_NEAR(var, 0.04 * 0.04 / 12, 0.03 * 0.04 * 0.04 / 12);
+  EXPECT_GE(lo, 0.0);
+  EXPECT_LE(hi, 0.04 + 1e-6);
+}
+
+// A ring of 4 followers plus the leader link, lossy with jitter: the bytes every receiver holds.
+std::vector<unsigned char> Trace(uint64_t seed) {
+  std::vector<LinkSpec> specs;
+  LinkParams p;
+  p.latency = 0.005;
+  p.jitter = 0.02;
+  p.loss = 0.3;
+  specs.push_back({0, 1, p});
+  for (int i = 1; i <= 4; ++i) specs.push_back({i, i % 4 + 1, p});
+  Network net(4, specs, kDt, seed);
+  std::vector<unsigned char> bytes;
+  std::vector<mjfMessage> inbox;
+  const mjfMessage* leader = nullptr;
+  for (int64_t step = 0; step < 5000; ++step) {
+    for (int v = 0; v <= 4; ++v) net.Broadcast(step, v, MessageAt(v, step));
+    net.Deliver(step);
+    for (int v = 1; v <= 4; ++v) {
+      net.Inbox(v, -1, &inbox, &leader);
+      for (const auto& m : inbox) {
+        const auto* b = reinterpret_cast<const unsigned char*>(&m.send_time);
+        bytes.insert(bytes.end(), b, b + sizeof(double));
+      }
+    }
+  }
+  return bytes;
+}
+
+TEST(NetworkTest, SameSeedSameBytesDifferentSeedDifferent) {
+  EXPECT_EQ(Trace(42), Trace(42));
+  EXPECT_NE(Trace(42), Trace(43));
+}
+
+TEST(NetworkTest, TwoInstancesOnTwoThreadsAreIndependent) {
+  const auto alone = Trace(9);
+  std::vector<unsigned char> a, b;
+  std::thread ta([&] { a = Trace(9); });
+  std::thread tb([&] { b = Trace(9); });
+  ta.join();
+  tb.join();
+  EXPECT_EQ(a, alone);
+  EXPECT_EQ(b, alone);
+}
+
+TEST(NetworkTest, OlderMessageThanTheOneHeldIsDropped) {
+  // Jitter so wide that later messages often overtake earlier ones.
+  LinkSpec spec{0, 1, {}};
+  spec.params.jitter = 0.05;
+  Network net(1, {spec}, kDt, 4);
+  std::vector<mjfMessage> inbox;
+  const mjfMessage* leader = nullptr;
+  double held = -1.0;
+  for (int64_t step = 0; step < 3000; ++step) {
+    net.Broadcast(step, 0, MessageAt(0, step));
+    net.Deliver(step);
+    net.Inbox(1, -1, &inbox, &leader);
+    if (leader) {
+      EXPECT_GE(leader->send_time, held);  // never goes back in time
+      held = leader->send_time;
+    }
+  }
+  EXPECT_GT(net.link(0).stats().stale, 100);
+}
+
+TEST(NetworkTest, RateIsAMultipleOfTheStep) {
+  LinkSpec spec{0, 1, {}};
+  spec.params.period_steps = 20;  // 50 Hz at 1 kHz physics
+  Network net(1, {spec}, kDt, 1);
+  for (int64_t step = 0; step < 1000; ++step) {
+    net.Broadcast(step, 0, MessageAt(0, step));
+    net.Deliver(step);
+  }
+  EXPECT_EQ(net.link(0).stats().sent, 50);
+  EXPECT_EQ(net.link(0).stats().delivered, 50);
+}
+
+TEST(NetworkTest, RangeLimitedLinkDropsAndRestoresAtComputedTimes) {
+  // Leader -> 1 -> 2. Follower 2 flies away from 1 at 2 m/s from 4 m, then back after 5 s; the
+  // link 1 -> 2 (R = 10 m) exists while |p1 - p2| <= 10: it drops at t = 3 s (the first step
+  // with d > 10 is 3.001 s) and comes back at t = 7 s, when d returns to 10.
+  LinkParams far;
+  LinkParams limited;
+  limited.range = 10.0;
+  Network net(2, {{0, 1, far}, {1, 2, limited}}, kDt, 1);
+  std::vector<std::array<double, 3>> pos(3, {0, 0, 5});
+  for (int64_t step = 0; step <= 10000; ++step) {
+    const int64_t out = step <= 5000 ? step : 10000 - step;  // ms of flight away from follower 1
+    pos[2][0] = 4.0 + 2.0 * static_cast<double>(out) / 1000.0;
+    net.UpdateTopology(step, pos);
+  }
+  ASSERT_EQ(net.events().size(), 2u);
+  EXPECT_FALSE(net.events()[0].up);
+  EXPECT_NEAR(net.events()[0].time, 3.001, 1e-12);
+  EXPECT_TRUE(net.events()[1].up);
+  EXPECT_NEAR(net.events()[1].time, 7.0, 1e-12);
+  // Without the link, follower 2 is cut off from the leader: no spanning tree from 3.001 s to
+  // 6.999 s inclusive, 3999 steps.
+  EXPECT_NEAR(net.time_without_spanning_tree(), 3.999, 1e-9);
+  EXPECT_TRUE(net.has_spanning_tree());
+}
+
+TEST(NetworkTest, AgeOfInformationIsTheLatency) {
+  LinkSpec spec{0, 1, {}};
+  spec.params.latency = 0.02;
+  Network net(1, {spec}, kDt, 1);
+  for (int64_t step = 0; step < 1000; ++step) {
+    net.Broadcast(step, 0, MessageAt(0, step));
+    net.Deliver(step);
+  }
+  // From step 20 on, the held message is exactly 20 ms old; before, the age grows from 0.
+  EXPECT_NEAR(net.age(1).max, 0.02, 1e-12);
+  EXPECT_NEAR(net.age(1).mean(), (0.02 * 980 + 0.001 * (19 * 20 / 2)) / 1000, 1e-12);
+}
+
+}  // namespace
+}  // namespace mjf::network
