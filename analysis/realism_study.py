@@ -80,8 +80,10 @@ def main():
         import matplotlib
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
-        fig, axes = plt.subplots(1, len(results), figsize=(5.5 * len(results), 4), squeeze=False)
-        for ax, (name, (_, cells)) in zip(axes[0], results.items()):
+        cols = min(2, len(results))
+        rows = (len(results) + cols - 1) // cols
+        fig, axes = plt.subplots(rows, cols, figsize=(6 * cols, 4 * rows), squeeze=False)
+        for ax, (name, (_, cells)) in zip(axes.flat, results.items()):
             for noise, marker in zip(noises, "osd"):
                 pts = sorted((w, c) for (n, w), c in cells.items() if n == noise and c["n"] > 0)
                 if not pts:
