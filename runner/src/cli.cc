@@ -150,4 +150,18 @@ int Dispatch(const CLI::App& app, const CliCommands& c) {
   return 2;
 }
 
+int RunCommandLine(int argc, const char* const* argv) {
+  CLI::App app{"mjformation: distributed formation control of quadrotor swarms in MuJoCo"};
+  CliCommands commands;
+  AddCommands(app, &commands);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // --help and --version end here with 0; every misuse of the command line exits 2.
+    const int code = app.exit(e);
+    return code == 0 ? 0 : 2;
+  }
+  return Dispatch(app, commands);
+}
+
 }  // namespace mjf::runner

@@ -23,20 +23,7 @@ using mjf::testing::TempDir;
 using mjf::testing::WriteFile;
 using ::testing::HasSubstr;
 
-int Cli(std::vector<std::string> args) {
-  CLI::App app;
-  CliCommands commands;
-  AddCommands(app, &commands);
-  args.insert(args.begin(), "mjformation");
-  std::vector<const char*> argv;
-  for (const auto& a : args) argv.push_back(a.c_str());
-  try {
-    app.parse(static_cast<int>(argv.size()), argv.data());
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e);
-  }
-  return Dispatch(app, commands);
-}
+using mjf::testing::Cli;
 
 TEST(SweepStats, StudentQuantilesAgainstTables) {
   EXPECT_NEAR(StudentT975(1), 12.7062, 1e-4);

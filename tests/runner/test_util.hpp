@@ -8,7 +8,9 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
+#include "mjformation/runner/cli.hpp"
 #include "mjformation/runner/config.hpp"
 
 namespace mjf::testing {
@@ -55,6 +57,14 @@ inline runner::ExperimentConfig Parse(const std::string& text,
   runner::ExperimentConfig c = runner::LoadExperiment(WriteFile(dir + "/" + name, text));
   c.plugin_path.push_back(MJF_TEST_PLUGIN_DIR);
   return c;
+}
+
+// Runs `mjformation args...` in-process, as main() does; returns the exit code.
+inline int Cli(std::vector<std::string> args) {
+  args.insert(args.begin(), "mjformation");
+  std::vector<const char*> argv;
+  for (const auto& a : args) argv.push_back(a.c_str());
+  return runner::RunCommandLine(static_cast<int>(argv.size()), argv.data());
 }
 
 }  // namespace mjf::testing

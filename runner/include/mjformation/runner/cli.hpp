@@ -46,6 +46,11 @@ void AddCommands(CLI::App& app, CliCommands* commands);
 // 0 ok, 1 bad input (nothing run), 2 usage, 3 the run stopped early (partial results kept).
 int Dispatch(const CLI::App& app, const CliCommands& commands);
 
+// The whole command line as `mjformation` runs it (main and the tests call this): parses argv,
+// maps --help/--version to 0 and every parser error to 2, then dispatches. argv[0] is the
+// program name.
+int RunCommandLine(int argc, const char* const* argv);
+
 // `mjformation bench` (runner/src/bench.cc).
 void AddBenchCommand(CLI::App& app, CliCommands* commands);
 int BenchCommand(const CliCommands& commands);
