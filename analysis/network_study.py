@@ -1,140 +1,171 @@
 #!/usr/bin/python3
 # Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
-"""Exp 2 over a simulated network (issue 10): mean sigma_f against latency x loss, per-agent
-execution (last received u_j, Jacobi m = 1 and 3, central solve) against central mode, over
-seeds, with 95 % confidence intervals (Student t over the completed runs).
+"""Tables and figure of the distributed-execution study (scripts/study_network.sh, issue 10).
 
-Run:  /usr/bin/python3 analysis/network_study.py build/runner/mjformation runs/network_study
-Writes <out>/study.csv, <out>/study.md (the table in docs/RESULTS.md) and
-docs/img/network_sigma_f.png.
+Reads <study>/<vehicle>/<exp>/{central,per_agent}/sweep.json (mjformation sweep --seeds) and
+writes, per vehicle and experiment, a Markdown table of the mean sigma_f over [25, 40] s and the
+reaching time, each with its 95 % confidence interval (Student t over the runs that completed,
+as the sweep computes it), per coupling x latency x loss, with central mode as the reference.
+Usage: network_study.py <study folder> [--table out.md] [--figure out.png]
 """
-import csv
-import math
-import os
-import subprocess
-import sys
+import argparse
+import json
+import re
+from pathlib import Path
 
-LATENCIES = [0.0, 0.001, 0.002, 0.005, 0.01, 0.02, 0.05, 0.1]  # s
-LOSSES = [0.0, 0.05, 0.2, 0.5]
-SEEDS = list(range(1, 11))
-MODES = {
-    "last_input": 'execution={mode="per_agent", coupling="last_input"}',
-    "jacobi_m1": 'execution={mode="per_agent", coupling="jacobi", jacobi_rounds=1}',
-    "jacobi_m3": 'execution={mode="per_agent", coupling="jacobi", jacobi_rounds=3}',
-    "central_solve": 'execution={mode="per_agent", coupling="central_solve"}',
-}
-POINT_MASS = ['vehicles.model="pointmass"', 'attitude={plugin="pointmass_direct"}']
-# Two-sided 95 % Student t quantiles by degrees of freedom.
-T95 = {1: 12.706, 2: 4.303, 3: 3.182, 4: 2.776, 5: 2.571, 6: 2.447, 7: 2.365, 8: 2.306,
-       9: 2.262, 10: 2.228, 11: 2.201, 12: 2.179, 13: 2.160, 14: 2.145, 15: 2.131}
+COUPLINGS = ["last_input", "jacobi_m1", "jacobi_m3", "central_solve"]
+VEHICLES = ["pointmass", "quadrotor"]
+EXPERIMENTS = ["exp2", "exp3"]
 
 
-def sweep(binary, out, sets, varies):
-    cmd = [binary, "sweep", "experiments/exp2.toml", "--no-render", "--overwrite", "-j", "2",
-           "-o", out]
-    for s in sets:
-        cmd += ["--set", s]
-    for v in varies:
-        cmd += ["--vary", v]
-    subprocess.run(cmd, check=False, stdout=subprocess.DEVNULL)
-    with open(os.path.join(out, "sweep.csv")) as f:
-        return list(csv.DictReader(f))
+def coupling_label(value):
+    """execution={mode="per_agent",coupling="jacobi",jacobi_rounds=3} -> jacobi_m3."""
+    coupling = re.search(r'coupling\s*=\s*"([a-z_]+)"', value)
+    name = coupling.group(1) if coupling else "last_input"
+    if name == "jacobi":
+        rounds = re.search(r"jacobi_rounds\s*=\s*([0-9]+)", value)
+        return f"jacobi_m{rounds.group(1) if rounds else 1}"
+    return name
 
 
-def mean_ci(values):
-    n = len(values)
-    if n == 0:
-        return float("nan"), float("nan")
-    m = sum(values) / n
-    if n == 1:
-        return m, 0.0
-    sd = math.sqrt(sum((v - m) ** 2 for v in values) / (n - 1))
-    return m, T95.get(n - 1, 1.96) * sd / math.sqrt(n)
+def metric(cell, key):
+    m = cell["metrics"].get(key)
+    if not m or m.get("n", 0) == 0 or m.get("mean") is None:
+        return None
+    low, high = m["ci95"]
+    half = (high - low) / 2 if low is not None and high is not None else 0.0
+    return {"n": m["n"], "mean": m["mean"], "ci": half}
 
 
-def main():
-    binary, out = sys.argv[1], sys.argv[2]
-    os.makedirs(out, exist_ok=True)
-    if binary == "--plot-only":  # redraw from <out>/study.csv
-        with open(os.path.join(out, "study.csv")) as f:
-            rows = [[r[0], float(r[1]) if r[1] != "-" else "-", float(r[2]) if r[2] != "-"
-                     else "-", int(r[3]), int(r[4]), float(r[5]), float(r[6])]
-                    for r in list(csv.reader(f))[1:]]
-        write_table(rows, os.path.join(out, "study.md"))
-        plot(rows, "docs/img/network_sigma_f.png")
-        return
-    rows = []
-    central = sweep(binary, os.path.join(out, "central"), POINT_MASS,
-                    ["run.seed=" + ",".join(map(str, SEEDS))])
-    values = [float(r["sigma_f_mean"]) for r in central if r["complete"] == "true"]
-    m, ci = mean_ci(values)
-    rows.append(["central", "-", "-", len(central), len(values), m, ci])
-    for mode, setting in MODES.items():
-        runs = sweep(binary, os.path.join(out, mode), POINT_MASS + [setting], [
-            "network.latency=" + ",".join(map(str, LATENCIES)),
-            "network.loss=" + ",".join(map(str, LOSSES)),
-            "run.seed=" + ",".join(map(str, SEEDS))])
-        for lat in LATENCIES:
-            for loss in LOSSES:
-                cell = [r for r in runs if float(r["network.latency"]) == lat and
-                        float(r["network.loss"]) == loss]
-                done = [float(r["sigma_f_mean"]) for r in cell if r["complete"] == "true"]
-                m, ci = mean_ci(done)
-                rows.append([mode, lat, loss, len(cell), len(done), m, ci])
-    with open(os.path.join(out, "study.csv"), "w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(["mode", "latency_s", "loss", "runs", "completed", "sigma_f_mean",
-                    "ci95"])
-        w.writerows(rows)
-    write_table(rows, os.path.join(out, "study.md"))
-    plot(rows, "docs/img/network_sigma_f.png")
+def summarize(cell, finished):
+    """One cell: how many runs finished, completed, reached, and the two metrics."""
+    return {"seeds": cell["seeds"], "finished": finished, "complete": cell["complete_runs"],
+            "sigma": metric(cell, "sigma_f_mean"), "reach": metric(cell, "reaching_time_s")}
 
 
-def cell_text(row):
-    runs, done, m, ci = row[3], row[4], row[5], row[6]
-    if done == 0:
-        return "diverged (0/%d)" % runs
-    text = "%.3g ± %.2g" % (m, ci)
-    return text if done == runs else text + " (%d/%d)" % (done, runs)
+def load(folder):
+    """{(coupling, latency, loss): cell} of a per-agent sweep, or {None: cell} of central mode."""
+    sweep = json.loads((folder / "sweep.json").read_text())
+
+    def key(entry):
+        if "execution" not in entry:
+            return None
+        return (coupling_label(entry["execution"]), float(entry["network.latency"]),
+                float(entry["network.loss"]))
+
+    finished = {}
+    for run in sweep["runs"]:
+        finished[key(run)] = finished.get(key(run), 0) + bool(run["finished"])
+    cells = {key(c): summarize(c, finished.get(key(c), 0)) for c in sweep["cells"]}
+    return sweep["complete"], cells
 
 
-def write_table(rows, path):
-    with open(path, "w") as f:
-        f.write("| mode | latency | " + " | ".join("loss %g %%" % (100 * l) for l in LOSSES) +
-                " |\n")
-        f.write("|---|---|" + "---|" * len(LOSSES) + "\n")
-        f.write("| central (ideal) | - | %s |%s\n" % (cell_text(rows[0]), " |" * (len(LOSSES) - 1)))
-        for mode in MODES:
-            for lat in LATENCIES:
-                cells = [r for r in rows if r[0] == mode and r[1] == lat]
-                f.write("| %s | %g ms | %s |\n" % (mode, 1000 * lat,
-                                                    " | ".join(cell_text(c) for c in cells)))
+def cell_text(c):
+    if c["finished"] == 0:
+        return "not run"
+    if c["complete"] == 0:
+        return f"diverged ({c['finished']}/{c['finished']})"
+    s = c["sigma"]
+    text = f"{s['mean']:.3g} ± {s['ci']:.2g}"
+    r = c["reach"]
+    if r is None:
+        text += "; not reached"
+    else:
+        text += f"; t_r {r['mean']:.3g} ± {r['ci']:.2g} s"
+        if r["n"] < c["complete"]:
+            text += f" ({r['n']}/{c['complete']} reached)"
+    if c["complete"] < c["finished"]:
+        text += f" ({c['finished'] - c['complete']}/{c['finished']} diverged)"
+    if c["finished"] < c["seeds"]:
+        text += f" ({c['seeds'] - c['finished']} not run)"
+    return text
 
 
-def plot(rows, path):
+def table(vehicle, exp, central, grid):
+    latencies = sorted({k[1] for k in grid})
+    losses = sorted({k[2] for k in grid})
+    lines = [f"### {exp}, {vehicle}", "",
+             "| coupling | latency | " + " | ".join(f"loss {100 * l:g} %" for l in losses) + " |",
+             "|---|---|" + "---|" * len(losses)]
+    if central is not None:
+        lines.append(f"| central mode | - | {cell_text(central)} |" + " |" * (len(losses) - 1))
+    for coupling in COUPLINGS:
+        for lat in latencies:
+            cells = [cell_text(grid[(coupling, lat, l)]) if (coupling, lat, l) in grid else "-"
+                     for l in losses]
+            if any(c != "-" for c in cells):
+                lines.append(f"| {coupling} | {1000 * lat:g} ms | " + " | ".join(cells) + " |")
+    return "\n".join(lines) + "\n"
+
+
+def plot(results, path):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, axes = plt.subplots(1, len(LOSSES), figsize=(4 * len(LOSSES), 3.6), sharey=True)
-    for ax, loss in zip(axes, LOSSES):
-        for mode in MODES:
-            pts = [r for r in rows if r[0] == mode and r[2] == loss and r[4] > 0]
-            if pts:
-                x = [1000 * r[1] + 0.5 for r in pts]  # +0.5 ms so 0 shows on a log axis
-                ax.errorbar(x, [r[5] for r in pts], yerr=[r[6] for r in pts], marker="o",
-                            capsize=3, label=mode)
-        ax.axhline(rows[0][5], color="k", ls="--", lw=1, label="central (ideal)")
+    fig, axes = plt.subplots(2, 2, figsize=(12, 8.5), squeeze=False)
+    colours = dict(zip(COUPLINGS, ["C0", "C1", "C2", "C3"]))
+    for ax, ((vehicle, exp), (central, grid)) in zip(axes.flat, results.items()):
+        for coupling in COUPLINGS:
+            for loss, style in ((0.0, "-"), (0.2, "--")):
+                pts = sorted((k[1], c) for k, c in grid.items()
+                             if k[0] == coupling and k[2] == loss and c["sigma"] is not None)
+                if not pts:
+                    continue
+                x = [1000 * p[0] + 0.5 for p in pts]  # + 0.5 ms: 0 ms shows on a log axis
+                ax.errorbar(x, [p[1]["sigma"]["mean"] for p in pts],
+                            yerr=[p[1]["sigma"]["ci"] for p in pts], color=colours[coupling],
+                            ls=style, marker="o", ms=3, capsize=2,
+                            label=f"{coupling}, loss {100 * loss:g} %")
+        if central is not None and central["sigma"] is not None:
+            ax.axhline(central["sigma"]["mean"], color="k", ls=":", lw=1.2, label="central mode")
         ax.set_xscale("log")
         ax.set_yscale("log")
-        ax.set_title("loss %g %%" % (100 * loss))
-        ax.set_xlabel("latency + 0.5 ms [ms]")
-    axes[0].set_ylabel("mean sigma_f, t in [25, 40] s [m]")
-    axes[0].legend(fontsize=7)
-    fig.suptitle("Exp 2, point mass, per-agent over a network (mean over completed runs, 95 % CI;"
-                 " missing points: every run diverged; last_input diverged everywhere)",
-                 fontsize=9)
+        ax.set_title(f"{exp}, {vehicle}", fontsize=10)
+        ax.set_xlabel("latency + 0.5 ms (ms)")
+        ax.set_ylabel("mean sigma_f on [25, 40] s (m)")
+        ax.grid(True, which="both", alpha=0.3)
+    axes[0][0].legend(fontsize=6.5)
+    fig.suptitle("Per-agent smc_discrete over a network: mean over completed runs, 95 % CI "
+                 "(missing points: every run diverged)", fontsize=10)
     fig.tight_layout()
+    path.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(path, dpi=110)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("study", type=Path)
+    parser.add_argument("--table", type=Path, help="write the tables to this Markdown file")
+    parser.add_argument("--figure", type=Path)
+    args = parser.parse_args()
+    results, text = {}, []
+    for vehicle in VEHICLES:
+        for exp in EXPERIMENTS:
+            folder = args.study / vehicle / exp
+            if not (folder / "per_agent" / "sweep.json").exists():
+                continue
+            complete, grid = load(folder / "per_agent")
+            central = None
+            if (folder / "central" / "sweep.json").exists():
+                central_complete, cells = load(folder / "central")
+                central = cells.get(None)
+                complete = complete and central_complete
+            results[(vehicle, exp)] = (central, grid)
+            text.append(table(vehicle, exp, central, grid)
+                        + ("" if complete else "\n(SWEEP INCOMPLETE)\n"))
+    if not results:
+        parser.error(f"{args.study}: no <vehicle>/<exp>/per_agent/sweep.json found")
+    body = "\n".join(text)
+    print(body)
+    if args.table:
+        args.table.write_text(
+            "<!-- Generated by analysis/network_study.py from scripts/study_network.sh; do not "
+            "edit. -->\n# Distributed-execution study: every cell\n\nMean sigma_f on [25, 40] s "
+            "± 95 % CI (m); t_r: reaching time ± 95 % CI over the runs that reached the band. "
+            "See docs/RESULTS.md.\n\n" + body)
+    if args.figure:
+        plot(results, args.figure)
+        print(f"figure: {args.figure}")
 
 
 if __name__ == "__main__":

@@ -165,15 +165,28 @@ void AgentChannel::EndRound(int round, const std::vector<mjfSetpoint>& setpoints
 }
 
 // The reference: L_H W = R solved at once for the R_i the followers published (payload[2..3]).
+// A follower that has not yet heard every in-neighbour (loss or latency at start-up) does not
+// sample and publishes nothing (n_payload = 0); the system cannot be solved without its row, so
+// that sample gets no solution and every follower closes its loop with the last inputs, as under
+// last_input (counted in summary.json: network.central_solve_skipped_samples).
 void AgentChannel::CentralSolve() {
+  int sampled = 0;
   int published = 0;
-  for (int i = 0; i < n_followers_; ++i) published += outgoing_[i].n_payload >= 4 ? 1 : 0;
-  if (published == 0) return;
-  if (published != n_followers_) {
+  for (int i = 0; i < n_followers_; ++i) {
+    sampled += outgoing_[i].n_payload > 0 ? 1 : 0;
+    published += outgoing_[i].n_payload >= 4 ? 1 : 0;
+  }
+  if (sampled == 0) return;  // between samples
+  if (published != sampled) {
     throw SimulationError(
-        fmt::format("t = {:.3f} s: coupling = \"central_solve\": {} of {} followers published R_i "
-                    "(payload[2..3]) in round 0; the plugin does not support the central solve",
-                    time_, published, n_followers_));
+        fmt::format("t = {:.3f} s: coupling = \"central_solve\": {} of {} followers that sampled "
+                    "published R_i (payload[2..3]) in round 0; the plugin does not support the "
+                    "central solve",
+                    time_, published, sampled));
+  }
+  if (published != n_followers_) {
+    ++central_skipped_samples_;
+    return;
   }
   for (int i = 0; i < n_followers_; ++i) {
     central_->rhs(i, 0) = outgoing_[i].payload[2];
@@ -218,6 +231,7 @@ nlohmann::json AgentChannel::Summary() const {
   return {{"execution", ToString(config_.execution)},
           {"coupling", ToString(config_.coupling)},
           {"rounds_per_step", n_rounds_},
+          {"central_solve_skipped_samples", central_skipped_samples_},
           {"jacobi_spectral_radius", spectral_radius_},
           {"links", links},
           {"age_of_information", age},

@@ -171,7 +171,7 @@ std::unique_ptr<AgentChannel> Simulation::MakeChannel() const {
     std::fprintf(stderr, "warning: %s\n", what.c_str());
   } else if (std::pow(rho, config_.network.jacobi_rounds) > 0.9) {
     std::fprintf(stderr,
-                 "warning: %s: [execution] jacobi_rounds = %d reduce the coupling error by less "
+                 "warning: %s: [execution] jacobi_rounds = %d reduces the coupling error by less "
                  "than 10 %% per sample (spectral radius %.6f)\n",
                  config_.source_path.c_str(), config_.network.jacobi_rounds, rho);
   }

@@ -146,6 +146,22 @@ TEST(AgentChannelTest, JacobiApproachesTheCentralSolveWithLatency) {
   EXPECT_LT(e64, 0.05 * e1);
 }
 
+// Under loss a follower may not have heard every neighbour at the first samples: it publishes
+// no R_i, the host cannot solve without its row and skips those samples (counted), and the run
+// goes on instead of stopping. Without loss no sample is skipped.
+TEST(AgentChannelTest, CentralSolveSkipsSamplesSomeFollowerCouldNotPublish) {
+  auto skipped = [](const std::string& net) {
+    Simulation agents(
+        Exp2({"execution={mode=\"per_agent\", coupling=\"central_solve\"}", net, "run.seed=2"}));
+    StepThrough(agents, 1000);  // 20 samples of T = 0.05 s
+    return agents.channel()->Summary()["central_solve_skipped_samples"].get<int64_t>();
+  };
+  const int64_t lossy = skipped("network={loss=0.5}");
+  EXPECT_GE(lossy, 1);
+  EXPECT_LT(lossy, 20);
+  EXPECT_EQ(skipped("network={loss=0.0}"), 0);
+}
+
 TEST(AgentChannelTest, DivergentJacobiIsRefusedOrWarned) {
   // Leader -> 1, and 1 <-> 2 with a_12 = a_21 = 5: rho((D + H)^-1 A) = sqrt(5/6 * 1) < 1 ...
   // a cycle without the leader cannot exist with a spanning tree, and on L_H of a spanning-tree

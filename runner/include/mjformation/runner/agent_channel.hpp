@@ -74,6 +74,7 @@ class AgentChannel {
   std::unique_ptr<CentralSolver> central_;  // central_solve only
   std::vector<double> solved_;              // [2 follower + axis]
   bool have_solution_ = false;
+  int64_t central_skipped_samples_ = 0;  // samples some follower did not publish R_i in
   double time_ = 0.0;
 };
 
