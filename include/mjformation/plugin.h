@@ -111,6 +111,11 @@ typedef struct mjfShape_ {
   const void* self;
   /* Fills out[6*i + k] for follower i, k = (px, py, vx, vy, ax, ay) at time t. */
   void (*evaluate)(const void* self, double t, double* out);
+  /* Appended in this wave (issue 10), still version 2: fills out[0..5] for one follower with
+   * what evaluate() writes at out[6*follower ..], bit for bit, at a cost independent of
+   * n_followers, so a per-agent instance evaluates only itself and its neighbours (per-agent
+   * cost linear in N). The host always sets it; a shape from elsewhere may leave it NULL. */
+  void (*evaluate_one)(const void* self, double t, int follower, double* out);
 } mjfShape;
 
 /* What one follower knows of the graph (per-agent formation plugins): its own row of L_H. */

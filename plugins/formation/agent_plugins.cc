@@ -41,8 +41,6 @@ struct Agent {
         shape(*ctx->shape),
         steps_per_sample(steps),
         horizon(horizon_s),
-        shape_now(6 * static_cast<size_t>(shape.num_followers())),
-        shape_next(shape_now.size()),
         neighbour_pv(4 * neighbours.size()),
         neighbour_f_now(6 * neighbours.size()),
         neighbour_f_next(6 * neighbours.size()),
@@ -59,7 +57,10 @@ struct Agent {
   int64_t last_sample = -1;  // step of the last sample (later rounds of it sample again)
   double leader_pv[4] = {0, 0, 0, 0};
   bool knows_leader = false;
-  std::vector<double> shape_now, shape_next;
+  // f_i(t) and f_i(t + horizon) of this follower, and the same for each neighbour: evaluated
+  // one follower at a time (mjfShape.evaluate_one), so the cost is O(degree), not O(N).
+  double own_f_now[6] = {0, 0, 0, 0, 0, 0};
+  double own_f_next[6] = {0, 0, 0, 0, 0, 0};
   std::vector<double> neighbour_pv, neighbour_f_now, neighbour_f_next, neighbour_w;
   std::vector<const mjfMessage*> found;  // [m] the message of neighbour m this call
 };
@@ -154,16 +155,17 @@ template <typename Law>
 void Sample(Agent<Law>& a, const mjfStepContext& ctx) {
   const mjfAgentInput& in = *ctx.agent;
   const int i = a.follower;
-  a.shape.Evaluate(ctx.time + a.horizon, a.shape_next.data());  // F(k+1) for the discrete law
+  const double next = ctx.time + a.horizon;  // F(k+1) for the discrete law
+  a.shape.EvaluateOne(next, i, a.own_f_next);
   for (size_t m = 0; m < a.neighbours.size(); ++m) {
     const int j = a.neighbours[m];
     ReadPv(a.found[m]->state, &a.neighbour_pv[4 * m]);
-    std::copy_n(&a.shape_now[6 * j], 6, &a.neighbour_f_now[6 * m]);
-    std::copy_n(&a.shape_next[6 * j], 6, &a.neighbour_f_next[6 * m]);
+    a.shape.EvaluateOne(ctx.time, j, &a.neighbour_f_now[6 * m]);
+    a.shape.EvaluateOne(next, j, &a.neighbour_f_next[6 * m]);
   }
   double own_pv[4];
   ReadPv(*in.self, own_pv);
-  a.core.Prepare(own_pv, a.leader_pv, &a.shape_now[6 * i], &a.shape_next[6 * i],
+  a.core.Prepare(own_pv, a.leader_pv, a.own_f_now, a.own_f_next,
                  a.neighbour_pv.data(), a.neighbour_f_now.data(), a.neighbour_f_next.data());
   if (in.solved) {
     a.core.UseSolved(in.solved);
@@ -186,7 +188,7 @@ int Compute(void* instance, const mjfStepContext* ctx) {
     const mjfAgentInput& in = *ctx->agent;
     const bool ready = Gather(a, in);
     if (!ready && !a.has_sample) return 0;  // nothing heard yet: hold the initial setpoint
-    a.shape.Evaluate(ctx->time, a.shape_now.data());
+    a.shape.EvaluateOne(ctx->time, a.follower, a.own_f_now);
     const bool sample_step =
         !a.has_sample || ctx->step % a.steps_per_sample == 0 || ctx->step == a.last_sample;
     // A sample needs a message from every neighbour (and the leader when a_i0 > 0): until
@@ -197,7 +199,7 @@ int Compute(void* instance, const mjfStepContext* ctx) {
     for (int axis = 0; axis < 2; ++axis) {
       // The reference slot x_0 + f_i (a diagnostic: attitude plugins use acc and pos[2]); the
       // own state until the leader's state has been heard or relayed.
-      const double* f = &a.shape_now[6 * a.follower];
+      const double* f = a.own_f_now;
       sp.pos[axis] = a.knows_leader ? a.leader_pv[axis] + f[axis] : in.self->pos[axis];
       sp.vel[axis] = a.knows_leader ? a.leader_pv[2 + axis] + f[2 + axis] : in.self->vel[axis];
       sp.acc[axis] = a.core.acceleration()[axis];  // zero-order hold between samples

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <functional>
+#include <memory>
 #include <mjformation/core/metrics.hpp>
 #include <mjformation/core/shape.hpp>
 #include <stdexcept>
@@ -38,6 +39,49 @@ TEST(ShapeTest, PaperCircleValuesAndDerivatives) {
   abi.evaluate(abi.self, 2.0, g.data());
   EXPECT_EQ(f, g);
   EXPECT_EQ(abi.n_followers, 6);
+}
+
+// EvaluateOne (and mjfShape.evaluate_one) gives follower i's entries of Evaluate bit for bit,
+// for every shape type, inside and beyond a table: per-agent instances evaluate one follower at
+// a time and must act on the same numbers as the swarm-level plugins.
+TEST(ShapeTest, EvaluateOneIsEvaluateBitForBit) {
+  std::vector<FollowerTerms> terms(3);
+  for (int i = 0; i < 3; ++i) {
+    terms[i].x.polynomial = {1.0 + i, 0.25, -0.125 * i};
+    terms[i].x.sinusoids = {{0.5, 0.7, 0.1 * i}};
+    terms[i].y.polynomial = {-2.0 * i};
+  }
+  std::vector<double> samples;
+  for (int k = 0; k < 3; ++k) {
+    for (int i = 0; i < 3; ++i) {
+      for (int c = 0; c < 4; ++c) samples.push_back(0.3 * k + 1.7 * i - 0.9 * c + 0.01 * k * k);
+    }
+  }
+  std::vector<std::unique_ptr<Shape>> shapes;
+  shapes.push_back(MakeCircleShape(3, 10.0, 0.314, 0.2, kPi / 3));
+  shapes.push_back(MakeTermsShape(terms));
+  shapes.push_back(MakeSampledShape(3, {0.0, 1.5, 4.0}, samples));
+  for (const auto& shape : shapes) {
+    const mjfShape abi = ToAbi(*shape);
+    mjfShape without_one = abi;
+    without_one.evaluate_one = nullptr;  // a host that does not set it: AbiShape falls back
+    const AbiShape fallback(without_one);
+    for (double t : {-1.0, 0.0, 0.37, 1.5, 2.9, 4.0, 7.25}) {
+      std::vector<double> all(18);
+      shape->Evaluate(t, all.data());
+      for (int i = 0; i < 3; ++i) {
+        double one[6], through_abi[6], through_fallback[6];
+        shape->EvaluateOne(t, i, one);
+        abi.evaluate_one(abi.self, t, i, through_abi);
+        fallback.EvaluateOne(t, i, through_fallback);
+        for (int k = 0; k < 6; ++k) {
+          EXPECT_EQ(one[k], all[6 * i + k]) << "t " << t << " follower " << i << " k " << k;
+          EXPECT_EQ(through_abi[k], all[6 * i + k]);
+          EXPECT_EQ(through_fallback[k], all[6 * i + k]);
+        }
+      }
+    }
+  }
 }
 
 TEST(ShapeTest, ConsistencyCheckAcceptsTheCircle) {

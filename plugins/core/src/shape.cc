@@ -16,17 +16,17 @@ class CircleShape : public Shape {
       : n_(n), radius_(radius), omega_(omega), phase0_(phase0), phase_step_(phase_step) {}
   int num_followers() const override { return n_; }
   void Evaluate(double t, double* out) const override {
-    for (int i = 0; i < n_; ++i) {
-      const double theta = omega_ * t + phase0_ + i * phase_step_;
-      const double c = std::cos(theta), s = std::sin(theta);
-      double* f = out + 6 * i;
-      f[kShapePx] = radius_ * c;
-      f[kShapePy] = radius_ * s;
-      f[kShapeVx] = -radius_ * omega_ * s;
-      f[kShapeVy] = radius_ * omega_ * c;
-      f[kShapeAx] = -radius_ * omega_ * omega_ * c;
-      f[kShapeAy] = -radius_ * omega_ * omega_ * s;
-    }
+    for (int i = 0; i < n_; ++i) EvaluateOne(t, i, out + 6 * i);
+  }
+  void EvaluateOne(double t, int i, double* f) const override {
+    const double theta = omega_ * t + phase0_ + i * phase_step_;
+    const double c = std::cos(theta), s = std::sin(theta);
+    f[kShapePx] = radius_ * c;
+    f[kShapePy] = radius_ * s;
+    f[kShapeVx] = -radius_ * omega_ * s;
+    f[kShapeVy] = radius_ * omega_ * c;
+    f[kShapeAx] = -radius_ * omega_ * omega_ * c;
+    f[kShapeAy] = -radius_ * omega_ * omega_ * s;
   }
 
  private:
@@ -60,11 +60,11 @@ class TermsShape : public Shape {
   explicit TermsShape(std::vector<FollowerTerms> followers) : followers_(std::move(followers)) {}
   int num_followers() const override { return static_cast<int>(followers_.size()); }
   void Evaluate(double t, double* out) const override {
-    for (size_t i = 0; i < followers_.size(); ++i) {
-      double* f = out + 6 * i;
-      EvaluateAxis(followers_[i].x, t, &f[kShapePx], &f[kShapeVx], &f[kShapeAx]);
-      EvaluateAxis(followers_[i].y, t, &f[kShapePy], &f[kShapeVy], &f[kShapeAy]);
-    }
+    for (int i = 0; i < num_followers(); ++i) EvaluateOne(t, i, out + 6 * i);
+  }
+  void EvaluateOne(double t, int i, double* f) const override {
+    EvaluateAxis(followers_[i].x, t, &f[kShapePx], &f[kShapeVx], &f[kShapeAx]);
+    EvaluateAxis(followers_[i].y, t, &f[kShapePy], &f[kShapeVy], &f[kShapeAy]);
   }
 
  private:
@@ -77,41 +77,59 @@ class SampledShape : public Shape {
       : n_(n), times_(std::move(times)), samples_(std::move(samples)) {}
   int num_followers() const override { return n_; }
   void Evaluate(double t, double* out) const override {
+    const Interval at = Locate(t);  // one search for every follower
+    for (int i = 0; i < n_; ++i) Fill(at, i, out + 6 * i);
+  }
+  void EvaluateOne(double t, int i, double* f) const override { Fill(Locate(t), i, f); }
+
+ private:
+  // Where t falls in the table: beyond an end (extrapolate from sample k by dt) or in
+  // [t_k, t_k+1] at u = (t - t_k) / h with the cubic Hermite basis h00, h10, h01, h11.
+  struct Interval {
+    bool beyond = false;
+    int k = 0;
+    double dt = 0.0, h = 0.0, u = 0.0, h00 = 0.0, h10 = 0.0, h01 = 0.0, h11 = 0.0;
+  };
+  Interval Locate(double t) const {
+    Interval at;
     const int last = static_cast<int>(times_.size()) - 1;
     if (t <= times_.front() || t >= times_[last]) {
-      const int k = t <= times_.front() ? 0 : last;  // extrapolate with the end velocity
-      const double dt = t - times_[k];
-      for (int i = 0; i < n_; ++i) {
-        const double* s = Sample(k, i);
-        double* f = out + 6 * i;
-        for (int axis = 0; axis < 2; ++axis) {
-          f[kShapePx + axis] = s[axis] + s[2 + axis] * dt;
-          f[kShapeVx + axis] = s[2 + axis];
-          f[kShapeAx + axis] = 0.0;
-        }
+      at.beyond = true;
+      at.k = t <= times_.front() ? 0 : last;  // extrapolate with the end velocity
+      at.dt = t - times_[at.k];
+      return at;
+    }
+    at.k =
+        static_cast<int>(std::upper_bound(times_.begin(), times_.end(), t) - times_.begin()) - 1;
+    at.h = times_[at.k + 1] - times_[at.k];
+    const double u = (t - times_[at.k]) / at.h;
+    at.u = u;
+    at.h00 = (2 * u - 3) * u * u + 1;
+    at.h10 = ((u - 2) * u + 1) * u;
+    at.h01 = (3 - 2 * u) * u * u;
+    at.h11 = (u - 1) * u * u;
+    return at;
+  }
+  void Fill(const Interval& at, int i, double* f) const {
+    if (at.beyond) {
+      const double* s = Sample(at.k, i);
+      for (int axis = 0; axis < 2; ++axis) {
+        f[kShapePx + axis] = s[axis] + s[2 + axis] * at.dt;
+        f[kShapeVx + axis] = s[2 + axis];
+        f[kShapeAx + axis] = 0.0;
       }
       return;
     }
-    const int k =
-        static_cast<int>(std::upper_bound(times_.begin(), times_.end(), t) - times_.begin()) - 1;
-    const double h = times_[k + 1] - times_[k];
-    const double u = (t - times_[k]) / h;
-    const double h00 = (2 * u - 3) * u * u + 1, h10 = ((u - 2) * u + 1) * u;
-    const double h01 = (3 - 2 * u) * u * u, h11 = (u - 1) * u * u;
-    for (int i = 0; i < n_; ++i) {
-      const double* s0 = Sample(k, i);
-      const double* s1 = Sample(k + 1, i);
-      double* f = out + 6 * i;
-      for (int axis = 0; axis < 2; ++axis) {
-        const double p0 = s0[axis], p1 = s1[axis], v0 = s0[2 + axis], v1 = s1[2 + axis];
-        f[kShapePx + axis] = h00 * p0 + h10 * h * v0 + h01 * p1 + h11 * h * v1;  // Hermite
-        f[kShapeVx + axis] = v0 + u * (v1 - v0);
-        f[kShapeAx + axis] = (v1 - v0) / h;
-      }
+    const double* s0 = Sample(at.k, i);
+    const double* s1 = Sample(at.k + 1, i);
+    const double h = at.h;
+    for (int axis = 0; axis < 2; ++axis) {
+      const double p0 = s0[axis], p1 = s1[axis], v0 = s0[2 + axis], v1 = s1[2 + axis];
+      f[kShapePx + axis] = at.h00 * p0 + at.h10 * h * v0 + at.h01 * p1 + at.h11 * h * v1;  // Hermite
+      f[kShapeVx + axis] = v0 + at.u * (v1 - v0);
+      f[kShapeAx + axis] = (v1 - v0) / h;
     }
   }
-
- private:
   const double* Sample(int k, int i) const { return samples_.data() + (k * n_ + i) * 4; }
   int n_;
   std::vector<double> times_;
@@ -124,6 +142,10 @@ void RequireFinite(double value, const std::string& what) {
 
 void TrampolineEvaluate(const void* self, double t, double* out) {
   static_cast<const Shape*>(self)->Evaluate(t, out);
+}
+
+void TrampolineEvaluateOne(const void* self, double t, int follower, double* out) {
+  static_cast<const Shape*>(self)->EvaluateOne(t, follower, out);
 }
 
 const char* AxisName(int axis) { return axis == 0 ? "x" : "y"; }
@@ -222,10 +244,11 @@ void CheckShapeConsistency(const Shape& shape, double t0, double t1, double dt, 
 }
 
 mjfShape ToAbi(const Shape& shape) {
-  mjfShape abi;
+  mjfShape abi{};
   abi.n_followers = shape.num_followers();
   abi.self = &shape;
   abi.evaluate = &TrampolineEvaluate;
+  abi.evaluate_one = &TrampolineEvaluateOne;
   return abi;
 }
 
@@ -235,6 +258,16 @@ AbiShape::AbiShape(const mjfShape& shape) : shape_(shape) {
         "shape: the context's mjfShape is empty (no followers or no "
         "evaluate callback)");
   }
+  if (shape.evaluate_one == nullptr) scratch_.resize(6 * static_cast<size_t>(shape.n_followers));
+}
+
+void AbiShape::EvaluateOne(double t, int i, double* out) const {
+  if (shape_.evaluate_one) {
+    shape_.evaluate_one(shape_.self, t, i, out);
+    return;
+  }
+  shape_.evaluate(shape_.self, t, scratch_.data());
+  std::copy_n(&scratch_[6 * static_cast<size_t>(i)], 6, out);
 }
 
 }  // namespace mjf::core

@@ -21,6 +21,9 @@ class Shape {  // desired offsets f_i(t) from the leader (Definition 1)
   virtual int num_followers() const = 0;
   // out[6*i+k], k = (px, py, vx, vy, ax, ay) in m, m/s, m/s^2. Must not allocate.
   virtual void Evaluate(double t, double* out) const = 0;
+  // out[0..5]: follower i's entries of Evaluate, bit for bit, in O(1) of num_followers (what a
+  // per-agent instance needs for itself and its neighbours). Must not allocate.
+  virtual void EvaluateOne(double t, int i, double* out) const = 0;
 };
 
 // The paper's rotating circle (section 6): theta_i = omega t + phase0 + i*phase_step (i 0-based),
@@ -84,9 +87,13 @@ class AbiShape : public Shape {
   explicit AbiShape(const mjfShape& shape);  // throws std::invalid_argument if incomplete
   int num_followers() const override { return shape_.n_followers; }
   void Evaluate(double t, double* out) const override { shape_.evaluate(shape_.self, t, out); }
+  // Through evaluate_one; without it (a host that does not set it), from a whole evaluate() into
+  // a scratch buffer sized once here: correct, but O(n_followers).
+  void EvaluateOne(double t, int i, double* out) const override;
 
  private:
   mjfShape shape_;
+  mutable std::vector<double> scratch_;  // [6 n] only when shape_.evaluate_one is NULL
 };
 
 }  // namespace mjf::core
