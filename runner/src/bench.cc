@@ -251,9 +251,13 @@ Json BenchPoint(const ExperimentConfig& base, int n, const std::string& scratch)
   const double steps = full["steps"].get<double>();
   const double bare_wall = bare["wall_s"].get<double>(), full_wall = full["wall_s"].get<double>();
   const double ratio = full_wall / bare_wall;
-  std::printf("%9d %9.0f %14.0f %14.0f %15.3f %9.2f %9.2f %10.1f %5d\n", n, steps,
+  // What the pipeline (sensors, network, controllers, recording) adds to a bare step, per
+  // follower: constant in n when its cost is linear in the number of followers.
+  const double per_follower_us = (full_wall - bare_wall) / steps / n * 1e6;
+  std::printf("%9d %9.0f %14.0f %14.0f %15.3f %9.2f %9.2f %10.1f %5d %13.3f\n", n, steps,
               steps / bare_wall, steps / full_wall, ratio, config.duration / bare_wall,
-              config.duration / full_wall, full["peak_rss_mib"].get<double>(), repeats);
+              config.duration / full_wall, full["peak_rss_mib"].get<double>(), repeats,
+              per_follower_us);
   std::fflush(stdout);
   return {{"followers", n},
           {"steps", steps},
@@ -261,6 +265,7 @@ Json BenchPoint(const ExperimentConfig& base, int n, const std::string& scratch)
           {"bare_wall_s", bare_wall},
           {"full_wall_s", full_wall},
           {"ratio_full_over_bare", ratio},
+          {"pipeline_us_per_follower_step", per_follower_us},
           {"real_time_factor_bare", config.duration / bare_wall},
           {"real_time_factor_full", config.duration / full_wall},
           {"peak_rss_mib_full", full["peak_rss_mib"]},
@@ -333,9 +338,23 @@ int BenchCommand(const CliCommands& c) {
   std::printf("%s: %.1f s at %g s steps, rotor model %s, recording at %g Hz\n",
               c.experiment.c_str(), base.duration, base.timestep, ToString(base.rotor_model),
               base.record_rate);
-  std::printf("%9s %9s %14s %14s %12s %9s %9s %10s %5s\n", "followers", "steps", "bare steps/s",
-              "full steps/s", "ratio full/bare", "RTF bare", "RTF full", "peak MiB", "runs");
+  std::printf("%9s %9s %14s %14s %12s %9s %9s %10s %5s %13s\n", "followers", "steps",
+              "bare steps/s", "full steps/s", "ratio full/bare", "RTF bare", "RTF full",
+              "peak MiB", "runs", "us/foll/step");
   for (int n : sizes) report["points"].push_back(BenchPoint(base, n, scratch));
+  if (sizes.size() > 1) {
+    // Linear scaling: the largest size's per-follower pipeline cost against the smallest's.
+    const Json& first = report["points"].front();
+    const Json& last = report["points"].back();
+    const double growth = last["pipeline_us_per_follower_step"].get<double>() /
+                          first["pipeline_us_per_follower_step"].get<double>();
+    std::printf(
+        "scaling: pipeline cost per follower and step at %d followers / at %d followers = %.2f "
+        "(1: linear in N; %d: quadratic)\n",
+        last["followers"].get<int>(), first["followers"].get<int>(), growth,
+        last["followers"].get<int>() / first["followers"].get<int>());
+    report["per_follower_cost_growth"] = growth;
+  }
   if (c.bench_memory) report["memory"] = BenchMemory(base, sizes.front(), scratch);
   if (c.bench_render) report["render"] = BenchRender(Resized(base, sizes.front()));
   if (!c.bench_json.empty()) WriteJson(c.bench_json, report);
