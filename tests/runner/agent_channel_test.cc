@@ -162,6 +162,46 @@ TEST(AgentChannelTest, CentralSolveSkipsSamplesSomeFollowerCouldNotPublish) {
   EXPECT_EQ(skipped("network={loss=0.0}"), 0);
 }
 
+// Range-limited links inside a run: follower 1's links to its ring neighbours 2 and 6 exist
+// while the vehicles are within 5 m. They start 1.5 m apart and separate as the formation opens:
+// each link must drop at the first step whose true positions (as the run flew them) are more
+// than 5 m apart, and with both gone the leader's information cannot reach 2..6: no spanning
+// tree from that step on.
+TEST(AgentChannelTest, RangeLimitedLinksDropWhereTheFlownGeometrySaysSo) {
+  Simulation sim(Exp2({"execution={mode=\"per_agent\", coupling=\"central_solve\"}",
+                       "network={link=[{from=1, to=2, range=5.0}, {from=1, to=6, range=5.0}]}"}));
+  constexpr int64_t kSteps = 1000;  // the cut-off swarm later diverges; 1 s is before that
+  int64_t first_out[2] = {-1, -1};
+  const int to[2] = {2, 6};
+  for (int64_t k = 0; k < kSteps; ++k) {
+    sim.ComputeControls();         // reads this step's true states, then runs the tick
+    for (int e = 0; e < 2; ++e) {  // the positions the channel saw at this step's tick
+      const double* a = sim.states()[1].pos;
+      const double* b = sim.states()[to[e]].pos;
+      const double d = std::hypot(std::hypot(a[0] - b[0], a[1] - b[1]), a[2] - b[2]);
+      if (first_out[e] < 0 && d > 5.0) first_out[e] = k;
+    }
+    sim.Integrate();
+  }
+  const auto& net = sim.channel()->network();
+  ASSERT_GT(first_out[0], 0);
+  ASSERT_GT(first_out[1], 0);
+  ASSERT_EQ(net.events().size(), 2u);  // each drops once and stays down within 1 s
+  for (const auto& event : net.events()) {
+    const int e = event.to == 2 ? 0 : 1;
+    EXPECT_EQ(event.from, 1);
+    EXPECT_FALSE(event.up);
+    EXPECT_NEAR(event.time, static_cast<double>(first_out[e]) * 0.001, 1e-12);
+  }
+  const int64_t last_drop = std::max(first_out[0], first_out[1]);
+  EXPECT_NEAR(net.time_without_spanning_tree(), static_cast<double>(kSteps - last_drop) * 0.001,
+              1e-9);
+  const auto summary = sim.channel()->Summary();
+  EXPECT_EQ(summary["topology_switches"].get<int>(), 2);
+  std::printf("links 1->2, 1->6 dropped at t = %.3f s, %.3f s\n", first_out[0] * 0.001,
+              first_out[1] * 0.001);
+}
+
 TEST(AgentChannelTest, DivergentJacobiIsRefusedOrWarned) {
   // Leader -> 1, and 1 <-> 2 with a_12 = a_21 = 5: rho((D + H)^-1 A) = sqrt(5/6 * 1) < 1 ...
   // a cycle without the leader cannot exist with a spanning tree, and on L_H of a spanning-tree
