@@ -165,8 +165,8 @@ void Sample(Agent<Law>& a, const mjfStepContext& ctx) {
   }
   double own_pv[4];
   ReadPv(*in.self, own_pv);
-  a.core.Prepare(own_pv, a.leader_pv, a.own_f_now, a.own_f_next,
-                 a.neighbour_pv.data(), a.neighbour_f_now.data(), a.neighbour_f_next.data());
+  a.core.Prepare(own_pv, a.leader_pv, a.own_f_now, a.own_f_next, a.neighbour_pv.data(),
+                 a.neighbour_f_now.data(), a.neighbour_f_next.data());
   if (in.solved) {
     a.core.UseSolved(in.solved);
   } else {

@@ -339,8 +339,8 @@ int BenchCommand(const CliCommands& c) {
               c.experiment.c_str(), base.duration, base.timestep, ToString(base.rotor_model),
               base.record_rate);
   std::printf("%9s %9s %14s %14s %12s %9s %9s %10s %5s %13s\n", "followers", "steps",
-              "bare steps/s", "full steps/s", "ratio full/bare", "RTF bare", "RTF full",
-              "peak MiB", "runs", "us/foll/step");
+              "bare steps/s", "full steps/s", "ratio full/bare", "RTF bare", "RTF full", "peak MiB",
+              "runs", "us/foll/step");
   for (int n : sizes) report["points"].push_back(BenchPoint(base, n, scratch));
   if (sizes.size() > 1) {
     // Linear scaling: the largest size's per-follower pipeline cost against the smallest's.

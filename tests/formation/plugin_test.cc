@@ -283,3 +283,91 @@ TEST_F(FormationPluginTest, BadConfigurationGivesNullAndMessage) {
 }
 
 }  // namespace
+
+// Per-agent cost linear in N: an instance evaluates the desired formation only for itself and
+// its in-neighbours, one follower at a time (mjfShape.evaluate_one), never the whole swarm
+// (evaluate), so its cost per step does not grow with the number of followers. A counting shape
+// of 1000 followers records every call.
+struct CountingShape {
+  const mjf::core::Shape* shape;
+  long whole = 0;              // evaluate() calls: O(N) each
+  std::map<int, long> single;  // evaluate_one() calls per follower
+};
+
+TEST_F(FormationPluginTest, PerAgentInstancesEvaluateOnlyThemselvesAndTheirNeighbours) {
+  const auto circle = mjf::core::MakeCircleShape(1000, 10.0, 0.314, 0.0, 2 * kPi / 1000);
+  for (const char* name :
+       {"smc_discrete_agent", "smc_continuous_agent", "consensus_linear_agent"}) {
+    CountingShape counter{circle.get(), 0, {}};
+    mjfShape shape{};
+    shape.n_followers = 1000;
+    shape.self = &counter;
+    shape.evaluate = [](const void* self, double t, double* out) {
+      auto* c = static_cast<CountingShape*>(const_cast<void*>(self));
+      ++c->whole;
+      c->shape->Evaluate(t, out);
+    };
+    shape.evaluate_one = [](const void* self, double t, int i, double* out) {
+      auto* c = static_cast<CountingShape*>(const_cast<void*>(self));
+      ++c->single[i];
+      c->shape->EvaluateOne(t, i, out);
+    };
+    const mjfPlugin* plugin = Plugin(name);
+    std::vector<const char*> keys, values;
+    for (int a = 0; a < plugin->n_attributes; ++a) {
+      keys.push_back(plugin->attributes[a].key);
+      values.push_back(plugin->attributes[a].default_value);
+    }
+    // Follower 500 of a ring hears follower 499 only.
+    const int neighbours[1] = {499};
+    const double weights[1] = {1.0};
+    const mjfNeighbourhood hood{500, 1000, 0.0, 1, neighbours, weights};
+    char error[256] = "";
+    mjfCreateContext ctx{};
+    ctx.n_attributes = plugin->n_attributes;
+    ctx.keys = keys.data();
+    ctx.values = values.data();
+    ctx.timestep = 0.01;
+    ctx.vehicle = -1;
+    ctx.n_vehicles = 1001;
+    ctx.shape = &shape;
+    ctx.neighbourhood = &hood;
+    ctx.error = error;
+    ctx.error_size = sizeof(error);
+    void* instance = plugin->create(&ctx);
+    ASSERT_NE(instance, nullptr) << error;
+    mjfVehicleState self{};
+    mjfSetpoint setpoint{};
+    mjfMessage neighbour{};
+    neighbour.sender = 500;  // vehicle index of follower 499
+    mjfMessage outgoing{};
+    mjfAgentInput input{};
+    input.follower = 500;
+    input.self = &self;
+    input.n_messages = 1;
+    input.messages = &neighbour;
+    input.n_rounds = 1;
+    input.outgoing = &outgoing;
+    mjfStepContext step{};
+    step.timestep = 0.01;
+    step.n_vehicles = 1001;
+    step.setpoints = &setpoint;
+    step.agent = &input;
+    step.error = error;
+    step.error_size = sizeof(error);
+    constexpr int kSteps = 100;
+    for (int s = 0; s < kSteps; ++s) {
+      step.step = s;
+      step.time = 0.01 * s;
+      neighbour.send_time = step.time;
+      ASSERT_EQ(plugin->compute(instance, &step), 0) << name << ": " << error;
+    }
+    plugin->destroy(instance);
+    EXPECT_EQ(counter.whole, 0) << name;
+    ASSERT_EQ(counter.single.size(), 2u) << name;  // itself and its one neighbour
+    EXPECT_TRUE(counter.single.count(500) && counter.single.count(499)) << name;
+    // At most now and next (the discrete law's F(k+1)) per follower and step.
+    for (const auto& [follower, calls] : counter.single) EXPECT_LE(calls, 2 * kSteps) << name;
+    EXPECT_GT(counter.single[499], 0) << name << " never sampled";
+  }
+}

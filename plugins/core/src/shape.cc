@@ -99,8 +99,7 @@ class SampledShape : public Shape {
       at.dt = t - times_[at.k];
       return at;
     }
-    at.k =
-        static_cast<int>(std::upper_bound(times_.begin(), times_.end(), t) - times_.begin()) - 1;
+    at.k = static_cast<int>(std::upper_bound(times_.begin(), times_.end(), t) - times_.begin()) - 1;
     at.h = times_[at.k + 1] - times_[at.k];
     const double u = (t - times_[at.k]) / at.h;
     at.u = u;
@@ -125,7 +124,8 @@ class SampledShape : public Shape {
     const double h = at.h;
     for (int axis = 0; axis < 2; ++axis) {
       const double p0 = s0[axis], p1 = s1[axis], v0 = s0[2 + axis], v1 = s1[2 + axis];
-      f[kShapePx + axis] = at.h00 * p0 + at.h10 * h * v0 + at.h01 * p1 + at.h11 * h * v1;  // Hermite
+      f[kShapePx + axis] =
+          at.h00 * p0 + at.h10 * h * v0 + at.h01 * p1 + at.h11 * h * v1;  // Hermite
       f[kShapeVx + axis] = v0 + at.u * (v1 - v0);
       f[kShapeAx + axis] = (v1 - v0) / h;
     }
