@@ -51,7 +51,8 @@ class FormationPluginTest : public ::testing::Test {
 
   // Creates `plugin` with its declared defaults overridden by `overrides`.
   void* Create(const mjfPlugin* plugin, const std::map<std::string, std::string>& overrides,
-               std::string* error, double timestep = 0.01, bool spanning_tree = true) {
+               std::string* error, double timestep = 0.01, bool spanning_tree = true,
+               const mjfNeighbourhood* neighbourhood = nullptr) {
     keys_.clear();
     values_.clear();
     for (int k = 0; k < plugin->n_attributes; ++k) {
@@ -77,8 +78,9 @@ class FormationPluginTest : public ::testing::Test {
     ctx.values = values_.data();
     ctx.timestep = timestep;
     ctx.vehicle = -1;
-    ctx.n_vehicles = 7;
-    ctx.graph = &graph_;
+    ctx.n_vehicles = shape_->num_followers() + 1;
+    ctx.graph = neighbourhood ? nullptr : &graph_;  // a per-agent instance gets its row only
+    ctx.neighbourhood = neighbourhood;
     ctx.shape = &abi_shape_;
     ctx.error = buffer;
     ctx.error_size = sizeof(buffer);
@@ -288,53 +290,39 @@ TEST_F(FormationPluginTest, BadConfigurationGivesNullAndMessage) {
 // its in-neighbours, one follower at a time (mjfShape.evaluate_one), never the whole swarm
 // (evaluate), so its cost per step does not grow with the number of followers. A counting shape
 // of 1000 followers records every call.
-struct CountingShape {
-  const mjf::core::Shape* shape;
-  long whole = 0;              // evaluate() calls: O(N) each
-  std::map<int, long> single;  // evaluate_one() calls per follower
+class CountingShape : public mjf::core::Shape {
+ public:
+  explicit CountingShape(std::unique_ptr<mjf::core::Shape> shape) : shape_(std::move(shape)) {}
+  int num_followers() const override { return shape_->num_followers(); }
+  void Evaluate(double t, double* out) const override {
+    ++whole;
+    shape_->Evaluate(t, out);
+  }
+  void EvaluateOne(double t, int i, double* out) const override {
+    ++single[i];
+    shape_->EvaluateOne(t, i, out);
+  }
+  mutable long whole = 0;              // Evaluate() calls: O(N) each
+  mutable std::map<int, long> single;  // EvaluateOne() calls per follower
+
+ private:
+  std::unique_ptr<mjf::core::Shape> shape_;
 };
 
 TEST_F(FormationPluginTest, PerAgentInstancesEvaluateOnlyThemselvesAndTheirNeighbours) {
-  const auto circle = mjf::core::MakeCircleShape(1000, 10.0, 0.314, 0.0, 2 * kPi / 1000);
   for (const char* name :
        {"smc_discrete_agent", "smc_continuous_agent", "consensus_linear_agent"}) {
-    CountingShape counter{circle.get(), 0, {}};
-    mjfShape shape{};
-    shape.n_followers = 1000;
-    shape.self = &counter;
-    shape.evaluate = [](const void* self, double t, double* out) {
-      auto* c = static_cast<CountingShape*>(const_cast<void*>(self));
-      ++c->whole;
-      c->shape->Evaluate(t, out);
-    };
-    shape.evaluate_one = [](const void* self, double t, int i, double* out) {
-      auto* c = static_cast<CountingShape*>(const_cast<void*>(self));
-      ++c->single[i];
-      c->shape->EvaluateOne(t, i, out);
-    };
-    const mjfPlugin* plugin = Plugin(name);
-    std::vector<const char*> keys, values;
-    for (int a = 0; a < plugin->n_attributes; ++a) {
-      keys.push_back(plugin->attributes[a].key);
-      values.push_back(plugin->attributes[a].default_value);
-    }
+    auto counting = std::make_unique<CountingShape>(
+        mjf::core::MakeCircleShape(1000, 10.0, 0.314, 0.0, 2 * kPi / 1000));
+    const CountingShape& counter = *counting;
+    shape_ = std::move(counting);
     // Follower 500 of a ring hears follower 499 only.
     const int neighbours[1] = {499};
     const double weights[1] = {1.0};
     const mjfNeighbourhood hood{500, 1000, 0.0, 1, neighbours, weights};
-    char error[256] = "";
-    mjfCreateContext ctx{};
-    ctx.n_attributes = plugin->n_attributes;
-    ctx.keys = keys.data();
-    ctx.values = values.data();
-    ctx.timestep = 0.01;
-    ctx.vehicle = -1;
-    ctx.n_vehicles = 1001;
-    ctx.shape = &shape;
-    ctx.neighbourhood = &hood;
-    ctx.error = error;
-    ctx.error_size = sizeof(error);
-    void* instance = plugin->create(&ctx);
+    const mjfPlugin* plugin = Plugin(name);
+    std::string error;
+    void* instance = Create(plugin, {}, &error, 0.01, true, &hood);
     ASSERT_NE(instance, nullptr) << error;
     mjfVehicleState self{};
     mjfSetpoint setpoint{};
@@ -348,19 +336,20 @@ TEST_F(FormationPluginTest, PerAgentInstancesEvaluateOnlyThemselvesAndTheirNeigh
     input.messages = &neighbour;
     input.n_rounds = 1;
     input.outgoing = &outgoing;
+    char reason[256] = "";
     mjfStepContext step{};
     step.timestep = 0.01;
     step.n_vehicles = 1001;
     step.setpoints = &setpoint;
     step.agent = &input;
-    step.error = error;
-    step.error_size = sizeof(error);
+    step.error = reason;
+    step.error_size = sizeof(reason);
     constexpr int kSteps = 100;
     for (int s = 0; s < kSteps; ++s) {
       step.step = s;
       step.time = 0.01 * s;
       neighbour.send_time = step.time;
-      ASSERT_EQ(plugin->compute(instance, &step), 0) << name << ": " << error;
+      ASSERT_EQ(plugin->compute(instance, &step), 0) << name << ": " << reason;
     }
     plugin->destroy(instance);
     EXPECT_EQ(counter.whole, 0) << name;
@@ -368,6 +357,6 @@ TEST_F(FormationPluginTest, PerAgentInstancesEvaluateOnlyThemselvesAndTheirNeigh
     EXPECT_TRUE(counter.single.count(500) && counter.single.count(499)) << name;
     // At most now and next (the discrete law's F(k+1)) per follower and step.
     for (const auto& [follower, calls] : counter.single) EXPECT_LE(calls, 2 * kSteps) << name;
-    EXPECT_GT(counter.single[499], 0) << name << " never sampled";
+    EXPECT_GT(counter.single.at(499), 0) << name << " never sampled";
   }
 }
