@@ -64,18 +64,19 @@ def cell_text(c):
     if c["finished"] == 0:
         return "not run"
     if c["complete"] == 0:
-        return f"diverged ({c['finished']}/{c['finished']})"
-    s = c["sigma"]
-    text = f"{s['mean']:.3g} ± {s['ci']:.2g}"
-    r = c["reach"]
-    if r is None:
-        text += "; not reached"
+        text = f"diverged ({c['finished']}/{c['finished']})"
     else:
-        text += f"; t_r {r['mean']:.3g} ± {r['ci']:.2g} s"
-        if r["n"] < c["complete"]:
-            text += f" ({r['n']}/{c['complete']} reached)"
-    if c["complete"] < c["finished"]:
-        text += f" ({c['finished'] - c['complete']}/{c['finished']} diverged)"
+        s = c["sigma"]
+        text = f"{s['mean']:.3g} ± {s['ci']:.2g}"
+        r = c["reach"]
+        if r is None:
+            text += "; not reached"
+        else:
+            text += f"; t_r {r['mean']:.3g} ± {r['ci']:.2g} s"
+            if r["n"] < c["complete"]:
+                text += f" ({r['n']}/{c['complete']} reached)"
+        if c["complete"] < c["finished"]:
+            text += f" ({c['finished'] - c['complete']}/{c['finished']} diverged)"
     if c["finished"] < c["seeds"]:
         text += f" ({c['seeds'] - c['finished']} not run)"
     return text
