@@ -10,20 +10,6 @@
 namespace mjf::attitude {
 namespace {
 
-void RequirePositive(double value, const char* what) {
-  if (!(value > 0) || !std::isfinite(value)) {
-    throw std::invalid_argument(std::string(what) + " must be positive and finite (got " +
-                                std::to_string(value) + ")");
-  }
-}
-
-void RequireNonNegative(double value, const char* what) {
-  if (!(value >= 0) || !std::isfinite(value)) {
-    throw std::invalid_argument(std::string(what) + " must be >= 0 and finite (got " +
-                                std::to_string(value) + ")");
-  }
-}
-
 // Rate loop crossover when the vehicle reports no motor lag: the sampling alone limits it.
 constexpr double kRateBwPerSampleRate = 0.05;  // rad/s per Hz of control rate
 

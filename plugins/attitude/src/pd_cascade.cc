@@ -7,23 +7,6 @@
 #include <string>
 
 namespace mjf::attitude {
-namespace {
-
-void RequirePositive(double value, const char* what) {
-  if (!(value > 0) || !std::isfinite(value)) {
-    throw std::invalid_argument(std::string(what) + " must be positive and finite (got " +
-                                std::to_string(value) + ")");
-  }
-}
-
-void RequireNonNegative(double value, const char* what) {
-  if (!(value >= 0) || !std::isfinite(value)) {
-    throw std::invalid_argument(std::string(what) + " must be >= 0 and finite (got " +
-                                std::to_string(value) + ")");
-  }
-}
-
-}  // namespace
 
 PdCascade::PdCascade(const Gains& gains, const Vehicle& vehicle,
                      const std::array<RotorGeometry, Mixer::kRotors>& rotors)

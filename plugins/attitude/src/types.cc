@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace mjf::attitude {
 
@@ -18,6 +20,20 @@ double WrapPi(double angle) {
   double a = std::fmod(angle + M_PI, two_pi);
   if (a < 0) a += two_pi;
   return a - M_PI;
+}
+
+void RequirePositive(double value, const char* what) {
+  if (!(value > 0) || !std::isfinite(value)) {
+    throw std::invalid_argument(std::string(what) + " must be positive and finite (got " +
+                                std::to_string(value) + ")");
+  }
+}
+
+void RequireNonNegative(double value, const char* what) {
+  if (!(value >= 0) || !std::isfinite(value)) {
+    throw std::invalid_argument(std::string(what) + " must be >= 0 and finite (got " +
+                                std::to_string(value) + ")");
+  }
 }
 
 }  // namespace mjf::attitude

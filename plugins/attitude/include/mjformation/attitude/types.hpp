@@ -34,6 +34,11 @@ Vec3 EulerZYX(const std::array<double, 4>& quat);
 // Angle wrapped to [-pi, pi), rad.
 double WrapPi(double angle);
 
+// Parameter checks of the controllers' constructors: throw std::invalid_argument naming `what`
+// and the value unless it is finite and > 0 (resp. >= 0).
+void RequirePositive(double value, const char* what);
+void RequireNonNegative(double value, const char* what);
+
 }  // namespace mjf::attitude
 
 #endif  // MJFORMATION_ATTITUDE_TYPES_HPP_
