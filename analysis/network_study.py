@@ -99,6 +99,45 @@ def table(vehicle, exp, central, grid):
     return "\n".join(lines) + "\n"
 
 
+def holds(cell, reference):
+    """The formation holds: every run completed and the mean sigma_f is within 2x central mode."""
+    return (cell["finished"] > 0 and cell["complete"] == cell["finished"]
+            and cell["sigma"] is not None and cell["sigma"]["mean"] <= 2 * reference)
+
+
+def breaking_table(results):
+    """Per vehicle, experiment and coupling: up to which latency the formation holds, per loss."""
+    lines = []
+    for (vehicle, exp), (central, grid) in results.items():
+        if central is None or central["sigma"] is None:
+            continue
+        reference = central["sigma"]["mean"]
+        losses = sorted({k[2] for k in grid})
+        latencies = sorted({k[1] for k in grid})
+        if not lines:
+            lines = ["| experiment | vehicle | central mode sigma_f (m) | coupling | "
+                     + " | ".join(f"loss {100 * l:g} %" for l in losses) + " |",
+                     "|---|---|---|---|" + "---|" * len(losses)]
+        for coupling in COUPLINGS:
+            cells = []
+            for loss in losses:
+                held = None
+                for lat in latencies:
+                    c = grid.get((coupling, lat, loss))
+                    if c is None or not holds(c, reference):
+                        break
+                    held = lat
+                if held is None:
+                    cells.append("fails at 0 ms")
+                elif held == latencies[-1]:
+                    cells.append(f"holds to {1000 * held:g} ms (all)")
+                else:
+                    cells.append(f"holds to {1000 * held:g} ms")
+            lines.append(f"| {exp} | {vehicle} | {reference:.3g} | {coupling} | "
+                         + " | ".join(cells) + " |")
+    return "\n".join(lines) + "\n"
+
+
 def plot(results, path):
     import matplotlib
     matplotlib.use("Agg")
@@ -156,7 +195,10 @@ def main():
                         + ("" if complete else "\n(SWEEP INCOMPLETE)\n"))
     if not results:
         parser.error(f"{args.study}: no <vehicle>/<exp>/per_agent/sweep.json found")
-    body = "\n".join(text)
+    body = ("### Where the protocol breaks\n\nThe largest latency up to which the formation holds "
+            "(every run completes and the mean sigma_f stays within 2x central mode's, at this "
+            "and every smaller latency of the grid):\n\n" + breaking_table(results) + "\n"
+            + "\n".join(text))
     print(body)
     if args.table:
         args.table.write_text(

@@ -13,6 +13,7 @@ spec.loader.exec_module(study)
 
 JACOBI3 = '{mode="per_agent",coupling="jacobi",jacobi_rounds=3}'
 LAST = '{mode="per_agent",coupling="last_input"}'
+SOLVE = '{mode="per_agent",coupling="central_solve"}'
 
 
 def test_coupling_labels():
@@ -39,10 +40,11 @@ def test_tables_say_diverged_reached_and_not_run(tmp_path):
         "reaching_time_s": metric(3, 1.4, 1.3, 1.5)}}],
         [{"run": f"seed={k}", "finished": True, "complete": True} for k in range(3)])
     cells, runs = [], []
-    for execution, complete, reached in ((JACOBI3, 3, 2), (LAST, 0, 0)):
+    for execution, complete, reached in ((JACOBI3, 3, 2), (LAST, 0, 0), (SOLVE, 3, 0)):
         m = {}
         if complete:
-            m["sigma_f_mean"] = metric(complete, 0.2, 0.1, 0.3)
+            sigma = 0.1 if execution == SOLVE else 0.2
+            m["sigma_f_mean"] = metric(complete, sigma, sigma - 0.1, sigma + 0.1)
         if reached:
             m["reaching_time_s"] = metric(reached, 4.0, 3.0, 5.0)
         cells.append({"execution": execution, "network.latency": "0.01", "network.loss": "0.2",
@@ -61,5 +63,11 @@ def test_tables_say_diverged_reached_and_not_run(tmp_path):
     assert "| jacobi_m3 | 10 ms | 0.2 ± 0.1; t_r 4 ± 1 s (2/3 reached) |" in out
     assert "| last_input | 10 ms | diverged (2/2) (1 not run) |" in out
     assert "(SWEEP INCOMPLETE)" in out
+    # 0.2 m against central 0.084 m is more than twice: jacobi_m3 does not hold; last_input
+    # diverged.
+    assert "| exp2 | pointmass | 0.084 | jacobi_m3 | fails at 0 ms |" in out
+    assert "| exp2 | pointmass | 0.084 | last_input | fails at 0 ms |" in out
+    assert "| exp2 | pointmass | 0.084 | central_solve | holds to 10 ms (all) |" in out
+    assert "| central_solve | 10 ms | 0.1 ± 0.1; not reached |" in out
     assert table.read_text().count("### exp2, pointmass") == 1
     assert (tmp_path / "fig.png").stat().st_size > 1000
