@@ -14,6 +14,7 @@ import numpy as np
 
 from . import leaders
 from . import metrics as M
+from . import network
 from . import plots
 from .io import Run, find_runs
 
@@ -363,7 +364,8 @@ def write_report(results_dir, out_dir) -> Path:
             f"`{r.run.name}`",
             str(r.exp) if r.exp else "—",
             _esc(r.run.vehicle_model),
-            _esc(M.protocol_description(r.run.summary, r.run.config)),
+            _esc(M.protocol_description(r.run.summary, r.run.config)
+                 + network.protocol_suffix(r.run.summary)),
             ours,
             fmt(r.paper),
             fmt(r.ratio, 3),
@@ -463,7 +465,8 @@ def write_report(results_dir, out_dir) -> Path:
             L.append("")
         L.append(f"- experiment: {_esc(run.label)}; paper experiment: {r.exp or '—'}; "
                  f"vehicle model: {_esc(run.vehicle_model)}")
-        L.append(f"- protocol: {_esc(M.protocol_description(run.summary, run.config))}")
+        L.append(f"- protocol: {_esc(M.protocol_description(run.summary, run.config))}"
+                 f"{_esc(network.protocol_suffix(run.summary))}")
         L.append(f"- mean σ_f on [{r.window[0]:g}, {r.window[1]:g}] s: {fmt(r.sigma)}; "
                  f"σ_f(0) = {fmt(run.metric('sigma_f_initial'))}; "
                  f"σ_f(end) = {fmt(run.metric('sigma_f_final'))}")
@@ -471,7 +474,12 @@ def write_report(results_dir, out_dir) -> Path:
                  f"{fmt(run.metric('min_separation_m'), 3)} m; reaching time: "
                  f"{fmt(run.metric('reaching_time_s'), 2)} s; actuator saturation time: "
                  f"{fmt(run.metric('saturation_time_s'), 3)} s")
+        L.extend(network.lines(run.summary))
         L.append("")
+        net_fig = network.figure(run, fig_dir / run.name / network.FIGURE_NAME)
+        if net_fig is not None:
+            L.append(f"![{run.name} network]({_rel(net_fig, out_dir)})")
+            L.append("")
         if run.timeseries is not None:
             figs = plots.run_figures(run, fig_dir / run.name)
             for key, path in figs.items():

@@ -69,7 +69,7 @@ phase_step = 1.0471975511965976
 
 def make_run(root, name, *, exp=1, a=0.0, tau=5.0, c=0.1, complete=True, t_end=40.0,
              rate=20.0, sliding=True, snapshots=True, video=False, summary=True,
-             model="quadrotor", plugin=None, delta=None, error_bound=None):
+             model="quadrotor", plugin=None, delta=None, error_bound=None, network=None):
     """Writes a run directory root/name; returns (path, t, sigma_f(t))."""
     d = Path(root) / name
     (d / "snapshots").mkdir(parents=True)
@@ -149,6 +149,8 @@ def make_run(root, name, *, exp=1, a=0.0, tau=5.0, c=0.1, complete=True, t_end=4
                 "max_abs_s_after_reaching": 0.01, "saturation_time_s": 0.0},
             "plugin_report": report, "snapshots": snaps,
         }
+        if network is not None:
+            s["network"] = network
         (d / "summary.json").write_text(json.dumps(s, indent=2))
     return d, t, sigma
 

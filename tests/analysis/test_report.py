@@ -144,3 +144,33 @@ def test_default_out_dir(tmp_path):
     r = subprocess.run([sys.executable, str(ANALYSIS / "report.py"), str(res)],
                        capture_output=True, text=True)
     assert r.returncode == 0 and "1 run directory" in (res / "report" / "report.md").read_text()
+
+
+def test_per_agent_run_gets_its_network_lines_and_figure(tmp_path):
+    links = [{"from": f, "to": t, "sent": 100, "delivered": 80, "lost": 20, "stale_dropped": 1,
+              "out_of_range": 0, "latency_mean_s": 0.002, "latency_max_s": 0.003,
+              "round_messages_sent": 10, "round_messages_lost": 2}
+             for f, t in ((0, 1), (1, 2), (2, 1))]
+    network = {"execution": "per_agent", "coupling": "jacobi", "rounds_per_step": 4,
+               "central_solve_skipped_samples": 0, "jacobi_spectral_radius": 0.5,
+               "links": links,
+               "age_of_information": [{"follower": 1, "mean_s": 0.002, "max_s": 0.004},
+                                      {"follower": 2, "mean_s": 0.004, "max_s": 0.009}],
+               "topology_switches": 2, "topology_events": [],
+               "time_without_spanning_tree_s": 1.5}
+    res = tmp_path / "results"
+    make_run(res, "exp2_network", exp=2, c=0.5, network=network)
+    make_run(res, "exp2", exp=2, c=0.5)
+    r = _report(res, tmp_path / "out")
+    assert r.returncode == 0, r.stderr
+    text = (tmp_path / "out" / "report.md").read_text()
+    assert _row(text, "exp2_network")[3].endswith("— per-agent, coupling jacobi (4 rounds/step)")
+    assert "per-agent" not in _row(text, "exp2")[3]
+    assert ("- messages: 300 sent, 240 delivered (80.0 %), 60 lost (20.0 %), 3 dropped as older "
+            "than the one held, 0 not sent (out of range); Jacobi round messages 30 sent, 6 lost; "
+            "measured latency 2 ms") in text
+    assert "the largest, 9 ms, at follower 2" in text
+    assert "- topology: 2 link switches (range limits), 1.5 s without a spanning tree" in text
+    assert "![exp2_network network](figures/exp2_network/network.png)" in text
+    assert (tmp_path / "out" / "figures" / "exp2_network" / "network.png").stat().st_size > 5000
+    assert not (tmp_path / "out" / "figures" / "exp2" / "network.png").exists()
