@@ -152,8 +152,11 @@ def plot(results, path):
                 if not pts:
                     continue
                 x = [1000 * p[0] + 0.5 for p in pts]  # + 0.5 ms: 0 ms shows on a log axis
-                ax.errorbar(x, [p[1]["sigma"]["mean"] for p in pts],
-                            yerr=[p[1]["sigma"]["ci"] for p in pts], color=colours[coupling],
+                mean = [p[1]["sigma"]["mean"] for p in pts]
+                ci = [p[1]["sigma"]["ci"] for p in pts]
+                # A lower bound at or below 0 cannot be drawn on the log axis: cut at 1 %.
+                low = [min(c, 0.99 * m) for m, c in zip(mean, ci)]
+                ax.errorbar(x, mean, yerr=[low, ci], color=colours[coupling],
                             ls=style, marker="o", ms=3, capsize=2,
                             label=f"{coupling}, loss {100 * loss:g} %")
         if central is not None and central["sigma"] is not None:
@@ -164,10 +167,17 @@ def plot(results, path):
         ax.set_xlabel("latency + 0.5 ms (ms)")
         ax.set_ylabel("mean sigma_f on [25, 40] s (m)")
         ax.grid(True, which="both", alpha=0.3)
-    axes[0][0].legend(fontsize=6.5)
+    handles = {}  # one legend for all panels: a coupling may have no point in some panel
+    for ax in axes.flat:
+        for handle, label in zip(*ax.get_legend_handles_labels()):
+            handles.setdefault(label, handle)
+    order = [f"{c}, loss {l} %" for c in COUPLINGS for l in ("0", "20")] + ["central mode"]
+    labels = [label for label in order if label in handles]
+    fig.legend([handles[label] for label in labels], labels, loc="lower center", ncol=5,
+               fontsize=8)
     fig.suptitle("Per-agent smc_discrete over a network: mean over completed runs, 95 % CI "
                  "(missing points: every run diverged)", fontsize=10)
-    fig.tight_layout()
+    fig.tight_layout(rect=(0, 0.07, 1, 0.97))
     path.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(path, dpi=110)
 
