@@ -208,7 +208,9 @@ def discussion(rows: list[Row]) -> list[str]:
     for model, rs in sorted(_by_model(done).items()):
         by_exp = {}
         for r in rs:
-            if r.exp and math.isfinite(r.sigma):
+            # The paper's orderings are about its protocols as it ran them: a per-agent run over
+            # a network (exp2_network) is a different question and stays out of them.
+            if r.exp and math.isfinite(r.sigma) and not network.protocol_suffix(r.run.summary):
                 by_exp.setdefault(r.exp, []).append(r)
         if 2 in by_exp and 3 in by_exp:
             for a in by_exp[2]:

@@ -174,3 +174,5 @@ def test_per_agent_run_gets_its_network_lines_and_figure(tmp_path):
     assert "![exp2_network network](figures/exp2_network/network.png)" in text
     assert (tmp_path / "out" / "figures" / "exp2_network" / "network.png").stat().st_size > 5000
     assert not (tmp_path / "out" / "figures" / "exp2" / "network.png").exists()
+    # The paper's orderings compare its protocols as run centrally, not a networked variant.
+    assert "σ_f(`exp2_network`)" not in text and "(`exp2_network`):" not in text
