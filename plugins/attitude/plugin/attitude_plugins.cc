@@ -102,10 +102,50 @@ const mjfAttribute kCascadeAttributes[] = {
 };
 const char* const kRotorNames[] = {"rotor0", "rotor1", "rotor2", "rotor3"};
 
-struct CascadeInstance {
+// One instance per vehicle of a four-rotor controller (PdCascade, Geometric): both adapters
+// check the step, convert the setpoint and state, and copy the rotor commands the same way.
+template <typename Controller>
+struct RotorInstance {
   int vehicle;
-  PdCascade controller;
+  Controller controller;
 };
+
+template <typename Controller>
+int RotorCompute(void* instance, const mjfStepContext* ctx) {
+  auto* self = static_cast<RotorInstance<Controller>*>(instance);
+  if (self->vehicle >= ctx->n_vehicles || !ctx->controls) {
+    return mjf::plugin::Fail(ctx,
+                             "called for a vehicle the step does not have, or without controls");
+  }
+  mjf::attitude::Setpoint setpoint;
+  if (!ToSetpoint(ctx->setpoints[self->vehicle], &setpoint)) {
+    return mjf::plugin::Fail(ctx, "non-finite setpoint (acc, pos[2], vel[2] or yaw)", 2);
+  }
+  const typename Controller::Output out =
+      self->controller.Update(ToState(ctx->states[self->vehicle]), setpoint, ctx->timestep);
+  for (int k = 0; k < Mixer::kRotors; ++k) ctx->controls[k] = out.ctrl[k];
+  return 0;
+}
+
+template <typename Controller>
+void RotorReset(void* instance) {
+  static_cast<RotorInstance<Controller>*>(instance)->controller.Reset();
+}
+
+template <typename Controller>
+void RotorDestroy(void* instance) {
+  delete static_cast<RotorInstance<Controller>*>(instance);
+}
+
+// Mass, gravity and principal inertia of the vehicle, for either controller's Vehicle.
+template <typename Vehicle>
+Vehicle RigidBody(const mjfVehicleInfo& info) {
+  Vehicle vehicle;
+  vehicle.mass = info.mass;
+  vehicle.gravity = info.gravity;
+  for (int i = 0; i < 3; ++i) vehicle.inertia[i] = info.inertia[i];
+  return vehicle;
+}
 
 void* CascadeCreate(const mjfCreateContext* ctx) {
   return mjf::plugin::CreateOrExplain(ctx, [ctx]() -> void* {
@@ -134,32 +174,10 @@ void* CascadeCreate(const mjfCreateContext* ctx) {
             ? Mixer::Priority::kRollPitchFirst
             : Mixer::Priority::kThrustFirst;
     const mjfVehicleInfo& info = RequireVehicle(ctx, Mixer::kRotors);
-    PdCascade::Vehicle vehicle;
-    vehicle.mass = info.mass;
-    vehicle.gravity = info.gravity;
-    for (int i = 0; i < 3; ++i) vehicle.inertia[i] = info.inertia[i];
-    return new CascadeInstance{ctx->vehicle, PdCascade(gains, vehicle, ToRotors(info))};
+    return new RotorInstance<PdCascade>{
+        ctx->vehicle, PdCascade(gains, RigidBody<PdCascade::Vehicle>(info), ToRotors(info))};
   });
 }
-
-int CascadeCompute(void* instance, const mjfStepContext* ctx) {
-  auto* self = static_cast<CascadeInstance*>(instance);
-  if (self->vehicle >= ctx->n_vehicles || !ctx->controls) {
-    return mjf::plugin::Fail(ctx,
-                             "called for a vehicle the step does not have, or without controls");
-  }
-  mjf::attitude::Setpoint setpoint;
-  if (!ToSetpoint(ctx->setpoints[self->vehicle], &setpoint)) {
-    return mjf::plugin::Fail(ctx, "the setpoint is not finite", 2);
-  }
-  const PdCascade::Output out =
-      self->controller.Update(ToState(ctx->states[self->vehicle]), setpoint, ctx->timestep);
-  for (int k = 0; k < Mixer::kRotors; ++k) ctx->controls[k] = out.ctrl[k];
-  return 0;
-}
-
-void CascadeReset(void* instance) { static_cast<CascadeInstance*>(instance)->controller.Reset(); }
-void CascadeDestroy(void* instance) { delete static_cast<CascadeInstance*>(instance); }
 
 const mjfPlugin kPdCascade = {
     MJF_ABI_VERSION,
@@ -171,9 +189,9 @@ const mjfPlugin kPdCascade = {
     Mixer::kRotors,
     kRotorNames,
     CascadeCreate,
-    CascadeCompute,
-    CascadeReset,
-    CascadeDestroy,
+    RotorCompute<PdCascade>,
+    RotorReset<PdCascade>,
+    RotorDestroy<PdCascade>,
     nullptr};
 
 // ---------------------------------------------------------------------------------------------
@@ -196,11 +214,6 @@ const mjfAttribute kGeometricAttributes[] = {
     {kZBw, "0", "rad/s: altitude loop natural frequency (0: att_bw / 2.5)"},
     {kRateKi, "0.1", "rate integral zero as a fraction of rate_bw (0: no integral, <= 0.5)"},
     {kThrustMargin, "0.1", "fraction of the rotors' total thrust kept for torque (0 .. 0.5)"},
-};
-
-struct GeometricInstance {
-  int vehicle;
-  Geometric controller;
 };
 
 void* GeometricCreate(const mjfCreateContext* ctx) {
@@ -228,39 +241,16 @@ void* GeometricCreate(const mjfCreateContext* ctx) {
     Require(gains.thrust_margin >= 0 && gains.thrust_margin < 0.5, kThrustMargin,
             "0 <= thrust_margin < 0.5", gains.thrust_margin);
     const mjfVehicleInfo& info = RequireVehicle(ctx, Mixer::kRotors);
-    Geometric::Vehicle vehicle;
-    vehicle.mass = info.mass;
-    vehicle.gravity = info.gravity;
-    for (int i = 0; i < 3; ++i) vehicle.inertia[i] = info.inertia[i];
+    Geometric::Vehicle vehicle = RigidBody<Geometric::Vehicle>(info);
     for (int k = 0; k < Mixer::kRotors; ++k) {
       vehicle.motor_lag = std::max(vehicle.motor_lag, info.actuators[k].time_constant);
     }
     vehicle.timestep = ctx->timestep;
     // Geometric's own checks (derived bandwidths, hover authority) throw invalid_argument
     // naming the key; CreateOrExplain passes the message on.
-    return new GeometricInstance{ctx->vehicle, Geometric(gains, vehicle, ToRotors(info))};
+    return new RotorInstance<Geometric>{ctx->vehicle, Geometric(gains, vehicle, ToRotors(info))};
   });
 }
-
-int GeometricCompute(void* instance, const mjfStepContext* ctx) {
-  auto* self = static_cast<GeometricInstance*>(instance);
-  if (self->vehicle >= ctx->n_vehicles || !ctx->controls) {
-    return mjf::plugin::Fail(ctx, "no controls for this vehicle");
-  }
-  mjf::attitude::Setpoint setpoint;
-  if (!ToSetpoint(ctx->setpoints[self->vehicle], &setpoint)) {
-    return mjf::plugin::Fail(ctx, "non-finite setpoint (acc, pos[2], vel[2] or yaw)", 2);
-  }
-  const Geometric::Output out =
-      self->controller.Update(ToState(ctx->states[self->vehicle]), setpoint, ctx->timestep);
-  for (int k = 0; k < Mixer::kRotors; ++k) ctx->controls[k] = out.ctrl[k];
-  return 0;
-}
-
-void GeometricReset(void* instance) {
-  static_cast<GeometricInstance*>(instance)->controller.Reset();
-}
-void GeometricDestroy(void* instance) { delete static_cast<GeometricInstance*>(instance); }
 
 const mjfPlugin kGeometric = {
     MJF_ABI_VERSION,
@@ -273,9 +263,9 @@ const mjfPlugin kGeometric = {
     Mixer::kRotors,
     kRotorNames,
     GeometricCreate,
-    GeometricCompute,
-    GeometricReset,
-    GeometricDestroy,
+    RotorCompute<Geometric>,
+    RotorReset<Geometric>,
+    RotorDestroy<Geometric>,
     nullptr};
 
 // ---------------------------------------------------------------------------------------------
