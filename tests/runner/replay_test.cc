@@ -5,7 +5,6 @@
 #include "mjformation/runner/replay.hpp"
 
 #include <gtest/gtest.h>
-#include <png.h>
 #include <sys/stat.h>
 
 #include <cstdlib>
@@ -13,23 +12,13 @@
 
 #include "mjformation/runner/config.hpp"
 #include "mjformation/runner/run.hpp"
+#include "png_util.hpp"
 #include "test_util.hpp"
 
 namespace mjf::runner {
 namespace {
 
-std::vector<unsigned char> ReadPng(const std::string& path, int* width, int* height) {
-  png_image image{};
-  image.version = PNG_IMAGE_VERSION;
-  std::vector<unsigned char> pixels;
-  if (!png_image_begin_read_from_file(&image, path.c_str())) return pixels;
-  image.format = PNG_FORMAT_RGB;
-  pixels.resize(PNG_IMAGE_SIZE(image));
-  png_image_finish_read(&image, nullptr, pixels.data(), 0, nullptr);
-  *width = static_cast<int>(image.width);
-  *height = static_cast<int>(image.height);
-  return pixels;
-}
+using mjf::testing::ReadPng;
 
 // Fraction of pixels whose largest channel difference exceeds 25 of 255.
 double DifferentPixels(const std::string& a_path, const std::string& b_path) {
@@ -52,12 +41,11 @@ class ReplayTest : public ::testing::Test {
   // Exp 2 for 8 s (the followers sweep across the picture), snapshots at 0, 4 and 8 s.
   static void SetUpTestSuite() {
     run_dir_ = new std::string(mjf::testing::TempDir("replay") + "/run");
-    const ExperimentConfig c =
-        LoadExperiment(std::string(MJF_SOURCE_DIR) + "/experiments/exp2.toml",
-                       {"run.duration=8.0", "run.metric_window=[5.0, 8.0]",
-                        "render.snapshots=[0.0, 4.0, 8.0]", "render.width=640",
-                        "render.height=360", "render.video_width=320", "render.video_height=240",
-                        "render.video_fps=5.0"});
+    const ExperimentConfig c = LoadExperiment(
+        std::string(MJF_SOURCE_DIR) + "/experiments/exp2.toml",
+        {"run.duration=8.0", "run.metric_window=[5.0, 8.0]", "render.snapshots=[0.0, 4.0, 8.0]",
+         "render.width=640", "render.height=360", "render.video_width=320",
+         "render.video_height=240", "render.video_fps=5.0"});
     RunOptions o;
     o.out_dir = *run_dir_;
     const RunResult r = RunExperiment(c, o);

@@ -5,7 +5,6 @@
 // threads at once.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-#include <png.h>
 
 #include <cmath>
 #include <nlohmann/json.hpp>
@@ -14,10 +13,13 @@
 #include "mjformation/runner/output.hpp"
 #include "mjformation/runner/run.hpp"
 #include "mjformation/runner/simulation.hpp"
+#include "png_util.hpp"
 #include "test_util.hpp"
 
 namespace mjf::runner {
 namespace {
+
+using mjf::testing::ReadPng;
 
 using mjf::testing::HoverExperiment;
 using mjf::testing::Parse;
@@ -76,20 +78,6 @@ std::string SnapshotExperiment(double duration) {
 
 nlohmann::json Summary(const std::string& dir) {
   return nlohmann::json::parse(ReadFile(dir + "/summary.json"));
-}
-
-// Reads an RGB PNG; returns its pixels.
-std::vector<unsigned char> ReadPng(const std::string& path, int* width, int* height) {
-  png_image image{};
-  image.version = PNG_IMAGE_VERSION;
-  std::vector<unsigned char> pixels;
-  if (!png_image_begin_read_from_file(&image, path.c_str())) return pixels;
-  image.format = PNG_FORMAT_RGB;
-  pixels.resize(PNG_IMAGE_SIZE(image));
-  png_image_finish_read(&image, nullptr, pixels.data(), 0, nullptr);
-  *width = static_cast<int>(image.width);
-  *height = static_cast<int>(image.height);
-  return pixels;
 }
 
 TEST(RunTest, WritesACompleteRunDirectory) {
@@ -158,7 +146,8 @@ TEST(RunTest, NonFiniteRunKeepsPartialResultsMarkedIncomplete) {
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 100);  // rows for t in [0, 1) s
 }
 
-// A MuJoCo warning (here bad ctrl: an absurd force command on the point mass) stops the run the same way.
+// A MuJoCo warning (here bad ctrl: an absurd force command on the point mass) stops the run the
+// same way.
 TEST(RunTest, MujocoWarningStopsTheRunAndKeepsWhatWasRecorded) {
   std::string text = HoverExperiment(1, 3.0);
   text.replace(text.find("model = \"quadrotor\""), 19, "model = \"pointmass\"");
