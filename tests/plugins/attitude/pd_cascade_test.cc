@@ -1,12 +1,14 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
 // mjcf/quadrotor.xml with the pure PdCascade and guidance classes in MuJoCo closed loops.
+#include "mjformation/attitude/pd_cascade.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 
-#include "mjformation/attitude/pd_cascade.hpp"
-#include "mjformation/guidance/guidance.hpp"
+#include "mjformation/guidance/circle.hpp"
+#include "mjformation/guidance/hover.hpp"
 #include "vehicle_fixture.hpp"
 
 namespace mjf::test {

@@ -1,10 +1,11 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
 // mjcf/pointmass.xml with PointMassDirect: an exact double integrator.
+#include "mjformation/attitude/pointmass_direct.hpp"
+
 #include <cmath>
 #include <cstdio>
 
-#include "mjformation/attitude/pointmass_direct.hpp"
 #include "vehicle_fixture.hpp"
 
 namespace mjf::test {

@@ -1,24 +1,15 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
-#include "mjformation/guidance/guidance.hpp"
+#include "mjformation/guidance/circle.hpp"
 
 #include <cmath>
 #include <stdexcept>
-#include <string>
+
+#include "check.hpp"
 
 namespace mjf::guidance {
-namespace {
 
-void RequireGains(const TrackingGains& g) {
-  if (!(g.kp >= 0) || !(g.kd >= 0) || !std::isfinite(g.kp) || !std::isfinite(g.kd)) {
-    throw std::invalid_argument("guidance gains kp, kd must be finite and >= 0");
-  }
-}
-
-void RequireFinite(double v, const char* what) {
-  if (!std::isfinite(v)) throw std::invalid_argument(std::string(what) + " must be finite");
-}
-
-}  // namespace
+using check::RequireFinite;
+using check::RequireGains;
 
 CircleGuidance::CircleGuidance(const Config& config) : config_(config) {
   RequireGains(config.gains);
@@ -49,22 +40,6 @@ GuidanceOutput CircleGuidance::Update(double t, const Vec3& pos, const Vec3& vel
   for (int i = 0; i < 2; ++i) {
     out.acc[i] +=
         config_.gains.kp * (out.pos[i] - pos[i]) + config_.gains.kd * (out.vel[i] - vel[i]);
-  }
-  return out;
-}
-
-HoverGuidance::HoverGuidance(const Config& config) : config_(config) {
-  RequireGains(config.gains);
-  for (double p : config.position) RequireFinite(p, "position");
-  RequireFinite(config.yaw, "yaw");
-}
-
-GuidanceOutput HoverGuidance::Update(const Vec3& pos, const Vec3& vel) const {
-  GuidanceOutput out;
-  out.pos = config_.position;
-  out.yaw = config_.yaw;
-  for (int i = 0; i < 2; ++i) {
-    out.acc[i] = config_.gains.kp * (out.pos[i] - pos[i]) - config_.gains.kd * vel[i];
   }
   return out;
 }

@@ -1,9 +1,9 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
-// Theorems 1-2 against non-cooperative leaders (issue 9): the leader's input u_0 is the command
-// of the seeded random_accel and bang_bang laws (plugins/guidance, leaders.hpp), unknown to the
-// followers, inside [u_min, u_max] (Assumption 1). Everything runs on the ideal models of the
-// paper, without MuJoCo:
+// Theorems 1-2 against non-cooperative leaders: the leader's input u_0 is the command
+// of the seeded random_accel and bang_bang laws (plugins/guidance, random_accel.hpp and
+// bang_bang.hpp), unknown to the followers, inside [u_min, u_max] (Assumption 1). Everything runs
+// on the ideal models of the paper, without MuJoCo:
 //  - discrete protocol (48) on the exact discrete model (40) at T: after reaching, |s_i(k)| <=
 //    Delta_i(T) at every sample of every follower (Theorem 2), Delta from our own transcription;
 //  - corrected continuous protocol (30) (switching compensation, exponential reaching) on the
@@ -25,7 +25,8 @@
 #include <mjformation/core/shape.hpp>
 #include <vector>
 
-#include "mjformation/guidance/leaders.hpp"
+#include "mjformation/guidance/bang_bang.hpp"
+#include "mjformation/guidance/random_accel.hpp"
 #include "test_util.hpp"
 
 namespace mjf::core {

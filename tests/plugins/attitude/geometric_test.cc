@@ -11,7 +11,7 @@
 #include <string>
 
 #include "mjformation/attitude/pd_cascade.hpp"
-#include "mjformation/guidance/guidance.hpp"
+#include "mjformation/guidance/hover.hpp"
 #include "vehicle_fixture.hpp"
 
 namespace mjf::test {
