@@ -1,10 +1,10 @@
 #!/usr/bin/python3
 # Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 """Writes experiments/leaders/: Exps 1 (corrected: exponential), 2, 3 and the consensus baseline
-with each maneuvering leader (issue 9), and the recorded path the `trajectory` leader replays.
+with each maneuvering leader, and the recorded path the `trajectory` leader replays.
 
 The files are checked in; rerun this after changing a base experiment:
-    /usr/bin/python3 scripts/leader_experiments.py
+    /usr/bin/python3 dev/leader_experiments.py
 Each file is its base experiment with the [leader] section replaced, a new [run] name and
 record_leader_acceleration = true (the measured leader acceleration in timeseries.csv).
 """

@@ -1,15 +1,19 @@
 #!/usr/bin/env python3
-"""Lists functions in runner/ longer than a limit (default 60 lines): each does one job.
+"""Lists functions in runner/ and plugins/ longer than a limit (default 60 lines): each does one job.
 
-Usage: /usr/bin/python3 scripts/function_lengths.py [LIMIT]   (exit 1 when any is longer)
-A function is a block opened by a line at column 0 (or indented inside a class) ending in '{'
-after a ')' and closed by the matching '}' at the same indentation.
+Usage: /usr/bin/python3 dev/function_lengths.py [LIMIT] [FOLDER...]   (exit 1 when any is longer)
+FOLDER: relative to the repository root (default: runner plugins); every .cc, .hpp and .h in it.
+ctest runs it (test function_lengths). A function is a block opened by a line at column 0 (or
+indented inside a class) ending in '{' after a ')' and closed by the matching '}' at the same
+indentation.
 """
 import pathlib
 import re
 import sys
 
-limit = int(sys.argv[1]) if len(sys.argv) > 1 else 60
+args = sys.argv[1:]
+limit = int(args.pop(0)) if args and args[0].isdigit() else 60
+folders = args or ["runner", "plugins"]
 root = pathlib.Path(__file__).resolve().parent.parent
 long_ones = []
 
@@ -21,7 +25,18 @@ def strip(line):
     return line.split("//")[0]
 
 
-for path in sorted((root / "runner").rglob("*.cc")):
+def sources():
+    """Every C++ source and header of the folders, in a stable order; a missing folder is an error."""
+    for folder in folders:
+        base = root / folder
+        if not base.is_dir():
+            sys.exit(f"function_lengths.py: no folder {base}")
+        for path in sorted(base.rglob("*")):
+            if path.suffix in (".cc", ".hpp", ".h") and path.is_file():
+                yield path
+
+
+for path in sources():
     lines = [strip(x) for x in path.read_text().split("\n")]
     depth, stack = 0, []  # stack of (depth before the body, start line, signature)
     signature_start = 0
