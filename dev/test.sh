@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs what is missing, builds, and runs every test (scripts/test.sh forwards here): the C++
-# (through ctest), then all of them again under AddressSanitizer + UBSan.
+# suites and the analysis pytest (through ctest), then all of them again under AddressSanitizer + UBSan.
 # Set MJF_SKIP_SANITIZE=1 to skip the sanitizer build.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)

@@ -8,6 +8,8 @@
 #   report.py includes the same section)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
+# The analysis entry scripts import mjfanalysis: installed, or from the source tree (analysis/README.md).
+export PYTHONPATH="$root/analysis${PYTHONPATH:+:$PYTHONPATH}"
 out=$root/results
 jobs=2
 report=1

@@ -9,6 +9,8 @@
 # Usage: scripts/reproduce.sh [--video] [--no-leaders] [--no-map] [--out DIR]
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
+# The analysis entry scripts import mjfanalysis: installed, or from the source tree (analysis/README.md).
+export PYTHONPATH="$root/analysis${PYTHONPATH:+:$PYTHONPATH}"
 out=$root/results
 video=()
 leaders=1

@@ -7,6 +7,8 @@
 # Usage: scripts/rocking_diagnosis.sh [OUT_DIR]   (default results/rocking; 60 runs, about 2 minutes)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
+# The analysis entry scripts import mjfanalysis: installed, or from the source tree (analysis/README.md).
+export PYTHONPATH="$root/analysis${PYTHONPATH:+:$PYTHONPATH}"
 out=${1:-$root/results/rocking}
 bin=$root/build/runner/mjformation
 [ -x "$bin" ] || MJF_BUILD_TARGET=mjformation bash "$root/scripts/build.sh" "$root/build"

@@ -12,6 +12,8 @@
 # Usage: scripts/study_network.sh [seeds (10)] [out (runs/study_network)] [jobs (2)]
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# The analysis entry scripts import mjfanalysis: installed, or from the source tree (analysis/README.md).
+export PYTHONPATH="$PWD/analysis${PYTHONPATH:+:$PYTHONPATH}"
 seeds=${1:-10}
 out=${2:-runs/study_network}
 jobs=${3:-2}

@@ -9,6 +9,8 @@
 # Usage: scripts/study_realism.sh [seeds (20)] [out (runs/study_realism)] [jobs (2)]
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# The analysis entry scripts import mjfanalysis: installed, or from the source tree (analysis/README.md).
+export PYTHONPATH="$PWD/analysis${PYTHONPATH:+:$PYTHONPATH}"
 seeds=${1:-20}
 out=${2:-runs/study_realism}
 jobs=${3:-2}
