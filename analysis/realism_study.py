@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 # Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
-"""Table and figure of the sensor-noise x wind study (scripts/study_realism.sh, issue 11).
+"""Table and figure of the sensor-noise x wind study (scripts/study_realism.sh).
 
 Reads <study>/<exp>/sweep.json (mjformation sweep --seeds) and prints a Markdown table of the
 mean sigma_f over the runs' metric window (summary.json metrics.sigma_f_window) with its 95 %

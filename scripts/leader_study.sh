@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Non-cooperative leaders (issue 9): every experiment of experiments/leaders/ on the quadrotor
+# Non-cooperative leaders: every experiment of experiments/leaders/ on the quadrotor
 # and the point mass (seeded leaders with seeds 1-5), sigma_f against the sample period T
 # (12 periods, 0.005-0.2 s, circle and bang_bang leaders), the theory curves of
 # leader_theory_test, and the report section: RESULTS/report/leaders.md.

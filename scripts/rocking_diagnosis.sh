@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# "Why the vehicles rock" (issue 12, docs/DISCUSSION.md): Exps 2 and 3 on the ideal point mass
+# "Why the vehicles rock" (docs/DISCUSSION.md): Exps 2 and 3 on the ideal point mass
 # with a first-order actuation lag tau (0 .. 0.3 s; the quadrotor plugins' small-step attitude
 # bandwidths give tau = 0.088 s for pd_cascade and 0.141 s for geometric), with and without an
 # acceleration limit equal to the quadrotor's g tan(0.55 rad) = 6.0 m/s^2 per axis, beside the
