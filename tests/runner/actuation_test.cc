@@ -31,9 +31,12 @@ std::string TinyVehicle(bool lag) {
          "<site name=\"r0\" pos=\"0.2 0.05 0.01\"/>"
          "<site name=\"r1\" pos=\"-0.15 -0.1 0\" euler=\"0.1 0 0.5\"/></body></worldbody>"
          "<actuator><general name=\"a0\" site=\"r0\" gear=\"0 0 1 0 0 0.05\" ctrllimited=\"true\" "
-         "ctrlrange=\"0 10\"" + dyn + "/>"
+         "ctrlrange=\"0 10\"" +
+         dyn +
+         "/>"
          "<general name=\"a1\" site=\"r1\" gear=\"0 0 1 0 0 -0.05\" ctrllimited=\"true\" "
-         "ctrlrange=\"0 10\"" + dyn + "/></actuator></mujoco>";
+         "ctrlrange=\"0 10\"" +
+         dyn + "/></actuator></mujoco>";
 }
 
 struct Tiny {
@@ -55,7 +58,8 @@ struct Tiny {
       std::memcpy(info.gear, m->actuator_gear + 6 * a, sizeof(info.gear));
       info.ctrl_min = m->actuator_ctrlrange[2 * a];
       info.ctrl_max = m->actuator_ctrlrange[2 * a + 1];
-      info.time_constant = m->actuator_dyntype[a] == mjDYN_FILTER ? m->actuator_dynprm[mjNDYN * a] : 0;
+      info.time_constant =
+          m->actuator_dyntype[a] == mjDYN_FILTER ? m->actuator_dynprm[mjNDYN * a] : 0;
       b.actuator_info.push_back(info);
       bindings.wrench_gain.push_back(m->actuator_gainprm[mjNGAIN * a]);
     }
@@ -150,7 +154,7 @@ TEST(ActuationTest, NoDofsNoForce) {
   Tiny t(false);
   const mjtNum wrench[6] = {1, 2, 3, 4, 5, 6};
   mju_zero(t.d->qfrc_applied, t.m->nv);
-  AddWrenchAtCentreOfMass(t.m, t.d, 0, wrench);  // the world
+  AddWrenchAtCentreOfMass(t.m, t.d, 0, wrench);                                     // the world
   AddWrenchAtCentreOfMass(t.m, t.d, mj_name2id(t.m, mjOBJ_BODY, "fixed"), wrench);  // welded
   for (int j = 0; j < t.m->nv; ++j) EXPECT_EQ(t.d->qfrc_applied[j], 0.0);
 }

@@ -22,8 +22,7 @@ TEST(BenchTest, ReportOfTwoSizes) {
   const std::string dir = TempDir("bench");
   const std::string text = HoverExperiment(1, 0.02);
   const std::string exp = WriteFile(dir + "/e.toml", text);
-  ASSERT_EQ(Cli({"bench", exp, "--followers", "1", "2", "--json", dir + "/b.json"}),
-            0);
+  ASSERT_EQ(Cli({"bench", exp, "--followers", "1", "2", "--json", dir + "/b.json"}), 0);
   const auto j = nlohmann::json::parse(ReadFile(dir + "/b.json"));
   EXPECT_EQ(j["experiment"], exp);
   EXPECT_EQ(j["duration_s"], 0.02);

@@ -78,7 +78,8 @@ TEST(FrameViewTest, OverlaySlotsRingAndLabel) {
   EXPECT_EQ(o.trails[2].front(), (std::array<double, 3>{2, 0, 1}));
   // 97 points closing a 10 m circle about the leader, at the altitude.
   ASSERT_EQ(o.ring_points.size(), 97u);
-  EXPECT_EQ(o.ring_points.front(), o.ring_points.back());
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(o.ring_points.front()[k], o.ring_points.back()[k], 1e-12);
+  EXPECT_NEAR(o.ring_points.front()[0], 15.0, 1e-12);  // starts on +x of the leader
   for (const auto& q : o.ring_points) {
     EXPECT_NEAR(std::hypot(q[0] - 5, q[1] - 5), 10.0, 1e-12);
     EXPECT_EQ(q[2], 2.5);

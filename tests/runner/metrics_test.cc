@@ -5,6 +5,7 @@
 #include "mjformation/runner/metrics.hpp"
 
 #include <gtest/gtest.h>
+#include <mujoco/mujoco.h>
 
 #include <cmath>
 #include <limits>
@@ -87,7 +88,7 @@ TEST(MetricsTest, SigmaSlotsAndErrorsOfAKnownConfiguration) {
   EXPECT_TRUE(m["max_abs_s"].is_null());
   EXPECT_EQ(m["saturation_time_s"].get<double>(), 0.0);
   EXPECT_EQ(m["max_follower_tilt_deg_in_window"].get<double>(), 0.0);  // a point mass
-  EXPECT_EQ(m["sigma_f_window"], nlohmann::json::parse("[0.0, 0.01]"));
+  EXPECT_EQ(m["sigma_f_window"], nlohmann::ordered_json::parse("[0.0, 0.01]"));
 }
 
 TEST(MetricsTest, OnlyAccumulatedSamplesEnterTheStatistics) {
@@ -111,6 +112,9 @@ TEST(MetricsTest, MeanOverTheWindowOnly) {
   ExperimentConfig c = Parse(PointMassExperiment(-1.7, 0.4, 2.0, -1.2, 0.01));
   c.metric_window = {0.005, 0.01};
   Simulation windowed(c);
+  // Follower 1 starts at 1 m/s in x: eq. (68) adds its velocity error, sqrt(1.69 + 1).
+  const mjModel* model = windowed.model();
+  windowed.data()->qvel[model->jnt_dofadr[mj_name2id(model, mjOBJ_JOINT, "uav1_x")]] = 1.0;
   OnlineMetrics metrics(windowed);
   std::vector<double> slots(6);
   std::vector<double> sigma;
@@ -120,6 +124,7 @@ TEST(MetricsTest, MeanOverTheWindowOnly) {
     if (step < windowed.total_steps()) windowed.Integrate();
   }
   ASSERT_EQ(sigma.size(), 2u);
+  EXPECT_NEAR(sigma[0], std::sqrt(2.69), 1e-12);
   const auto m = metrics.Summary(windowed);
   EXPECT_EQ(m["sigma_f_samples"], 1);
   EXPECT_DOUBLE_EQ(m["sigma_f_mean"].get<double>(), sigma[1]);

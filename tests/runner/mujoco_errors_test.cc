@@ -92,7 +92,9 @@ TEST(MujocoErrorsTest, WarningsAreKeptPerThreadAndNotWrittenToTheWorkingDirector
   EXPECT_EQ(seen_by_other, "");
   ClearMujocoWarning();
   EXPECT_EQ(LastMujocoWarning(), "");
-  if (!log_existed) EXPECT_NE(access(log.c_str(), F_OK), 0) << "MuJoCo wrote " << log;
+  if (!log_existed) {
+    EXPECT_NE(access(log.c_str(), F_OK), 0) << "MuJoCo wrote " << log;
+  }
 }
 
 }  // namespace

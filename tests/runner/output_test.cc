@@ -52,7 +52,8 @@ TEST(OutputTest, ConfigEchoNamesTheFileAloneAndTheOverrides) {
   ExperimentConfig c;
   c.source_path = "/home/someone/experiments/exp2.toml";
   c.source_text = "[run]\nname = \"x\"\n";
-  EXPECT_EQ(ConfigEcho(c), "# Experiment file exp2.toml as run by mjformation.\n[run]\nname = \"x\"\n");
+  EXPECT_EQ(ConfigEcho(c),
+            "# Experiment file exp2.toml as run by mjformation.\n[run]\nname = \"x\"\n");
   c.overrides = {"run.seed=3", "formation.rho=0.1"};
   c.effective_text = "merged\n";
   EXPECT_EQ(ConfigEcho(c),
@@ -99,8 +100,9 @@ TEST(OutputTest, RefusesAFileAndANonEmptyDirectoryWithoutOverwrite) {
 TEST(OutputTest, OverwriteNeedsTheMarkerAndDeletesNothingOtherwise) {
   const std::string dir = TempDir("out_nomarker");
   WriteFile(dir + "/timeseries.csv", "someone's");
-  EXPECT_THAT(OutputErrorOf([&] { RunDirectory(dir, true); }),
-              AllOf(HasSubstr("not a mjformation run directory"), HasSubstr("nothing was deleted")));
+  EXPECT_THAT(
+      OutputErrorOf([&] { RunDirectory(dir, true); }),
+      AllOf(HasSubstr("not a mjformation run directory"), HasSubstr("nothing was deleted")));
   EXPECT_EQ(ReadFile(dir + "/timeseries.csv"), "someone's");
 }
 
@@ -133,8 +135,8 @@ TEST(OutputTest, OverwriteRefusesLinksAndFoldersInsideSnapshots) {
 TEST(OutputTest, OverwriteReplacesARunsOwnFiles) {
   const std::string dir = TempDir("out_replace");
   { RunDirectory first(dir, false); }
-  for (const char* f : {"config.toml", "scene.xml", "timeseries.csv", "summary.json",
-                        "video.mp4", "summary.json.tmp", "snapshots/t001.00.png"}) {
+  for (const char* f : {"config.toml", "scene.xml", "timeseries.csv", "summary.json", "video.mp4",
+                        "summary.json.tmp", "snapshots/t001.00.png"}) {
     WriteFile(dir + "/" + f, "old");
   }
   fs::create_directories(dir + "/figures");
@@ -173,8 +175,9 @@ TEST(OutputTest, TimeseriesHeaderColumns) {
   EXPECT_LT(last_usual, first_meas);
   EXPECT_LT(last_meas, first_wind);
   EXPECT_LT(last_wind, extra);
-  EXPECT_THAT(all, HasSubstr(",uav0_px_meas,uav0_py_meas,uav0_pz_meas,uav0_vx_meas,uav0_vy_meas,"
-                             "uav0_vz_meas,uav0_roll_meas,uav0_pitch_meas,uav0_yaw_meas,uav1_px_meas"));
+  EXPECT_THAT(all,
+              HasSubstr(",uav0_px_meas,uav0_py_meas,uav0_pz_meas,uav0_vx_meas,uav0_vy_meas,"
+                        "uav0_vz_meas,uav0_roll_meas,uav0_pitch_meas,uav0_yaw_meas,uav1_px_meas"));
   EXPECT_THAT(all, HasSubstr(",uav0_wind_x,uav0_wind_y,uav0_wind_z,uav1_wind_x,uav1_wind_y,"
                              "uav1_wind_z,leader_ax"));
   EXPECT_EQ(std::count(all.begin(), all.end(), ','), 1 + 2 * (15 + 9 + 3) + 2);

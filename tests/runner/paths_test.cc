@@ -76,8 +76,8 @@ TEST(PathsTest, FilesAndDirectories) {
 
 TEST(PathsTest, ExecutableDirIsTheFolderOfThisTestBinary) {
   // This test executable is built into the build tree's tests/runner folder.
-  EXPECT_TRUE(std::filesystem::equivalent(ExecutableDir(),
-                                          std::string(MJF_BINARY_DIR) + "/tests/runner"))
+  EXPECT_TRUE(
+      std::filesystem::equivalent(ExecutableDir(), std::string(MJF_BINARY_DIR) + "/tests/runner"))
       << ExecutableDir();
 }
 
@@ -111,10 +111,10 @@ TEST(PathsTest, MissingModelsNameWhereTheyWereLookedFor) {
               AllOf(HasSubstr(dir + "/exp.toml: model file 'models/none.xml' not found"),
                     HasSubstr("looked at " + dir + "/models/none.xml")));
   ScopedEnv env("MJF_MJCF_DIR", dir.c_str());
-  EXPECT_THAT(ConfigErrorOf("nosuchvehicle", dir + "/exp.toml"),
-              AllOf(HasSubstr("model 'nosuchvehicle' not found"),
-                    HasSubstr(dir + "/nosuchvehicle.xml"),
-                    HasSubstr("/share/mjformation/mjcf/nosuchvehicle.xml")));
+  EXPECT_THAT(
+      ConfigErrorOf("nosuchvehicle", dir + "/exp.toml"),
+      AllOf(HasSubstr("model 'nosuchvehicle' not found"), HasSubstr(dir + "/nosuchvehicle.xml"),
+            HasSubstr("/share/mjformation/mjcf/nosuchvehicle.xml")));
 }
 
 TEST(PathsTest, PluginSearchPathOrder) {

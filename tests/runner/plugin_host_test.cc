@@ -57,10 +57,11 @@ TEST(PluginHostTest, LoadsTheTestLibrariesAndNotesTheForeignAbi) {
   EXPECT_EQ(p.library, kTestPlugins + "/libmjf_test_plugins.so");
   // The ABI-99 descriptor is not loaded, and the problem names both versions.
   for (const auto& q : registry.plugins()) EXPECT_STRNE(q.descriptor->name, "future_abi");
-  EXPECT_TRUE(AnyContains(registry.problems(),
-                          kTestPlugins + "/libmjf_test_badabi.so: plugin #0 was built for plugin "
-                                         "ABI 99, this runner speaks ABI " +
-                              std::to_string(MJF_ABI_VERSION)));
+  EXPECT_TRUE(
+      AnyContains(registry.problems(), kTestPlugins +
+                                           "/libmjf_test_badabi.so: plugin #0 was built for plugin "
+                                           "ABI 99, this runner speaks ABI " +
+                                           std::to_string(MJF_ABI_VERSION)));
   EXPECT_EQ(registry.search_path(), std::vector<std::string>{kTestPlugins});
 }
 
@@ -110,8 +111,7 @@ TEST(PluginHostTest, FirstFolderWinsOnDuplicates) {
   fs::copy_file(kTestPlugins + "/libmjf_test_plugins.so", same_name + "/libmjf_test_plugins.so");
   {
     PluginRegistry registry({same_name, kTestPlugins});
-    EXPECT_EQ(registry.Find("test_required", "w").library,
-              same_name + "/libmjf_test_plugins.so");
+    EXPECT_EQ(registry.Find("test_required", "w").library, same_name + "/libmjf_test_plugins.so");
     EXPECT_FALSE(AnyContains(registry.problems(), "shadowed"));
   }
   // Another library defining the same plugin name: shadowed, and said so.
@@ -138,7 +138,8 @@ const mjfAttribute kAttributes[] = {{"gain", "2.0", "a number"},
 
 void* LocalCreate(const mjfCreateContext* ctx) {
   g_counters.seen.clear();
-  for (int i = 0; i < ctx->n_attributes; ++i) g_counters.seen.emplace_back(ctx->keys[i], ctx->values[i]);
+  for (int i = 0; i < ctx->n_attributes; ++i)
+    g_counters.seen.emplace_back(ctx->keys[i], ctx->values[i]);
   for (const auto& [k, v] : g_counters.seen) {
     if (k == "mode" && v != "fast" && v != "slow") {
       std::snprintf(ctx->error, ctx->error_size, "mode must be fast or slow, not '%s'", v.c_str());
@@ -157,9 +158,18 @@ void LocalReport(void*, mjfReportFn emit, void* user) {
   emit(user, "error_bound", 1.5);
 }
 
-const mjfPlugin kLocal = {MJF_ABI_VERSION, "local",     MJF_KIND_FORMATION, "test",
-                          3,               kAttributes, 0,                  nullptr,
-                          LocalCreate,     LocalCompute, LocalReset,        LocalDestroy,
+const mjfPlugin kLocal = {MJF_ABI_VERSION,
+                          "local",
+                          MJF_KIND_FORMATION,
+                          "test",
+                          3,
+                          kAttributes,
+                          0,
+                          nullptr,
+                          LocalCreate,
+                          LocalCompute,
+                          LocalReset,
+                          LocalDestroy,
                           LocalReport};
 
 PluginSection Section(std::map<std::string, AttributeValue> attributes) {
@@ -185,7 +195,9 @@ TEST(PluginHostTest, UnknownAndMissingAttributesAreNamedWithFileLineAndSection) 
             }),
             "exp.toml:11: [formation] rho: plugin 'local' has no attribute 'rho' (its "
             "attributes: gain, period, mode)");
-  EXPECT_EQ(ErrorOf([] { ResolveAttributes(kLocal, Section({{"gain", {"3", 8}}}), "exp.toml"); }),
+  EXPECT_EQ(ErrorOf([] {
+              ResolveAttributes(kLocal, Section({{"gain", {"3", 8}}}), "exp.toml");
+            }),
             "exp.toml:7: [formation] period: plugin 'local' requires attribute 'period' (s: "
             "sample period)");
   // Without a line (a section made in code) the location is the file alone.

@@ -25,12 +25,12 @@ using mjf::testing::TempDir;
 using ::testing::HasSubstr;
 
 TEST(RecordersTest, StepsPerRoundsAndNeverGivesZero) {
-  EXPECT_EQ(StepsPer(0.01, 0.001), 10);     // 100 Hz at 1 kHz
-  EXPECT_EQ(StepsPer(0.1, 0.001), 100);     // rounded, not truncated
+  EXPECT_EQ(StepsPer(0.01, 0.001), 10);  // 100 Hz at 1 kHz
+  EXPECT_EQ(StepsPer(0.1, 0.001), 100);  // rounded, not truncated
   EXPECT_EQ(StepsPer(1.0 / 30, 0.001), 33);
-  EXPECT_EQ(StepsPer(0.0001, 0.001), 1);    // faster than the physics: every step
-  EXPECT_EQ(StepsPer(0.375, 0.25), 2);      // exactly 1.5: rounds away from zero
-  EXPECT_EQ(StepsPer(0.25, 0.375), 1);      // 0.67
+  EXPECT_EQ(StepsPer(0.0001, 0.001), 1);  // faster than the physics: every step
+  EXPECT_EQ(StepsPer(0.375, 0.25), 2);    // exactly 1.5: rounds away from zero
+  EXPECT_EQ(StepsPer(0.25, 0.375), 1);    // 0.67
 }
 
 TEST(RecordersTest, WhatAnExperimentGets) {
@@ -87,13 +87,14 @@ TEST(RecordersTest, ATimeseriesRowByteForByte) {
 }
 
 TEST(RecordersTest, LeaderAccelerationColumnsOnlyWhenAskedFor) {
-  Simulation sim(Parse(PointMassExperiment(-2, 0, 2, 0, 0.02, "record_leader_acceleration = true\n")));
+  Simulation sim(
+      Parse(PointMassExperiment(-2, 0, 2, 0, 0.02, "record_leader_acceleration = true\n")));
   const std::string dir = TempDir("rec_lacc");
   RunDirectory run(dir, true);
   auto recorders = MakeRecorders(sim, &run, {true, false});
   for (auto& r : recorders) r->Finish();
   const std::string csv = ReadFile(dir + "/timeseries.csv");
-  EXPECT_EQ(csv.substr(csv.size() - 20), ",leader_ax,leader_ay\n");
+  EXPECT_EQ(csv.substr(csv.size() - 21), ",leader_ax,leader_ay\n");
 }
 
 TEST(RecordersTest, FinishThrowsWhenTheDiskIsFullAndDestructorsStayQuiet) {

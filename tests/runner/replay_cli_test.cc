@@ -16,6 +16,7 @@ namespace mjf::runner {
 namespace {
 
 using mjf::testing::Cli;
+using mjf::testing::HoverExperiment;
 using mjf::testing::Parse;
 using mjf::testing::PointMassExperiment;
 using mjf::testing::TempDir;
@@ -26,7 +27,7 @@ TEST(ReplayCliTest, SnapshotsOfARecordedRunAtTheNearestRecordedTimes) {
   o.out_dir = base + "/run";
   o.render = false;
   const std::string small = "[render]\nwidth = 64\nheight = 48\n";
-  ASSERT_TRUE(RunExperiment(Parse(PointMassExperiment(-2, 1, 2, 1, 0.05, "", small)), o).complete);
+  ASSERT_TRUE(RunExperiment(Parse(HoverExperiment(1, 0.05) + small), o).complete);
   // 0.024 s is nearest to the row of 0.02 s (rows every 0.01 s).
   ASSERT_EQ(Cli({"replay", o.out_dir, "--snapshots", "0.024", "0.05", "--out", base + "/png"}), 0);
   for (const char* name : {"replay_t000.02.png", "replay_t000.05.png"}) {
@@ -38,6 +39,18 @@ TEST(ReplayCliTest, SnapshotsOfARecordedRunAtTheNearestRecordedTimes) {
     EXPECT_EQ(h, 48);
     EXPECT_EQ(rgb.size(), 64u * 48u * 3u);
   }
+}
+
+// Replay poses each vehicle by its free joint; the point-mass model moves on three slide joints,
+// so its runs cannot be replayed. Refused with the scene named (exit 1), not a crash.
+TEST(ReplayCliTest, APointMassRunIsRefusedByName) {
+  const std::string base = TempDir("replay_cli_pm");
+  RunOptions o;
+  o.out_dir = base + "/run";
+  o.render = false;
+  ASSERT_TRUE(RunExperiment(Parse(PointMassExperiment(-2, 1, 2, 1, 0.02)), o).complete);
+  EXPECT_EQ(Cli({"replay", o.out_dir, "--snapshots", "0.01", "--out", base + "/png"}), 1);
+  EXPECT_FALSE(std::filesystem::exists(base + "/png/replay_t000.01.png"));
 }
 
 TEST(ReplayCliTest, AMissingRunDirectoryIsBadInput) {

@@ -68,7 +68,10 @@ TEST(SimulationTest, StepsClockAndWhatItExposes) {
   EXPECT_EQ(sim.channel(), nullptr);  // central execution
   EXPECT_TRUE(sim.wind().empty());    // calm
   EXPECT_TRUE(sim.vehicle_notes().empty());
-  EXPECT_NE(sim.formation_plugin(), nullptr);
+  // hover as the formation plugin is a guidance plugin flown per follower: no swarm-level one.
+  EXPECT_EQ(sim.formation_plugin(), nullptr);
+  EXPECT_STREQ(sim.leader_plugin().descriptor().name, "hover");
+  EXPECT_STREQ(sim.attitude_plugin(2).descriptor().name, "pointmass_direct");
   EXPECT_THAT(sim.scene_xml(), HasSubstr("uav2_vehicle"));
   EXPECT_EQ(sim.model()->nu, 9);
   for (int k = 0; k < 3; ++k) {

@@ -22,8 +22,8 @@ using mjf::testing::PointMassExperiment;
 std::vector<mjfVehicleState> Truth() {
   std::vector<mjfVehicleState> truth(3);
   for (int i = 0; i < 3; ++i) {
-    truth[i] = mjfVehicleState{{1.0 * i, 2.0, 3.0}, {0.5, -0.25 * i, 0.0}, {1, 0, 0, 0},
-                               {0.01, 0.02, 0.03}};
+    truth[i] = mjfVehicleState{
+        {1.0 * i, 2.0, 3.0}, {0.5, -0.25 * i, 0.0}, {1, 0, 0, 0}, {0.01, 0.02, 0.03}};
   }
   return truth;
 }
@@ -44,7 +44,8 @@ TEST(StageFactoryTest, DefaultsAreIdealSensorsAndNoForces) {
 }
 
 TEST(StageFactoryTest, SensorsSectionGivesSeededNoisyMeasurements) {
-  const std::string text = PointMassExperiment(-2, 0, 2, 0, 0.02, "", "[sensors]\npreset = \"typical\"\n");
+  const std::string text =
+      PointMassExperiment(-2, 0, 2, 0, 0.02, "", "[sensors]\npreset = \"typical\"\n");
   const ExperimentConfig c = Parse(text);
   auto a = MakeSensorStage(c), b = MakeSensorStage(c);
   EXPECT_EQ(dynamic_cast<IdealSensors*>(a.get()), nullptr);

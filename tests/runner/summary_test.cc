@@ -44,13 +44,28 @@ TEST_F(SummaryTest, AnInterruptedRunSaysWhyAndWhere) {
                          {"leader_acceleration", {{"samples", 250}}},
                          {"snapshots", {"snapshots/t000.10.png"}}};
   const Json s = BuildSummary(sim_, r, recorded);
-  EXPECT_EQ(Keys(s),
-            (std::vector<std::string>{"experiment", "complete", "error", "interrupted_by_signal",
-                                      "paper_experiment", "sim_time_s", "duration_s",
-                                      "timestep_s", "steps", "seed", "config_sha256", "versions",
-                                      "n_followers", "vehicle_model", "rotor_model", "plugins",
-                                      "shape", "metrics", "plugin_report", "snapshots",
-                                      "leader_acceleration", "timing"}));
+  EXPECT_EQ(Keys(s), (std::vector<std::string>{"experiment",
+                                               "complete",
+                                               "error",
+                                               "interrupted_by_signal",
+                                               "paper_experiment",
+                                               "sim_time_s",
+                                               "duration_s",
+                                               "timestep_s",
+                                               "steps",
+                                               "seed",
+                                               "config_sha256",
+                                               "versions",
+                                               "n_followers",
+                                               "vehicle_model",
+                                               "rotor_model",
+                                               "plugins",
+                                               "shape",
+                                               "metrics",
+                                               "plugin_report",
+                                               "snapshots",
+                                               "leader_acceleration",
+                                               "timing"}));
   EXPECT_EQ(s["experiment"], "unit");
   EXPECT_EQ(s["complete"], false);
   EXPECT_EQ(s["error"], "interrupted by SIGTERM");
@@ -106,7 +121,8 @@ TEST_F(SummaryTest, WhatRan) {
 }
 
 TEST_F(SummaryTest, RealismSectionsAppearOnlyWhenSwitchedOn) {
-  Simulation windy(Parse(PointMassExperiment(-2, 1, 2, 1, 0.5, "", "[wind]\nmean = [3.0, 0.0, 0.0]\n")));
+  Simulation windy(
+      Parse(PointMassExperiment(-2, 1, 2, 1, 0.5, "", "[wind]\nmean = [3.0, 0.0, 0.0]\n")));
   const Json s = BuildSummary(windy, RunResult{}, Json::object());
   ASSERT_TRUE(s.contains("wind"));
   EXPECT_EQ(s["wind"]["mean"], Json::parse("[3.0, 0.0, 0.0]"));

@@ -60,7 +60,9 @@ TEST(VehicleBindingTest, DefaultRingAboutTheOrigin) {
       EXPECT_NEAR(std::hypot(p[i][0], p[i][1]), 2.0, 1e-12);  // 2 m for small swarms
       EXPECT_EQ(p[i][2], 3);
     }
-    if (n > 1) EXPECT_GE(ClosestNeighbours(p), 1.5) << n;
+    if (n > 1) {
+      EXPECT_GE(ClosestNeighbours(p), 1.5) << n;
+    }
   }
   // Follower 1 on +x, then counter-clockwise.
   const auto p = InitialPositions(Ring(4));
