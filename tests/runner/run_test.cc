@@ -31,7 +31,7 @@ RunOptions Quiet(const std::string& dir) {
   return o;
 }
 
-TEST(RunTest, AnInterruptBeforeTheFirstStepEndsTheRunCleanly) {
+TEST(RunExperimentTest, AnInterruptBeforeTheFirstStepEndsTheRunCleanly) {
   const std::string dir = TempDir("run_int") + "/run";
   RequestInterrupt(SIGTERM);
   const RunResult r = RunExperiment(Parse(PointMassExperiment(-2, 1, 2, 1, 0.05)), Quiet(dir));
@@ -52,7 +52,7 @@ TEST(RunTest, AnInterruptBeforeTheFirstStepEndsTheRunCleanly) {
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1);
 }
 
-TEST(RunTest, SigintIsNamedToo) {
+TEST(RunExperimentTest, SigintIsNamedToo) {
   RequestInterrupt(SIGINT);
   const RunResult r = RunExperiment(Parse(PointMassExperiment(-2, 1, 2, 1, 0.05)), RunOptions{});
   ClearInterrupt();
@@ -60,7 +60,7 @@ TEST(RunTest, SigintIsNamedToo) {
   EXPECT_EQ(r.summary["interrupted_by_signal"], SIGINT);
 }
 
-TEST(RunTest, WithoutARunDirectoryNothingIsWrittenAndTheSummaryIsReturned) {
+TEST(RunExperimentTest, WithoutARunDirectoryNothingIsWrittenAndTheSummaryIsReturned) {
   const std::string cwd = TempDir("run_nodir");
   const auto before = std::distance(std::filesystem::directory_iterator(cwd),
                                     std::filesystem::directory_iterator());
@@ -77,7 +77,7 @@ TEST(RunTest, WithoutARunDirectoryNothingIsWrittenAndTheSummaryIsReturned) {
             before);
 }
 
-TEST(RunTest, TheSummaryOnDiskIsTheReturnedOne) {
+TEST(RunExperimentTest, TheSummaryOnDiskIsTheReturnedOne) {
   const std::string dir = TempDir("run_same") + "/run";
   const RunResult r = RunExperiment(Parse(PointMassExperiment(-2, 1, 2, 1, 0.02)), Quiet(dir));
   ASSERT_TRUE(r.complete) << r.error;
@@ -86,7 +86,7 @@ TEST(RunTest, TheSummaryOnDiskIsTheReturnedOne) {
   EXPECT_EQ(r.summary_error, "");
 }
 
-TEST(RunTest, VersionString) {
+TEST(RunExperimentTest, VersionString) {
   EXPECT_THAT(VersionString(),
               ::testing::MatchesRegex("mjformation [0-9]+\\.[0-9]+\\.[0-9]+ \\(MuJoCo .*, plugin "
                                       "ABI [0-9]+\\)"));

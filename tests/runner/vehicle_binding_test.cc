@@ -105,14 +105,14 @@ TEST(VehicleBindingTest, JitterIsSeededAndBounded) {
   EXPECT_NE(InitialPositions(c), a);
 }
 
-class BindTest : public ::testing::Test {
+class BindVehiclesTest : public ::testing::Test {
  protected:
-  BindTest() : sim_(Parse(PointMassExperiment(-2, 1, 2, 1))) {}
+  BindVehiclesTest() : sim_(Parse(PointMassExperiment(-2, 1, 2, 1))) {}
   const mjfPlugin& attitude() const { return sim_.attitude_plugin(0).descriptor(); }
   Simulation sim_;
 };
 
-TEST_F(BindTest, EveryVehicleBoundByItsPrefix) {
+TEST_F(BindVehiclesTest, EveryVehicleBoundByItsPrefix) {
   const VehicleBindings b = BindVehicles(sim_.model(), sim_.config(), attitude());
   const mjModel* m = sim_.model();
   ASSERT_EQ(b.vehicles.size(), 3u);
@@ -138,7 +138,7 @@ TEST_F(BindTest, EveryVehicleBoundByItsPrefix) {
   EXPECT_EQ(VehiclePrefix(2), "uav2_");
 }
 
-TEST_F(BindTest, AnAttitudePluginDrivingAMissingActuatorIsNamed) {
+TEST_F(BindVehiclesTest, AnAttitudePluginDrivingAMissingActuatorIsNamed) {
   mjfPlugin wrong = attitude();
   const char* const rotors[] = {"rotor0"};
   wrong.n_actuators = 1;
@@ -153,7 +153,7 @@ TEST_F(BindTest, AnAttitudePluginDrivingAMissingActuatorIsNamed) {
   }
 }
 
-TEST_F(BindTest, TheWrenchModelRefusesJointActuators) {
+TEST_F(BindVehiclesTest, TheWrenchModelRefusesJointActuators) {
   ExperimentConfig c = sim_.config();
   c.rotor_model = RotorModel::kWrench;
   try {
@@ -165,7 +165,7 @@ TEST_F(BindTest, TheWrenchModelRefusesJointActuators) {
   }
 }
 
-TEST_F(BindTest, TrueStatesComeFromTheSensors) {
+TEST_F(BindVehiclesTest, TrueStatesComeFromTheSensors) {
   const VehicleBindings b = BindVehicles(sim_.model(), sim_.config(), attitude());
   const mjModel* m = sim_.model();
   mjData* d = mj_makeData(m);
