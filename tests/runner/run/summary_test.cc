@@ -1,15 +1,15 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
-// runner/src/summary.cc: the fields of summary.json, their order, and how complete, error,
+// runner/run/src/summary.cc: the fields of summary.json, their order, and how complete, error,
 // signal and timing are written.
-#include "mjformation/runner/summary.hpp"
+#include "mjformation/run/summary.hpp"
 
 #include <gtest/gtest.h>
 
 #include <csignal>
 
-#include "mjformation/runner/output.hpp"
-#include "mjformation/runner/simulation.hpp"
+#include "mjformation/record/output.hpp"
+#include "mjformation/sim/simulation.hpp"
 #include "point_mass_util.hpp"
 #include "test_util.hpp"
 

@@ -1,6 +1,6 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
-// runner/src/bench.cc: `mjformation bench` on a tiny experiment: the JSON report's sizes, step
+// runner/app/src/bench.cc: `mjformation bench` on a tiny experiment: the JSON report's sizes, step
 // counts and the arithmetic of its ratios; bad input is exit code 1 before anything runs.
 #include <gtest/gtest.h>
 

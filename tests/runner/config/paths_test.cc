@@ -1,7 +1,7 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
-// runner/src/paths.cc: relative paths, the vehicle model look-up and the plugin search path.
-#include "mjformation/runner/paths.hpp"
+// runner/config/src/paths.cc: relative paths, the vehicle model look-up and the plugin search path.
+#include "mjformation/config/paths.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -9,7 +9,7 @@
 
 #include <filesystem>
 
-#include "mjformation/runner/config.hpp"
+#include "mjformation/config/config.hpp"
 #include "test_util.hpp"
 
 namespace mjf::runner {
@@ -75,9 +75,9 @@ TEST(PathsTest, FilesAndDirectories) {
 }
 
 TEST(PathsTest, ExecutableDirIsTheFolderOfThisTestBinary) {
-  // This test executable is built into the build tree's tests/runner folder.
+X
   EXPECT_TRUE(
-      std::filesystem::equivalent(ExecutableDir(), std::string(MJF_BINARY_DIR) + "/tests/runner"))
+      std::filesystem::equivalent(ExecutableDir(), std::string(MJF_BINARY_DIR) + "/tests/runner/config"))
       << ExecutableDir();
 }
 

@@ -1,14 +1,13 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
-// runner/src/replay_cli.cc: `mjformation replay` without a window (PNGs of a recorded run at
+// runner/app/src/replay_cli.cc: `mjformation replay` without a window (PNGs of a recorded run at
 // the times asked, named by the recorded time), its errors, and `view` without arguments.
 #include <gtest/gtest.h>
 
 #include <filesystem>
 
-#include "mjformation/runner/paths.hpp"
-#include "mjformation/runner/run.hpp"
-#include "png_util.hpp"
+#include "mjformation/config/paths.hpp"
+#include "mjformation/run/run.hpp"
 #include "point_mass_util.hpp"
 #include "test_util.hpp"
 

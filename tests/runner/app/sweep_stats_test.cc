@@ -1,8 +1,8 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
-// runner/src/sweep_stats.cc: Student's t quantile and the per-cell mean, standard deviation and
+// runner/app/src/sweep_stats.cc: Student's t quantile and the per-cell mean, standard deviation and
 // 95 % interval, against values computed by hand (no statistics library).
-#include "mjformation/runner/sweep_stats.hpp"
+#include "mjformation/app/sweep_stats.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
-// runner/src/interrupt.cc: SIGINT / SIGTERM as a polled flag, the exit code, and the second
+// runner/run/src/interrupt.cc: SIGINT / SIGTERM as a polled flag, the exit code, and the second
 // Ctrl-C that ends the process at once.
-#include "mjformation/runner/interrupt.hpp"
+#include "mjformation/run/interrupt.hpp"
 
 #include <gtest/gtest.h>
 

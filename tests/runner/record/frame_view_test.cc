@@ -1,8 +1,8 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
-// runner/src/frame_view.cc: trails, the camera's follow point and distance, the overlay and the
-// label that run, replay and the viewer all draw.
-#include "mjformation/runner/frame_view.hpp"
+// runner/record/src/frame_view.cc: trails, the camera's follow point and distance, the overlay and
+// the label that run, replay and the viewer all draw.
+#include "mjformation/record/frame_view.hpp"
 
 #include <gtest/gtest.h>
 

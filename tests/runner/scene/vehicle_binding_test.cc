@@ -1,9 +1,9 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
-// runner/src/vehicle_binding.cc: initial positions (given, ring, seeded jitter), the binding of
-// every vehicle's sensors, body and actuators in the composed model, and the true states read
+// runner/scene/src/vehicle_binding.cc: initial positions (given, ring, seeded jitter), the binding
+// of every vehicle's sensors, body and actuators in the composed model, and the true states read
 // from MuJoCo's sensors.
-#include "mjformation/runner/vehicle_binding.hpp"
+#include "mjformation/scene/vehicle_binding.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -11,9 +11,9 @@
 #include <cmath>
 #include <functional>
 
-#include "mjformation/runner/plugin_host.hpp"
-#include "mjformation/runner/scene.hpp"
-#include "mjformation/runner/simulation.hpp"
+#include "mjformation/control/plugin_host.hpp"
+#include "mjformation/scene/scene.hpp"
+#include "mjformation/sim/simulation.hpp"
 #include "point_mass_util.hpp"
 #include "test_util.hpp"
 

@@ -1,8 +1,8 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
-// runner/src/mujoco_errors.cc: an engine error throws MujocoError on the thread that raised it
+// runner/sim/src/mujoco_errors.cc: an engine error throws MujocoError on the thread that raised it
 // (and no other); a warning is kept per thread and never written to MUJOCO_LOG.TXT.
-#include "mjformation/runner/mujoco_errors.hpp"
+#include "mjformation/sim/mujoco_errors.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

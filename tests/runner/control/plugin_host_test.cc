@@ -1,8 +1,8 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
-// runner/src/plugin_host.cc: finding plugin libraries, refusing another ABI by naming both
+// runner/control/src/plugin_host.cc: finding plugin libraries, refusing another ABI by naming both
 // versions, the unknown-plugin message, attribute checking, and the instance life cycle.
-#include "mjformation/runner/plugin_host.hpp"
+#include "mjformation/control/plugin_host.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -1,15 +1,15 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
-// runner/src/stage_factory.cc: which sensor and force stages an experiment gets, and what they
-// do to plain arrays.
+// runner/control/src/stage_factory.cc: which sensor and force stages an experiment gets, and what
+// they do to plain arrays.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstring>
 
+#include "mjformation/config/config.hpp"
+#include "mjformation/control/stages.hpp"
 #include "mjformation/realism/drag.hpp"
-#include "mjformation/runner/config.hpp"
-#include "mjformation/runner/stages.hpp"
 #include "point_mass_util.hpp"
 #include "test_util.hpp"
 

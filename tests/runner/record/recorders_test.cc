@@ -1,17 +1,17 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
-// runner/src/recorders.cc: which recorders an experiment gets, when they want a frame, the exact
-// bytes of a timeseries.csv row, and the close-on-error contract (Finish throws, a destructor
+// runner/record/src/recorders.cc: which recorders an experiment gets, when they want a frame, the
+// exact bytes of a timeseries.csv row, and the close-on-error contract (Finish throws, a destructor
 // never does).
-#include "mjformation/runner/recorders.hpp"
+#include "mjformation/record/recorders.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <filesystem>
 
-#include "mjformation/runner/output.hpp"
-#include "mjformation/runner/simulation.hpp"
+#include "mjformation/record/output.hpp"
+#include "mjformation/sim/simulation.hpp"
 #include "point_mass_util.hpp"
 #include "test_util.hpp"
 

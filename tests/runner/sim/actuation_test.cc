@@ -1,10 +1,10 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
-// runner/src/actuation.cc: MuJoCo's actuators (d->ctrl) against the runner's wrench model
+// runner/sim/src/actuation.cc: MuJoCo's actuators (d->ctrl) against the runner's wrench model
 // (qfrc_applied) on a tiny model: the wrench model must give the generalized force MuJoCo's own
 // site actuators give (qfrc_actuator), clamping and motor lag included; the wrench at the centre
 // of mass against MuJoCo's mj_applyFT.
-#include "mjformation/runner/actuation.hpp"
+#include "mjformation/sim/actuation.hpp"
 
 #include <gtest/gtest.h>
 #include <mujoco/mujoco.h>
@@ -14,7 +14,7 @@
 #include <fstream>
 #include <string>
 
-#include "mjformation/runner/simulation.hpp"
+#include "mjformation/sim/simulation.hpp"
 #include "test_util.hpp"
 
 namespace mjf::runner {

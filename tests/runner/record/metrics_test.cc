@@ -1,8 +1,9 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
-// runner/src/metrics.cc: sigma_f (eq. 68), slots, final slot errors and the minimum separation
-// of a known configuration, computed by hand; the minimum separation sweep against brute force.
-#include "mjformation/runner/metrics.hpp"
+// runner/record/src/metrics.cc: sigma_f (eq. 68), slots, final slot errors and the minimum
+// separation of a known configuration, computed by hand; the minimum separation sweep against brute
+// force.
+#include "mjformation/record/metrics.hpp"
 
 #include <gtest/gtest.h>
 #include <mujoco/mujoco.h>
@@ -11,7 +12,7 @@
 #include <limits>
 #include <random>
 
-#include "mjformation/runner/simulation.hpp"
+#include "mjformation/sim/simulation.hpp"
 #include "point_mass_util.hpp"
 #include "test_util.hpp"
 
