@@ -75,9 +75,9 @@ TEST(PathsTest, FilesAndDirectories) {
 }
 
 TEST(PathsTest, ExecutableDirIsTheFolderOfThisTestBinary) {
-X
-  EXPECT_TRUE(
-      std::filesystem::equivalent(ExecutableDir(), std::string(MJF_BINARY_DIR) + "/tests/runner/config"))
+  // This test executable is built into the build tree's tests/runner/config folder.
+  EXPECT_TRUE(std::filesystem::equivalent(ExecutableDir(),
+                                          std::string(MJF_BINARY_DIR) + "/tests/runner/config"))
       << ExecutableDir();
 }
 
