@@ -3,16 +3,27 @@
 // timeseries.csv's byte promise: the fast number formatter gives exactly std::to_chars'
 // (general, 9 significant digits) bytes, on random bit patterns, near-ties, powers of ten and
 // their neighbours, and the magnitudes a run records.
+//
+// Unit tests of the source:
+// runner/record/src/output.cc: the run directory (what --overwrite may and may not delete), atomic
+// small files, the timeseries header and its error paths, the config echo and its hash.
 #include "mjformation/record/output.hpp"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <unistd.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
+#include <functional>
 #include <limits>
 #include <random>
 #include <string>
+
+#include "test_util.hpp"
 
 namespace mjf::runner {
 namespace {
@@ -69,6 +80,187 @@ TEST(FormatG9Test, MatchesToCharsOnTiesPowersOfTenAndTheirNeighbours) {
                    std::numeric_limits<double>::max(), std::numeric_limits<double>::denorm_min()}) {
     EXPECT_EQ(Fast(v), Reference(v)) << v;
   }
+}
+
+namespace fs = std::filesystem;
+using mjf::testing::ReadFile;
+using mjf::testing::TempDir;
+using mjf::testing::WriteFile;
+using ::testing::AllOf;
+using ::testing::HasSubstr;
+
+std::string OutputErrorOf(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const OutputError& e) {
+    return e.what();
+  }
+  return "(nothing thrown)";
+}
+
+TEST(OutputTest, Sha256OfKnownTexts) {
+  // FIPS 180-2 test vectors.
+  EXPECT_EQ(Sha256Hex(""), "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855");
+  EXPECT_EQ(Sha256Hex("abc"), "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
+}
+
+TEST(OutputTest, JsonNumberIsNullForNonFinite) {
+  EXPECT_EQ(JsonNumber(1.25).dump(), "1.25");
+  EXPECT_TRUE(JsonNumber(std::numeric_limits<double>::quiet_NaN()).is_null());
+  EXPECT_TRUE(JsonNumber(std::numeric_limits<double>::infinity()).is_null());
+  EXPECT_TRUE(JsonNumber(-std::numeric_limits<double>::infinity()).is_null());
+}
+
+TEST(OutputTest, ConfigEchoNamesTheFileAloneAndTheOverrides) {
+  ExperimentConfig c;
+  c.source_path = "/home/someone/experiments/exp2.toml";
+  c.source_text = "[run]\nname = \"x\"\n";
+  EXPECT_EQ(ConfigEcho(c),
+            "# Experiment file exp2.toml as run by mjformation.\n[run]\nname = \"x\"\n");
+  c.overrides = {"run.seed=3", "formation.rho=0.1"};
+  c.effective_text = "merged\n";
+  EXPECT_EQ(ConfigEcho(c),
+            "# Experiment file exp2.toml as run by mjformation.\n# with --set run.seed=3\n"
+            "# with --set formation.rho=0.1\nmerged\n");
+  // A path without a folder.
+  c.source_path = "bare.toml";
+  c.overrides.clear();
+  EXPECT_EQ(ConfigEcho(c).substr(0, 39), "# Experiment file bare.toml as run by m");
+}
+
+TEST(OutputTest, ANewRunDirectoryHasItsMarkerAndSnapshotsFolder) {
+  const std::string dir = TempDir("out_new") + "/a/b";  // parents are made too
+  RunDirectory run(dir, false);
+  EXPECT_TRUE(fs::is_directory(dir + "/snapshots"));
+  EXPECT_THAT(ReadFile(dir + "/.mjformation-run"), HasSubstr("mjformation run directory"));
+  EXPECT_EQ(run.Path("summary.json"), dir + "/summary.json");
+}
+
+TEST(OutputTest, WriteTextIsWholeAndLeavesNoTemporary) {
+  const std::string dir = TempDir("out_write");
+  RunDirectory run(dir, false);
+  run.WriteText("summary.json", "{}\n");
+  run.WriteText("summary.json", "{\"a\": 1}\n");  // replaces
+  EXPECT_EQ(ReadFile(dir + "/summary.json"), "{\"a\": 1}\n");
+  EXPECT_FALSE(fs::exists(dir + "/summary.json.tmp"));
+  EXPECT_THAT(OutputErrorOf([&] { run.WriteText("no/such/folder.txt", "x"); }),
+              HasSubstr(dir + "/no/such/folder.txt.tmp: cannot write: No such file or directory"));
+}
+
+TEST(OutputTest, RefusesAFileAndANonEmptyDirectoryWithoutOverwrite) {
+  const std::string base = TempDir("out_refuse");
+  const std::string file = WriteFile(base + "/plain", "mine");
+  EXPECT_THAT(OutputErrorOf([&] { RunDirectory(file, true); }),
+              HasSubstr(file + ": exists and is not a directory"));
+  const std::string dir = base + "/run";
+  fs::create_directories(dir);
+  WriteFile(dir + "/timeseries.csv", "old");
+  EXPECT_THAT(OutputErrorOf([&] { RunDirectory(dir, false); }),
+              AllOf(HasSubstr("exists and is not empty"), HasSubstr("--overwrite")));
+  EXPECT_EQ(ReadFile(dir + "/timeseries.csv"), "old");
+}
+
+TEST(OutputTest, OverwriteNeedsTheMarkerAndDeletesNothingOtherwise) {
+  const std::string dir = TempDir("out_nomarker");
+  WriteFile(dir + "/timeseries.csv", "someone's");
+  EXPECT_THAT(
+      OutputErrorOf([&] { RunDirectory(dir, true); }),
+      AllOf(HasSubstr("not a mjformation run directory"), HasSubstr("nothing was deleted")));
+  EXPECT_EQ(ReadFile(dir + "/timeseries.csv"), "someone's");
+}
+
+TEST(OutputTest, OverwriteRefusesForeignFilesAndDeletesNothing) {
+  const std::string dir = TempDir("out_foreign");
+  { RunDirectory first(dir, false); }
+  WriteFile(dir + "/timeseries.csv", "run");
+  WriteFile(dir + "/notes.txt", "the user's");
+  fs::create_directories(dir + "/analysis");
+  EXPECT_THAT(OutputErrorOf([&] { RunDirectory(dir, true); }),
+              AllOf(HasSubstr("holds files mjformation did not write ("), HasSubstr("analysis"),
+                    HasSubstr("notes.txt"), HasSubstr("nothing was deleted")));
+  EXPECT_EQ(ReadFile(dir + "/timeseries.csv"), "run");
+  EXPECT_EQ(ReadFile(dir + "/notes.txt"), "the user's");
+}
+
+TEST(OutputTest, OverwriteRefusesLinksAndFoldersInsideSnapshots) {
+  const std::string dir = TempDir("out_links");
+  const std::string outside = TempDir("out_links_target");
+  WriteFile(outside + "/precious.png", "keep");
+  { RunDirectory first(dir, false); }
+  fs::create_symlink(outside + "/precious.png", dir + "/snapshots/t001.00.png");
+  EXPECT_THAT(OutputErrorOf([&] { RunDirectory(dir, true); }), HasSubstr("(snapshots)"));
+  fs::remove(dir + "/snapshots/t001.00.png");
+  fs::create_symlink(outside, dir + "/figures");
+  EXPECT_THAT(OutputErrorOf([&] { RunDirectory(dir, true); }), HasSubstr("(figures)"));
+  EXPECT_EQ(ReadFile(outside + "/precious.png"), "keep");
+}
+
+TEST(OutputTest, OverwriteReplacesARunsOwnFiles) {
+  const std::string dir = TempDir("out_replace");
+  { RunDirectory first(dir, false); }
+  for (const char* f : {"config.toml", "scene.xml", "timeseries.csv", "summary.json", "video.mp4",
+                        "summary.json.tmp", "snapshots/t001.00.png"}) {
+    WriteFile(dir + "/" + f, "old");
+  }
+  fs::create_directories(dir + "/figures");
+  WriteFile(dir + "/figures/sigma.png", "old");
+  RunDirectory again(dir, true);
+  std::vector<std::string> left;
+  for (const auto& e : fs::recursive_directory_iterator(dir)) {
+    left.push_back(fs::relative(e.path(), dir).string());
+  }
+  std::sort(left.begin(), left.end());
+  EXPECT_EQ(left, (std::vector<std::string>{".mjformation-run", "snapshots"}));
+}
+
+TEST(OutputTest, TimeseriesHeaderColumns) {
+  const std::string dir = TempDir("out_header");
+  {
+    TimeseriesWriter w(dir + "/plain.csv", 1);
+    w.Close();
+  }
+  EXPECT_EQ(ReadFile(dir + "/plain.csv"),
+            "t,sigma_f,uav0_px,uav0_py,uav0_pz,uav0_vx,uav0_vy,uav0_vz,uav0_roll,uav0_pitch,"
+            "uav0_yaw,uav0_ax_cmd,uav0_ay_cmd,uav0_sx,uav0_sy,uav0_slot_x,uav0_slot_y\n");
+  {
+    TimeseriesWriter w(dir + "/all.csv", 2, true, true, {"leader_ax", "leader_ay"});
+    w.Close();
+  }
+  const std::string all = ReadFile(dir + "/all.csv");
+  // Usual columns of every vehicle first, then measured, then wind, then the extra ones.
+  const size_t last_usual = all.find("uav1_slot_y");
+  const size_t first_meas = all.find("uav0_px_meas");
+  const size_t last_meas = all.find("uav1_yaw_meas");
+  const size_t first_wind = all.find("uav0_wind_x");
+  const size_t last_wind = all.find("uav1_wind_z");
+  const size_t extra = all.find("leader_ax,leader_ay\n");
+  ASSERT_NE(extra, std::string::npos);
+  EXPECT_LT(last_usual, first_meas);
+  EXPECT_LT(last_meas, first_wind);
+  EXPECT_LT(last_wind, extra);
+  EXPECT_THAT(all,
+              HasSubstr(",uav0_px_meas,uav0_py_meas,uav0_pz_meas,uav0_vx_meas,uav0_vy_meas,"
+                        "uav0_vz_meas,uav0_roll_meas,uav0_pitch_meas,uav0_yaw_meas,uav1_px_meas"));
+  EXPECT_THAT(all, HasSubstr(",uav0_wind_x,uav0_wind_y,uav0_wind_z,uav1_wind_x,uav1_wind_y,"
+                             "uav1_wind_z,leader_ax"));
+  EXPECT_EQ(std::count(all.begin(), all.end(), ','), 1 + 2 * (15 + 9 + 3) + 2);
+}
+
+TEST(OutputTest, TimeseriesWriterErrors) {
+  EXPECT_THAT(OutputErrorOf([] { TimeseriesWriter w("/nonexistent_dir_mjf/t.csv", 1); }),
+              HasSubstr("/nonexistent_dir_mjf/t.csv: cannot write: No such file or directory"));
+  // A full disk: Close() is the checked path and says so ...
+  TimeseriesWriter full("/dev/full", 1);
+  EXPECT_THAT(OutputErrorOf([&] { full.Close(); }),
+              HasSubstr("/dev/full: write failed: No space left on device"));
+  // ... and a writer never closed releases quietly, whatever the disk says.
+  EXPECT_NO_THROW({ TimeseriesWriter quiet("/dev/full", 1); });
+}
+
+TEST(OutputTest, AnUnclosedWriterKeepsItsHeader) {
+  const std::string path = TempDir("out_unclosed") + "/t.csv";
+  { TimeseriesWriter w(path, 1); }
+  EXPECT_EQ(ReadFile(path).substr(0, 10), "t,sigma_f,");
 }
 
 }  // namespace

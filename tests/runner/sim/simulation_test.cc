@@ -2,14 +2,23 @@
 //
 // Bad input found while a simulation is set up (plugins, MJCF, topology, parameters): every case
 // gets one clear message naming the file (and line/key) and is refused before anything runs.
+//
+// Unit tests of the source:
+// runner/sim/src/simulation.cc: Euler angles of known rotations, the step counter and clock, what a
+// simulation exposes, and a non-finite state stopping it with a SimulationError naming the time.
 #include "mjformation/sim/simulation.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "mjformation/control/plugin_host.hpp"
+#include <cmath>
+#include <cstring>
+#include <limits>
+
 #include "mjformation/config/config.hpp"
+#include "mjformation/control/plugin_host.hpp"
 #include "mjformation/scene/scene.hpp"
+#include "point_mass_util.hpp"
 #include "test_util.hpp"
 
 namespace mjf::runner {
@@ -146,6 +155,116 @@ TEST(SetupErrorTest, ParametersBreakingTheoremTwo) {
   EXPECT_THAT(ErrorOf([&] { Simulation sim(Parse(text, "q.toml")); }),
               AllOf(HasSubstr("q.toml"), HasSubstr("[formation]"), HasSubstr("smc_discrete"),
                     HasSubstr("1 - q*T")));
+}
+
+using mjf::testing::Parse;
+using mjf::testing::PointMassExperiment;
+using ::testing::HasSubstr;
+
+// w-x-y-z quaternion of a rotation by `angle` about the unit axis (x, y, z).
+std::array<double, 4> AxisAngle(double x, double y, double z, double angle) {
+  const double s = std::sin(angle / 2);
+  return {std::cos(angle / 2), x * s, y * s, z * s};
+}
+
+TEST(SimulationTest, EulerAnglesOfSingleAxisRotations) {
+  const auto roll = EulerZYX(AxisAngle(1, 0, 0, 0.3).data());
+  EXPECT_NEAR(roll[0], 0.3, 1e-15);
+  EXPECT_NEAR(roll[1], 0.0, 1e-15);
+  EXPECT_NEAR(roll[2], 0.0, 1e-15);
+  const auto pitch = EulerZYX(AxisAngle(0, 1, 0, -0.4).data());
+  EXPECT_NEAR(pitch[1], -0.4, 1e-15);
+  const auto yaw = EulerZYX(AxisAngle(0, 0, 1, M_PI / 2).data());
+  EXPECT_NEAR(yaw[2], M_PI / 2, 1e-15);
+  EXPECT_NEAR(yaw[0], 0.0, 1e-15);
+  const double identity[4] = {1, 0, 0, 0};
+  EXPECT_EQ(EulerZYX(identity), (std::array<double, 3>{0, 0, 0}));
+}
+
+// Yaw, then pitch, then roll (q = q_z q_y q_x): each angle comes back.
+TEST(SimulationTest, EulerAnglesOfAComposedRotation) {
+  const double r = 0.2, p = -0.35, y = 2.5;
+  const auto qz = AxisAngle(0, 0, 1, y), qy = AxisAngle(0, 1, 0, p), qx = AxisAngle(1, 0, 0, r);
+  auto mul = [](const std::array<double, 4>& a, const std::array<double, 4>& b) {
+    return std::array<double, 4>{a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3],
+                                 a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
+                                 a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1],
+                                 a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0]};
+  };
+  const auto q = mul(mul(qz, qy), qx);
+  const auto e = EulerZYX(q.data());
+  EXPECT_NEAR(e[0], r, 1e-12);
+  EXPECT_NEAR(e[1], p, 1e-12);
+  EXPECT_NEAR(e[2], y, 1e-12);
+}
+
+TEST(SimulationTest, StepsClockAndWhatItExposes) {
+  Simulation sim(Parse(PointMassExperiment(-2, 1, 2, 1, 0.03)));
+  EXPECT_EQ(sim.total_steps(), 30);
+  EXPECT_EQ(sim.n_vehicles(), 3);
+  EXPECT_EQ(sim.n_followers(), 2);
+  EXPECT_EQ(sim.actuators_per_vehicle(), 3);
+  EXPECT_NE(sim.shape(), nullptr);
+  EXPECT_EQ(sim.channel(), nullptr);  // central execution
+  EXPECT_TRUE(sim.wind().empty());    // calm
+  EXPECT_TRUE(sim.vehicle_notes().empty());
+  // hover as the formation plugin is a guidance plugin flown per follower: no swarm-level one.
+  EXPECT_EQ(sim.formation_plugin(), nullptr);
+  EXPECT_STREQ(sim.leader_plugin().descriptor().name, "hover");
+  EXPECT_STREQ(sim.attitude_plugin(2).descriptor().name, "pointmass_direct");
+  EXPECT_THAT(sim.scene_xml(), HasSubstr("uav2_vehicle"));
+  EXPECT_EQ(sim.model()->nu, 9);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_EQ(sim.step_index(), k);
+    EXPECT_DOUBLE_EQ(sim.time(), k * 0.001);
+    sim.ComputeControls();
+    sim.Integrate();
+  }
+  EXPECT_EQ(sim.step_index(), 3);
+  sim.ComputeControls();
+  // Ideal sensors: what the controllers saw is the truth, bit for bit.
+  ASSERT_EQ(sim.measured().size(), sim.states().size());
+  for (size_t i = 0; i < sim.states().size(); ++i) {
+    EXPECT_EQ(std::memcmp(&sim.measured()[i], &sim.states()[i], sizeof(mjfVehicleState)), 0);
+  }
+  EXPECT_EQ(sim.controls().size(), 9u);
+  EXPECT_EQ(sim.setpoints().size(), 3u);
+}
+
+TEST(SimulationTest, ANonFiniteSetpointStopsBeforeTheStep) {
+  // test_nan commands NaN from t = 0.005 s on: the step that would use it is never taken.
+  std::string text = PointMassExperiment(-2, 1, 2, 1, 0.05);
+  text.replace(text.find("[leader]\nplugin = \"hover\""), 25,
+               "[leader]\nplugin = \"test_nan\"\nafter = 0.005");
+  Simulation sim(Parse(text));
+  try {
+    for (int k = 0; k < 50; ++k) {
+      sim.ComputeControls();
+      sim.Integrate();
+    }
+    ADD_FAILURE() << "a NaN command did not stop the simulation";
+  } catch (const SimulationError& e) {
+    EXPECT_STREQ(e.what(),
+                 "t = 0.005 s: plugin 'test_nan' wrote a non-finite setpoint for vehicle 0");
+  }
+  EXPECT_EQ(sim.step_index(), 5);
+}
+
+TEST(SimulationTest, ANonFiniteStateAfterAStepIsAnError) {
+  Simulation sim(Parse(PointMassExperiment(-2, 1, 2, 1, 0.05)));
+  for (int k = 0; k < 3; ++k) {
+    sim.ComputeControls();
+    sim.Integrate();
+  }
+  sim.ComputeControls();
+  sim.data()->qvel[0] = std::numeric_limits<double>::quiet_NaN();
+  try {
+    sim.Integrate();
+    ADD_FAILURE() << "a NaN velocity went unnoticed";
+  } catch (const SimulationError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("t = 0.00"));
+    EXPECT_THAT(e.what(), ::testing::AnyOf(HasSubstr("non-finite"), HasSubstr("MuJoCo warning")));
+  }
 }
 
 }  // namespace

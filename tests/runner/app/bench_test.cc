@@ -1,0 +1,60 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// runner/app/src/bench.cc: `mjformation bench` on a tiny experiment: the JSON report's sizes, step
+// counts and the arithmetic of its ratios; bad input is exit code 1 before anything runs.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "test_util.hpp"
+
+namespace mjf::runner {
+namespace {
+
+using mjf::testing::Cli;
+using mjf::testing::HoverExperiment;
+using mjf::testing::ReadFile;
+using mjf::testing::TempDir;
+using mjf::testing::WriteFile;
+
+TEST(BenchTest, ReportOfTwoSizes) {
+  const std::string dir = TempDir("bench");
+  const std::string text = HoverExperiment(1, 0.02);
+  const std::string exp = WriteFile(dir + "/e.toml", text);
+  ASSERT_EQ(Cli({"bench", exp, "--followers", "1", "2", "--json", dir + "/b.json"}), 0);
+  const auto j = nlohmann::json::parse(ReadFile(dir + "/b.json"));
+  EXPECT_EQ(j["experiment"], exp);
+  EXPECT_EQ(j["duration_s"], 0.02);
+  EXPECT_EQ(j["timestep_s"], 0.001);
+  EXPECT_EQ(j["rotor_model"], "actuator");
+  ASSERT_EQ(j["points"].size(), 2u);
+  for (int k = 0; k < 2; ++k) {
+    const auto& p = j["points"][k];
+    EXPECT_EQ(p["followers"], k + 1);
+    EXPECT_EQ(p["steps"].get<double>(), 20.0);
+    const double bare = p["bare_wall_s"], full = p["full_wall_s"];
+    EXPECT_GT(bare, 0.0);
+    EXPECT_GT(full, 0.0);
+    EXPECT_DOUBLE_EQ(p["ratio_full_over_bare"].get<double>(), full / bare);
+    EXPECT_DOUBLE_EQ(p["pipeline_us_per_follower_step"].get<double>(),
+                     (full - bare) / 20.0 / (k + 1) * 1e6);
+    EXPECT_DOUBLE_EQ(p["real_time_factor_full"].get<double>(), 0.02 / full);
+    EXPECT_GT(p["peak_rss_mib_full"].get<double>(), 1.0);
+    EXPECT_GE(p["best_of"].get<int>(), 1);
+  }
+  EXPECT_DOUBLE_EQ(j["per_follower_cost_growth"].get<double>(),
+                   j["points"][1]["pipeline_us_per_follower_step"].get<double>() /
+                       j["points"][0]["pipeline_us_per_follower_step"].get<double>());
+}
+
+TEST(BenchTest, BadInputIsExitCodeOne) {
+  const std::string dir = TempDir("bench_bad");
+  EXPECT_EQ(Cli({"bench", dir + "/missing.toml"}), 1);
+  const std::string exp = WriteFile(dir + "/e.toml", HoverExperiment(1, 0.02));
+  EXPECT_EQ(Cli({"bench", exp, "--set", "run.nosuchkey=1"}), 1);
+  EXPECT_FALSE(std::filesystem::exists(dir + "/b.json"));
+}
+
+}  // namespace
+}  // namespace mjf::runner

@@ -1,0 +1,98 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// runner/control/src/stage_factory.cc: which sensor and force stages an experiment gets, and what
+// they do to plain arrays.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "mjformation/config/config.hpp"
+#include "mjformation/control/stages.hpp"
+#include "mjformation/realism/drag.hpp"
+#include "point_mass_util.hpp"
+#include "test_util.hpp"
+
+namespace mjf::runner {
+namespace {
+
+using mjf::testing::Parse;
+using mjf::testing::PointMassExperiment;
+
+std::vector<mjfVehicleState> Truth() {
+  std::vector<mjfVehicleState> truth(3);
+  for (int i = 0; i < 3; ++i) {
+    truth[i] = mjfVehicleState{
+        {1.0 * i, 2.0, 3.0}, {0.5, -0.25 * i, 0.0}, {1, 0, 0, 0}, {0.01, 0.02, 0.03}};
+  }
+  return truth;
+}
+
+bool Same(const mjfVehicleState& a, const mjfVehicleState& b) {
+  return std::memcmp(&a, &b, sizeof(a)) == 0;
+}
+
+TEST(StageFactoryTest, DefaultsAreIdealSensorsAndNoForces) {
+  const ExperimentConfig c = Parse(PointMassExperiment(-2, 0, 2, 0));
+  auto sensors = MakeSensorStage(c);
+  EXPECT_NE(dynamic_cast<IdealSensors*>(sensors.get()), nullptr);
+  const auto truth = Truth();
+  std::vector<mjfVehicleState> measured(3);
+  sensors->Measure(0, 0.0, truth, &measured);
+  for (int i = 0; i < 3; ++i) EXPECT_TRUE(Same(truth[i], measured[i])) << i;  // bit for bit
+  EXPECT_TRUE(MakeForceStages(c).empty());
+}
+
+TEST(StageFactoryTest, SensorsSectionGivesSeededNoisyMeasurements) {
+  const std::string text =
+      PointMassExperiment(-2, 0, 2, 0, 0.02, "", "[sensors]\npreset = \"typical\"\n");
+  const ExperimentConfig c = Parse(text);
+  auto a = MakeSensorStage(c), b = MakeSensorStage(c);
+  EXPECT_EQ(dynamic_cast<IdealSensors*>(a.get()), nullptr);
+  const auto truth = Truth();
+  std::vector<mjfVehicleState> ma(3), mb(3);
+  bool differs = false;
+  for (int64_t step = 0; step < 20; ++step) {
+    a->Measure(step, step * c.timestep, truth, &ma);
+    b->Measure(step, step * c.timestep, truth, &mb);
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_TRUE(Same(ma[i], mb[i])) << "same seed, same measurement: step " << step;
+      differs = differs || !Same(ma[i], truth[i]);
+    }
+  }
+  EXPECT_TRUE(differs);
+  // Another seed, other noise.
+  ExperimentConfig other = c;
+  other.seed = 2;
+  auto o = MakeSensorStage(other);
+  std::vector<mjfVehicleState> mo(3);
+  for (int64_t step = 0; step < 20; ++step) o->Measure(step, step * c.timestep, truth, &mo);
+  bool seed_matters = false;
+  for (int i = 0; i < 3; ++i) seed_matters = seed_matters || !Same(mo[i], ma[i]);
+  EXPECT_TRUE(seed_matters);
+}
+
+TEST(StageFactoryTest, SteadyWindIsOneStageAddingTheDragForce) {
+  const ExperimentConfig c =
+      Parse(PointMassExperiment(-2, 0, 2, 0, 0.02, "", "[wind]\nmean = [3.0, -1.0, 0.0]\n"));
+  auto stages = MakeForceStages(c);
+  ASSERT_EQ(stages.size(), 1u);
+  auto* wind = dynamic_cast<WindStage*>(stages[0].get());
+  ASSERT_NE(wind, nullptr);
+  EXPECT_TRUE(wind->wind().empty());  // nothing before the first step
+  const auto truth = Truth();
+  std::vector<double> force(9, 1.0);  // stages add to what is there
+  wind->AddForces(0, 0.0, truth, &force);
+  ASSERT_EQ(wind->wind().size(), 3u);
+  const double mean[3] = {3.0, -1.0, 0.0};
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_EQ(wind->wind()[i], (std::array<double, 3>{3.0, -1.0, 0.0}));
+    const auto f = c.wind.drag.Force(truth[i].vel, mean);
+    for (int k = 0; k < 3; ++k) EXPECT_DOUBLE_EQ(force[3 * i + k], 1.0 + f[k]) << i << k;
+  }
+  // Air blowing +x past a vehicle moving slower in x pushes it +x.
+  EXPECT_GT(force[0], 1.0);
+}
+
+}  // namespace
+}  // namespace mjf::runner
