@@ -15,6 +15,7 @@
 #include "mjformation/config/source_location.hpp"
 #include "network_config.hpp"
 #include "realism_config.hpp"
+#include "section_reader.hpp"
 
 namespace mjf::runner {
 namespace {
@@ -34,134 +35,9 @@ class Reporter {
   std::string path_;
 };
 
-const char* TypeName(const toml::node& node) {
-  switch (node.type()) {
-    case toml::node_type::table:
-      return "a table";
-    case toml::node_type::array:
-      return "an array";
-    case toml::node_type::string:
-      return "a string";
-    case toml::node_type::integer:
-      return "an integer";
-    case toml::node_type::floating_point:
-      return "a number";
-    case toml::node_type::boolean:
-      return "a boolean";
-    default:
-      return "a date/time";
-  }
-}
-
-// Typed access to one table with unknown-key detection.
-class Section {
- public:
-  Section(const Reporter& reporter, const toml::table* table, std::string name)
-      : reporter_(reporter), table_(table), name_(std::move(name)) {}
-
-  bool Has(const std::string& key) const { return table_ && table_->contains(key); }
-  const toml::node* Node(const std::string& key) const {
-    return table_ ? table_->get(key) : nullptr;
-  }
-  std::string Where(const std::string& key) const { return "[" + name_ + "] " + key; }
-  [[noreturn]] void Fail(const std::string& key, const std::string& message) const {
-    reporter_.Fail(Node(key) ? Node(key) : table_, Where(key), message);
-  }
-
-  double Number(const std::string& key, double fallback) {
-    used_.insert(key);
-    const toml::node* node = Node(key);
-    if (!node) return fallback;
-    return AsNumber(*node, key);
-  }
-  double AsNumber(const toml::node& node, const std::string& key) const {
-    if (auto v = node.value_exact<double>()) {
-      if (!std::isfinite(*v)) Fail(key, "expected a finite number");
-      return *v;
-    }
-    if (auto v = node.value_exact<int64_t>()) return static_cast<double>(*v);
-    reporter_.Fail(&node, Where(key), std::string("expected a number, got ") + TypeName(node));
-  }
-  int64_t Integer(const std::string& key, int64_t fallback) {
-    used_.insert(key);
-    const toml::node* node = Node(key);
-    if (!node) return fallback;
-    if (auto v = node->value_exact<int64_t>()) return *v;
-    Fail(key, std::string("expected an integer, got ") + TypeName(*node));
-  }
-  bool Bool(const std::string& key, bool fallback) {
-    used_.insert(key);
-    const toml::node* node = Node(key);
-    if (!node) return fallback;
-    if (auto v = node->value_exact<bool>()) return *v;
-    Fail(key, std::string("expected true or false, got ") + TypeName(*node));
-  }
-  std::string String(const std::string& key, const std::string& fallback) {
-    used_.insert(key);
-    const toml::node* node = Node(key);
-    if (!node) return fallback;
-    if (auto v = node->value_exact<std::string>()) return *v;
-    Fail(key, std::string("expected a string, got ") + TypeName(*node));
-  }
-  const toml::array* Array(const std::string& key) {
-    used_.insert(key);
-    const toml::node* node = Node(key);
-    if (!node) return nullptr;
-    if (const toml::array* a = node->as_array()) return a;
-    Fail(key, std::string("expected an array, got ") + TypeName(*node));
-  }
-  std::vector<double> Numbers(const std::string& key, std::vector<double> fallback,
-                              int expected_size = -1) {
-    const toml::array* a = Array(key);
-    if (!a) return fallback;
-    std::vector<double> out;
-    for (const toml::node& item : *a) out.push_back(AsNumber(item, key));
-    if (expected_size >= 0 && static_cast<int>(out.size()) != expected_size) {
-      Fail(key, "expected " + std::to_string(expected_size) + " numbers, got " +
-                    std::to_string(out.size()));
-    }
-    return out;
-  }
-  void MarkUsed(const std::string& key) { used_.insert(key); }
-
-  // One of a fixed set of words, returned as its enum value.
-  template <typename E>
-  E Enum(const std::string& key, E fallback,
-         std::initializer_list<std::pair<const char*, E>> names) {
-    used_.insert(key);
-    if (!Node(key)) return fallback;
-    const std::string text = String(key, "");
-    std::string list;
-    for (const auto& [name, value] : names) {
-      if (text == name) return value;
-      list += (list.empty() ? "\"" : ", \"") + std::string(name) + "\"";
-    }
-    Fail(key, "must be one of " + list + " (got \"" + text + "\")");
-  }
-
-  // Refuses keys this section does not define, listing the ones it does.
-  void RejectUnknown() const {
-    if (!table_) return;
-    for (auto&& [key, node] : *table_) {
-      const std::string k(key.str());
-      if (used_.count(k)) continue;
-      std::string known;
-      for (const auto& u : used_) known += (known.empty() ? "" : ", ") + u;
-      reporter_.Fail(&node, Where(k), "unknown key (this section knows: " + known + ")");
-    }
-  }
-  const toml::table* table() const { return table_; }
-
- private:
-  const Reporter& reporter_;
-  const toml::table* table_;
-  std::string name_;
-  std::set<std::string> used_;
-};
-
 // [vehicles] body and rotors: how a foreign quadrotor model maps onto the vehicle contract
 // (docs/VEHICLES.md); whether the model has them is checked when the model is adapted.
-void ParseVehicleMapping(Section& vehicles, const Reporter& reporter, ExperimentConfig* c) {
+void ParseVehicleMapping(SectionReader& vehicles, const Reporter& reporter, ExperimentConfig* c) {
   auto line = [&](const char* key) {
     const toml::node* n = vehicles.Node(key);
     return n ? static_cast<int>(n->source().begin.line) : 0;
@@ -322,7 +198,7 @@ void RejectUnknownSections(const Reporter& reporter, const toml::table& root) {
   }
 }
 
-void ParseRunSection(const Reporter& reporter, Section run, const std::string& path,
+void ParseRunSection(const Reporter& reporter, SectionReader run, const std::string& path,
                      ExperimentConfig& c) {
   c.name = run.String("name", "");
   c.duration = run.Number("duration", c.duration);
@@ -377,7 +253,7 @@ void ParseRunSection(const Reporter& reporter, Section run, const std::string& p
   }
 }
 
-void ParseVehiclesSection(const Reporter& reporter, Section vehicles, const std::string& path,
+void ParseVehiclesSection(const Reporter& reporter, SectionReader vehicles, const std::string& path,
                           ExperimentConfig& c) {
   c.model = vehicles.String("model", c.model);
   c.model_path = ResolveModel(c.model, path);
@@ -416,7 +292,7 @@ void ParseVehiclesSection(const Reporter& reporter, Section vehicles, const std:
 }
 
 // [topology] edges = [[from, to(, weight)], ...] (1-based in the file, 0-based here).
-std::vector<ExperimentConfig::Edge> ReadEdges(const Reporter& reporter, Section& topology,
+std::vector<ExperimentConfig::Edge> ReadEdges(const Reporter& reporter, SectionReader& topology,
                                               int followers) {
   std::vector<ExperimentConfig::Edge> edges;
   const toml::array* a = topology.Array("edges");
@@ -441,7 +317,7 @@ std::vector<ExperimentConfig::Edge> ReadEdges(const Reporter& reporter, Section&
   return edges;
 }
 
-void ReadLeaderLinks(const Reporter& reporter, Section& topology, ExperimentConfig& c) {
+void ReadLeaderLinks(const Reporter& reporter, SectionReader& topology, ExperimentConfig& c) {
   c.leader_weight.assign(c.followers, 0.0);
   if (const toml::array* a = topology.Array("leader_links")) {
     for (const toml::node& item : *a) {
@@ -465,7 +341,7 @@ void ReadLeaderLinks(const Reporter& reporter, Section& topology, ExperimentConf
   }
 }
 
-void ParseTopologySection(const Reporter& reporter, Section topology, ExperimentConfig& c) {
+void ParseTopologySection(const Reporter& reporter, SectionReader topology, ExperimentConfig& c) {
   ReadLeaderLinks(reporter, topology, c);
   const std::string generator = topology.String("generate", "");
   c.edges = ReadEdges(reporter, topology, c.followers);
@@ -491,7 +367,8 @@ void ParseShapeSection(const Reporter& reporter, const toml::table* formation_ta
   if (shape_node && !shape_node->is_table()) {
     reporter.Fail(shape_node, "[formation.shape]", "expected a table");
   }
-  Section shape(reporter, shape_node ? shape_node->as_table() : nullptr, "formation.shape");
+  SectionReader shape(reporter.path(), shape_node ? shape_node->as_table() : nullptr,
+                      "formation.shape");
   c.shape.type = shape.Enum("type", shape_node ? ShapeType::kCircle : ShapeType::kNone,
                             {{"circle", ShapeType::kCircle},
                              {"offsets", ShapeType::kOffsets},
@@ -528,7 +405,7 @@ void ParseShapeSection(const Reporter& reporter, const toml::table* formation_ta
   if (c.shape.tolerance <= 0) shape.Fail("tolerance", "must be > 0 m/s");
 }
 
-void ReadRenderValues(Section& render, RenderConfig& r) {
+void ReadRenderValues(SectionReader& render, RenderConfig& r) {
   r.snapshots = render.Numbers("snapshots", {});
   r.width = static_cast<int>(render.Integer("width", r.width));
   r.height = static_cast<int>(render.Integer("height", r.height));
@@ -552,7 +429,7 @@ void ReadRenderValues(Section& render, RenderConfig& r) {
   r.video_height = static_cast<int>(render.Integer("video_height", r.video_height));
 }
 
-void ParseRenderSection(Section render, double duration, RenderConfig& r) {
+void ParseRenderSection(SectionReader render, double duration, RenderConfig& r) {
   ReadRenderValues(render, r);
   render.RejectUnknown();
   for (double t : r.snapshots) {
@@ -613,14 +490,17 @@ ExperimentConfig ParseExperiment(const std::string& text, const std::string& pat
     merged << root;
     c.effective_text = merged.str() + "\n";
   }
-  ParseRunSection(reporter, Section(reporter, table_of("run"), "run"), path, c);
-  ParseVehiclesSection(reporter, Section(reporter, table_of("vehicles"), "vehicles"), path, c);
-  ParseTopologySection(reporter, Section(reporter, table_of("topology"), "topology"), c);
+  ParseRunSection(reporter, SectionReader(reporter.path(), table_of("run"), "run"), path, c);
+  ParseVehiclesSection(reporter, SectionReader(reporter.path(), table_of("vehicles"), "vehicles"),
+                       path, c);
+  ParseTopologySection(reporter, SectionReader(reporter.path(), table_of("topology"), "topology"),
+                       c);
   c.leader = ReadPluginSection(reporter, root, "leader", "circle", {});
   c.formation = ReadPluginSection(reporter, root, "formation", "", {"shape"});
   c.attitude = ReadPluginSection(reporter, root, "attitude", "pd_cascade", {});
   ParseShapeSection(reporter, table_of("formation"), path, c);
-  ParseRenderSection(Section(reporter, table_of("render"), "render"), c.duration, c.render);
+  ParseRenderSection(SectionReader(reporter.path(), table_of("render"), "render"), c.duration,
+                     c.render);
   ParseRealismSections(root, path, &c);  // [sensors], [wind]
   ParseNetworkSections(root, c);
   return c;

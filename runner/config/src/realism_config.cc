@@ -7,81 +7,13 @@
 #include <set>
 #include <sstream>
 
-#include "mjformation/config/source_location.hpp"
+#include "section_reader.hpp"
 
 namespace mjf::runner {
 namespace {
 
-// Typed access to one table, refusing unknown keys (a small sibling of config.cc's Section).
-class Keys {
- public:
-  Keys(const toml::table* table, std::string path, std::string section)
-      : table_(table), path_(std::move(path)), section_(std::move(section)) {}
-
-  [[noreturn]] void Fail(const std::string& key, const std::string& message) const {
-    FailAt(table_ ? table_->get(key) : nullptr, key, message);
-  }
-  [[noreturn]] void FailAt(const toml::node* node, const std::string& key,
-                           const std::string& message) const {
-    const toml::node* where = node ? node : table_;
-    const int line = where ? static_cast<int>(where->source().begin.line) : 0;
-    SourceLocation{path_, line, "[" + section_ + "] " + key}.Fail(message);
-  }
-  bool Has(const std::string& key) const { return table_ && table_->contains(key); }
-  double AsNumber(const toml::node& node, const std::string& key) const {
-    if (auto v = node.value_exact<double>()) {
-      if (!std::isfinite(*v)) FailAt(&node, key, "expected a finite number");
-      return *v;
-    }
-    if (auto v = node.value_exact<int64_t>()) return static_cast<double>(*v);
-    FailAt(&node, key, "expected a number");
-  }
-  double Number(const std::string& key, double fallback) {
-    used_.insert(key);
-    const toml::node* node = table_ ? table_->get(key) : nullptr;
-    return node ? AsNumber(*node, key) : fallback;
-  }
-  std::string String(const std::string& key, const std::string& fallback) {
-    used_.insert(key);
-    const toml::node* node = table_ ? table_->get(key) : nullptr;
-    if (!node) return fallback;
-    if (auto v = node->value_exact<std::string>()) return *v;
-    Fail(key, "expected a string");
-  }
-  std::array<double, 3> Vector3(const std::string& key, std::array<double, 3> fallback) {
-    used_.insert(key);
-    const toml::node* node = table_ ? table_->get(key) : nullptr;
-    if (!node) return fallback;
-    const toml::array* a = node->as_array();
-    if (!a || a->size() != 3) Fail(key, "expected [x, y, z]");
-    return {AsNumber(*a->get(0), key), AsNumber(*a->get(1), key), AsNumber(*a->get(2), key)};
-  }
-  const toml::array* Array(const std::string& key) {
-    used_.insert(key);
-    const toml::node* node = table_ ? table_->get(key) : nullptr;
-    if (!node) return nullptr;
-    if (const toml::array* a = node->as_array()) return a;
-    Fail(key, "expected an array");
-  }
-  void RejectUnknown() const {
-    if (!table_) return;
-    for (auto&& [key, node] : *table_) {
-      const std::string k(key.str());
-      if (used_.count(k)) continue;
-      std::string known;
-      for (const auto& u : used_) known += (known.empty() ? "" : ", ") + u;
-      FailAt(&node, k, "unknown key (this section knows: " + known + ")");
-    }
-  }
-
- private:
-  const toml::table* table_;
-  std::string path_, section_;
-  std::set<std::string> used_;
-};
-
 void ParseSensors(const toml::table* table, const std::string& path, ExperimentConfig* c) {
-  Keys keys(table, path, "sensors");
+  SectionReader keys(path, table, "sensors");
   SensorsConfig& s = c->sensors;
   s.preset = keys.String("preset", s.preset);
   s.scale = keys.Number("scale", s.scale);
@@ -126,14 +58,14 @@ struct TurbulenceKeys {
   std::array<double, 3> sigma{}, length{};
 };
 
-void ReadMeanWind(Keys& keys, realism::WindParams& p) {
+void ReadMeanWind(SectionReader& keys, realism::WindParams& p) {
   p.mean = keys.Vector3("mean", p.mean);
   for (double v : p.mean) {
     if (std::abs(v) > 50) keys.Fail("mean", "components must be within +-50 m/s");
   }
 }
 
-TurbulenceKeys ReadTurbulenceKeys(Keys& keys, const ExperimentConfig& c, WindConfig& w) {
+TurbulenceKeys ReadTurbulenceKeys(SectionReader& keys, const ExperimentConfig& c, WindConfig& w) {
   realism::WindParams& p = w.params;
   TurbulenceKeys t;
   w.turbulence = keys.String("turbulence", w.turbulence);
@@ -162,7 +94,7 @@ TurbulenceKeys ReadTurbulenceKeys(Keys& keys, const ExperimentConfig& c, WindCon
 
 // The turbulence level: a named MIL-F-8785C intensity or w20, then the Dryden parameters at
 // the altitude, with sigma and scale_length overriding the standard's.
-void ApplyTurbulence(const Keys& keys, const TurbulenceKeys& t, WindConfig& w) {
+void ApplyTurbulence(const SectionReader& keys, const TurbulenceKeys& t, WindConfig& w) {
   realism::WindParams& p = w.params;
   if (w.turbulence == "none") {
     if (t.has_w20 || t.has_sigma || t.has_length) {
@@ -202,11 +134,11 @@ void ApplyTurbulence(const Keys& keys, const TurbulenceKeys& t, WindConfig& w) {
 }
 
 // One entry of [wind] gusts: a 1-cosine gust inside the run.
-realism::OneCosineGust ReadGust(const Keys& keys, const toml::node& item, int index,
+realism::OneCosineGust ReadGust(const SectionReader& keys, const toml::node& item, int index,
                                 const std::string& path, double duration) {
   const toml::table* g = item.as_table();
   if (!g) keys.FailAt(&item, "gusts", "expected {start = s, duration = s, amplitude = [x, y, z]}");
-  Keys gust(g, path, "wind] gusts[" + std::to_string(index));
+  SectionReader gust(path, g, "wind] gusts[" + std::to_string(index));
   realism::OneCosineGust one;
   if (!g->contains("start") || !g->contains("duration") || !g->contains("amplitude")) {
     keys.FailAt(&item, "gusts", "each gust needs start, duration and amplitude");
@@ -226,14 +158,14 @@ realism::OneCosineGust ReadGust(const Keys& keys, const toml::node& item, int in
   return one;
 }
 
-void ReadDragKeys(Keys& keys, realism::DragParams& drag) {
+void ReadDragKeys(SectionReader& keys, realism::DragParams& drag) {
   drag.rotor_linear = keys.Number("drag_rotor_linear", drag.rotor_linear);
   drag.cda_horizontal = keys.Number("drag_cda_horizontal", drag.cda_horizontal);
   drag.cda_vertical = keys.Number("drag_cda_vertical", drag.cda_vertical);
   drag.air_density = keys.Number("air_density", drag.air_density);
 }
 
-void CheckDrag(const Keys& keys, const realism::DragParams& drag) {
+void CheckDrag(const SectionReader& keys, const realism::DragParams& drag) {
   if (drag.rotor_linear < 0) keys.Fail("drag_rotor_linear", "must be >= 0 N s/m");
   if (drag.cda_horizontal < 0) keys.Fail("drag_cda_horizontal", "must be >= 0 m^2");
   if (drag.cda_vertical < 0) keys.Fail("drag_cda_vertical", "must be >= 0 m^2");
@@ -243,7 +175,7 @@ void CheckDrag(const Keys& keys, const realism::DragParams& drag) {
 }
 
 void ParseWind(const toml::table* table, const std::string& path, ExperimentConfig* c) {
-  Keys keys(table, path, "wind");
+  SectionReader keys(path, table, "wind");
   WindConfig& w = c->wind;
   ReadMeanWind(keys, w.params);
   ApplyTurbulence(keys, ReadTurbulenceKeys(keys, *c, w), w);
@@ -264,7 +196,7 @@ void ParseRealismSections(const toml::table& root, const std::string& path, Expe
   for (const char* name : {"sensors", "wind"}) {
     const toml::node* node = root.get(name);
     if (node && !node->is_table()) {
-      Keys(nullptr, path, name).FailAt(node, "", "expected a table");
+      SectionReader(path, nullptr, name).FailAt(node, "", "expected a table");
     }
   }
   ParseSensors(root.get_as<toml::table>("sensors"), path, c);

@@ -5,6 +5,8 @@
 #ifndef MJFORMATION_SCENE_SRC_MJCF_UTIL_HPP_
 #define MJFORMATION_SCENE_SRC_MJCF_UTIL_HPP_
 
+#include <tinyxml2.h>
+
 #include <string>
 
 namespace mjf::runner::mjcf {
@@ -22,6 +24,18 @@ inline const char* const kReferenceAttributes[] = {
 // The folder of the model file `path` as an absolute path, so that text written elsewhere (the
 // composed scene.xml in a run directory) still finds the model's asset files.
 std::string ModelDirectory(const std::string& path);
+
+// Whether `path` is a regular file.
+bool IsFile(const std::string& path);
+
+// "dir/rel" unless rel is absolute (MuJoCo's rule for model-relative folders and files).
+std::string Join(const std::string& dir, const std::string& rel);
+
+// "<tag name=\"...\">" for messages.
+std::string Describe(const tinyxml2::XMLElement* e);
+
+// The text of an attribute that may be absent ("" then).
+inline std::string Str(const char* s) { return s ? s : ""; }
 
 }  // namespace mjf::runner::mjcf
 

@@ -2,7 +2,6 @@
 #include "mjformation/scene/vehicle_adapter.hpp"
 
 #include <mujoco/mujoco.h>
-#include <sys/stat.h>
 #include <tinyxml2.h>
 
 #include <algorithm>
@@ -14,6 +13,7 @@
 #include <set>
 
 #include "mjcf_util.hpp"
+#include "vehicle_assets.hpp"
 #include "mjformation/scene/scene.hpp"
 
 namespace mjf::runner {
@@ -30,22 +30,9 @@ const char* const kActuatorTags[] = {"general", "motor",    "position",    "velo
                                      "muscle",  "adhesion", "intvelocity", "damper"};
 const char* const kContractSensors[] = {"pos", "vel", "quat", "gyro"};
 
-bool IsFile(const std::string& path) {
-  struct stat st;
-  return stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
-}
-
-// "dir/rel" unless rel is absolute (MuJoCo's rule for model-relative folders and files).
-std::string Join(const std::string& dir, const std::string& rel) {
-  if (rel.empty() || rel[0] == '/' || dir.empty()) return rel;
-  return dir.back() == '/' ? dir + rel : dir + "/" + rel;
-}
-
-std::string Describe(const XMLElement* e) {
-  std::string out = std::string("<") + e->Name();
-  if (const char* n = e->Attribute("name")) out += std::string(" name=\"") + n + "\"";
-  return out + ">";
-}
+using mjcf::Describe;
+using mjcf::Join;
+using mjcf::Str;
 
 class Adapter {
  public:
@@ -72,7 +59,7 @@ class Adapter {
     MapRotors(body);
     MakeRoomForContractNames();
     DropDanglingReferences(body);
-    ResolveAssets(body);
+    notes_ = ResolveAssets(root_, body, m_.model_path, dir_, std::move(notes_));
     AddImuAndSensors(body);
 
     tinyxml2::XMLPrinter printer;
@@ -281,7 +268,6 @@ class Adapter {
       Rename(c, tags, attrs, objtypes, from, to);
     }
   }
-  static std::string Str(const char* s) { return s ? s : ""; }
   void RenameBodyRefs(const std::string& from, const std::string& to) {
     Rename(root_, {"body"}, {"body", "body1", "body2", "target"}, {"body", "xbody"}, from, to);
   }
@@ -434,90 +420,6 @@ class Adapter {
         e = next;
       }
     }
-  }
-
-  static void CollectAttribute(const XMLElement* e, const char* attr, std::set<std::string>* out) {
-    if (const char* v = e->Attribute(attr)) out->insert(v);
-    for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
-      CollectAttribute(c, attr, out);
-    }
-  }
-
-  // What the vehicle uses: materials, meshes and height fields named by its geoms, sites and
-  // defaults; textures named by the materials kept.
-  std::set<std::string> UsedAssets(const XMLElement* body, XMLElement* asset) const {
-    std::set<std::string> used;
-    for (const char* attr : {"material", "mesh", "hfield"}) {
-      CollectAttribute(body, attr, &used);
-      if (XMLElement* d = root_->FirstChildElement("default")) CollectAttribute(d, attr, &used);
-    }
-    for (XMLElement* a = asset->FirstChildElement("material"); a;
-         a = a->NextSiblingElement("material")) {
-      if (used.count(Str(a->Attribute("name")))) CollectAttribute(a, "texture", &used);
-    }
-    return used;
-  }
-
-  // Each file attribute of the kept asset `a` rewritten to the absolute path of a file that
-  // exists under the model's folder + `folder`.
-  void PointAtFiles(XMLElement* a, const std::string& folder) const {
-    const std::string tag = a->Name();
-    for (const char* attr :
-         {"file", "fileright", "fileleft", "fileup", "filedown", "filefront", "fileback"}) {
-      const char* file = a->Attribute(attr);
-      if (!file) continue;
-      const std::string path = Join(Join(dir_, folder), file);
-      if (!IsFile(path)) {
-        throw SceneError(
-            At(a) + ": " + Describe(a) + " " + attr + "=\"" + file +
-            "\": file not found (looked at " + path + "; " + tag +
-            " files are found relative to the model file" +
-            (folder.empty()
-                 ? ""
-                 : " and its " + std::string(tag == "texture" ? "texturedir" : "meshdir")) +
-            ")");
-      }
-      a->SetAttribute(attr, path.c_str());
-    }
-  }
-
-  // Asset files as MuJoCo finds them: the model's folder + meshdir (meshes, height fields,
-  // skins) or texturedir (textures), each defaulting to assetdir; absolute paths as given.
-  void ResolveAssets(XMLElement* body) {
-    std::string meshdir, texturedir;
-    if (XMLElement* c = root_->FirstChildElement("compiler")) {
-      const std::string assetdir = Str(c->Attribute("assetdir"));
-      meshdir = c->Attribute("meshdir") ? Str(c->Attribute("meshdir")) : assetdir;
-      texturedir = c->Attribute("texturedir") ? Str(c->Attribute("texturedir")) : assetdir;
-      for (const char* a : {"assetdir", "meshdir", "texturedir"}) c->DeleteAttribute(a);
-    }
-    XMLElement* asset = root_->FirstChildElement("asset");
-    if (!asset) return;
-    const std::set<std::string> used = UsedAssets(body, asset);
-    std::string unused;
-    for (XMLElement* a = asset->FirstChildElement(); a;) {
-      XMLElement* next = a->NextSiblingElement();
-      const std::string tag = a->Name();
-      // Meshes may be named after their file (MuJoCo's default name: the file's stem).
-      std::string name = Str(a->Attribute("name"));
-      if (name.empty() && a->Attribute("file")) {
-        name = Str(a->Attribute("file"));
-        name = name.substr(name.find_last_of('/') + 1);
-        name = name.substr(0, name.rfind('.'));
-      }
-      if (tag == "texture" && a->Attribute("type", "skybox")) {
-        Note("dropped " + Describe(a) + " (line " + std::to_string(a->GetLineNum()) +
-             "): the sky is the scene's");
-        asset->DeleteChild(a);
-      } else if (!used.count(name)) {
-        unused += (unused.empty() ? "" : ", ") + tag + " '" + name + "'";
-        asset->DeleteChild(a);
-      } else {
-        PointAtFiles(a, tag == "texture" ? texturedir : meshdir);
-      }
-      a = next;
-    }
-    if (!unused.empty()) Note("dropped assets the vehicle does not use: " + unused);
   }
 
   // The site `imu` at the centre of mass of the vehicle (with its child bodies), axes those of

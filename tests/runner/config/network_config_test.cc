@@ -86,6 +86,11 @@ TEST(NetworkConfigTest, BadValuesNameFileLineSectionKey) {
       {"[network]\nrange = -5.0\n", "net.toml:20: [network] range", "> 0"},
       {"[network]\nloss_model = \"burst\"\n", "net.toml:20: [network] loss_model", "bernoulli"},
       {"[network]\nlatncy = 0.1\n", "net.toml:20: [network] latncy", "unknown key"},
+      // One wording for type errors in every section (the shared section reader).
+      {"[network]\nlatency = \"fast\"\n", "net.toml:20: [network] latency",
+       "expected a number, got a string"},
+      {"[network]\nloss_model = 1\n", "net.toml:20: [network] loss_model",
+       "expected a string, got an integer"},
       {"[[network.link]]\nfrom = 1\nto = 3\n", "net.toml:19: [network.link] from",
        "1 -> 3 is not in the graph"},
       {"[[network.link]]\nfrom = 0\nto = 2\n", "net.toml:19: [network.link] from",

@@ -84,6 +84,12 @@ TEST(RealismConfig, BadInputNamesFileLineAndKey) {
                     HasSubstr("known: ideal, typical")));
   EXPECT_THAT(ErrorOf(base + "[sensors]\nattitude_rate = 300.0\n"),
               AllOf(HasSubstr("[sensors] attitude_rate"), HasSubstr("whole number")));
+  EXPECT_THAT(ErrorOf(base + "[sensors]\nscale = \"high\"\n"),
+              AllOf(HasSubstr("exp.toml:18: [sensors] scale"),
+                    HasSubstr("expected a number, got a string")));
+  EXPECT_THAT(ErrorOf(base + "[wind]\ngusts = 3\n"),
+              AllOf(HasSubstr("exp.toml:18: [wind] gusts"),
+                    HasSubstr("expected an array, got an integer")));
   EXPECT_THAT(ErrorOf(base + "[sensors]\nposition_sd = 1.0\n"),
               AllOf(HasSubstr("[sensors] position_sd"), HasSubstr("unknown key")));
   EXPECT_THAT(ErrorOf(base + "[wind]\nturbulence = \"w20\"\nw20 = 80.0\n"),
