@@ -13,6 +13,7 @@ add_library(mjf_runner STATIC
   ${CMAKE_CURRENT_SOURCE_DIR}/src/mujoco_errors.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/network_config.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/output.cc
+  ${CMAKE_CURRENT_SOURCE_DIR}/src/partitioned_physics.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/paths.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/plugin_host.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/recorders.cc
@@ -22,6 +23,7 @@ add_library(mjf_runner STATIC
   ${CMAKE_CURRENT_SOURCE_DIR}/src/shape_config.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/simulation.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/stage_factory.cc
+  ${CMAKE_CURRENT_SOURCE_DIR}/src/step_checks.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/summary.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/sweep.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/vehicle_binding.cc

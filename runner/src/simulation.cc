@@ -14,6 +14,7 @@
 #include "mjformation/runner/mujoco_errors.hpp"
 #include "mjformation/runner/paths.hpp"
 #include "mjformation/runner/scene.hpp"
+#include "mjformation/runner/step_checks.hpp"
 #include "mjformation/runner/vehicle_adapter.hpp"
 
 namespace mjf::runner {
@@ -94,6 +95,18 @@ Simulation::Simulation(const ExperimentConfig& config) : config_(config) {
   actuation_ = MakeActuation(config_.rotor_model, model_.get(), bindings_, config_.timestep);
   force_stages_ = MakeForceStages(config_);
   external_force_.assign(3 * truth_.size(), 0.0);
+  MakePartitions(*attitude.descriptor);
+}
+
+// [run] threads > 1: the same scene request, split by vehicle ranges (partitioned_physics.hpp).
+void Simulation::MakePartitions(const mjfPlugin& attitude) {
+  std::vector<int> bodies;
+  for (const VehicleBinding& b : bindings_.vehicles) bodies.push_back(b.body);
+  CheckPartitionable(config_, model_.get(), bodies);
+  if (config_.threads == 1) return;
+  partitions_ = std::make_unique<PartitionedPhysics>(
+      config_, MakeSceneRequest(config_, initial_positions_, vehicle_xml_, vehicle_notes_),
+      attitude, vehicle_xml_, model_.get());
 }
 
 Simulation::~Simulation() = default;
@@ -294,6 +307,15 @@ std::vector<mjfSetpoint> Simulation::InitialSetpoints() const {
 
 void Simulation::ComputeControls() {
   ClearMujocoWarning();
+  if (partitions_) {
+    // The partitions' controls and forces are handed over in Integrate, on their threads; the
+    // plugins get no mjData (no single one holds the swarm's state).
+    partitions_->Step1(&truth_);
+    whole_data_stale_ = true;
+    tick_->Run(step_, truth_, reinterpret_cast<const struct mjModel_*>(model_.get()), nullptr);
+    if (!force_stages_.empty()) ComputeForces();
+    return;
+  }
   mj_step1(model_.get(), data_.get());
   ReadTrueStates(data_.get(), bindings_, &truth_);
   tick_->Run(step_, truth_, reinterpret_cast<const struct mjModel_*>(model_.get()),
@@ -306,9 +328,13 @@ void Simulation::ComputeControls() {
 }
 
 // Every force stage's force on each vehicle, at its centre of mass.
-void Simulation::ApplyForces() {
+void Simulation::ComputeForces() {
   std::fill(external_force_.begin(), external_force_.end(), 0.0);
   for (auto& stage : force_stages_) stage->AddForces(step_, time(), truth_, &external_force_);
+}
+
+void Simulation::ApplyForces() {
+  ComputeForces();
   for (int i = 0; i < n_vehicles(); ++i) {
     const mjtNum wrench[6] = {
         external_force_[3 * i], external_force_[3 * i + 1], external_force_[3 * i + 2], 0, 0, 0};
@@ -317,32 +343,24 @@ void Simulation::ApplyForces() {
 }
 
 void Simulation::Integrate() {
+  if (partitions_) {
+    partitions_->Step2(tick_->controls(), force_stages_.empty() ? nullptr : &external_force_,
+                       static_cast<double>(step_ + 1) * config_.timestep);
+    ++step_;
+    return;
+  }
   mj_step2(model_.get(), data_.get());
   actuation_->Advance(tick_->controls());
   ++step_;
   CheckState();
 }
 
-void Simulation::CheckState() const {
-  for (int w = 0; w < mjNWARNING; ++w) {
-    if (w == mjWARN_VGEOMFULL) continue;  // a rendering matter, not the physics'
-    if (data_->warning[w].number > 0) {
-      std::string text = mju_warningText(w, data_->warning[w].lastinfo);
-      while (!text.empty() && (text.back() == '.' || text.back() == ' ')) text.pop_back();
-      throw SimulationError(TimeTag() + ": MuJoCo warning: " + text +
-                            " (the simulation is no longer trustworthy)");
-    }
-  }
-  for (int i = 0; i < model_->nq; ++i) {
-    if (!std::isfinite(data_->qpos[i])) {
-      throw SimulationError(TimeTag() + ": non-finite qpos[" + std::to_string(i) + "]");
-    }
-  }
-  for (int i = 0; i < model_->nv; ++i) {
-    if (!std::isfinite(data_->qvel[i])) {
-      throw SimulationError(TimeTag() + ": non-finite qvel[" + std::to_string(i) + "]");
-    }
-  }
+void Simulation::CheckState() const { CheckStepState(model_.get(), data_.get(), time()); }
+
+void Simulation::SyncWholeData() const {
+  if (!whole_data_stale_) return;
+  partitions_->CopyInto(model_.get(), data_.get());
+  whole_data_stale_ = false;
 }
 
 const std::vector<std::array<double, 3>>& Simulation::wind() const {
@@ -352,8 +370,6 @@ const std::vector<std::array<double, 3>>& Simulation::wind() const {
   }
   return kCalm;
 }
-
-std::string Simulation::TimeTag() const { return fmt::format("t = {:.3f} s", time()); }
 
 std::vector<std::pair<std::string, double>> Simulation::FormationReport() const {
   const PluginInstance* formation = formation_plugin();

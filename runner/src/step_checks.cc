@@ -1,0 +1,41 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+#include "mjformation/runner/step_checks.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <string>
+
+#include "mjformation/runner/errors.hpp"
+
+namespace mjf::runner {
+namespace {
+std::string TimeTag(double time) { return fmt::format("t = {:.3f} s", time); }
+}  // namespace
+
+void CheckStepState(const mjModel* m, const mjData* d, double time, int qpos_offset,
+                    int qvel_offset) {
+  for (int w = 0; w < mjNWARNING; ++w) {
+    if (w == mjWARN_VGEOMFULL) continue;  // a rendering matter, not the physics'
+    if (d->warning[w].number > 0) {
+      std::string text = mju_warningText(w, d->warning[w].lastinfo);
+      while (!text.empty() && (text.back() == '.' || text.back() == ' ')) text.pop_back();
+      throw SimulationError(TimeTag(time) + ": MuJoCo warning: " + text +
+                            " (the simulation is no longer trustworthy)");
+    }
+  }
+  for (int i = 0; i < m->nq; ++i) {
+    if (!std::isfinite(d->qpos[i])) {
+      throw SimulationError(TimeTag(time) + ": non-finite qpos[" +
+                            std::to_string(qpos_offset + i) + "]");
+    }
+  }
+  for (int i = 0; i < m->nv; ++i) {
+    if (!std::isfinite(d->qvel[i])) {
+      throw SimulationError(TimeTag(time) + ": non-finite qvel[" +
+                            std::to_string(qvel_offset + i) + "]");
+    }
+  }
+}
+
+}  // namespace mjf::runner
