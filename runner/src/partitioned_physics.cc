@@ -289,6 +289,8 @@ void PartitionedPhysics::Step2(const std::vector<double>& controls,
   RunPhase(Phase::kStep2);
 }
 
+mjData* PartitionedPhysics::partition_data(int k) { return parts_.at(k)->data.get(); }
+
 void PartitionedPhysics::CopyInto(const mjModel* whole, mjData* data) const {
   for (const auto& p : parts_) {
     const mjModel* m = p->model.get();

@@ -57,6 +57,8 @@ class PartitionedPhysics {
   // Copies the partitions' state into the whole-swarm data and positions every body there
   // (kinematics, centres of mass, cameras and lights): what rendering needs.
   void CopyInto(const mjModel* whole, mjData* data) const;
+  // Partition k's MuJoCo data (tests: a fault raised inside one partition's step).
+  mjData* partition_data(int k);
 
  private:
   enum class Phase { kStep1, kStep2 };

@@ -62,6 +62,8 @@ class Simulation {
   }
   // Physics partitions stepped in parallel (1: the single whole-swarm model).
   int threads() const { return partitions_ ? partitions_->size() : 1; }
+  // The partitions (nullptr with threads = 1).
+  PartitionedPhysics* partitions() { return partitions_.get(); }
   const std::string& scene_xml() const { return scene_xml_; }
   int64_t step_index() const { return step_; }
   int64_t total_steps() const { return total_steps_; }
