@@ -122,8 +122,10 @@ struct Partition {
   std::unique_ptr<Actuation> actuation;
   std::vector<mjfVehicleState> truth;  // this partition's vehicles
   std::vector<double> controls;        // this partition's slice of the swarm's controls
-  int qpos_offset = 0, qvel_offset = 0, act_offset = 0;  // where it sits in the whole model
+  StateOffsets offsets;  // where it sits in the whole model
+  int act_offset = 0;
   std::exception_ptr error;                              // set by a failed phase
+  bool integrated = false;  // Step2 got past mj_step2 (a failure was then the state check's)
 };
 
 namespace {
@@ -188,7 +190,7 @@ PartitionedPhysics::PartitionedPhysics(const ExperimentConfig& config, const Sce
                                        const mjModel* whole) {
   const int n = static_cast<int>(request.positions.size());
   const int k_parts = config.threads;
-  int nq = 0, nv = 0, na = 0;
+  int nq = 0, nv = 0, na = 0, nu = 0;
   for (int k = 0; k < k_parts; ++k) {
     auto p = std::make_unique<Partition>();
     p->first = static_cast<int>(static_cast<int64_t>(n) * k / k_parts);
@@ -203,17 +205,17 @@ PartitionedPhysics::PartitionedPhysics(const ExperimentConfig& config, const Sce
     p->actuation = MakeActuation(config.rotor_model, p->model.get(), p->bindings, config.timestep);
     p->truth.resize(p->count);
     p->controls.assign(static_cast<size_t>(p->count) * p->bindings.actuators_per_vehicle, 0.0);
-    p->qpos_offset = nq;
-    p->qvel_offset = nv;
+    p->offsets = {nq, nv, nu};
     p->act_offset = na;
     nq += p->model->nq;
     nv += p->model->nv;
     na += p->model->na;
+    nu += p->model->nu;
     parts_.push_back(std::move(p));
   }
   // Every degree of freedom exactly once: the scene itself has no moving bodies of its own
   // (they would be simulated once per partition), and the layout is the vehicles' in order.
-  if (nq != whole->nq || nv != whole->nv || na != whole->na) {
+  if (nq != whole->nq || nv != whole->nv || na != whole->na || nu != whole->nu) {
     throw ConfigError(ThreadsWhere(config) + ": the scene " + config.scene_path +
                       " has joints or actuator states of its own (besides the vehicles'), which "
                       "cannot be split between partitions; use threads = 1");
@@ -236,6 +238,7 @@ void PartitionedPhysics::RunPhase(Phase phase) {
   for (auto& p : parts_) {
     if (p->error) {
       std::exception_ptr e = p->error;
+      failed_after_integration_ = p->integrated;
       for (auto& q : parts_) q->error = nullptr;
       std::rethrow_exception(e);
     }
@@ -268,9 +271,11 @@ void PartitionedPhysics::RunPartition(int k, Phase phase) {
         AddWrenchAtCentreOfMass(m, d, p.bindings.vehicles[i].body, wrench);
       }
     }
+    p.integrated = false;
     mj_step2(m, d);
+    p.integrated = true;
     p.actuation->Advance(p.controls);
-    CheckStepState(m, d, time_after_, p.qpos_offset, p.qvel_offset);
+    CheckStepState(m, d, time_after_, p.offsets);
   } catch (...) {
     p.error = std::current_exception();
   }
@@ -295,8 +300,8 @@ void PartitionedPhysics::CopyInto(const mjModel* whole, mjData* data) const {
   for (const auto& p : parts_) {
     const mjModel* m = p->model.get();
     const mjData* d = p->data.get();
-    std::memcpy(data->qpos + p->qpos_offset, d->qpos, sizeof(mjtNum) * m->nq);
-    std::memcpy(data->qvel + p->qvel_offset, d->qvel, sizeof(mjtNum) * m->nv);
+    std::memcpy(data->qpos + p->offsets.qpos, d->qpos, sizeof(mjtNum) * m->nq);
+    std::memcpy(data->qvel + p->offsets.dof, d->qvel, sizeof(mjtNum) * m->nv);
     if (m->na) std::memcpy(data->act + p->act_offset, d->act, sizeof(mjtNum) * m->na);
     data->time = d->time;
   }

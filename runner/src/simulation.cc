@@ -344,8 +344,15 @@ void Simulation::ApplyForces() {
 
 void Simulation::Integrate() {
   if (partitions_) {
-    partitions_->Step2(tick_->controls(), force_stages_.empty() ? nullptr : &external_force_,
-                       static_cast<double>(step_ + 1) * config_.timestep);
+    // The simulated time reached on a failure is the one-model run's: the step counts when
+    // the failure was the state check after it (see below), not an engine error inside it.
+    try {
+      partitions_->Step2(tick_->controls(), force_stages_.empty() ? nullptr : &external_force_,
+                         static_cast<double>(step_ + 1) * config_.timestep);
+    } catch (...) {
+      if (partitions_->failed_after_integration()) ++step_;
+      throw;
+    }
     ++step_;
     return;
   }

@@ -13,12 +13,30 @@ namespace {
 std::string TimeTag(double time) { return fmt::format("t = {:.3f} s", time); }
 }  // namespace
 
-void CheckStepState(const mjModel* m, const mjData* d, double time, int qpos_offset,
-                    int qvel_offset) {
+namespace {
+// The whole model's index behind a warning's `lastinfo` (a qpos, dof or actuator index for
+// these warnings, a count for the others).
+int WholeModelInfo(int warning, int info, const StateOffsets& o) {
+  switch (warning) {
+    case mjWARN_BADQPOS:
+      return info + o.qpos;
+    case mjWARN_INERTIA:
+    case mjWARN_BADQVEL:
+    case mjWARN_BADQACC:
+      return info + o.dof;
+    case mjWARN_BADCTRL:
+      return info + o.actuator;
+    default:
+      return info;
+  }
+}
+}  // namespace
+
+void CheckStepState(const mjModel* m, const mjData* d, double time, StateOffsets offsets) {
   for (int w = 0; w < mjNWARNING; ++w) {
     if (w == mjWARN_VGEOMFULL) continue;  // a rendering matter, not the physics'
     if (d->warning[w].number > 0) {
-      std::string text = mju_warningText(w, d->warning[w].lastinfo);
+      std::string text = mju_warningText(w, WholeModelInfo(w, d->warning[w].lastinfo, offsets));
       while (!text.empty() && (text.back() == '.' || text.back() == ' ')) text.pop_back();
       throw SimulationError(TimeTag(time) + ": MuJoCo warning: " + text +
                             " (the simulation is no longer trustworthy)");
@@ -27,13 +45,13 @@ void CheckStepState(const mjModel* m, const mjData* d, double time, int qpos_off
   for (int i = 0; i < m->nq; ++i) {
     if (!std::isfinite(d->qpos[i])) {
       throw SimulationError(TimeTag(time) + ": non-finite qpos[" +
-                            std::to_string(qpos_offset + i) + "]");
+                            std::to_string(offsets.qpos + i) + "]");
     }
   }
   for (int i = 0; i < m->nv; ++i) {
     if (!std::isfinite(d->qvel[i])) {
       throw SimulationError(TimeTag(time) + ": non-finite qvel[" +
-                            std::to_string(qvel_offset + i) + "]");
+                            std::to_string(offsets.dof + i) + "]");
     }
   }
 }

@@ -54,6 +54,9 @@ class PartitionedPhysics {
   // motor lag and checks the new state. `time_after` (s) names the state in messages.
   void Step2(const std::vector<double>& controls, const std::vector<double>* forces,
              double time_after);
+  // After Step2 threw: true when the failed partition had integrated (its state check failed,
+  // the step was taken), false when mj_step2 itself failed (an engine error).
+  bool failed_after_integration() const { return failed_after_integration_; }
   // Copies the partitions' state into the whole-swarm data and positions every body there
   // (kinematics, centres of mass, cameras and lights): what rendering needs.
   void CopyInto(const mjModel* whole, mjData* data) const;
@@ -72,6 +75,7 @@ class PartitionedPhysics {
   const std::vector<double>* controls_ = nullptr;
   const std::vector<double>* forces_ = nullptr;
   double time_after_ = 0;
+  bool failed_after_integration_ = false;
 };
 
 // Refuses [run] threads values that cannot work, before anything is built: a thread count

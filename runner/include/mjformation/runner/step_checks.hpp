@@ -9,11 +9,15 @@
 
 namespace mjf::runner {
 
+// Where a partition's state starts in the whole swarm's model, so that the indices named in
+// messages (MuJoCo's warning text included) are the whole model's.
+struct StateOffsets {
+  int qpos = 0, dof = 0, actuator = 0;
+};
+
 // Throws SimulationError naming the warning or the first non-finite qpos / qvel entry, at
-// `time` (s). `qpos_offset` / `qvel_offset`: where `m`'s state starts in the whole swarm's
-// (a partition's), so the index named is the whole model's.
-void CheckStepState(const mjModel* m, const mjData* d, double time, int qpos_offset = 0,
-                    int qvel_offset = 0);
+// `time` (s).
+void CheckStepState(const mjModel* m, const mjData* d, double time, StateOffsets offsets = {});
 
 }  // namespace mjf::runner
 
