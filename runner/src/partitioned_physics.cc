@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <condition_variable>
 #include <cstdio>
@@ -126,6 +127,7 @@ struct Partition {
   int act_offset = 0;
   std::exception_ptr error;                              // set by a failed phase
   bool integrated = false;  // Step2 got past mj_step2 (a failure was then the state check's)
+  std::array<char, 512> message{};  // a range job's plugin messages
 };
 
 namespace {
@@ -257,6 +259,10 @@ void PartitionedPhysics::RunPartition(int k, Phase phase) {
       std::copy(p.truth.begin(), p.truth.end(), truth_->begin() + p.first);
       return;
     }
+    if (phase == Phase::kRange) {
+      range_job_(range_context_, p.first, p.count, p.message.data(), p.message.size());
+      return;
+    }
     const int per = p.bindings.actuators_per_vehicle;
     std::copy(controls_->begin() + static_cast<ptrdiff_t>(p.first) * per,
               controls_->begin() + static_cast<ptrdiff_t>(p.first + p.count) * per,
@@ -284,6 +290,12 @@ void PartitionedPhysics::RunPartition(int k, Phase phase) {
 void PartitionedPhysics::Step1(std::vector<mjfVehicleState>* truth) {
   truth_ = truth;
   RunPhase(Phase::kStep1);
+}
+
+void PartitionedPhysics::ForEachRange(RangeJob job, void* context) {
+  range_job_ = job;
+  range_context_ = context;
+  RunPhase(Phase::kRange);
 }
 
 void PartitionedPhysics::Step2(const std::vector<double>& controls,

@@ -312,7 +312,14 @@ void Simulation::ComputeControls() {
     // plugins get no mjData (no single one holds the swarm's state).
     partitions_->Step1(&truth_);
     whole_data_stale_ = true;
-    tick_->Run(step_, truth_, reinterpret_cast<const struct mjModel_*>(model_.get()), nullptr);
+    tick_->RunSwarmStages(step_, truth_, reinterpret_cast<const struct mjModel_*>(model_.get()),
+                          nullptr);
+    // Each vehicle's attitude plugin on its partition's thread (they share nothing).
+    partitions_->ForEachRange(
+        [](void* tick, int first, int count, char* error, size_t size) {
+          static_cast<ControlTick*>(tick)->RunAttitude(first, count, error, size);
+        },
+        tick_.get());
     if (!force_stages_.empty()) ComputeForces();
     return;
   }

@@ -57,6 +57,11 @@ class PartitionedPhysics {
   // After Step2 threw: true when the failed partition had integrated (its state check failed,
   // the step was taken), false when mj_step2 itself failed (an engine error).
   bool failed_after_integration() const { return failed_after_integration_; }
+  // Runs job(context, first, count, error, error_size) for every partition's vehicle range
+  // [first, first + count), each on its partition's thread, with a message buffer of its own
+  // (the attitude plugins, simulation.cc). A job's exception is rethrown as Step2's are.
+  using RangeJob = void (*)(void* context, int first, int count, char* error, size_t error_size);
+  void ForEachRange(RangeJob job, void* context);
   // Copies the partitions' state into the whole-swarm data and positions every body there
   // (kinematics, centres of mass, cameras and lights): what rendering needs.
   void CopyInto(const mjModel* whole, mjData* data) const;
@@ -64,7 +69,7 @@ class PartitionedPhysics {
   mjData* partition_data(int k);
 
  private:
-  enum class Phase { kStep1, kStep2 };
+  enum class Phase { kStep1, kRange, kStep2 };
   void RunPhase(Phase phase);
   void RunPartition(int k, Phase phase);
 
@@ -75,6 +80,8 @@ class PartitionedPhysics {
   const std::vector<double>* controls_ = nullptr;
   const std::vector<double>* forces_ = nullptr;
   double time_after_ = 0;
+  RangeJob range_job_ = nullptr;
+  void* range_context_ = nullptr;
   bool failed_after_integration_ = false;
 };
 
