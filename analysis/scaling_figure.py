@@ -1,14 +1,15 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 # Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 """Scaling figure of docs/PERFORMANCE.md: steps/s and real-time factor against the number of
 followers, bare MuJoCo (one model, one thread) beside the full pipeline at each thread count.
 
 Reads the JSON of `mjformation bench ... --threads 1,2 --json FILE` and writes a PNG; prints the
 figures as a Markdown table.
-Usage: scaling_figure.py bench.json out.png
+Usage: scaling_figure.py bench.json out.png [--note "machine quiet, load 0.3"]
 """
 import argparse
 import json
+import os
 from collections import defaultdict
 
 import matplotlib
@@ -46,7 +47,7 @@ def table(report, bare, full):
         print("| " + " | ".join(cells) + " |")
 
 
-def figure(report, bare, full, out):
+def figure(report, bare, full, out, note):
     ns = sorted(bare)
     fig, (ax_s, ax_r) = plt.subplots(1, 2, figsize=(10, 4))
     for ax, key, label in ((ax_s, "steps", "steps/s"), (ax_r, "rtf", "real-time factor")):
@@ -64,8 +65,9 @@ def figure(report, bare, full, out):
     for level in (1, 2):
         ax_r.axhline(level, color="grey", lw=0.8)
     ax_s.legend(fontsize=8)
-    fig.suptitle(f"{report['experiment']}, rotor model {report['rotor_model']}, "
-                 f"{report['timestep_s'] * 1e3:g} ms steps")
+    title = (f"{os.path.basename(report['experiment'])}, rotor model {report['rotor_model']}, "
+             f"{report['timestep_s'] * 1e3:g} ms steps")
+    fig.suptitle(title + (f"\n{note}" if note else ""), fontsize=10)
     fig.tight_layout()
     fig.savefig(out, dpi=110)
 
@@ -74,10 +76,11 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("bench_json")
     parser.add_argument("out_png")
+    parser.add_argument("--note", default="", help="second title line (e.g. the machine's load)")
     args = parser.parse_args()
     report, bare, full = load(args.bench_json)
     table(report, bare, full)
-    figure(report, bare, full, args.out_png)
+    figure(report, bare, full, args.out_png, args.note)
 
 
 if __name__ == "__main__":
