@@ -375,9 +375,9 @@ int BenchCommand(const CliCommands& c) {
   std::vector<int> threads = c.bench_threads;
   if (threads.empty()) threads.push_back(base.threads);
   const bool with_threads = threads.size() > 1 || threads[0] != base.threads;
-  std::printf("%9s %9s %14s %14s %12s %9s %9s %10s %5s %13s", "followers", "steps",
-              "bare steps/s", "full steps/s", "ratio full/bare", "RTF bare", "RTF full", "peak MiB",
-              "runs", "us/foll/step");
+  std::printf("%9s %9s %14s %14s %12s %9s %9s %10s %5s %13s", "followers", "steps", "bare steps/s",
+              "full steps/s", "ratio full/bare", "RTF bare", "RTF full", "peak MiB", "runs",
+              "us/foll/step");
   if (with_threads) std::printf(" %7s %8s", "threads", "speed-up");
   std::printf("\n");
   for (int n : sizes) {

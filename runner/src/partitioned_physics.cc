@@ -65,7 +65,7 @@ class LockstepPool {
   }
 
  private:
-  static constexpr int kSpins = 4000;  // about 10-50 us of pause instructions
+  static constexpr int kSpins = 1000;  // 4-50 us of pause instructions, by CPU generation
   static void Pause() {
 #if defined(__x86_64__) || defined(__i386__)
     __builtin_ia32_pause();
@@ -123,10 +123,10 @@ struct Partition {
   std::unique_ptr<Actuation> actuation;
   std::vector<mjfVehicleState> truth;  // this partition's vehicles
   std::vector<double> controls;        // this partition's slice of the swarm's controls
-  StateOffsets offsets;  // where it sits in the whole model
+  StateOffsets offsets;                // where it sits in the whole model
   int act_offset = 0;
-  std::exception_ptr error;                              // set by a failed phase
-  bool integrated = false;  // Step2 got past mj_step2 (a failure was then the state check's)
+  std::exception_ptr error;  // set by a failed phase
+  bool integrated = false;   // Step2 got past mj_step2 (a failure was then the state check's)
   std::array<char, 512> message{};  // a range job's plugin messages
 };
 
@@ -150,10 +150,11 @@ std::string InterVehicleContact(const mjModel* m, int vehicle_body) {
       if ((m->geom_contype[a] & m->geom_conaffinity[b]) ||
           (m->geom_contype[b] & m->geom_conaffinity[a])) {
         const char* na = mj_id2name(m, mjOBJ_GEOM, a);
-        return fmt::format("geom {} (contype {}, conaffinity {}) of one vehicle collides with geom "
-                           "{} of another (contype {}, conaffinity {})",
-                           na ? na : std::to_string(a), m->geom_contype[a],
-                           m->geom_conaffinity[a], b, m->geom_contype[b], m->geom_conaffinity[b]);
+        return fmt::format(
+            "geom {} (contype {}, conaffinity {}) of one vehicle collides with geom "
+            "{} of another (contype {}, conaffinity {})",
+            na ? na : std::to_string(a), m->geom_contype[a], m->geom_conaffinity[a], b,
+            m->geom_contype[b], m->geom_conaffinity[b]);
       }
     }
   }
@@ -232,10 +233,12 @@ void PartitionedPhysics::RunPhase(Phase phase) {
     PartitionedPhysics* self;
     Phase phase;
   } ctx{this, phase};
-  pool_->Run([](void* c, int k) {
-    auto* x = static_cast<Ctx*>(c);
-    x->self->RunPartition(k, x->phase);
-  }, &ctx);
+  pool_->Run(
+      [](void* c, int k) {
+        auto* x = static_cast<Ctx*>(c);
+        x->self->RunPartition(k, x->phase);
+      },
+      &ctx);
   // The lowest failed partition's error: the same message whatever the threads' timing.
   for (auto& p : parts_) {
     if (p->error) {

@@ -50,8 +50,8 @@ void CheckStepState(const mjModel* m, const mjData* d, double time, StateOffsets
   }
   for (int i = 0; i < m->nv; ++i) {
     if (!std::isfinite(d->qvel[i])) {
-      throw SimulationError(TimeTag(time) + ": non-finite qvel[" +
-                            std::to_string(offsets.dof + i) + "]");
+      throw SimulationError(TimeTag(time) + ": non-finite qvel[" + std::to_string(offsets.dof + i) +
+                            "]");
     }
   }
 }

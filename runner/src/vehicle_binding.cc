@@ -168,8 +168,8 @@ std::vector<std::array<double, 3>> InitialPositions(const ExperimentConfig& c) {
 }
 
 VehicleBindings BindVehicles(const mjModel* composed, const ExperimentConfig& config,
-                             const mjfPlugin& attitude, const std::string& vehicle_xml,
-                             int first, int count) {
+                             const mjfPlugin& attitude, const std::string& vehicle_xml, int first,
+                             int count) {
   const VehicleModelInfo vehicle = ReadVehicleModel(config, attitude, vehicle_xml);
   VehicleBindings out;
   out.wrench_gain = vehicle.gains;

@@ -72,11 +72,11 @@ std::vector<std::string> With(std::vector<std::string> a, const std::vector<std:
 // Exp 2 as published (actuator rotor model, contacts on), wind and sensors on, with snapshots:
 // rendering reads the whole-swarm state gathered from the partitions.
 TEST(PartitionTest, Exp2WithWindAndSensorsGivesTheOneModelBytes) {
-  ExperimentConfig c = LoadExperiment(
-      std::string(MJF_SOURCE_DIR) + "/experiments/exp2.toml",
-      With({"run.duration=1.0", "run.metric_window=[0.5, 1.0]",
-            "render={snapshots=[0.0, 1.0], width=160, height=120, distance=45.0}"},
-           kRealism));
+  ExperimentConfig c =
+      LoadExperiment(std::string(MJF_SOURCE_DIR) + "/experiments/exp2.toml",
+                     With({"run.duration=1.0", "run.metric_window=[0.5, 1.0]",
+                           "render={snapshots=[0.0, 1.0], width=160, height=120, distance=45.0}"},
+                          kRealism));
   ExpectSameAsOneModel(c, {2, 3}, {"snapshots/t000.00.png", "snapshots/t001.00.png"});
 }
 
@@ -184,7 +184,7 @@ TEST(PartitionTest, WarnsAboveTheMachinesCores) {
   const std::string err = ::testing::internal::GetCapturedStderr();
   EXPECT_THAT(err, HasSubstr("warning: "));
   EXPECT_THAT(err, HasSubstr("[run] threads: " + std::to_string(cores + 1) +
-                                 " threads on a machine with " + std::to_string(cores) + " cores"));
+                             " threads on a machine with " + std::to_string(cores) + " cores"));
   EXPECT_EQ(sim.threads(), cores + 1);
 }
 

@@ -27,8 +27,8 @@ struct SceneRequest {
   // Index of the first vehicle (names uav<first_vehicle + i>_): a partition of the swarm
   // (partitioned_physics.hpp) holds a contiguous range of it.
   int first_vehicle = 0;
-  double timestep = 0.001;                       // s
-  int offscreen_width = 1280;                    // offscreen buffer, pixels
+  double timestep = 0.001;     // s
+  int offscreen_width = 1280;  // offscreen buffer, pixels
   int offscreen_height = 720;
   bool strip_actuators = false;   // wrench rotor model: rotors become body wrenches, no actuators
   bool disable_contacts = false;  // <option><flag contact="disable"/>: no collision detection
