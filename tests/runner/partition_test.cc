@@ -93,6 +93,17 @@ TEST(PartitionTest, Ring200WithWindAndSensorsGivesTheOneModelBytes) {
   ExpectSameAsOneModel(c, {2}, {});
 }
 
+// Per-agent execution over a lossy network: the channel and the agents stay on the caller's
+// thread; the bytes are the one-model run's.
+TEST(PartitionTest, PerAgentOverALossyNetworkGivesTheOneModelBytes) {
+  ExperimentConfig c = LoadExperiment(
+      std::string(MJF_SOURCE_DIR) + "/experiments/exp2.toml",
+      {"run.duration=0.5", "run.metric_window=[0.25, 0.5]", "render.snapshots=[]",
+       "execution={mode=\"per_agent\", coupling=\"jacobi\", jacobi_rounds=3}",
+       "network={latency=0.002, jitter=0.001, loss=0.05, loss_model=\"gilbert_elliott\"}"});
+  ExpectSameAsOneModel(c, {2}, {});
+}
+
 // A MuJoCo warning inside the worker thread's partition (the follower's absurd force command
 // on the point mass; the leader, in partition 0, is fine) ends the run like the one-model run:
 // same message, same rows kept, summary.json complete = false.
