@@ -3,7 +3,7 @@
 // The MPI transport of `mjformation sweep` (sweep_mpi.h): rank 0 hands out run indices one at a
 // time (a work queue: fast and slow runs balance themselves) and receives every outcome; ranks
 // 1..K-1 run simulations. Only this module links MPI; the runner dlopen()s it under mpirun.
-#include "mjformation/runner/sweep_mpi.h"
+#include "mjformation/app/sweep_mpi.h"
 
 #include <mpi.h>
 #include <time.h>

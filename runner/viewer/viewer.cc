@@ -23,12 +23,12 @@
 #include <string>
 #include <vector>
 
+#include "mjformation/app/replay.hpp"
+#include "mjformation/config/config.hpp"
+#include "mjformation/record/frame_view.hpp"
+#include "mjformation/record/metrics.hpp"
 #include "mjformation/render.hpp"
-#include "mjformation/runner/config.hpp"
-#include "mjformation/runner/frame_view.hpp"
-#include "mjformation/runner/metrics.hpp"
-#include "mjformation/runner/replay.hpp"
-#include "mjformation/runner/simulation.hpp"
+#include "mjformation/sim/simulation.hpp"
 
 namespace mjf::runner {
 namespace {
@@ -431,6 +431,20 @@ class Viewer {
   double speed_ = 1.0;
 };
 
+// The replayed run or the live experiment; null (after the message) on bad input, which is
+// reported before a window opens, as by `run`.
+std::unique_ptr<Source> MakeSource(const Options& o) {
+  try {
+    if (!o.replay_dir.empty()) return std::make_unique<ReplaySource>(o.replay_dir);
+    ExperimentConfig config = LoadExperiment(o.experiment, o.overrides);
+    for (const auto& p : o.plugin_path) config.plugin_path.push_back(p);
+    return std::make_unique<LiveSource>(config);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "mjformation: error: %s\n", e.what());
+    return nullptr;
+  }
+}
+
 int Main(int argc, char** argv) {
   CLI::App app("mjformation-view: fly an experiment live, or replay a run, in a window");
   Options o;
@@ -450,20 +464,8 @@ int Main(int argc, char** argv) {
   }
   if (!o.screenshot.empty() && o.screenshot_at < 0) o.screenshot_at = 0;
 
-  std::unique_ptr<Source> source;
-  try {
-    // Input errors are reported before a window opens, as by `run`.
-    if (!o.replay_dir.empty()) {
-      source = std::make_unique<ReplaySource>(o.replay_dir);
-    } else {
-      ExperimentConfig config = LoadExperiment(o.experiment, o.overrides);
-      for (const auto& p : o.plugin_path) config.plugin_path.push_back(p);
-      source = std::make_unique<LiveSource>(config);
-    }
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "mjformation: error: %s\n", e.what());
-    return 1;
-  }
+  std::unique_ptr<Source> source = MakeSource(o);
+  if (!source) return 1;
   const char* display = std::getenv("DISPLAY");
   const char* wayland = std::getenv("WAYLAND_DISPLAY");
   if ((!display || !*display) && (!wayland || !*wayland)) {

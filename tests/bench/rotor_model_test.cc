@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "mjformation/runner/config.hpp"
-#include "mjformation/runner/simulation.hpp"
+#include "mjformation/config/config.hpp"
+#include "mjformation/sim/simulation.hpp"
 
 namespace mjf::runner {
 namespace {

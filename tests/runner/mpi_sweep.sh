@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 #
-# `mpirun -np K mjformation sweep` (issue 11): the same run directories and table bytes as the
+# `mpirun -np K mjformation sweep`: the same run directories and table bytes as the
 # threaded sweep, with 3 ranks and with 1; a rank killed mid-sweep followed by --resume
 # completes the sweep with the same bytes again.
 # Usage: mpi_sweep.sh <mjformation> <work folder>

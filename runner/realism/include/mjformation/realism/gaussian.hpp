@@ -2,7 +2,7 @@
 //
 // Seeded normal draws that give the same bytes on every platform: std::mt19937_64 is fully
 // specified by the standard, std::normal_distribution is not (its algorithm is the library's),
-// so the uniform comes from raw 53-bit draws (as runner/src/simulation.cc InitialPositions) and
+// so the uniform comes from raw 53-bit draws (as runner/sim/src/simulation.cc InitialPositions) and
 // the normal from our own transform (Marsaglia's polar form of Box-Muller).
 #ifndef MJFORMATION_REALISM_GAUSSIAN_HPP_
 #define MJFORMATION_REALISM_GAUSSIAN_HPP_

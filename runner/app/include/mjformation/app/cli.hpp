@@ -1,0 +1,73 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// The command-line interface, as a library so tests drive exactly what users run.
+#ifndef MJFORMATION_APP_CLI_HPP_
+#define MJFORMATION_APP_CLI_HPP_
+
+#include <CLI/CLI.hpp>
+#include <string>
+#include <vector>
+
+namespace mjf::runner {
+
+struct CliCommands {
+  CLI::App* run = nullptr;
+  CLI::App* check = nullptr;
+  CLI::App* plugins = nullptr;
+  CLI::App* bench = nullptr;
+  CLI::App* sweep = nullptr;
+  std::string experiment;
+  std::string out;
+  std::vector<std::string> overrides;
+  std::vector<std::string> plugin_path;
+  bool overwrite = false;
+  bool no_render = false;
+  bool quiet = false;
+  int run_threads = 0;  // --threads (0: the file's [run] threads)
+  // bench
+  std::vector<int> bench_followers;
+  double bench_duration = 0;
+  std::string bench_json;
+  bool bench_render = false;
+  bool bench_memory = false;
+  std::vector<int> bench_threads;  // --threads 1,2: time the full pipeline at each
+  // sweep
+  std::vector<std::string> sweep_vary;
+  int sweep_jobs = 2;
+  // replay (replay.cc) and view (viewer_cli.cc)
+  CLI::App* replay = nullptr;
+  CLI::App* view = nullptr;
+  std::string replay_dir, replay_video, replay_out;
+  std::vector<double> replay_snapshots;
+  int sweep_seeds = 0;        // --seeds N: N seeds per grid cell; 0: the config's seed
+  bool sweep_resume = false;  // --resume: rerun only runs missing or incomplete
+};
+
+void AddCommands(CLI::App& app, CliCommands* commands);
+// Runs the chosen subcommand; returns the process exit code:
+// 0 ok, 1 bad input (nothing run), 2 usage, 3 the run stopped early (partial results kept).
+int Dispatch(const CLI::App& app, const CliCommands& commands);
+
+// The whole command line as `mjformation` runs it (main and the tests call this): parses argv,
+// maps --help/--version to 0 and every parser error to 2, then dispatches. argv[0] is the
+// program name.
+int RunCommandLine(int argc, const char* const* argv);
+
+// `mjformation bench` (runner/app/src/bench.cc).
+void AddBenchCommand(CLI::App& app, CliCommands* commands);
+int BenchCommand(const CliCommands& commands);
+
+// `mjformation sweep` (runner/app/src/sweep.cc).
+void AddSweepCommand(CLI::App& app, CliCommands* commands);
+int SweepCommand(const CliCommands& commands);
+
+// `mjformation replay` (runner/app/src/replay_cli.cc) and `mjformation view`: both windows are
+// drawn by the separate executable mjformation-view (GLFW), which the runner does not link.
+void AddReplayCommand(CLI::App& app, CliCommands* commands);
+int ReplayCommand(const CliCommands& commands);
+void AddViewCommand(CLI::App& app, CliCommands* commands);
+int ViewCommand(const CliCommands& commands);
+
+}  // namespace mjf::runner
+
+#endif  // MJFORMATION_APP_CLI_HPP_

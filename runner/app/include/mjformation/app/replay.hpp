@@ -1,0 +1,75 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// `mjformation replay RUN_DIR`: a finished run shown again from what it recorded (scene.xml,
+// timeseries.csv positions and attitudes, config.toml's [render]), with no re-simulation.
+#ifndef MJFORMATION_APP_REPLAY_HPP_
+#define MJFORMATION_APP_REPLAY_HPP_
+
+#include <mujoco/mujoco.h>
+
+#include <array>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "mjformation/config/config.hpp"
+#include "mjformation/record/frame_view.hpp"
+
+namespace mjf::runner {
+
+class ReplayError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// The recorded states of a run directory, one frame per timeseries.csv row.
+struct Recording {
+  std::string dir;
+  std::string name;        // summary.json "experiment", else config.toml [run] name
+  RenderConfig render;     // config.toml [render] (defaults where absent)
+  double altitude = 5;     // [vehicles] altitude: where slots are drawn
+  double ring_radius = 0;  // [formation.shape] circle radius; 0: no circle drawn
+  int n_vehicles = 0;
+  std::vector<double> t, sigma_f;
+  std::vector<std::vector<Vec3>> pos, rpy;  // [frame][vehicle]: m; roll, pitch, yaw (rad, ZYX)
+  std::vector<std::vector<std::array<double, 2>>> slot;  // [frame][vehicle], NaN: none
+  int Frame(double time) const;                          // the row nearest to `time`
+};
+
+// Reads RUN_DIR/timeseries.csv, config.toml and summary.json. Throws ReplayError naming the file
+// (and row) when one is missing or malformed.
+Recording LoadRecording(const std::string& run_dir);
+
+// The run's scene (scene.xml) posed at recorded frames: each vehicle's free joint is set so its
+// `imu` site (where the sensors read position and attitude) is at the recorded pose.
+class ReplayScene {
+ public:
+  explicit ReplayScene(const Recording& recording);
+  ~ReplayScene();
+  ReplayScene(const ReplayScene&) = delete;
+  ReplayScene& operator=(const ReplayScene&) = delete;
+  void Pose(int frame);  // qpos from the record, then kinematics (all rendering needs)
+  const mjModel* model() const { return model_; }
+  mjData* data() { return data_; }
+
+ private:
+  void Free();
+  const Recording& rec_;
+  mjModel* model_ = nullptr;
+  mjData* data_ = nullptr;
+  std::vector<int> qpos_adr_;
+  std::vector<Vec3> imu_offset_;  // imu site in its body's frame
+};
+
+// The trails as `run` had drawn them at `frame`: samples every 0.1 s over trail_seconds.
+TrailBuffer TrailsAt(const Recording& recording, int frame);
+
+// `mjformation replay` without a window: PNGs at `times` into out_dir (replay_t<sss.ss>.png)
+// and/or a video; returns the paths written.
+std::vector<std::string> RenderReplay(const Recording& recording, const std::vector<double>& times,
+                                      const std::string& out_dir, const std::string& video_path);
+
+}  // namespace mjf::runner
+
+#endif  // MJFORMATION_APP_REPLAY_HPP_

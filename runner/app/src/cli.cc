@@ -1,0 +1,176 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+#include "mjformation/app/cli.hpp"
+
+#include <fmt/format.h>
+
+#include <cstdio>
+#include <exception>
+
+#include "mjformation/config/config.hpp"
+#include "mjformation/config/paths.hpp"
+#include "mjformation/control/plugin_host.hpp"
+#include "mjformation/record/output.hpp"
+#include "mjformation/run/run.hpp"
+#include "mjformation/scene/scene.hpp"
+#include "mjformation/sim/simulation.hpp"
+
+namespace mjf::runner {
+namespace {
+
+int RunCommand(const CliCommands& c) {
+  ExperimentConfig config = LoadExperiment(c.experiment, c.overrides);
+  for (const auto& p : c.plugin_path) config.plugin_path.push_back(p);
+  if (c.run_threads > 0) {
+    // How to run, not what: the results are the same, so config.toml keeps the file's text.
+    config.threads = c.run_threads;
+    config.threads_line = 0;
+  }
+  RunOptions options;
+  options.out_dir = c.out.empty() ? "runs/" + config.name : c.out;
+  options.overwrite = c.overwrite;
+  options.progress = !c.quiet;
+  options.render = !c.no_render;
+  const RunResult r = RunExperiment(config, options);
+  const auto& m = r.summary["metrics"];
+  const std::string sigma = m.is_object() && m["sigma_f_mean"].is_number()
+                                ? fmt::format("{:.4f}", m["sigma_f_mean"].get<double>())
+                                : std::string("n/a");
+  if (!r.summary_error.empty()) {
+    std::fprintf(stderr, "mjformation: %s: %s\n  summary.json could not be written: %s\n",
+                 config.name.c_str(), r.error.empty() ? "run finished" : r.error.c_str(),
+                 r.summary_error.c_str());
+    return r.signal ? 128 + r.signal : 3;
+  }
+  if (!r.complete) {
+    std::fprintf(stderr,
+                 "mjformation: %s: the run stopped early: %s\n  what was recorded up to t = %.3f s "
+                 "is kept in %s (summary.json says \"complete\": false)\n",
+                 config.name.c_str(), r.error.c_str(), r.sim_time_s, options.out_dir.c_str());
+    return r.signal ? 128 + r.signal : 3;
+  }
+  if (!c.quiet) {
+    std::printf(
+        "%s: complete, %.1f s simulated in %.2f s (%.1fx real time); mean sigma_f on "
+        "[%g, %g] s = %s; results in %s\n",
+        config.name.c_str(), r.sim_time_s, r.wall_time_s,
+        r.wall_time_s > 0 ? r.sim_time_s / r.wall_time_s : 0.0, config.metric_window[0],
+        config.metric_window[1], sigma.c_str(), options.out_dir.c_str());
+  }
+  return 0;
+}
+
+int CheckCommand(const CliCommands& c) {
+  ExperimentConfig config = LoadExperiment(c.experiment, c.overrides);
+  for (const auto& p : c.plugin_path) config.plugin_path.push_back(p);
+  Simulation sim(config);
+  std::printf(
+      "%s: OK (%d followers, model %s, %d bodies, leader '%s', formation '%s', attitude "
+      "'%s')\n",
+      c.experiment.c_str(), config.followers, config.model_path.c_str(), sim.model()->nbody,
+      config.leader.plugin.c_str(), config.formation.plugin.c_str(),
+      config.attitude.plugin.c_str());
+  for (const auto& note : sim.vehicle_notes()) std::printf("  vehicle model: %s\n", note.c_str());
+  return 0;
+}
+
+int PluginsCommand(const CliCommands& c) {
+  PluginRegistry registry(PluginSearchPath(c.plugin_path));
+  std::printf("Plugin search path:\n");
+  for (const auto& dir : registry.search_path()) {
+    std::printf("  %s%s\n", dir.c_str(), IsDirectory(dir) ? "" : "  (absent)");
+  }
+  for (mjfKind kind :
+       {MJF_KIND_GUIDANCE, MJF_KIND_FORMATION, MJF_KIND_FORMATION_AGENT, MJF_KIND_ATTITUDE}) {
+    std::printf("\n%s plugins:\n", KindName(kind));
+    for (const auto& p : registry.plugins()) {
+      const mjfPlugin& d = *p.descriptor;
+      if (d.kind != kind) continue;
+      std::printf("  %s  -  %s\n    library: %s\n", d.name, d.doc ? d.doc : "", p.library.c_str());
+      if (d.n_actuators > 0) {
+        std::string names;
+        for (int k = 0; k < d.n_actuators; ++k)
+          names += std::string(k ? ", " : "") + d.actuators[k];
+        std::printf("    drives actuators: %s\n", names.c_str());
+      }
+      for (int k = 0; k < d.n_attributes; ++k) {
+        const mjfAttribute& a = d.attributes[k];
+        std::printf("    %-16s %-22s %s\n", a.key,
+                    a.default_value ? ("= " + std::string(a.default_value)).c_str() : "(required)",
+                    a.doc ? a.doc : "");
+      }
+    }
+  }
+  if (!registry.problems().empty()) {
+    std::printf("\nNot loaded:\n");
+    for (const auto& p : registry.problems()) std::printf("  %s\n", p.c_str());
+  }
+  return 0;
+}
+
+}  // namespace
+
+void AddCommands(CLI::App& app, CliCommands* c) {
+  app.set_version_flag("--version", VersionString());
+  app.require_subcommand(1);
+  c->run = app.add_subcommand("run", "Run an experiment file and write its run directory");
+  c->run->add_option("experiment", c->experiment, "experiment file (TOML)")->required();
+  c->run->add_option("--out,-o", c->out, "run directory (default: runs/<run.name>)");
+  c->run->add_option(
+      "--set", c->overrides,
+      "override a value: section.key=value (TOML value), e.g. formation.rho=0.1, or replace a "
+      "section: 'attitude={plugin=\"pointmass_direct\"}'");
+  c->run->add_option("--plugin-path", c->plugin_path, "extra folder to search for plugins");
+  c->run->add_flag("--overwrite", c->overwrite, "replace an existing run directory");
+  c->run->add_flag("--no-render", c->no_render, "skip snapshots and video");
+  c->run->add_flag("--quiet,-q", c->quiet, "no progress line or closing line");
+  c->run
+      ->add_option("--threads", c->run_threads,
+                   "physics partitions stepped in parallel (default: [run] threads, 1)")
+      ->check(CLI::PositiveNumber);
+
+  c->check = app.add_subcommand(
+      "check", "Check an experiment file (config, model, plugins, topology) without running it");
+  c->check->add_option("experiment", c->experiment, "experiment file (TOML)")->required();
+  c->check->add_option("--set", c->overrides, "override a value: section.key=value");
+  c->check->add_option("--plugin-path", c->plugin_path, "extra folder to search for plugins");
+
+  c->plugins = app.add_subcommand("plugins", "List the plugins found, with their attributes");
+  c->plugins->add_option("--plugin-path", c->plugin_path, "extra folder to search for plugins");
+  AddBenchCommand(app, c);
+  AddSweepCommand(app, c);
+  AddReplayCommand(app, c);
+  AddViewCommand(app, c);
+}
+
+int Dispatch(const CLI::App& app, const CliCommands& c) {
+  (void)app;
+  try {
+    if (c.run->parsed()) return RunCommand(c);
+    if (c.check->parsed()) return CheckCommand(c);
+    if (c.plugins->parsed()) return PluginsCommand(c);
+    if (c.bench && c.bench->parsed()) return BenchCommand(c);
+    if (c.sweep->parsed()) return SweepCommand(c);
+    if (c.replay && c.replay->parsed()) return ReplayCommand(c);
+    if (c.view && c.view->parsed()) return ViewCommand(c);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "mjformation: error: %s\n", e.what());
+    return 1;
+  }
+  return 2;
+}
+
+int RunCommandLine(int argc, const char* const* argv) {
+  CLI::App app{"mjformation: distributed formation control of quadrotor swarms in MuJoCo"};
+  CliCommands commands;
+  AddCommands(app, &commands);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // --help and --version end here with 0; every misuse of the command line exits 2.
+    const int code = app.exit(e);
+    return code == 0 ? 0 : 2;
+  }
+  return Dispatch(app, commands);
+}
+
+}  // namespace mjf::runner

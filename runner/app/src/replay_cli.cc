@@ -1,0 +1,149 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// `mjformation replay` and `mjformation view`. Windows are drawn by mjformation-view (GLFW, GLX),
+// a separate executable next to this one: the runner itself renders offscreen with OSMesa, and
+// one process should not load two GL implementations.
+#include <fmt/format.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cstdio>
+
+#include "mjformation/app/cli.hpp"
+#include "mjformation/app/replay.hpp"
+#include "mjformation/config/paths.hpp"
+#include "mjformation/render.hpp"
+
+namespace mjf::runner {
+namespace {
+
+int ExecViewer(const std::vector<std::string>& args) {
+  const std::string viewer = ExecutableDir() + "/mjformation-view";
+  if (!IsFile(viewer)) {
+    std::fprintf(stderr,
+                 "mjformation: error: the window needs %s, which is not installed (it is built "
+                 "when GLFW is found: Debian package libglfw3-dev)\n",
+                 viewer.c_str());
+    return 1;
+  }
+  std::vector<char*> argv;
+  argv.push_back(const_cast<char*>(viewer.c_str()));
+  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  execv(viewer.c_str(), argv.data());
+  std::perror(("mjformation: cannot start " + viewer).c_str());
+  return 1;
+}
+
+constexpr double kTrailPeriod = 0.1;  // s, as run.cc and TrailsAt
+
+}  // namespace
+
+// Offscreen (OSMesa), so here and not in replay.cc, which the window executable links.
+std::vector<std::string> RenderReplay(const Recording& rec, const std::vector<double>& times,
+                                      const std::string& out_dir, const std::string& video_path) {
+  ReplayScene scene(rec);
+  std::vector<std::string> written;
+  auto overlay = [&](const TrailBuffer& trails, int frame) {
+    return FrameOverlay(trails, rec.pos[frame], rec.slot[frame], rec.altitude, rec.ring_radius,
+                        FrameLabel(rec.name, rec.t[frame]));
+  };
+  if (!times.empty()) {
+    render::OffscreenRenderer renderer(scene.model(), rec.render.width, rec.render.height,
+                                       rec.render.shadows);
+    mkdir(out_dir.c_str(), 0755);
+    for (double time : times) {
+      const int frame = rec.Frame(time);
+      scene.Pose(frame);
+      const Vec3 target = CameraTarget(rec.render, rec.pos[frame]);
+      const auto& rgb =
+          renderer.Render(scene.data(), FollowingCamera(rec.render, rec.pos[frame], target),
+                          overlay(TrailsAt(rec, frame), frame), target.data());
+      const std::string path = fmt::format("{}/replay_t{:06.2f}.png", out_dir, rec.t[frame]);
+      render::WritePng(path, rgb.data(), rec.render.width, rec.render.height);
+      written.push_back(path);
+    }
+  }
+  if (!video_path.empty()) {
+    render::OffscreenRenderer renderer(scene.model(), rec.render.video_width,
+                                       rec.render.video_height, rec.render.video_shadows);
+    render::VideoWriter video(video_path, rec.render.video_width, rec.render.video_height,
+                              rec.render.video_fps);
+    TrailBuffer trails(rec.n_vehicles, rec.render.trail_seconds, kTrailPeriod);
+    double next_trail = 0;
+    int last = -1;
+    for (int64_t k = 0;; ++k) {
+      const double time = static_cast<double>(k) / rec.render.video_fps;
+      if (time > rec.t.back() + 1e-9) break;
+      const int frame = rec.Frame(time);
+      for (int j = last + 1; j <= frame; ++j) {
+        if (rec.t[j] >= next_trail - 1e-9) {
+          trails.Add(rec.pos[j]);
+          next_trail = rec.t[j] + kTrailPeriod;
+        }
+      }
+      last = frame;
+      scene.Pose(frame);
+      const Vec3 target = CameraTarget(rec.render, rec.pos[frame]);
+      video.AddFrame(renderer
+                         .Render(scene.data(), FollowingCamera(rec.render, rec.pos[frame], target),
+                                 overlay(trails, frame), target.data())
+                         .data());
+    }
+    video.Close();
+    written.push_back(video_path);
+  }
+  return written;
+}
+
+void AddReplayCommand(CLI::App& app, CliCommands* c) {
+  c->replay = app.add_subcommand(
+      "replay",
+      "Show a finished run again from its recorded states (no re-simulation): in a window, or "
+      "offscreen into a video or PNGs");
+  c->replay->add_option("run_dir", c->replay_dir, "run directory written by `mjformation run`")
+      ->required();
+  c->replay->add_option("--video", c->replay_video,
+                        "render to this MP4 (at [render] video_fps and video size) instead of a "
+                        "window");
+  c->replay
+      ->add_option("--snapshots", c->replay_snapshots,
+                   "render PNGs at these times (s) instead of a window, e.g. 10 20")
+      ->delimiter(',');
+  c->replay->add_option("--out,-o", c->replay_out,
+                        "folder for --snapshots PNGs (default: RUN_DIR/replay)");
+}
+
+int ReplayCommand(const CliCommands& c) {
+  if (c.replay_video.empty() && c.replay_snapshots.empty()) {
+    return ExecViewer({"--replay", c.replay_dir});
+  }
+  const Recording rec = LoadRecording(c.replay_dir);
+  const std::string out = c.replay_out.empty() ? c.replay_dir + "/replay" : c.replay_out;
+  for (const auto& path : RenderReplay(rec, c.replay_snapshots, out, c.replay_video)) {
+    std::printf("%s\n", path.c_str());
+  }
+  return 0;
+}
+
+void AddViewCommand(CLI::App& app, CliCommands* c) {
+  c->view =
+      app.add_subcommand("view",
+                         "Fly an experiment live in a window (keys: space pause, right arrow step, "
+                         "+/- speed, backspace reset, c camera, esc quit)");
+  c->view->allow_extras();
+  c->view->prefix_command();  // everything after `view` goes to mjformation-view as is
+}
+
+int ViewCommand(const CliCommands& c) {
+  std::vector<std::string> args = c.view->remaining();
+  if (args.empty()) {
+    std::fprintf(stderr,
+                 "mjformation view: usage: mjformation view EXPERIMENT.toml [--set "
+                 "section.key=value]... [--plugin-path DIR]...\n");
+    return 2;
+  }
+  return ExecViewer(args);
+}
+
+}  // namespace mjf::runner

@@ -1,0 +1,124 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// The plan of a sweep: the grid of --vary values times --seeds, every run's configuration
+// parsed and checked before anything runs.
+#include <cctype>
+#include <set>
+
+#include "sweep.hpp"
+
+namespace mjf::runner::sweep {
+namespace {
+
+// "formation.q=1,2.5,4.5" -> {formation.q, [1, 2.5, 4.5]}. Commas inside [], {} or quotes do
+// not split: "wind.mean=[3,0,0],[6,0,0]" or "sensors={preset=\"typical\", scale=3.0},{...}".
+Axis ParseAxis(const std::string& text) {
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0 || eq + 1 == text.size()) {
+    throw ConfigError("--vary '" + text + "': expected section.key=v1,v2,...");
+  }
+  Axis axis{text.substr(0, eq), {}};
+  const std::string rest = text.substr(eq + 1);
+  int depth = 0;
+  bool quoted = false;
+  std::string value;
+  for (size_t i = 0; i <= rest.size(); ++i) {
+    const char ch = i < rest.size() ? rest[i] : ',';
+    if (ch == '"') quoted = !quoted;
+    if (!quoted && (ch == '[' || ch == '{')) ++depth;
+    if (!quoted && (ch == ']' || ch == '}')) --depth;
+    if (ch == ',' && depth == 0 && !quoted) {
+      if (value.empty()) throw ConfigError("--vary '" + text + "': empty value");
+      axis.values.push_back(value);
+      value.clear();
+    } else {
+      value += ch;
+    }
+  }
+  if (depth != 0 || quoted) throw ConfigError("--vary '" + text + "': unbalanced [ { or \"");
+  return axis;
+}
+
+// A name for a point's run directory: key values joined, safe for a file name.
+std::string PointName(const std::vector<Axis>& axes, const std::vector<size_t>& index) {
+  std::string name;
+  for (size_t a = 0; a < axes.size(); ++a) {
+    std::string key = axes[a].key.substr(axes[a].key.rfind('.') + 1);
+    name += (a ? "_" : "") + key + "=" + axes[a].values[index[a]];
+  }
+  for (char& c : name) {
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '=' || c == '.' || c == '-' ||
+          c == '_')) {
+      c = '_';
+    }
+  }
+  return name;
+}
+
+}  // namespace
+
+// A CSV field: as is, or quoted (RFC 4180) when it holds a comma, quote or newline.
+std::string CsvField(const std::string& v) {
+  if (v.find_first_of(",\"\n") == std::string::npos) return v;
+  std::string out = "\"";
+  for (char ch : v) out += ch == '"' ? std::string("\"\"") : std::string(1, ch);
+  return out + "\"";
+}
+
+SweepPlan PlanSweep(const CliCommands& c) {
+  SweepPlan plan;
+  for (const auto& v : c.sweep_vary) plan.axes.push_back(ParseAxis(v));
+  if (c.sweep_seeds < 0 || (c.sweep->count("--seeds") && c.sweep_seeds == 0)) {
+    throw ConfigError("sweep: --seeds must be >= 1 (seeds per grid cell)");
+  }
+  plan.seeds = c.sweep_seeds;
+  if (plan.axes.empty() && plan.seeds == 0) {
+    throw ConfigError("sweep: give --vary section.key=v1,v2,... and/or --seeds N");
+  }
+  plan.cells.assign(1, {});
+  for (const Axis& axis : plan.axes) {
+    std::vector<std::vector<size_t>> next;
+    for (const auto& p : plan.cells) {
+      for (size_t k = 0; k < axis.values.size(); ++k) {
+        next.push_back(p);
+        next.back().push_back(k);
+      }
+    }
+    plan.cells = std::move(next);
+  }
+  for (size_t cell = 0; cell < plan.cells.size(); ++cell) {
+    std::vector<std::string> overrides = c.overrides;
+    for (size_t a = 0; a < plan.axes.size(); ++a) {
+      overrides.push_back(plan.axes[a].key + "=" + plan.axes[a].values[plan.cells[cell][a]]);
+    }
+    ExperimentConfig base = LoadExperiment(c.experiment, overrides);
+    const std::string point = PointName(plan.axes, plan.cells[cell]);
+    for (int k = 0; k < std::max(1, plan.seeds); ++k) {
+      RunSpec run;
+      run.cell = cell;
+      run.seed = base.seed + k;  // recorded in the run's config.toml and summary.json
+      if (plan.seeds == 0) {
+        run.config = base;
+        run.name = point;
+      } else {
+        std::vector<std::string> seeded = overrides;
+        seeded.push_back("run.seed=" + std::to_string(run.seed));
+        run.config = LoadExperiment(c.experiment, seeded);
+        run.name = (point.empty() ? "" : point + "_") + "seed=" + std::to_string(run.seed);
+      }
+      for (const auto& path : c.plugin_path) run.config.plugin_path.push_back(path);
+      plan.runs.push_back(std::move(run));
+    }
+  }
+  std::set<std::string> names;
+  for (const RunSpec& run : plan.runs) {
+    if (!names.insert(run.name).second) {
+      throw ConfigError("sweep: two runs would share the directory '" + run.name +
+                        "' (values that differ only in punctuation); write them apart");
+    }
+  }
+  plan.out = c.out.empty() ? "runs/" + plan.runs.front().config.name + "_sweep" : c.out;
+  return plan;
+}
+
+}  // namespace mjf::runner::sweep

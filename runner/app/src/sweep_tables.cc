@@ -1,0 +1,179 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// The tables of a sweep: sweep.csv / sweep.json per run, or with --seeds per cell (mean,
+// standard deviation and 95 % Student-t confidence interval of every metric, the runs in
+// sweep_runs.csv). Written atomically (temporary file + rename), with a completeness flag: an
+// interrupted sweep keeps its finished runs and marks the others "not run".
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "mjformation/app/sweep_stats.hpp"
+#include "mjformation/record/output.hpp"
+#include "sweep.hpp"
+
+namespace mjf::runner::sweep {
+namespace {
+
+const char* const kMainMetrics[] = {
+    "sigma_f_mean",    "sigma_f_final",     "max_final_slot_error_m",         "min_separation_m",
+    "reaching_time_s", "saturation_time_s", "max_follower_tilt_deg_in_window"};
+
+std::string MetricText(const Json& s, const std::string& key) {
+  if (!s.is_object() || !s.contains("metrics") || !s["metrics"].contains(key) ||
+      !s["metrics"][key].is_number()) {
+    return "";
+  }
+  return fmt::format("{:.6g}", s["metrics"][key].get<double>());
+}
+
+std::string CsvSafe(std::string text) {
+  for (char& ch : text) {
+    if (ch == ',' || ch == '\n') ch = ';';
+  }
+  return text;
+}
+
+std::string NumberText(double v) { return std::isfinite(v) ? fmt::format("{:.6g}", v) : ""; }
+
+std::string RunStatus(const RunOutcome& o) {
+  return o.state == RunOutcome::kNotRun ? "not run (sweep interrupted)" : CsvSafe(o.error);
+}
+
+// Per-run table: one row per run in plan order (whatever the completion order).
+std::string RunsCsv(const SweepPlan& plan, const std::vector<RunOutcome>& outcomes) {
+  std::string csv;
+  for (const Axis& axis : plan.axes) csv += axis.key + ",";
+  if (plan.seeds) csv += "seed,";
+  csv += "complete";
+  for (const char* m : kMainMetrics) csv += std::string(",") + m;
+  csv += ",run,error\n";
+  for (size_t i = 0; i < plan.runs.size(); ++i) {
+    const RunSpec& run = plan.runs[i];
+    for (size_t a = 0; a < plan.axes.size(); ++a) {
+      csv += CsvField(plan.axes[a].values[plan.cells[run.cell][a]]) + ",";
+    }
+    if (plan.seeds) csv += std::to_string(run.seed) + ",";
+    csv += outcomes[i].complete() ? "true" : "false";
+    for (const char* m : kMainMetrics) csv += "," + MetricText(outcomes[i].summary, m);
+    csv += "," + run.name + "," + (outcomes[i].complete() ? "" : RunStatus(outcomes[i])) + "\n";
+  }
+  return csv;
+}
+
+// Every scalar numeric metric any run reported, in order of first appearance (plan order).
+std::vector<std::string> MetricKeys(const std::vector<RunOutcome>& outcomes) {
+  std::vector<std::string> keys;
+  for (const RunOutcome& o : outcomes) {
+    if (!o.summary.is_object() || !o.summary.contains("metrics")) continue;
+    for (const auto& [k, v] : o.summary["metrics"].items()) {
+      if (v.is_number() && std::find(keys.begin(), keys.end(), k) == keys.end()) keys.push_back(k);
+    }
+  }
+  return keys;
+}
+
+// Per-cell statistics over the complete runs of the cell.
+std::vector<std::vector<SampleStats>> CellStats(const SweepPlan& plan,
+                                                const std::vector<RunOutcome>& outcomes,
+                                                const std::vector<std::string>& keys,
+                                                std::vector<int>* completed) {
+  std::vector<std::vector<std::vector<double>>> samples(
+      plan.cells.size(), std::vector<std::vector<double>>(keys.size()));
+  completed->assign(plan.cells.size(), 0);
+  for (size_t i = 0; i < plan.runs.size(); ++i) {
+    if (!outcomes[i].complete()) continue;
+    const size_t cell = plan.runs[i].cell;
+    ++(*completed)[cell];
+    const Json& metrics = outcomes[i].summary["metrics"];
+    for (size_t k = 0; k < keys.size(); ++k) {
+      if (metrics.contains(keys[k]) && metrics[keys[k]].is_number()) {
+        samples[cell][k].push_back(metrics[keys[k]].get<double>());
+      }
+    }
+  }
+  std::vector<std::vector<SampleStats>> stats(plan.cells.size());
+  for (size_t cell = 0; cell < plan.cells.size(); ++cell) {
+    for (const auto& s : samples[cell]) stats[cell].push_back(Describe(s));
+  }
+  return stats;
+}
+
+// Every run's row of sweep.json; `complete` is cleared when some run did not finish.
+Json RunsJson(const SweepPlan& plan, const std::vector<RunOutcome>& outcomes, bool* complete) {
+  Json runs = Json::array();
+  for (size_t i = 0; i < plan.runs.size(); ++i) {
+    const RunSpec& run = plan.runs[i];
+    const RunOutcome& o = outcomes[i];
+    *complete = *complete && o.state == RunOutcome::kFinished;
+    Json entry;
+    for (size_t a = 0; a < plan.axes.size(); ++a) {
+      entry[plan.axes[a].key] = plan.axes[a].values[plan.cells[run.cell][a]];
+    }
+    if (plan.seeds) entry["seed"] = run.seed;
+    entry["complete"] = o.complete();
+    entry["finished"] = o.state == RunOutcome::kFinished;
+    entry["run"] = run.name;
+    entry["error"] = o.complete() ? Json(nullptr) : Json(RunStatus(o));
+    entry["metrics"] = o.summary.is_object() && o.summary.contains("metrics") ? o.summary["metrics"]
+                                                                              : Json(nullptr);
+    runs.push_back(entry);
+  }
+  return runs;
+}
+
+// With --seeds: the per-cell statistics as sweep.csv's text (`csv`) and sweep.json's "cells".
+Json CellsTable(const SweepPlan& plan, const std::vector<RunOutcome>& outcomes, std::string* csv) {
+  const std::vector<std::string> keys = MetricKeys(outcomes);
+  std::vector<int> completed;
+  const auto stats = CellStats(plan, outcomes, keys, &completed);
+  for (const Axis& axis : plan.axes) *csv += axis.key + ",";
+  *csv += "seeds,complete_runs";
+  for (const auto& k : keys) *csv += fmt::format(",{0}_mean,{0}_std,{0}_ci95_low,{0}_ci95_high", k);
+  *csv += "\n";
+  Json cells = Json::array();
+  for (size_t cell = 0; cell < plan.cells.size(); ++cell) {
+    Json entry;
+    for (size_t a = 0; a < plan.axes.size(); ++a) {
+      *csv += CsvField(plan.axes[a].values[plan.cells[cell][a]]) + ",";
+      entry[plan.axes[a].key] = plan.axes[a].values[plan.cells[cell][a]];
+    }
+    *csv += fmt::format("{},{}", plan.seeds, completed[cell]);
+    entry["seeds"] = plan.seeds;
+    entry["complete_runs"] = completed[cell];
+    Json metrics = Json::object();
+    for (size_t k = 0; k < keys.size(); ++k) {
+      const SampleStats& s = stats[cell][k];
+      *csv += "," + NumberText(s.mean) + "," + NumberText(s.std) + "," + NumberText(s.ci95_low) +
+              "," + NumberText(s.ci95_high);
+      metrics[keys[k]] = {{"n", s.n},
+                          {"mean", JsonNumber(s.mean)},
+                          {"std", JsonNumber(s.std)},
+                          {"ci95", {JsonNumber(s.ci95_low), JsonNumber(s.ci95_high)}}};
+    }
+    *csv += "\n";
+    entry["metrics"] = metrics;
+    cells.push_back(entry);
+  }
+  return cells;
+}
+
+}  // namespace
+
+void WriteTables(const SweepPlan& plan, const std::vector<RunOutcome>& outcomes) {
+  bool complete = true;
+  Json runs = RunsJson(plan, outcomes, &complete);
+  Json table = {{"complete", complete}, {"seeds", plan.seeds}, {"runs", runs}};
+  const std::string runs_csv = RunsCsv(plan, outcomes);
+  if (!plan.seeds) {
+    WriteTextFile(plan.out + "/sweep.csv", runs_csv);
+  } else {
+    std::string csv;
+    table["cells"] = CellsTable(plan, outcomes, &csv);
+    WriteTextFile(plan.out + "/sweep_runs.csv", runs_csv);
+    WriteTextFile(plan.out + "/sweep.csv", csv);
+  }
+  WriteTextFile(plan.out + "/sweep.json", table.dump(2) + "\n");
+}
+
+}  // namespace mjf::runner::sweep

@@ -1,0 +1,192 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// The experiment file (TOML) as a typed struct. Parsing checks every key and type and reports
+// errors as "FILE:LINE: [section] key: what is wrong"; plugin attributes are kept as strings and
+// checked against the plugin's declaration by the plugin host.
+#ifndef MJFORMATION_CONFIG_CONFIG_HPP_
+#define MJFORMATION_CONFIG_CONFIG_HPP_
+
+#include <array>
+#include <map>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "mjformation/config/realism_config.hpp"
+#include "mjformation/network/link.hpp"
+
+namespace mjf::core {
+class Shape;
+}  // namespace mjf::core
+
+namespace mjf::runner {
+
+// A configuration problem, already formatted with file, line and key.
+class ConfigError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// The experiment's choices, parsed once into enums: no string is compared while a run steps.
+enum class RotorModel { kActuator, kWrench };  // MuJoCo's actuators, or the runner's wrench
+enum class CameraMode { kFollow, kLeader, kFixed };
+enum class ShapeType { kCircle, kOffsets, kTable, kNone };
+// Their names in the experiment file and in summary.json.
+const char* ToString(RotorModel value);
+const char* ToString(CameraMode value);
+const char* ToString(ShapeType value);
+
+// [execution] and [network] (runner/config/src/network_config.cc, docs/NETWORK.md): how the
+// formation protocol runs (one swarm-level instance, or one instance per follower over a simulated
+// network) and how the per-agent form closes its u_j(k) loop.
+enum class Execution { kCentral, kPerAgent };
+enum class Coupling { kLastInput, kJacobi, kCentralSolve };
+const char* ToString(Execution value);
+const char* ToString(Coupling value);
+
+struct NetworkConfig {
+  Execution execution = Execution::kCentral;
+  Coupling coupling = Coupling::kLastInput;
+  int jacobi_rounds = 1;         // exchange rounds per sample (coupling = "jacobi")
+  bool refuse_divergent = true;  // jacobi_divergence = "refuse" (else "warn")
+  network::LinkParams defaults;  // [network]: every link (ideal when the section is absent)
+  struct LinkOverride {
+    int from = 0;  // vehicle: 0 = leader, 1..N followers (the paper's numbering)
+    int to = 1;
+    int line = 0;
+    network::LinkParams params;
+  };
+  std::vector<LinkOverride> links;  // [[network.link]]
+};
+
+// One plugin attribute as written in the experiment file.
+struct AttributeValue {
+  std::string text;  // value converted to the ABI's string form ("3 1" for arrays)
+  int line = 0;      // source line, for messages
+};
+
+// A [leader] / [formation] / [attitude] section: plugin name plus its attributes.
+struct PluginSection {
+  std::string section;  // "leader", "formation", "attitude"
+  std::string plugin;
+  int line = 0;  // line of the `plugin` key
+  std::map<std::string, AttributeValue> attributes;
+};
+
+// [formation.shape]: the desired formation f_i(t) (Definition 1).
+struct ShapeConfig {
+  // "circle": the paper's rotating circle; "offsets": fixed offsets [[x, y], ...] (m);
+  // "table": a CSV file of t, then px, py, vx, vy per follower (interpolated); "none".
+  ShapeType type = ShapeType::kCircle;
+  double radius = 10.0;                        // m
+  double omega = 0.314;                        // rad/s
+  double phase0 = 0.0;                         // rad, phase of follower 1
+  double phase_step = -1.0;                    // rad between consecutive followers; < 0: 2 pi / N
+  std::vector<std::array<double, 2>> offsets;  // "offsets"
+  std::string file;                            // "table": resolved path
+  double tolerance = 1e-3;  // m/s: allowed mismatch of f_ip' and f_iv (Algorithms 1-2)
+};
+
+struct RenderConfig {
+  std::vector<double> snapshots;  // s; empty: none
+  int width = 1280;
+  int height = 720;
+  CameraMode camera = CameraMode::kFollow;  // formation centroid, the leader, or fixed
+  double distance = 45.0;                   // m
+  double azimuth = 90.0;                    // deg
+  double elevation = -55.0;                 // deg
+  std::array<double, 3> lookat = {0, 0, 0};
+  bool shadows = true;
+  double trail_seconds = 10.0;  // s of path drawn behind each vehicle
+  bool video = false;
+  double video_fps = 25.0;
+  bool video_shadows = false;  // shadows double the cost of a frame (docs/PERFORMANCE.md)
+  int video_width = 640;
+  int video_height = 480;
+};
+
+struct ExperimentConfig {
+  std::string source_path;             // the TOML file
+  std::string source_text;             // its bytes, echoed to the run directory and hashed
+  std::vector<std::string> overrides;  // --set section.key=value, applied in order
+  std::string effective_text;          // with overrides: the merged TOML (what ran); else empty
+
+  // [run]
+  std::string name;
+  double duration = 40.0;   // s
+  double timestep = 0.001;  // s, physics
+  uint64_t seed = 1;
+  double record_rate = 100.0;  // Hz
+  // s, mean sigma_f window (Table 1); default the last 37.5 % of the run ([25, 40] for 40 s)
+  std::array<double, 2> metric_window = {25.0, 40.0};
+  int paper_experiment = 0;              // 1..3 when this reproduces one
+  std::vector<std::string> plugin_path;  // extra plugin folders
+  double reaching_band = 0.0;            // |s| band for the reaching time; 0: the plugin's "delta"
+  // Adds leader_ax, leader_ay (measured, m/s^2) to timeseries.csv; off keeps the old columns.
+  bool record_leader_acceleration = false;
+  // Physics partitions, each stepped on its own thread in lockstep with the one control tick
+  // (partitioned_physics.hpp); 1: the single whole-swarm model. Same results either way.
+  int threads = 1;
+  int threads_line = 0;  // for messages; 0: not in the file (default or --threads)
+
+  // [vehicles]
+  std::string model = "quadrotor";  // "quadrotor", "pointmass" or a path to an MJCF file
+  std::string model_path;           // resolved
+  std::string scene_path;           // resolved mjcf/scene.xml (or [vehicles] scene)
+  int followers = 6;
+  double altitude = 5.0;  // m, every vehicle's altitude setpoint
+  std::array<double, 2> leader_start = {20.0, 0.0};
+  std::vector<std::array<double, 2>> follower_start;  // empty: a small ring near the origin
+  double start_jitter = 0.0;                          // m, seeded uniform perturbation
+  RotorModel rotor_model = RotorModel::kActuator;
+  // false: no collision detection at all. Vehicles never touch each other anyway (see
+  // mjcf/README.md), and MuJoCo 2.2.2's broadphase costs O(bodies^2) per step even with no
+  // contact: at 1000 vehicles it is the largest single cost (docs/PERFORMANCE.md).
+  bool contacts = true;
+  // Bring your own quadrotor (docs/VEHICLES.md): the model's vehicle body and rotor actuators,
+  // in the attitude plugin's order. Empty body and rotors: the model follows the contract.
+  std::string vehicle_body;
+  std::vector<std::string> vehicle_rotors;
+  int vehicle_body_line = 0, vehicle_rotors_line = 0;  // for messages; 0: not in the file
+
+  // [topology]
+  std::vector<double> leader_weight;  // a_i0 per follower (0-based)
+  struct Edge {
+    int from = 0;  // 0-based follower
+    int to = 0;
+    double weight = 1.0;
+  };
+  std::vector<Edge> edges;
+
+  PluginSection leader;
+  PluginSection formation;
+  PluginSection attitude;
+  ShapeConfig shape;
+  RenderConfig render;
+  SensorsConfig sensors;  // [sensors] (realism_config.hpp)
+  WindConfig wind;        // [wind]
+  NetworkConfig network;  // [execution] + [network]
+};
+
+// Follower edges of a generated topology ([topology] generate): the chain 1 -> 2 -> ... -> n,
+// closed into a ring by n -> 1 when `ring` and n > 2. 0-based, weight 1.
+std::vector<ExperimentConfig::Edge> GeneratedEdges(int n, bool ring);
+
+// The desired formation f_i(t) of [formation.shape]; nullptr for type "none". Reads the table
+// file for type "table". Throws ConfigError naming the file (and row) on bad input.
+std::unique_ptr<core::Shape> MakeShape(const ExperimentConfig& config);
+
+// Reads and checks an experiment file; `overrides` are "section.key=value" strings (TOML
+// values) applied on top, e.g. "formation.rho=0.1". Throws ConfigError.
+ExperimentConfig LoadExperiment(const std::string& path,
+                                const std::vector<std::string>& overrides = {});
+
+// Same from text already in memory (tests); `path` names it in messages.
+ExperimentConfig ParseExperiment(const std::string& text, const std::string& path,
+                                 const std::vector<std::string>& overrides = {});
+
+}  // namespace mjf::runner
+
+#endif  // MJFORMATION_CONFIG_CONFIG_HPP_

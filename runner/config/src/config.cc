@@ -1,0 +1,642 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+#include "mjformation/config/config.hpp"
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "mjformation/config/paths.hpp"
+#include "mjformation/config/source_location.hpp"
+#include "network_config.hpp"
+#include "realism_config.hpp"
+
+namespace mjf::runner {
+namespace {
+
+// Reports a problem at a node of the document: "FILE:LINE: [section] key: message".
+class Reporter {
+ public:
+  explicit Reporter(std::string path) : path_(std::move(path)) {}
+  [[noreturn]] void Fail(const toml::node* node, const std::string& where,
+                         const std::string& message) const {
+    const int line = node ? static_cast<int>(node->source().begin.line) : 0;
+    SourceLocation{path_, line, where}.Fail(message);
+  }
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+};
+
+const char* TypeName(const toml::node& node) {
+  switch (node.type()) {
+    case toml::node_type::table:
+      return "a table";
+    case toml::node_type::array:
+      return "an array";
+    case toml::node_type::string:
+      return "a string";
+    case toml::node_type::integer:
+      return "an integer";
+    case toml::node_type::floating_point:
+      return "a number";
+    case toml::node_type::boolean:
+      return "a boolean";
+    default:
+      return "a date/time";
+  }
+}
+
+// Typed access to one table with unknown-key detection.
+class Section {
+ public:
+  Section(const Reporter& reporter, const toml::table* table, std::string name)
+      : reporter_(reporter), table_(table), name_(std::move(name)) {}
+
+  bool Has(const std::string& key) const { return table_ && table_->contains(key); }
+  const toml::node* Node(const std::string& key) const {
+    return table_ ? table_->get(key) : nullptr;
+  }
+  std::string Where(const std::string& key) const { return "[" + name_ + "] " + key; }
+  [[noreturn]] void Fail(const std::string& key, const std::string& message) const {
+    reporter_.Fail(Node(key) ? Node(key) : table_, Where(key), message);
+  }
+
+  double Number(const std::string& key, double fallback) {
+    used_.insert(key);
+    const toml::node* node = Node(key);
+    if (!node) return fallback;
+    return AsNumber(*node, key);
+  }
+  double AsNumber(const toml::node& node, const std::string& key) const {
+    if (auto v = node.value_exact<double>()) {
+      if (!std::isfinite(*v)) Fail(key, "expected a finite number");
+      return *v;
+    }
+    if (auto v = node.value_exact<int64_t>()) return static_cast<double>(*v);
+    reporter_.Fail(&node, Where(key), std::string("expected a number, got ") + TypeName(node));
+  }
+  int64_t Integer(const std::string& key, int64_t fallback) {
+    used_.insert(key);
+    const toml::node* node = Node(key);
+    if (!node) return fallback;
+    if (auto v = node->value_exact<int64_t>()) return *v;
+    Fail(key, std::string("expected an integer, got ") + TypeName(*node));
+  }
+  bool Bool(const std::string& key, bool fallback) {
+    used_.insert(key);
+    const toml::node* node = Node(key);
+    if (!node) return fallback;
+    if (auto v = node->value_exact<bool>()) return *v;
+    Fail(key, std::string("expected true or false, got ") + TypeName(*node));
+  }
+  std::string String(const std::string& key, const std::string& fallback) {
+    used_.insert(key);
+    const toml::node* node = Node(key);
+    if (!node) return fallback;
+    if (auto v = node->value_exact<std::string>()) return *v;
+    Fail(key, std::string("expected a string, got ") + TypeName(*node));
+  }
+  const toml::array* Array(const std::string& key) {
+    used_.insert(key);
+    const toml::node* node = Node(key);
+    if (!node) return nullptr;
+    if (const toml::array* a = node->as_array()) return a;
+    Fail(key, std::string("expected an array, got ") + TypeName(*node));
+  }
+  std::vector<double> Numbers(const std::string& key, std::vector<double> fallback,
+                              int expected_size = -1) {
+    const toml::array* a = Array(key);
+    if (!a) return fallback;
+    std::vector<double> out;
+    for (const toml::node& item : *a) out.push_back(AsNumber(item, key));
+    if (expected_size >= 0 && static_cast<int>(out.size()) != expected_size) {
+      Fail(key, "expected " + std::to_string(expected_size) + " numbers, got " +
+                    std::to_string(out.size()));
+    }
+    return out;
+  }
+  void MarkUsed(const std::string& key) { used_.insert(key); }
+
+  // One of a fixed set of words, returned as its enum value.
+  template <typename E>
+  E Enum(const std::string& key, E fallback,
+         std::initializer_list<std::pair<const char*, E>> names) {
+    used_.insert(key);
+    if (!Node(key)) return fallback;
+    const std::string text = String(key, "");
+    std::string list;
+    for (const auto& [name, value] : names) {
+      if (text == name) return value;
+      list += (list.empty() ? "\"" : ", \"") + std::string(name) + "\"";
+    }
+    Fail(key, "must be one of " + list + " (got \"" + text + "\")");
+  }
+
+  // Refuses keys this section does not define, listing the ones it does.
+  void RejectUnknown() const {
+    if (!table_) return;
+    for (auto&& [key, node] : *table_) {
+      const std::string k(key.str());
+      if (used_.count(k)) continue;
+      std::string known;
+      for (const auto& u : used_) known += (known.empty() ? "" : ", ") + u;
+      reporter_.Fail(&node, Where(k), "unknown key (this section knows: " + known + ")");
+    }
+  }
+  const toml::table* table() const { return table_; }
+
+ private:
+  const Reporter& reporter_;
+  const toml::table* table_;
+  std::string name_;
+  std::set<std::string> used_;
+};
+
+// [vehicles] body and rotors: how a foreign quadrotor model maps onto the vehicle contract
+// (docs/VEHICLES.md); whether the model has them is checked when the model is adapted.
+void ParseVehicleMapping(Section& vehicles, const Reporter& reporter, ExperimentConfig* c) {
+  auto line = [&](const char* key) {
+    const toml::node* n = vehicles.Node(key);
+    return n ? static_cast<int>(n->source().begin.line) : 0;
+  };
+  c->vehicle_body = vehicles.String("body", "");
+  c->vehicle_body_line = line("body");
+  if (vehicles.Has("body") && c->vehicle_body.empty()) vehicles.Fail("body", "must not be empty");
+  if (const toml::array* a = vehicles.Array("rotors")) {
+    c->vehicle_rotors_line = line("rotors");
+    for (const toml::node& item : *a) {
+      auto v = item.value_exact<std::string>();
+      if (!v || v->empty()) {
+        reporter.Fail(&item, "[vehicles] rotors", "expected actuator names, e.g. [\"m1\", \"m2\"]");
+      }
+      if (std::find(c->vehicle_rotors.begin(), c->vehicle_rotors.end(), *v) !=
+          c->vehicle_rotors.end()) {
+        reporter.Fail(&item, "[vehicles] rotors", "'" + *v + "' is listed twice");
+      }
+      c->vehicle_rotors.push_back(*v);
+    }
+    if (c->vehicle_rotors.empty()) vehicles.Fail("rotors", "must name the model's rotors");
+  }
+}
+
+// TOML value -> the ABI's attribute string ("3 1" for arrays of numbers).
+std::string AttributeText(const Reporter& reporter, const toml::node& node,
+                          const std::string& where) {
+  if (auto v = node.value_exact<double>()) {
+    return fmt::format("{}", *v);  // shortest text that reads back to the same double
+  }
+  if (auto v = node.value_exact<int64_t>()) return std::to_string(*v);
+  if (auto v = node.value_exact<bool>()) return *v ? "true" : "false";
+  if (auto v = node.value_exact<std::string>()) return *v;
+  if (const toml::array* a = node.as_array()) {
+    std::string out;
+    for (const toml::node& item : *a) {
+      if (item.is_array() || item.is_table()) {
+        reporter.Fail(&item, where, "nested arrays are not plugin attributes");
+      }
+      out += (out.empty() ? "" : " ") + AttributeText(reporter, item, where);
+    }
+    return out;
+  }
+  reporter.Fail(&node, where, std::string("a plugin attribute cannot be ") + TypeName(node));
+}
+
+PluginSection ReadPluginSection(const Reporter& reporter, const toml::table& root,
+                                const std::string& name, const std::string& default_plugin,
+                                const std::set<std::string>& reserved) {
+  PluginSection out;
+  out.section = name;
+  const toml::node* node = root.get(name);
+  if (node && !node->is_table()) {
+    reporter.Fail(node, "[" + name + "]", "expected a table");
+  }
+  const toml::table* table = node ? node->as_table() : nullptr;
+  out.plugin = default_plugin;
+  if (table) {
+    if (const toml::node* p = table->get("plugin")) {
+      auto v = p->value_exact<std::string>();
+      if (!v) reporter.Fail(p, "[" + name + "] plugin", "expected a string (a plugin name)");
+      out.plugin = *v;
+      out.line = static_cast<int>(p->source().begin.line);
+    }
+    for (auto&& [key, value] : *table) {
+      const std::string k(key.str());
+      if (k == "plugin" || reserved.count(k)) continue;
+      out.attributes[k] = {AttributeText(reporter, value, "[" + name + "] " + k),
+                           static_cast<int>(value.source().begin.line)};
+      // A plugin's `file` attribute is a path relative to the experiment file, like
+      // [formation.shape] file: the experiment runs the same from any working folder.
+      if (k == "file" && value.is_string()) {
+        out.attributes[k].text = ResolveRelative(out.attributes[k].text, reporter.path());
+      }
+    }
+  }
+  if (out.plugin.empty()) {
+    reporter.Fail(table, "[" + name + "] plugin", "missing: name the plugin to use");
+  }
+  return out;
+}
+
+// Applies "section.key=value" overrides by parsing the value as TOML.
+void ApplyOverrides(toml::table& root, const std::vector<std::string>& overrides) {
+  for (const std::string& item : overrides) {
+    const auto eq = item.find('=');
+    if (eq == std::string::npos) {
+      throw ConfigError("override '" + item + "': expected section.key=value");
+    }
+    std::string path = item.substr(0, eq);
+    const std::string value = item.substr(eq + 1);
+    toml::table parsed;
+    try {
+      parsed = toml::parse("v = " + value);
+    } catch (const toml::parse_error& e) {
+      throw ConfigError("override '" + item + "': value is not TOML (" +
+                        std::string(e.description()) + "); quote strings: key=\"text\"");
+    }
+    toml::table* table = &root;
+    std::size_t start = 0;
+    for (std::size_t dot; (dot = path.find('.', start)) != std::string::npos; start = dot + 1) {
+      const std::string part = path.substr(start, dot - start);
+      if (!table->contains(part)) table->insert(part, toml::table{});
+      table = (*table)[part].as_table();
+      if (!table) throw ConfigError("override '" + item + "': '" + part + "' is not a table");
+    }
+    const std::string key = path.substr(start);
+    if (key.empty() || (start == 0 && !parsed.get("v")->is_table())) {
+      throw ConfigError("override '" + item +
+                        "': expected section.key=value, or section={...} to replace a section");
+    }
+    // section={ plugin = "x" } replaces the whole section (its old keys may not suit x).
+    table->insert_or_assign(key, *parsed.get("v"));
+  }
+}
+
+}  // namespace
+
+std::vector<ExperimentConfig::Edge> GeneratedEdges(int n, bool ring) {
+  std::vector<ExperimentConfig::Edge> edges;
+  for (int i = 1; i < n; ++i) edges.push_back({i - 1, i, 1.0});
+  if (ring && n > 2) edges.push_back({n - 1, 0, 1.0});
+  return edges;
+}
+
+namespace {
+
+// The TOML document with overrides applied; syntax errors as FILE:LINE:COLUMN.
+toml::table ParseDocument(const std::string& text, const std::string& path,
+                          const std::vector<std::string>& overrides) {
+  toml::table root;
+  try {
+    root = toml::parse(text, path);
+  } catch (const toml::parse_error& e) {
+    std::ostringstream out;
+    out << path << ":" << e.source().begin.line << ":" << e.source().begin.column
+        << ": TOML syntax error: " << e.description();
+    throw ConfigError(out.str());
+  }
+  ApplyOverrides(root, overrides);
+  return root;
+}
+
+// The sections an experiment file may have, in the order the documentation lists them.
+const char* const kSections[] = {"run",       "vehicles",  "topology", "leader",
+                                 "formation", "attitude",  "render",   "sensors",
+                                 "wind",      "execution", "network"};
+
+void RejectUnknownSections(const Reporter& reporter, const toml::table& root) {
+  for (auto&& [key, node] : root) {
+    const std::string name(key.str());
+    if (std::find(std::begin(kSections), std::end(kSections), name) == std::end(kSections)) {
+      std::string known;
+      for (const char* s : kSections) known += (known.empty() ? "" : ", ") + std::string(s);
+      reporter.Fail(&node, SectionKey(name), "unknown section (known: " + known + ")");
+    }
+    if (!node.is_table()) reporter.Fail(&node, name, "expected a [section] table");
+  }
+}
+
+void ParseRunSection(const Reporter& reporter, Section run, const std::string& path,
+                     ExperimentConfig& c) {
+  c.name = run.String("name", "");
+  c.duration = run.Number("duration", c.duration);
+  c.timestep = run.Number("timestep", c.timestep);
+  const int64_t seed = run.Integer("seed", 1);
+  if (seed < 0) run.Fail("seed", "must be >= 0");
+  c.seed = static_cast<uint64_t>(seed);
+  c.record_rate = run.Number("record_rate", c.record_rate);
+  const bool window_given = run.Has("metric_window");
+  {
+    auto w = run.Numbers("metric_window", {c.metric_window[0], c.metric_window[1]}, 2);
+    c.metric_window = {w[0], w[1]};
+  }
+  c.paper_experiment = static_cast<int>(run.Integer("paper_experiment", 0));
+  c.reaching_band = run.Number("reaching_band", 0.0);
+  c.record_leader_acceleration = run.Bool("record_leader_acceleration", false);
+  const int64_t threads = run.Integer("threads", 1);
+  if (threads < 1 || threads > 1024) run.Fail("threads", "must be in [1, 1024] (1: one model)");
+  c.threads = static_cast<int>(threads);
+  if (const toml::node* node = run.Node("threads")) c.threads_line = node->source().begin.line;
+  if (const toml::array* a = run.Array("plugin_path")) {
+    for (const toml::node& item : *a) {
+      auto v = item.value_exact<std::string>();
+      if (!v) reporter.Fail(&item, "[run] plugin_path", "expected strings (folders)");
+      c.plugin_path.push_back(ResolveRelative(*v, path));
+    }
+  }
+  run.RejectUnknown();
+  if (c.duration <= 0) run.Fail("duration", "must be > 0 s");
+  if (c.timestep <= 0 || c.timestep > 0.01) run.Fail("timestep", "must be in (0, 0.01] s");
+  if (c.record_rate <= 0 || c.record_rate > 1.0 / c.timestep) {
+    run.Fail("record_rate", "must be in (0, 1/timestep] Hz");
+  }
+  if (!(c.metric_window[0] < c.metric_window[1])) {
+    run.Fail("metric_window", "expected [start, end] with start < end");
+  }
+  if (!window_given) {
+    // Default: the last 37.5 % of the run, Table 1's [25, 40] s for the paper's 40 s runs.
+    c.metric_window = {0.625 * c.duration, c.duration};
+  }
+  // A window reaching past the run would average fewer samples than the user asked for.
+  if (c.metric_window[0] < 0 || c.metric_window[1] > c.duration + 1e-9) {
+    run.Fail("metric_window",
+             fmt::format("[{}, {}] s lies outside the run [0, {}] s (a shortened run needs its "
+                         "window too, e.g. --set 'run.metric_window=[{}, {}]')",
+                         c.metric_window[0], c.metric_window[1], c.duration, 0.625 * c.duration,
+                         c.duration));
+  }
+  if (c.paper_experiment < 0 || c.paper_experiment > 3) {
+    run.Fail("paper_experiment", "must be 1, 2 or 3 (or 0: none)");
+  }
+  if (c.name.empty()) {
+    // Default name: the file's stem.
+    std::string stem = path.substr(path.find_last_of('/') + 1);
+    c.name = stem.substr(0, stem.rfind('.'));
+  }
+}
+
+void ParseVehiclesSection(const Reporter& reporter, Section vehicles, const std::string& path,
+                          ExperimentConfig& c) {
+  c.model = vehicles.String("model", c.model);
+  c.model_path = ResolveModel(c.model, path);
+  c.scene_path = ResolveModel(vehicles.String("scene", "scene"), path);
+  c.followers = static_cast<int>(vehicles.Integer("followers", c.followers));
+  c.altitude = vehicles.Number("altitude", c.altitude);
+  {
+    auto s = vehicles.Numbers("leader_start", {c.leader_start[0], c.leader_start[1]}, 2);
+    c.leader_start = {s[0], s[1]};
+  }
+  if (const toml::array* a = vehicles.Array("follower_start")) {
+    for (const toml::node& item : *a) {
+      const toml::array* xy = item.as_array();
+      if (!xy || xy->size() != 2) {
+        reporter.Fail(&item, "[vehicles] follower_start", "expected [[x, y], ...] in m");
+      }
+      c.follower_start.push_back({vehicles.AsNumber(*xy->get(0), "follower_start"),
+                                  vehicles.AsNumber(*xy->get(1), "follower_start")});
+    }
+  }
+  c.start_jitter = vehicles.Number("start_jitter", 0.0);
+  c.rotor_model =
+      vehicles.Enum("rotor_model", c.rotor_model,
+                    {{"actuator", RotorModel::kActuator}, {"wrench", RotorModel::kWrench}});
+  c.contacts = vehicles.Bool("contacts", c.contacts);
+  ParseVehicleMapping(vehicles, reporter, &c);
+  vehicles.RejectUnknown();
+  if (c.followers < 1 || c.followers > 100000) vehicles.Fail("followers", "must be in [1, 100000]");
+  if (!c.follower_start.empty() && static_cast<int>(c.follower_start.size()) != c.followers) {
+    vehicles.Fail("follower_start", "has " + std::to_string(c.follower_start.size()) +
+                                        " entries for " + std::to_string(c.followers) +
+                                        " followers");
+  }
+  if (c.altitude <= 0) vehicles.Fail("altitude", "must be > 0 m");
+  if (c.start_jitter < 0) vehicles.Fail("start_jitter", "must be >= 0 m");
+}
+
+// [topology] edges = [[from, to(, weight)], ...] (1-based in the file, 0-based here).
+std::vector<ExperimentConfig::Edge> ReadEdges(const Reporter& reporter, Section& topology,
+                                              int followers) {
+  std::vector<ExperimentConfig::Edge> edges;
+  const toml::array* a = topology.Array("edges");
+  if (!a) return edges;
+  for (const toml::node& item : *a) {
+    const toml::array* e = item.as_array();
+    if (!e || e->size() < 2 || e->size() > 3) {
+      reporter.Fail(&item, "[topology] edges",
+                    "expected [from, to] or [from, to, weight] (follower `to` receives "
+                    "`from`'s state)");
+    }
+    auto from = e->get(0)->value_exact<int64_t>();
+    auto to = e->get(1)->value_exact<int64_t>();
+    if (!from || !to || *from < 1 || *to < 1 || *from > followers || *to > followers) {
+      reporter.Fail(&item, "[topology] edges",
+                    "follower numbers must be integers in 1.." + std::to_string(followers));
+    }
+    ExperimentConfig::Edge edge{static_cast<int>(*from - 1), static_cast<int>(*to - 1), 1.0};
+    if (e->size() == 3) edge.weight = topology.AsNumber(*e->get(2), "edges");
+    edges.push_back(edge);
+  }
+  return edges;
+}
+
+void ReadLeaderLinks(const Reporter& reporter, Section& topology, ExperimentConfig& c) {
+  c.leader_weight.assign(c.followers, 0.0);
+  if (const toml::array* a = topology.Array("leader_links")) {
+    for (const toml::node& item : *a) {
+      auto v = item.value_exact<int64_t>();
+      if (!v || *v < 1 || *v > c.followers) {
+        reporter.Fail(&item, "[topology] leader_links",
+                      "expected follower numbers 1.." + std::to_string(c.followers));
+      }
+      c.leader_weight[*v - 1] = 1.0;
+    }
+  } else if (topology.table()) {
+    topology.Fail("leader_links", "missing: which followers receive the leader's state");
+  }
+  if (const toml::array* a = topology.Array("leader_weights")) {
+    if (static_cast<int>(a->size()) != c.followers) {
+      topology.Fail("leader_weights", "expected one weight a_i0 per follower");
+    }
+    for (int i = 0; i < c.followers; ++i) {
+      c.leader_weight[i] = topology.AsNumber(*a->get(i), "leader_weights");
+    }
+  }
+}
+
+void ParseTopologySection(const Reporter& reporter, Section topology, ExperimentConfig& c) {
+  ReadLeaderLinks(reporter, topology, c);
+  const std::string generator = topology.String("generate", "");
+  c.edges = ReadEdges(reporter, topology, c.followers);
+  if (!generator.empty()) {
+    // Generated graphs for large N: "chain" (1 -> 2 -> ... -> N) or "ring" (chain + N -> 1).
+    if (generator != "chain" && generator != "ring") {
+      topology.Fail("generate", "must be \"chain\" or \"ring\"");
+    }
+    if (!c.edges.empty()) topology.Fail("generate", "give either edges or generate, not both");
+    c.edges = GeneratedEdges(c.followers, generator == "ring");
+  }
+  topology.RejectUnknown();
+  if (!topology.table()) {
+    // Default: the leader talks to follower 1 and the followers form a chain 1 -> 2 -> ... -> N.
+    c.leader_weight[0] = 1.0;
+    c.edges = GeneratedEdges(c.followers, false);
+  }
+}
+
+void ParseShapeSection(const Reporter& reporter, const toml::table* formation_table,
+                       const std::string& path, ExperimentConfig& c) {
+  const toml::node* shape_node = formation_table ? formation_table->get("shape") : nullptr;
+  if (shape_node && !shape_node->is_table()) {
+    reporter.Fail(shape_node, "[formation.shape]", "expected a table");
+  }
+  Section shape(reporter, shape_node ? shape_node->as_table() : nullptr, "formation.shape");
+  c.shape.type = shape.Enum("type", shape_node ? ShapeType::kCircle : ShapeType::kNone,
+                            {{"circle", ShapeType::kCircle},
+                             {"offsets", ShapeType::kOffsets},
+                             {"table", ShapeType::kTable},
+                             {"none", ShapeType::kNone}});
+  c.shape.radius = shape.Number("radius", c.shape.radius);
+  c.shape.omega = shape.Number("omega", c.shape.omega);
+  c.shape.phase0 = shape.Number("phase0", c.shape.phase0);
+  c.shape.phase_step = shape.Number("phase_step", -1.0);
+  c.shape.tolerance = shape.Number("tolerance", c.shape.tolerance);
+  if (const toml::array* a = shape.Array("offsets")) {
+    for (const toml::node& item : *a) {
+      const toml::array* xy = item.as_array();
+      if (!xy || xy->size() != 2) {
+        reporter.Fail(&item, "[formation.shape] offsets", "expected [[x, y], ...] in m");
+      }
+      c.shape.offsets.push_back(
+          {shape.AsNumber(*xy->get(0), "offsets"), shape.AsNumber(*xy->get(1), "offsets")});
+    }
+  }
+  if (shape.Has("file")) c.shape.file = ResolveRelative(shape.String("file", ""), path);
+  shape.MarkUsed("file");
+  shape.RejectUnknown();
+  const ShapeType type = c.shape.type;
+  if (type == ShapeType::kCircle && c.shape.radius <= 0) shape.Fail("radius", "must be > 0 m");
+  if (type == ShapeType::kOffsets && static_cast<int>(c.shape.offsets.size()) != c.followers) {
+    shape.Fail("offsets", "needs one [x, y] per follower (" + std::to_string(c.followers) + ")");
+  }
+  if (type == ShapeType::kTable && c.shape.file.empty()) {
+    shape.Fail("file",
+               "type \"table\" needs file = \"shape.csv\" (t, then px, py, vx, vy per "
+               "follower)");
+  }
+  if (c.shape.tolerance <= 0) shape.Fail("tolerance", "must be > 0 m/s");
+}
+
+void ReadRenderValues(Section& render, RenderConfig& r) {
+  r.snapshots = render.Numbers("snapshots", {});
+  r.width = static_cast<int>(render.Integer("width", r.width));
+  r.height = static_cast<int>(render.Integer("height", r.height));
+  r.camera = render.Enum("camera", r.camera,
+                         {{"follow", CameraMode::kFollow},
+                          {"leader", CameraMode::kLeader},
+                          {"fixed", CameraMode::kFixed}});
+  r.distance = render.Number("distance", r.distance);
+  r.azimuth = render.Number("azimuth", r.azimuth);
+  r.elevation = render.Number("elevation", r.elevation);
+  {
+    auto l = render.Numbers("lookat", {0, 0, 0}, 3);
+    r.lookat = {l[0], l[1], l[2]};
+  }
+  r.shadows = render.Bool("shadows", r.shadows);
+  r.trail_seconds = render.Number("trail_seconds", r.trail_seconds);
+  r.video = render.Bool("video", r.video);
+  r.video_fps = render.Number("video_fps", r.video_fps);
+  r.video_shadows = render.Bool("video_shadows", r.video_shadows);
+  r.video_width = static_cast<int>(render.Integer("video_width", r.video_width));
+  r.video_height = static_cast<int>(render.Integer("video_height", r.video_height));
+}
+
+void ParseRenderSection(Section render, double duration, RenderConfig& r) {
+  ReadRenderValues(render, r);
+  render.RejectUnknown();
+  for (double t : r.snapshots) {
+    if (t < 0 || t > duration + 1e-9) render.Fail("snapshots", "times must lie in [0, duration]");
+  }
+  if (r.width < 16 || r.height < 16 || r.width > 4096 || r.height > 4096) {
+    render.Fail("width", "width and height must be in [16, 4096] pixels");
+  }
+  if (r.video_fps <= 0 || r.video_fps > 120) render.Fail("video_fps", "must be in (0, 120]");
+  if (r.video_width < 16 || r.video_height < 16 || r.video_width > 4096 || r.video_height > 4096 ||
+      r.video_width % 2 || r.video_height % 2) {
+    render.Fail("video_width", "video size must be even and in [16, 4096] pixels");
+  }
+  if (r.trail_seconds < 0) render.Fail("trail_seconds", "must be >= 0 s");
+}
+
+}  // namespace
+
+const char* ToString(RotorModel value) {
+  return value == RotorModel::kWrench ? "wrench" : "actuator";
+}
+const char* ToString(CameraMode value) {
+  switch (value) {
+    case CameraMode::kLeader:
+      return "leader";
+    case CameraMode::kFixed:
+      return "fixed";
+    default:
+      return "follow";
+  }
+}
+const char* ToString(ShapeType value) {
+  switch (value) {
+    case ShapeType::kOffsets:
+      return "offsets";
+    case ShapeType::kTable:
+      return "table";
+    case ShapeType::kNone:
+      return "none";
+    default:
+      return "circle";
+  }
+}
+
+ExperimentConfig ParseExperiment(const std::string& text, const std::string& path,
+                                 const std::vector<std::string>& overrides) {
+  Reporter reporter(path);
+  toml::table root = ParseDocument(text, path, overrides);
+  RejectUnknownSections(reporter, root);
+  auto table_of = [&](const char* name) { return root.get_as<toml::table>(name); };
+
+  ExperimentConfig c;
+  c.source_path = path;
+  c.source_text = text;
+  c.overrides = overrides;
+  if (!overrides.empty()) {
+    std::ostringstream merged;
+    merged << root;
+    c.effective_text = merged.str() + "\n";
+  }
+  ParseRunSection(reporter, Section(reporter, table_of("run"), "run"), path, c);
+  ParseVehiclesSection(reporter, Section(reporter, table_of("vehicles"), "vehicles"), path, c);
+  ParseTopologySection(reporter, Section(reporter, table_of("topology"), "topology"), c);
+  c.leader = ReadPluginSection(reporter, root, "leader", "circle", {});
+  c.formation = ReadPluginSection(reporter, root, "formation", "", {"shape"});
+  c.attitude = ReadPluginSection(reporter, root, "attitude", "pd_cascade", {});
+  ParseShapeSection(reporter, table_of("formation"), path, c);
+  ParseRenderSection(Section(reporter, table_of("render"), "render"), c.duration, c.render);
+  ParseRealismSections(root, path, &c);  // [sensors], [wind]
+  ParseNetworkSections(root, c);
+  return c;
+}
+
+ExperimentConfig LoadExperiment(const std::string& path,
+                                const std::vector<std::string>& overrides) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ConfigError(path + ": cannot open the experiment file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return ParseExperiment(text.str(), path, overrides);
+}
+
+}  // namespace mjf::runner

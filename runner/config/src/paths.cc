@@ -1,0 +1,84 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+#include "mjformation/config/paths.hpp"
+
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cstdlib>
+
+#include "mjformation/config/config.hpp"
+
+namespace mjf::runner {
+
+std::string ExecutableDir() {
+  char buf[4096];
+  const ssize_t n = readlink("/proc/self/exe", buf, sizeof(buf) - 1);
+  if (n <= 0) return ".";
+  std::string exe(buf, static_cast<size_t>(n));
+  return exe.substr(0, exe.find_last_of('/'));
+}
+
+bool IsDirectory(const std::string& path) {
+  struct stat st;
+  return stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode);
+}
+
+bool IsFile(const std::string& path) {
+  struct stat st;
+  return stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
+}
+
+std::string ResolveRelative(const std::string& path, const std::string& relative_to_file) {
+  if (path.empty() || path[0] == '/') return path;
+  const auto slash = relative_to_file.find_last_of('/');
+  if (slash == std::string::npos) return path;
+  return relative_to_file.substr(0, slash + 1) + path;
+}
+
+std::string ResolveModel(const std::string& name, const std::string& experiment_file) {
+  const bool is_path = name.find('/') != std::string::npos ||
+                       (name.size() > 4 && name.compare(name.size() - 4, 4, ".xml") == 0);
+  if (is_path) {
+    const std::string resolved = ResolveRelative(name, experiment_file);
+    if (!IsFile(resolved)) {
+      throw ConfigError(experiment_file + ": model file '" + name + "' not found (looked at " +
+                        resolved + ")");
+    }
+    return resolved;
+  }
+  std::vector<std::string> dirs;
+  if (const char* env = std::getenv("MJF_MJCF_DIR")) dirs.push_back(env);
+  // An installed runner uses the models of its own prefix, wherever the prefix was moved; the
+  // build tree's runner (no such folder next to it) those of the source tree.
+  dirs.push_back(ExecutableDir() + "/../share/mjformation/mjcf");
+  dirs.push_back(MJF_SOURCE_MJCF_DIR);
+  std::string looked;
+  for (const auto& dir : dirs) {
+    const std::string candidate = dir + "/" + name + ".xml";
+    if (IsFile(candidate)) return candidate;
+    looked += (looked.empty() ? "" : ", ") + candidate;
+  }
+  throw ConfigError(experiment_file + ": model '" + name + "' not found (looked at " + looked +
+                    ")");
+}
+
+std::vector<std::string> PluginSearchPath(const std::vector<std::string>& extra) {
+  std::vector<std::string> dirs = extra;
+  if (const char* env = std::getenv("MJF_PLUGIN_PATH")) {
+    std::string all(env);
+    size_t start = 0;
+    while (start <= all.size()) {
+      const size_t colon = all.find(':', start);
+      const std::string dir = all.substr(start, colon - start);
+      if (!dir.empty()) dirs.push_back(dir);
+      if (colon == std::string::npos) break;
+      start = colon + 1;
+    }
+  }
+  // Installed: the prefix's own plugins first (the build tree may hold newer, other ones).
+  dirs.push_back(ExecutableDir() + "/../lib/mjformation/plugins");
+  dirs.push_back(MJF_PLUGIN_BUILD_DIR);
+  return dirs;
+}
+
+}  // namespace mjf::runner

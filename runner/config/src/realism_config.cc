@@ -1,0 +1,312 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// [sensors] and [wind]: typed, range-checked, with errors naming FILE:LINE: [section] key.
+#include "realism_config.hpp"
+
+#include <cmath>
+#include <set>
+#include <sstream>
+
+#include "mjformation/config/source_location.hpp"
+
+namespace mjf::runner {
+namespace {
+
+// Typed access to one table, refusing unknown keys (a small sibling of config.cc's Section).
+class Keys {
+ public:
+  Keys(const toml::table* table, std::string path, std::string section)
+      : table_(table), path_(std::move(path)), section_(std::move(section)) {}
+
+  [[noreturn]] void Fail(const std::string& key, const std::string& message) const {
+    FailAt(table_ ? table_->get(key) : nullptr, key, message);
+  }
+  [[noreturn]] void FailAt(const toml::node* node, const std::string& key,
+                           const std::string& message) const {
+    const toml::node* where = node ? node : table_;
+    const int line = where ? static_cast<int>(where->source().begin.line) : 0;
+    SourceLocation{path_, line, "[" + section_ + "] " + key}.Fail(message);
+  }
+  bool Has(const std::string& key) const { return table_ && table_->contains(key); }
+  double AsNumber(const toml::node& node, const std::string& key) const {
+    if (auto v = node.value_exact<double>()) {
+      if (!std::isfinite(*v)) FailAt(&node, key, "expected a finite number");
+      return *v;
+    }
+    if (auto v = node.value_exact<int64_t>()) return static_cast<double>(*v);
+    FailAt(&node, key, "expected a number");
+  }
+  double Number(const std::string& key, double fallback) {
+    used_.insert(key);
+    const toml::node* node = table_ ? table_->get(key) : nullptr;
+    return node ? AsNumber(*node, key) : fallback;
+  }
+  std::string String(const std::string& key, const std::string& fallback) {
+    used_.insert(key);
+    const toml::node* node = table_ ? table_->get(key) : nullptr;
+    if (!node) return fallback;
+    if (auto v = node->value_exact<std::string>()) return *v;
+    Fail(key, "expected a string");
+  }
+  std::array<double, 3> Vector3(const std::string& key, std::array<double, 3> fallback) {
+    used_.insert(key);
+    const toml::node* node = table_ ? table_->get(key) : nullptr;
+    if (!node) return fallback;
+    const toml::array* a = node->as_array();
+    if (!a || a->size() != 3) Fail(key, "expected [x, y, z]");
+    return {AsNumber(*a->get(0), key), AsNumber(*a->get(1), key), AsNumber(*a->get(2), key)};
+  }
+  const toml::array* Array(const std::string& key) {
+    used_.insert(key);
+    const toml::node* node = table_ ? table_->get(key) : nullptr;
+    if (!node) return nullptr;
+    if (const toml::array* a = node->as_array()) return a;
+    Fail(key, "expected an array");
+  }
+  void RejectUnknown() const {
+    if (!table_) return;
+    for (auto&& [key, node] : *table_) {
+      const std::string k(key.str());
+      if (used_.count(k)) continue;
+      std::string known;
+      for (const auto& u : used_) known += (known.empty() ? "" : ", ") + u;
+      FailAt(&node, k, "unknown key (this section knows: " + known + ")");
+    }
+  }
+
+ private:
+  const toml::table* table_;
+  std::string path_, section_;
+  std::set<std::string> used_;
+};
+
+void ParseSensors(const toml::table* table, const std::string& path, ExperimentConfig* c) {
+  Keys keys(table, path, "sensors");
+  SensorsConfig& s = c->sensors;
+  s.preset = keys.String("preset", s.preset);
+  s.scale = keys.Number("scale", s.scale);
+  if (s.preset == "ideal") {
+    s.params = realism::SensorParams::Ideal();
+  } else if (s.preset == "typical") {
+    s.params = realism::SensorParams::Typical();
+  } else {
+    keys.Fail("preset", "unknown preset '" + s.preset + "' (known: ideal, typical)");
+  }
+  if (!(s.scale >= 0)) keys.Fail("scale", "must be >= 0");
+  s.params = s.params.Scaled(s.scale);
+  for (int k = 0; k < realism::kChannels; ++k) {
+    const std::string name = realism::ChannelName(static_cast<realism::Channel>(k));
+    realism::ChannelNoise& n = s.params.channel[k];
+    n.white_std = keys.Number(name + "_std", n.white_std);
+    n.bias_walk = keys.Number(name + "_bias_walk", n.bias_walk);
+    n.rate_hz = keys.Number(name + "_rate", n.rate_hz);
+    n.latency_s = keys.Number(name + "_latency", n.latency_s);
+  }
+  keys.RejectUnknown();
+  const std::string problem = s.params.Validate(c->timestep);
+  if (!problem.empty()) {
+    const auto colon = problem.find(':');
+    keys.Fail(problem.substr(0, colon), problem.substr(colon + 2));
+  }
+}
+
+// MIL-F-8785C's W20 for its named intensities: 15, 30 and 45 knots.
+double NamedW20(const std::string& name) {
+  const double knot = 0.514444;  // m/s
+  if (name == "light") return 15 * knot;
+  if (name == "moderate") return 30 * knot;
+  if (name == "severe") return 45 * knot;
+  return -1;
+}
+
+// The turbulence keys of [wind], read before any of them is checked against the others.
+struct TurbulenceKeys {
+  bool has_w20 = false, has_sigma = false, has_length = false;
+  double altitude = 0, airspeed = 0;
+  std::array<double, 3> sigma{}, length{};
+};
+
+void ReadMeanWind(Keys& keys, realism::WindParams& p) {
+  p.mean = keys.Vector3("mean", p.mean);
+  for (double v : p.mean) {
+    if (std::abs(v) > 50) keys.Fail("mean", "components must be within +-50 m/s");
+  }
+}
+
+TurbulenceKeys ReadTurbulenceKeys(Keys& keys, const ExperimentConfig& c, WindConfig& w) {
+  realism::WindParams& p = w.params;
+  TurbulenceKeys t;
+  w.turbulence = keys.String("turbulence", w.turbulence);
+  t.has_w20 = keys.Has("w20");
+  w.w20 = keys.Number("w20", 0.0);
+  t.altitude = keys.Number("altitude", c.altitude);
+  const double horizontal = std::hypot(p.mean[0], p.mean[1]);
+  // Taylor's frozen turbulence is carried past a hovering vehicle by the mean wind; 1 m/s floor.
+  t.airspeed = keys.Number("airspeed", std::max(1.0, horizontal));
+  p.turbulence_rate_hz = keys.Number("turbulence_rate", p.turbulence_rate_hz);
+  const double steps = 1.0 / (p.turbulence_rate_hz * c.timestep);
+  if (!(p.turbulence_rate_hz > 0) || steps < 1 - 1e-9 ||
+      std::abs(steps - std::round(steps)) > 1e-6 * steps) {
+    keys.Fail("turbulence_rate", "1 / rate must be a whole number (>= 1) of physics steps");
+  }
+  p.turbulence_correlation = keys.Number("turbulence_correlation", 0.0);
+  if (!(p.turbulence_correlation >= 0 && p.turbulence_correlation <= 1)) {
+    keys.Fail("turbulence_correlation", "must be in [0, 1]");
+  }
+  t.has_sigma = keys.Has("sigma");
+  t.has_length = keys.Has("scale_length");
+  t.sigma = keys.Vector3("sigma", {0, 0, 0});
+  t.length = keys.Vector3("scale_length", {0, 0, 0});
+  return t;
+}
+
+// The turbulence level: a named MIL-F-8785C intensity or w20, then the Dryden parameters at
+// the altitude, with sigma and scale_length overriding the standard's.
+void ApplyTurbulence(const Keys& keys, const TurbulenceKeys& t, WindConfig& w) {
+  realism::WindParams& p = w.params;
+  if (w.turbulence == "none") {
+    if (t.has_w20 || t.has_sigma || t.has_length) {
+      keys.Fail("turbulence", "is \"none\": w20, sigma and scale_length need a turbulence level");
+    }
+    return;
+  }
+  if (w.turbulence == "w20") {
+    if (!t.has_w20) keys.Fail("w20", "missing: turbulence = \"w20\" needs w20 (m/s)");
+  } else if (NamedW20(w.turbulence) >= 0) {
+    if (t.has_w20) keys.Fail("w20", "give either turbulence = \"" + w.turbulence + "\" or w20");
+    w.w20 = NamedW20(w.turbulence);
+  } else {
+    keys.Fail("turbulence",
+              "unknown level '" + w.turbulence + "' (known: none, light, moderate, severe, w20)");
+  }
+  if (!(w.w20 >= 0 && w.w20 <= 40)) keys.Fail("w20", "must be in [0, 40] m/s");
+  if (!(t.airspeed >= 0.5 && t.airspeed <= 100)) keys.Fail("airspeed", "must be in [0.5, 100] m/s");
+  try {
+    p.dryden = realism::DrydenParams::LowAltitude(t.altitude, w.w20, t.airspeed);
+  } catch (const std::invalid_argument& e) {
+    keys.Fail("altitude", e.what());
+  }
+  if (t.has_sigma) {
+    for (double v : t.sigma) {
+      if (!(v >= 0 && v <= 20)) keys.Fail("sigma", "intensities must be in [0, 20] m/s");
+    }
+    p.dryden.sigma = t.sigma;
+  }
+  if (t.has_length) {
+    for (double v : t.length) {
+      if (!(v >= 1 && v <= 3000)) keys.Fail("scale_length", "must be in [1, 3000] m");
+    }
+    p.dryden.scale_length = t.length;
+  }
+  p.turbulence = true;
+}
+
+// One entry of [wind] gusts: a 1-cosine gust inside the run.
+realism::OneCosineGust ReadGust(const Keys& keys, const toml::node& item, int index,
+                                const std::string& path, double duration) {
+  const toml::table* g = item.as_table();
+  if (!g) keys.FailAt(&item, "gusts", "expected {start = s, duration = s, amplitude = [x, y, z]}");
+  Keys gust(g, path, "wind] gusts[" + std::to_string(index));
+  realism::OneCosineGust one;
+  if (!g->contains("start") || !g->contains("duration") || !g->contains("amplitude")) {
+    keys.FailAt(&item, "gusts", "each gust needs start, duration and amplitude");
+  }
+  one.start = gust.Number("start", 0);
+  one.duration = gust.Number("duration", 1);
+  one.amplitude = gust.Vector3("amplitude", {0, 0, 0});
+  gust.RejectUnknown();
+  if (!(one.duration > 0)) gust.Fail("duration", "must be > 0 s");
+  if (one.start < 0 || one.start + one.duration > duration + 1e-9) {
+    gust.Fail("start", "the gust [start, start + duration] must lie in the run [0, " +
+                           std::to_string(duration) + "] s");
+  }
+  for (double v : one.amplitude) {
+    if (std::abs(v) > 50) gust.Fail("amplitude", "components must be within +-50 m/s");
+  }
+  return one;
+}
+
+void ReadDragKeys(Keys& keys, realism::DragParams& drag) {
+  drag.rotor_linear = keys.Number("drag_rotor_linear", drag.rotor_linear);
+  drag.cda_horizontal = keys.Number("drag_cda_horizontal", drag.cda_horizontal);
+  drag.cda_vertical = keys.Number("drag_cda_vertical", drag.cda_vertical);
+  drag.air_density = keys.Number("air_density", drag.air_density);
+}
+
+void CheckDrag(const Keys& keys, const realism::DragParams& drag) {
+  if (drag.rotor_linear < 0) keys.Fail("drag_rotor_linear", "must be >= 0 N s/m");
+  if (drag.cda_horizontal < 0) keys.Fail("drag_cda_horizontal", "must be >= 0 m^2");
+  if (drag.cda_vertical < 0) keys.Fail("drag_cda_vertical", "must be >= 0 m^2");
+  if (!(drag.air_density > 0 && drag.air_density < 2)) {
+    keys.Fail("air_density", "must be in (0, 2) kg/m^3");
+  }
+}
+
+void ParseWind(const toml::table* table, const std::string& path, ExperimentConfig* c) {
+  Keys keys(table, path, "wind");
+  WindConfig& w = c->wind;
+  ReadMeanWind(keys, w.params);
+  ApplyTurbulence(keys, ReadTurbulenceKeys(keys, *c, w), w);
+  if (const toml::array* gusts = keys.Array("gusts")) {
+    for (const toml::node& item : *gusts) {
+      w.params.gusts.push_back(
+          ReadGust(keys, item, static_cast<int>(w.params.gusts.size()), path, c->duration));
+    }
+  }
+  ReadDragKeys(keys, w.drag);
+  keys.RejectUnknown();
+  CheckDrag(keys, w.drag);
+}
+
+}  // namespace
+
+void ParseRealismSections(const toml::table& root, const std::string& path, ExperimentConfig* c) {
+  for (const char* name : {"sensors", "wind"}) {
+    const toml::node* node = root.get(name);
+    if (node && !node->is_table()) {
+      Keys(nullptr, path, name).FailAt(node, "", "expected a table");
+    }
+  }
+  ParseSensors(root.get_as<toml::table>("sensors"), path, c);
+  ParseWind(root.get_as<toml::table>("wind"), path, c);
+}
+
+void AddRealismSummary(const ExperimentConfig& c, nlohmann::ordered_json* summary) {
+  if (c.sensors.enabled()) {
+    nlohmann::ordered_json channels = nlohmann::ordered_json::object();
+    for (int k = 0; k < realism::kChannels; ++k) {
+      const realism::ChannelNoise& n = c.sensors.params.channel[k];
+      channels[realism::ChannelName(static_cast<realism::Channel>(k))] = {
+          {"std", n.white_std},
+          {"bias_walk", n.bias_walk},
+          {"rate_hz", n.rate_hz},
+          {"latency_s", n.latency_s}};
+    }
+    (*summary)["sensors"] = {
+        {"preset", c.sensors.preset}, {"scale", c.sensors.scale}, {"channels", channels}};
+  }
+  if (c.wind.enabled()) {
+    const realism::WindParams& p = c.wind.params;
+    nlohmann::ordered_json wind = {{"mean", p.mean}, {"turbulence", c.wind.turbulence}};
+    if (p.turbulence) {
+      wind["w20"] = c.wind.w20;
+      wind["sigma"] = p.dryden.sigma;
+      wind["scale_length"] = p.dryden.scale_length;
+      wind["airspeed"] = p.dryden.airspeed;
+      wind["turbulence_rate_hz"] = p.turbulence_rate_hz;
+      wind["turbulence_correlation"] = p.turbulence_correlation;
+    }
+    nlohmann::ordered_json gusts = nlohmann::ordered_json::array();
+    for (const auto& g : p.gusts) {
+      gusts.push_back({{"start", g.start}, {"duration", g.duration}, {"amplitude", g.amplitude}});
+    }
+    wind["gusts"] = gusts;
+    wind["drag"] = {{"rotor_linear", c.wind.drag.rotor_linear},
+                    {"cda_horizontal", c.wind.drag.cda_horizontal},
+                    {"cda_vertical", c.wind.drag.cda_vertical},
+                    {"air_density", c.wind.drag.air_density}};
+    (*summary)["wind"] = wind;
+  }
+}
+
+}  // namespace mjf::runner

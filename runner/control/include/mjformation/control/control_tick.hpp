@@ -1,0 +1,94 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// One control tick on plain arrays, with no MuJoCo in it:
+//   true states -> sensor stage -> leader guidance -> formation (or a guidance per follower)
+//   -> attitude per vehicle -> controls.
+// The simulation hands it the true states and applies the controls it returns; a unit test can
+// drive it alone (tests/runner/control/control_tick_test.cc), as PX4's PositionControl is tested
+// without its module. Every plugin failure becomes a SimulationError naming plugin, vehicle and
+// time.
+#ifndef MJFORMATION_CONTROL_CONTROL_TICK_HPP_
+#define MJFORMATION_CONTROL_CONTROL_TICK_HPP_
+
+#include <mjformation/plugin.h>
+
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "mjformation/control/agent_channel.hpp"
+#include "mjformation/control/plugin_host.hpp"
+#include "mjformation/control/stages.hpp"
+
+namespace mjf::runner {
+
+// The plugin instances of one simulation. Exactly one of `formation`, `formation_agents` and
+// `follower_guidance` is used: a formation-kind plugin for the swarm, a per-agent formation
+// plugin per follower (over an AgentChannel), or a guidance plugin per follower.
+struct ControlPlugins {
+  std::unique_ptr<PluginInstance> leader;
+  std::unique_ptr<PluginInstance> formation;
+  std::vector<std::unique_ptr<PluginInstance>> follower_guidance;  // [followers]
+  std::vector<std::unique_ptr<PluginInstance>> formation_agents;   // [followers]
+  std::vector<std::unique_ptr<PluginInstance>> attitude;           // [vehicles]
+};
+
+class ControlTick {
+ public:
+  // initial_setpoints: the bus before the first tick (positions held, sliding NaN).
+  // channel: the communication stage, required with formation_agents (null otherwise).
+  ControlTick(ControlPlugins plugins, std::unique_ptr<SensorStage> sensors,
+              std::vector<mjfSetpoint> initial_setpoints, int actuators_per_vehicle,
+              double altitude, double timestep, std::unique_ptr<AgentChannel> channel = nullptr);
+  ~ControlTick();
+  ControlTick(const ControlTick&) = delete;
+  ControlTick& operator=(const ControlTick&) = delete;
+
+  // One tick at physics step `step` (time = step * timestep). `model` and `data` are handed to
+  // the plugins as raw access and may be NULL. Throws SimulationError.
+  void Run(int64_t step, const std::vector<mjfVehicleState>& truth,
+           const struct mjModel_* model = nullptr, const struct mjData_* data = nullptr);
+  // Run in two parts, for partitioned physics: first everything the swarm shares (sensors,
+  // guidance, formation, the setpoint check), then the attitude plugins of vehicles
+  // [first, first + count). Each attitude instance reads only its own vehicle's state and
+  // setpoint and writes only its own controls, so ranges may run on different threads at once,
+  // each with its own `error` buffer (error_size chars) for the plugins' messages.
+  void RunSwarmStages(int64_t step, const std::vector<mjfVehicleState>& truth,
+                      const struct mjModel_* model, const struct mjData_* data);
+  void RunAttitude(int first, int count, char* error, size_t error_size);
+
+  int n_vehicles() const { return static_cast<int>(setpoints_.size()); }
+  int actuators_per_vehicle() const { return actuators_per_vehicle_; }
+  // What the controllers saw on the last tick (the truth with ideal sensors).
+  const std::vector<mjfVehicleState>& measured() const { return measured_; }
+  const std::vector<mjfSetpoint>& setpoints() const { return setpoints_; }
+  const std::vector<double>& controls() const { return controls_; }  // [vehicle][actuator]
+  const ControlPlugins& plugins() const { return plugins_; }
+  const AgentChannel* channel() const { return channel_.get(); }
+
+ private:
+  void RunGuidanceAndFormation(mjfStepContext& ctx, const std::vector<mjfVehicleState>& truth);
+  // The channel stage: each follower's instance, handed only its own state and messages.
+  void RunAgents(const mjfStepContext& ctx, const std::vector<mjfVehicleState>& truth);
+  void ResetFollowerSetpoints();
+  void RequireFiniteSetpoints(double time) const;
+  // Calls the plugin and turns a failure code or a C++ exception into a SimulationError.
+  void Call(PluginInstance& plugin, mjfStepContext& ctx, int vehicle);
+
+  ControlPlugins plugins_;
+  std::unique_ptr<SensorStage> sensors_;
+  std::unique_ptr<AgentChannel> channel_;
+  std::vector<mjfVehicleState> measured_;
+  std::vector<mjfSetpoint> setpoints_;
+  std::vector<double> controls_;
+  int actuators_per_vehicle_;
+  double altitude_;
+  double timestep_;
+  std::array<char, 512> plugin_error_{};
+  mjfStepContext tick_ctx_{};  // the context of the current tick (RunSwarmStages)
+};
+
+}  // namespace mjf::runner
+
+#endif  // MJFORMATION_CONTROL_CONTROL_TICK_HPP_

@@ -1,0 +1,181 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+#include "mjformation/control/control_tick.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <limits>
+
+#include "mjformation/control/agent_channel.hpp"
+#include "mjformation/control/errors.hpp"
+
+namespace mjf::runner {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+std::string TimeTag(double time) { return fmt::format("t = {:.3f} s", time); }
+
+bool IsFinite(const mjfSetpoint& sp) {
+  bool finite = std::isfinite(sp.yaw);
+  for (int k = 0; k < 3; ++k) {
+    finite =
+        finite && std::isfinite(sp.acc[k]) && std::isfinite(sp.pos[k]) && std::isfinite(sp.vel[k]);
+  }
+  return finite;
+}
+
+}  // namespace
+
+ControlTick::ControlTick(ControlPlugins plugins, std::unique_ptr<SensorStage> sensors,
+                         std::vector<mjfSetpoint> initial_setpoints, int actuators_per_vehicle,
+                         double altitude, double timestep, std::unique_ptr<AgentChannel> channel)
+    : plugins_(std::move(plugins)),
+      sensors_(std::move(sensors)),
+      channel_(std::move(channel)),
+      measured_(initial_setpoints.size()),
+      setpoints_(std::move(initial_setpoints)),
+      controls_(setpoints_.size() * static_cast<size_t>(actuators_per_vehicle), 0.0),
+      actuators_per_vehicle_(actuators_per_vehicle),
+      altitude_(altitude),
+      timestep_(timestep) {}
+
+ControlTick::~ControlTick() {
+  // Attitude and follower plugins first, the leader last: the reverse of creation.
+  plugins_.attitude.clear();
+  plugins_.follower_guidance.clear();
+  plugins_.formation_agents.clear();
+  plugins_.formation.reset();
+  plugins_.leader.reset();
+}
+
+void ControlTick::Run(int64_t step, const std::vector<mjfVehicleState>& truth,
+                      const struct mjModel_* model, const struct mjData_* data) {
+  RunSwarmStages(step, truth, model, data);
+  RunAttitude(0, n_vehicles(), plugin_error_.data(), plugin_error_.size());
+}
+
+void ControlTick::RunSwarmStages(int64_t step, const std::vector<mjfVehicleState>& truth,
+                                 const struct mjModel_* model, const struct mjData_* data) {
+  const double time = static_cast<double>(step) * timestep_;
+  sensors_->Measure(step, time, truth, &measured_);
+  mjfStepContext& ctx = tick_ctx_;
+  ctx = mjfStepContext{};
+  ctx.time = time;
+  ctx.step = step;
+  ctx.timestep = timestep_;
+  ctx.n_vehicles = n_vehicles();
+  ctx.states = measured_.data();
+  ctx.setpoints = setpoints_.data();
+  ctx.model = model;
+  ctx.data = data;
+  ctx.error = plugin_error_.data();
+  ctx.error_size = plugin_error_.size();
+  RunGuidanceAndFormation(ctx, truth);
+  RequireFiniteSetpoints(time);
+}
+
+void ControlTick::RunGuidanceAndFormation(mjfStepContext& ctx,
+                                          const std::vector<mjfVehicleState>& truth) {
+  Call(*plugins_.leader, ctx, 0);
+  ResetFollowerSetpoints();
+  if (plugins_.formation) {
+    Call(*plugins_.formation, ctx, -1);
+    return;
+  }
+  if (!plugins_.formation_agents.empty()) {
+    RunAgents(ctx, truth);
+    return;
+  }
+  for (size_t i = 0; i < plugins_.follower_guidance.size(); ++i) {
+    Call(*plugins_.follower_guidance[i], ctx, static_cast<int>(i) + 1);
+  }
+}
+
+// Per-agent execution: the channel delivers, then each follower's instance runs each round with
+// its own state, its received messages and its own setpoint only (plugin.h, mjfAgentInput).
+void ControlTick::RunAgents(const mjfStepContext& ctx, const std::vector<mjfVehicleState>& truth) {
+  channel_->BeginTick(ctx.step, ctx.time, truth, measured_, setpoints_);
+  mjfStepContext agent_ctx = ctx;
+  agent_ctx.states = nullptr;
+  agent_ctx.model = nullptr;
+  agent_ctx.data = nullptr;
+  for (int round = 0; round < channel_->n_rounds(); ++round) {
+    for (size_t i = 0; i < plugins_.formation_agents.size(); ++i) {
+      agent_ctx.setpoints = &setpoints_[i + 1];
+      agent_ctx.agent = &channel_->Input(static_cast<int>(i), round);
+      Call(*plugins_.formation_agents[i], agent_ctx, static_cast<int>(i) + 1);
+    }
+    channel_->EndRound(round, setpoints_);
+  }
+}
+
+// The host's part of the bus contract (plugin.h): followers hold the altitude, level, yaw 0;
+// formation plugins write only x and y.
+void ControlTick::ResetFollowerSetpoints() {
+  for (int i = 1; i < n_vehicles(); ++i) {
+    mjfSetpoint& sp = setpoints_[i];
+    sp.pos[2] = altitude_;
+    sp.vel[2] = 0;
+    sp.acc[2] = 0;
+    sp.yaw = 0;
+    sp.sliding[0] = sp.sliding[1] = kNaN;
+  }
+}
+
+// A non-finite setpoint is named here, with the plugin that wrote it, rather than surfacing
+// later as a failure of the attitude plugin that read it.
+void ControlTick::RequireFiniteSetpoints(double time) const {
+  for (int i = 0; i < n_vehicles(); ++i) {
+    if (IsFinite(setpoints_[i])) continue;
+    const PluginInstance& writer = i == 0               ? *plugins_.leader
+                                   : plugins_.formation ? *plugins_.formation
+                                   : !plugins_.formation_agents.empty()
+                                       ? *plugins_.formation_agents[i - 1]
+                                       : *plugins_.follower_guidance[i - 1];
+    throw SimulationError(TimeTag(time) + ": plugin '" + writer.descriptor().name +
+                          "' wrote a non-finite setpoint for vehicle " + std::to_string(i));
+  }
+}
+
+void ControlTick::RunAttitude(int first, int count, char* error, size_t error_size) {
+  mjfStepContext ctx = tick_ctx_;
+  ctx.error = error;
+  ctx.error_size = error_size;
+  for (int i = first; i < first + count; ++i) {
+    ctx.controls = controls_.data() + static_cast<size_t>(i) * actuators_per_vehicle_;
+    Call(*plugins_.attitude[i], ctx, i);
+    for (int k = 0; k < actuators_per_vehicle_; ++k) {
+      if (!std::isfinite(ctx.controls[k])) {
+        throw SimulationError(TimeTag(ctx.time) + ": attitude plugin '" +
+                              plugins_.attitude[i]->descriptor().name +
+                              "' gave a non-finite control for vehicle " + std::to_string(i) +
+                              " (its setpoint or state is not finite)");
+      }
+    }
+  }
+}
+
+void ControlTick::Call(PluginInstance& plugin, mjfStepContext& ctx, int vehicle) {
+  ctx.error[0] = '\0';
+  // Built only on failure: a tick allocates nothing.
+  auto who = [&] {
+    return TimeTag(ctx.time) + ": plugin '" + plugin.descriptor().name + "'" +
+           (vehicle >= 0 ? " (vehicle " + std::to_string(vehicle) + ")" : std::string());
+  };
+  int code = 0;
+  try {
+    code = plugin.Compute(ctx);
+  } catch (const std::exception& e) {
+    // A C++ plugin let an exception out of the C ABI: report it, the run ends cleanly.
+    throw SimulationError(who() + " threw: " + e.what());
+  } catch (...) {
+    throw SimulationError(who() + " threw a non-standard exception");
+  }
+  if (code == 0) return;
+  ctx.error[ctx.error_size - 1] = '\0';
+  throw SimulationError(who() + " failed (code " + std::to_string(code) +
+                        "): " + (ctx.error[0] ? ctx.error : "no reason given"));
+}
+
+}  // namespace mjf::runner

@@ -1,0 +1,187 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+#include "mjformation/control/plugin_host.hpp"
+
+#include <dlfcn.h>
+
+#include <algorithm>
+#include <cstring>
+#include <filesystem>
+#include <set>
+
+#include "mjformation/config/paths.hpp"
+#include "mjformation/config/source_location.hpp"
+
+namespace mjf::runner {
+
+const char* KindName(mjfKind kind) {
+  switch (kind) {
+    case MJF_KIND_GUIDANCE:
+      return "guidance";
+    case MJF_KIND_FORMATION:
+      return "formation";
+    case MJF_KIND_ATTITUDE:
+      return "attitude";
+    case MJF_KIND_FORMATION_AGENT:
+      return "per-agent formation";
+  }
+  return "unknown";
+}
+
+PluginRegistry::PluginRegistry(const std::vector<std::string>& search_path)
+    : search_path_(search_path) {
+  std::set<std::string> seen_files;
+  for (const std::string& dir : search_path) {
+    std::error_code ec;
+    std::vector<std::string> files;
+    for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
+      const std::string name = entry.path().filename().string();
+      if (name.size() > 6 && name.compare(0, 3, "lib") == 0 &&
+          name.compare(name.size() - 3, 3, ".so") == 0) {
+        files.push_back(name);
+      }
+    }
+    if (ec) continue;                       // an absent folder on the search path is not an error
+    std::sort(files.begin(), files.end());  // deterministic order
+    for (const std::string& file : files) {
+      const std::string path = dir + "/" + file;
+      if (!seen_files.insert(file).second) continue;  // same library earlier on the path
+      void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+      if (!handle) {
+        problems_.push_back(path + ": cannot load: " + dlerror());
+        continue;
+      }
+      auto entry = reinterpret_cast<mjfEntryFn>(dlsym(handle, MJF_ENTRY_SYMBOL));
+      if (!entry) {
+        problems_.push_back(path + ": not an mjformation plugin library (no " MJF_ENTRY_SYMBOL ")");
+        dlclose(handle);
+        continue;
+      }
+      handles_.push_back(handle);
+      int count = 0;
+      const mjfPlugin* const* list = entry(&count);
+      for (int i = 0; list && i < count; ++i) {
+        const mjfPlugin* p = list[i];
+        if (!p) continue;
+        // abi_version is the first field in every ABI version, so it is safe to read; the
+        // rest of a foreign-ABI descriptor is not.
+        if (p->abi_version != MJF_ABI_VERSION) {
+          problems_.push_back(path + ": plugin #" + std::to_string(i) +
+                              " was built for plugin ABI " + std::to_string(p->abi_version) +
+                              ", this runner speaks ABI " + std::to_string(MJF_ABI_VERSION) +
+                              "; rebuild it against "
+                              "include/mjformation/plugin.h");
+          continue;
+        }
+        const bool duplicate = std::any_of(plugins_.begin(), plugins_.end(), [&](auto& q) {
+          return std::strcmp(q.descriptor->name, p->name) == 0;
+        });
+        if (duplicate) {
+          problems_.push_back(path + ": plugin '" + p->name +
+                              "' shadowed by one earlier on the search path");
+          continue;
+        }
+        plugins_.push_back({p, path});
+      }
+    }
+  }
+}
+
+PluginRegistry::~PluginRegistry() {
+  for (void* h : handles_) dlclose(h);
+}
+
+const LoadedPlugin& PluginRegistry::Find(const std::string& name, const std::string& where) const {
+  for (const auto& p : plugins_) {
+    if (name == p.descriptor->name) return p;
+  }
+  std::string message = where + ": unknown plugin '" + name + "'";
+  std::string available;
+  for (const auto& p : plugins_) {
+    available += (available.empty() ? "" : ", ") + std::string(p.descriptor->name) + " (" +
+                 KindName(p.descriptor->kind) + ")";
+  }
+  message += available.empty() ? "; no plugins found" : "; available: " + available;
+  std::string folders;
+  for (const auto& dir : search_path_) folders += (folders.empty() ? "" : ", ") + dir;
+  message += "; searched: " + folders;
+  for (const auto& problem : problems_) {
+    if (problem.find("ABI") != std::string::npos) message += "; " + problem;
+  }
+  throw PluginError(message);
+}
+
+std::vector<std::pair<std::string, std::string>> ResolveAttributes(const mjfPlugin& plugin,
+                                                                   const PluginSection& section,
+                                                                   const std::string& config_path) {
+  auto where = [&](int line, const std::string& key) {
+    return SourceLocation{config_path, line, SectionKey(section.section, key)}.Prefix();
+  };
+  std::vector<std::pair<std::string, std::string>> resolved;
+  std::string declared;
+  for (int i = 0; i < plugin.n_attributes; ++i) {
+    declared += (declared.empty() ? "" : ", ") + std::string(plugin.attributes[i].key);
+  }
+  for (const auto& [key, value] : section.attributes) {
+    bool known = false;
+    for (int i = 0; i < plugin.n_attributes; ++i) known |= key == plugin.attributes[i].key;
+    if (!known) {
+      throw PluginError(where(value.line, key) + ": plugin '" + plugin.name +
+                        "' has no attribute '" + key +
+                        "' (its attributes: " + (declared.empty() ? "none" : declared) + ")");
+    }
+  }
+  for (int i = 0; i < plugin.n_attributes; ++i) {
+    const mjfAttribute& a = plugin.attributes[i];
+    auto it = section.attributes.find(a.key);
+    if (it != section.attributes.end()) {
+      resolved.emplace_back(a.key, it->second.text);
+    } else if (a.default_value) {
+      resolved.emplace_back(a.key, a.default_value);
+    } else {
+      throw PluginError(where(section.line, a.key) + ": plugin '" + plugin.name +
+                        "' requires attribute '" + a.key + "' (" + (a.doc ? a.doc : "") + ")");
+    }
+  }
+  return resolved;
+}
+
+PluginInstance::PluginInstance(const LoadedPlugin& plugin, const PluginSection& section,
+                               const std::string& config_path, mjfCreateContext base)
+    : descriptor_(plugin.descriptor) {
+  attributes_ = ResolveAttributes(*descriptor_, section, config_path);
+  std::vector<const char*> keys, values;
+  for (const auto& [k, v] : attributes_) {
+    keys.push_back(k.c_str());
+    values.push_back(v.c_str());
+  }
+  char error[1024] = {0};
+  base.n_attributes = static_cast<int>(keys.size());
+  base.keys = keys.data();
+  base.values = values.data();
+  base.error = error;
+  base.error_size = sizeof(error);
+  instance_ = descriptor_->create(&base);
+  if (!instance_) {
+    const SourceLocation at{config_path, section.line, SectionKey(section.section, "plugin")};
+    throw PluginError(at.Prefix() + " '" + descriptor_->name + "' (" + plugin.library +
+                      ") refused its configuration: " + (error[0] ? error : "no reason given"));
+  }
+}
+
+PluginInstance::~PluginInstance() {
+  if (instance_ && descriptor_->destroy) descriptor_->destroy(instance_);
+}
+
+std::vector<std::pair<std::string, double>> PluginInstance::Report() const {
+  std::vector<std::pair<std::string, double>> out;
+  if (!descriptor_->report) return out;
+  descriptor_->report(
+      instance_,
+      [](void* user, const char* key, double value) {
+        static_cast<std::vector<std::pair<std::string, double>>*>(user)->emplace_back(key, value);
+      },
+      &out);
+  return out;
+}
+
+}  // namespace mjf::runner

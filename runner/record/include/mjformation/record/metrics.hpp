@@ -1,0 +1,62 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// Run metrics accumulated online in O(1) memory (nothing grows with run length) and O(N) or
+// O(N log N) time per sample: sigma_f (eq. 68) and its window mean (Table 1), reaching time and
+// the sliding band after it, final slot errors, minimum separation, actuator saturation time.
+#ifndef MJFORMATION_RECORD_METRICS_HPP_
+#define MJFORMATION_RECORD_METRICS_HPP_
+
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "mjformation/record/follower_motion.hpp"
+
+namespace mjf::runner {
+
+class Simulation;
+
+class OnlineMetrics {
+ public:
+  explicit OnlineMetrics(const Simulation& sim);
+  // One sample of the current state: fills slots[2 i + k] (desired x, y of vehicle i) and
+  // returns sigma_f (NaN without a formation). Only samples with `accumulate` (the record ticks)
+  // enter the statistics, so they match timeseries.csv whatever the render rates.
+  double Sample(const Simulation& sim, std::vector<double>* slots, bool accumulate);
+  // Every physics step: counts time with any actuator at a limit of its range.
+  void StepControls(const Simulation& sim);
+  nlohmann::ordered_json Summary(const Simulation& sim) const;
+
+ private:
+  void SampleFollowerMotion(const Simulation& sim, double t);  // in the window, record ticks
+  double FormationSlots(const Simulation& sim, std::vector<double>* slots);
+  void HeldSlots(const Simulation& sim, std::vector<double>* slots);
+  void AccumulateSample(const Simulation& sim);
+
+  double window_[2];
+  double band_;  // |s| band defining "reached"
+  std::vector<double> follower_pv_, leader_pv_, shape_now_, sort_buffer_;
+  std::vector<std::pair<double, int>> order_;
+  double sigma_sum_ = 0;
+  long sigma_count_ = 0;
+  double sigma_initial_ = 0, sigma_final_ = 0;
+  bool have_initial_ = false;
+  double min_separation_;
+  double last_time_ = 0, sample_period_ = 0;
+  bool have_sliding_ = false;
+  double last_violation_time_ = -1;  // last sample with max |s_i| > band
+  double max_abs_s_since_violation_ = 0;
+  double max_abs_s_ever_ = 0;
+  std::vector<double> final_errors_;
+  long saturated_steps_ = 0;
+  double max_follower_tilt_in_window_ = 0;  // rad
+  double timestep_;
+  FollowerMotion motion_;  // RMS tilt, rocking frequency, thrust variation
+};
+
+// Smallest distance between any two of the points (x, y, z triples), O(N log N) by a sweep on x.
+double MinimumSeparation(const std::vector<double>& xyz,
+                         std::vector<std::pair<double, int>>* order);
+
+}  // namespace mjf::runner
+
+#endif  // MJFORMATION_RECORD_METRICS_HPP_

@@ -1,0 +1,78 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// The run directory and its files: atomic small files, a streaming timeseries.csv.
+#ifndef MJFORMATION_RECORD_OUTPUT_HPP_
+#define MJFORMATION_RECORD_OUTPUT_HPP_
+
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "mjformation/config/config.hpp"
+
+namespace mjf::runner {
+
+class Simulation;
+
+class OutputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Writes `text` to path.tmp, then renames it to `path`: a reader never sees half a file, and a
+// failed write leaves the previous file. Throws OutputError naming the file and the reason.
+void WriteTextFile(const std::string& path, const std::string& text);
+
+// A run directory. Refuses to reuse a non-empty directory unless `overwrite` (nothing already
+// written is lost by accident); creates snapshots/.
+class RunDirectory {
+ public:
+  RunDirectory(const std::string& path, bool overwrite);
+  std::string Path(const std::string& name) const { return path_ + "/" + name; }
+  // Writes name + ".tmp" then renames: a file is whole or absent.
+  void WriteText(const std::string& name, const std::string& text) const;
+
+ private:
+  std::string path_;
+};
+
+// timeseries.csv (columns: docs/ARCHITECTURE.md), streamed with a bounded buffer so memory does
+// not grow with run length.
+class TimeseriesWriter {
+ public:
+  // measured / wind: append per vehicle what the controllers measured
+  // (uav<i>_px_meas .. _yaw_meas) / the wind it felt (uav<i>_wind_x, _y, _z); extra_columns:
+  // further names (e.g. leader_ax, leader_ay), all after the usual columns and only when
+  // switched on, so existing runs keep their bytes.
+  TimeseriesWriter(const std::string& path, int n_vehicles, bool measured = false,
+                   bool wind = false, const std::vector<std::string>& extra_columns = {});
+  ~TimeseriesWriter();
+  // extra: one value per extra column (NaN: an empty cell), or nullptr when there are none.
+  void Write(const Simulation& sim, double sigma_f, const std::vector<double>& slots,
+             const double* extra = nullptr);
+  void Close();
+
+ private:
+  void Flush();
+  std::string path_;
+  std::FILE* file_ = nullptr;
+  std::string buffer_;
+  size_t n_extra_ = 0;
+  bool measured_ = false, wind_ = false;  // the [sensors] / [wind] columns
+};
+
+// Writes finite v as std::to_chars(general, precision 9) would (printf's "%.9g") at p and
+// returns the end: the number format of timeseries.csv, at a fraction of to_chars' cost.
+char* FormatG9(char* p, char* end, double v);
+
+// The experiment file as run: its text plus the command-line overrides, as a TOML comment.
+std::string ConfigEcho(const ExperimentConfig& config);
+std::string Sha256Hex(const std::string& bytes);
+// A JSON number, or null for NaN/inf (JSON has no NaN).
+nlohmann::ordered_json JsonNumber(double value);
+
+}  // namespace mjf::runner
+
+#endif  // MJFORMATION_RECORD_OUTPUT_HPP_

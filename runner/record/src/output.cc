@@ -1,0 +1,302 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+#include "mjformation/record/output.hpp"
+
+#include <errno.h>
+#include <fmt/format.h>
+#include <openssl/evp.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+
+#include "mjformation/sim/simulation.hpp"
+
+namespace mjf::runner {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Written first into every run directory: what --overwrite checks before it deletes anything.
+constexpr const char* kMarker = ".mjformation-run";
+
+// What a run directory may hold: the runner's files, the analysis' figures, leftovers of an
+// interrupted atomic write. Anything else is the user's and stops --overwrite.
+bool IsRunEntry(const fs::directory_entry& e) {
+  static const char* const kFiles[] = {kMarker,          "config.toml",  "scene.xml",
+                                       "timeseries.csv", "summary.json", "video.mp4"};
+  const std::string name = e.path().filename().string();
+  for (const char* f : kFiles) {
+    if (name == f) return !e.is_symlink();
+  }
+  if (name.size() > 4 && name.compare(name.size() - 4, 4, ".tmp") == 0) return !e.is_symlink();
+  if ((name == "snapshots" || name == "figures") && e.is_directory() && !e.is_symlink()) {
+    // Only regular files inside, no deeper folders and no links out of the run directory.
+    for (const auto& child : fs::directory_iterator(e.path())) {
+      if (child.is_symlink() || !child.is_regular_file()) return false;
+    }
+    return true;
+  }
+  return false;
+}
+
+// Removes a previous run directory's contents, after checking that it is one and that every
+// entry in it is the runner's. Throws OutputError (and deletes nothing) otherwise.
+void ClearPreviousRun(const fs::path& dir) {
+  const fs::path marker = dir / kMarker;
+  if (fs::is_symlink(marker) || !fs::is_regular_file(marker)) {
+    throw OutputError(dir.string() + ": not a mjformation run directory (no " + kMarker +
+                      " marker): --overwrite replaces only run directories; nothing was "
+                      "deleted. Choose another --out.");
+  }
+  std::vector<std::string> foreign;
+  for (const auto& e : fs::directory_iterator(dir)) {
+    if (!IsRunEntry(e)) foreign.push_back(e.path().filename().string());
+  }
+  if (!foreign.empty()) {
+    std::string list;
+    for (const auto& f : foreign) list += (list.empty() ? "" : ", ") + f;
+    throw OutputError(dir.string() + ": holds files mjformation did not write (" + list +
+                      "); --overwrite deletes only a run's own files, so nothing was deleted. "
+                      "Move them or choose another --out.");
+  }
+  // remove_all removes a symbolic link itself, never what it points to.
+  for (const auto& e : fs::directory_iterator(dir)) {
+    if (e.path().filename() != kMarker) fs::remove_all(e.path());
+  }
+}
+
+// Writes finite v as printf's "%.9g" (and fmt's "{:.9g}") would, returning the end: the bytes
+// of timeseries.csv. std::to_chars(general, 9) is specified to give exactly those bytes; this
+// fast path gives the same at less than half its cost for 1e-12 <= |v| < 1e14: one correctly
+// rounded multiplication or division by an exact power of ten puts the 9 significant digits in
+// [1e8, 1e9) with an error below 2e-7, so rounding to an integer is certain unless the fraction
+// is within 1e-6 of one half; those (and every other case) go to std::to_chars. Checked equal to
+// std::to_chars on 6e7 doubles (random bits, near-ties, powers of ten and their neighbours).
+}  // namespace
+
+char* FormatG9(char* p, char* end, double v) {
+  static constexpr double kPow10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                                      1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+                                      1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+  const double a = std::fabs(v);
+  if (!(a >= 1e-12 && a < 1e14)) {
+    return std::to_chars(p, end, v, std::chars_format::general, 9).ptr;
+  }
+  // e: the decimal exponent, floor(log10(a)), from exact powers where possible.
+  // e = floor(log10(a)): floor(log10(2) * binary exponent) is e or e - 1.
+  int e = (std::ilogb(a) * 78913) >> 18;
+  auto scale = [&](int k) { return k >= 0 ? a * kPow10[k] : a / kPow10[-k]; };
+  double scaled = scale(8 - e);
+  if (scaled >= 1e9 - 1) scaled = scale(8 - ++e);
+  // One correctly rounded operation on exact powers of ten: |error| <= 1e9 * 2^-53 < 2e-7.
+  if (!(scaled >= 1e8 + 1 && scaled < 1e9 - 1)) {
+    return std::to_chars(p, end, v, std::chars_format::general, 9).ptr;
+  }
+  const double whole = std::floor(scaled);
+  const double frac = scaled - whole;  // exact
+  if (std::fabs(frac - 0.5) < 1e-6)
+    return std::to_chars(p, end, v, std::chars_format::general, 9).ptr;
+  uint32_t d = static_cast<uint32_t>(whole) + (frac > 0.5 ? 1 : 0);
+  if (d >= 1000000000u) return std::to_chars(p, end, v, std::chars_format::general, 9).ptr;
+  char digits[9];
+  for (int i = 8; i >= 0; --i) {
+    digits[i] = static_cast<char>('0' + d % 10);
+    d /= 10;
+  }
+  int last = 8;  // last significant digit kept (trailing zeros stripped)
+  while (last > 0 && digits[last] == '0') --last;
+  if (std::signbit(v)) *p++ = '-';
+  if (e >= -4 && e < 9) {
+    if (e >= 0) {
+      for (int i = 0; i <= e; ++i) *p++ = digits[i];
+      if (last > e) {
+        *p++ = '.';
+        for (int i = e + 1; i <= last; ++i) *p++ = digits[i];
+      }
+    } else {
+      *p++ = '0';
+      *p++ = '.';
+      for (int i = 0; i < -e - 1; ++i) *p++ = '0';
+      for (int i = 0; i <= last; ++i) *p++ = digits[i];
+    }
+    return p;
+  }
+  *p++ = digits[0];
+  if (last > 0) {
+    *p++ = '.';
+    for (int i = 1; i <= last; ++i) *p++ = digits[i];
+  }
+  *p++ = 'e';
+  *p++ = e < 0 ? '-' : '+';
+  const int ae = e < 0 ? -e : e;
+  *p++ = static_cast<char>('0' + ae / 10);
+  *p++ = static_cast<char>('0' + ae % 10);
+  return p;
+}
+
+RunDirectory::RunDirectory(const std::string& path, bool overwrite) : path_(path) {
+  std::error_code ec;
+  const fs::path dir(path);
+  try {
+    if (fs::exists(dir) && !fs::is_directory(dir)) {
+      throw OutputError(path + ": exists and is not a directory; choose another --out");
+    }
+    if (fs::exists(dir) && !fs::is_empty(dir)) {
+      if (!overwrite) {
+        throw OutputError(path +
+                          ": the run directory exists and is not empty; choose another "
+                          "--out or pass --overwrite to replace it");
+      }
+      ClearPreviousRun(dir);
+    }
+    fs::create_directories(dir / "snapshots");
+  } catch (const fs::filesystem_error& e) {
+    throw OutputError(path + ": " + e.code().message());
+  }
+  WriteText(kMarker,
+            "This folder is a mjformation run directory; `mjformation run --overwrite`\n"
+            "may replace it. Delete this file to protect the folder from that.\n");
+}
+
+void WriteTextFile(const std::string& path, const std::string& text) {
+  const std::string tmp = path + ".tmp";
+  std::FILE* f = std::fopen(tmp.c_str(), "wb");
+  if (!f) throw OutputError(tmp + ": cannot write: " + std::strerror(errno));
+  const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
+  if (std::fclose(f) != 0 || !ok || std::rename(tmp.c_str(), path.c_str()) != 0) {
+    throw OutputError(path + ": cannot write: " + std::strerror(errno));
+  }
+}
+
+void RunDirectory::WriteText(const std::string& name, const std::string& text) const {
+  WriteTextFile(Path(name), text);
+}
+
+TimeseriesWriter::TimeseriesWriter(const std::string& path, int n_vehicles, bool measured,
+                                   bool wind, const std::vector<std::string>& extra_columns)
+    : path_(path), n_extra_(extra_columns.size()), measured_(measured), wind_(wind) {
+  file_ = std::fopen(path.c_str(), "wb");
+  if (!file_) throw OutputError(path + ": cannot write: " + std::strerror(errno));
+  static const char* const kColumns[] = {"px",     "py",   "pz",    "vx",     "vy",
+                                         "vz",     "roll", "pitch", "yaw",    "ax_cmd",
+                                         "ay_cmd", "sx",   "sy",    "slot_x", "slot_y"};
+  buffer_ = "t,sigma_f";
+  for (int i = 0; i < n_vehicles; ++i) {
+    for (const char* c : kColumns) fmt::format_to(std::back_inserter(buffer_), ",uav{}_{}", i, c);
+  }
+  // Issue 11: what the controllers measured, and the wind, after every usual column.
+  static const char* const kMeasured[] = {"px", "py",   "pz",    "vx", "vy",
+                                          "vz", "roll", "pitch", "yaw"};
+  for (int i = 0; measured_ && i < n_vehicles; ++i) {
+    for (const char* c : kMeasured) {
+      fmt::format_to(std::back_inserter(buffer_), ",uav{}_{}_meas", i, c);
+    }
+  }
+  for (int i = 0; wind_ && i < n_vehicles; ++i) {
+    fmt::format_to(std::back_inserter(buffer_), ",uav{0}_wind_x,uav{0}_wind_y,uav{0}_wind_z", i);
+  }
+  for (const auto& c : extra_columns) buffer_ += "," + c;
+  buffer_ += "\n";
+}
+
+TimeseriesWriter::~TimeseriesWriter() {
+  // Never throws: an unfinished writer (the run failed) keeps what it flushed; Close() is the
+  // checked path.
+  if (!file_) return;
+  if (!buffer_.empty()) std::fwrite(buffer_.data(), 1, buffer_.size(), file_);
+  std::fclose(file_);
+}
+
+void TimeseriesWriter::Write(const Simulation& sim, double sigma_f,
+                             const std::vector<double>& slots, const double* extra) {
+  // Numbers as "%.9g" (FormatG9: the bytes fmt's "{:.9g}" gave, at an eighth of its cost); a
+  // row is written into the buffer's spare room directly, with no per-character appends.
+  constexpr size_t kMaxNumber = 32;  // ",-1.23456789e-308" is 17 characters
+  const size_t numbers =
+      2 + (15 + 9 * measured_ + 3 * wind_) * static_cast<size_t>(sim.n_vehicles()) + n_extra_;
+  const size_t used = buffer_.size();
+  buffer_.resize(used + kMaxNumber * numbers + 1);
+  char* p = buffer_.data() + used;
+  char* const end = buffer_.data() + buffer_.size();
+  auto number = [&](double v) {
+    *p++ = ',';
+    if (std::isfinite(v)) p = FormatG9(p, end, v);
+    // else an empty cell: not applicable
+  };
+  p = std::to_chars(p, end, sim.time(), std::chars_format::fixed, 6).ptr;
+  number(sigma_f);
+  for (int i = 0; i < sim.n_vehicles(); ++i) {
+    const mjfVehicleState& s = sim.states()[i];
+    const mjfSetpoint& sp = sim.setpoints()[i];
+    const auto euler = EulerZYX(s.quat);
+    for (double v : s.pos) number(v);
+    for (double v : s.vel) number(v);
+    for (double v : euler) number(v);
+    number(sp.acc[0]);
+    number(sp.acc[1]);
+    number(sp.sliding[0]);
+    number(sp.sliding[1]);
+    number(slots[2 * i]);
+    number(slots[2 * i + 1]);
+  }
+  for (int i = 0; measured_ && i < sim.n_vehicles(); ++i) {  // the _meas columns
+    const mjfVehicleState& m = sim.measured_states()[i];
+    for (double v : m.pos) number(v);
+    for (double v : m.vel) number(v);
+    for (double v : EulerZYX(m.quat)) number(v);
+  }
+  for (int i = 0; wind_ && i < sim.n_vehicles(); ++i) {
+    for (double v : sim.wind()[i]) number(v);
+  }
+  for (size_t k = 0; k < n_extra_ && extra; ++k) number(extra[k]);
+  *p++ = '\n';
+  buffer_.resize(p - buffer_.data());
+  if (buffer_.size() > (1u << 20)) Flush();
+}
+
+void TimeseriesWriter::Flush() {
+  if (!buffer_.empty() && std::fwrite(buffer_.data(), 1, buffer_.size(), file_) != buffer_.size()) {
+    const int error = errno;
+    buffer_.clear();  // what did not fit is lost; the rows before it are on disk
+    throw OutputError(path_ + ": write failed: " + std::strerror(error));
+  }
+  buffer_.clear();
+  if (std::fflush(file_) != 0) throw OutputError(path_ + ": write failed: " + std::strerror(errno));
+}
+
+void TimeseriesWriter::Close() {
+  if (!file_) return;
+  Flush();
+  std::FILE* f = file_;
+  file_ = nullptr;
+  if (std::fclose(f) != 0) throw OutputError(path_ + ": close failed: " + std::strerror(errno));
+}
+
+std::string ConfigEcho(const ExperimentConfig& config) {
+  // The file's name only: the same experiment run from another folder gives the same bytes.
+  const std::string name = config.source_path.substr(config.source_path.find_last_of('/') + 1);
+  std::string echo = "# Experiment file " + name + " as run by mjformation.\n";
+  if (config.overrides.empty()) return echo + config.source_text;
+  // With --set overrides the merged table is what ran (comments of the original are lost).
+  for (const auto& o : config.overrides) echo += "# with --set " + o + "\n";
+  return echo + config.effective_text;
+}
+
+std::string Sha256Hex(const std::string& bytes) {
+  unsigned char digest[EVP_MAX_MD_SIZE];
+  unsigned int size = 0;
+  EVP_Digest(bytes.data(), bytes.size(), digest, &size, EVP_sha256(), nullptr);
+  std::string hex;
+  for (unsigned int i = 0; i < size; ++i) hex += fmt::format("{:02x}", digest[i]);
+  return hex;
+}
+
+nlohmann::ordered_json JsonNumber(double value) {
+  return std::isfinite(value) ? nlohmann::ordered_json(value) : nlohmann::ordered_json(nullptr);
+}
+
+}  // namespace mjf::runner

@@ -1,0 +1,197 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+#include "mjformation/record/recorders.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+
+#include "mjformation/record/frame_view.hpp"
+#include "mjformation/record/leader_acceleration.hpp"
+#include "mjformation/record/output.hpp"
+#include "mjformation/render.hpp"
+#include "mjformation/sim/simulation.hpp"
+
+namespace mjf::runner {
+
+int64_t StepsPer(double period, double timestep) {
+  return std::max<int64_t>(1, std::llround(period / timestep));
+}
+
+namespace {
+
+// The leader's measured acceleration against Assumption 1 (summary.json "leader_acceleration").
+class LeaderAccelerationRecorder final : public Recorder {
+ public:
+  explicit LeaderAccelerationRecorder(const Simulation& sim) : monitor_(sim) {}
+  void OnStep(const Simulation& sim) override { monitor_.Step(sim); }
+  bool Wants(int64_t) const override { return false; }
+  void Record(const Frame&) override {}
+  void Summarize(nlohmann::ordered_json* summary) const override {
+    (*summary)["leader_acceleration"] = monitor_.Summary();
+  }
+  const LeaderAccelerationMonitor& monitor() const { return monitor_; }
+
+ private:
+  LeaderAccelerationMonitor monitor_;
+};
+
+// timeseries.csv at [run] record_rate, and always at the last step; with
+// [run] record_leader_acceleration the leader's measured acceleration as two more columns.
+class TimeseriesRecorder final : public Recorder {
+ public:
+  TimeseriesRecorder(const Simulation& sim, const RunDirectory& dir,
+                     const LeaderAccelerationRecorder* leader)
+      : leader_(leader),
+        writer_(dir.Path("timeseries.csv"), sim.n_vehicles(), sim.config().sensors.enabled(),
+                sim.config().wind.enabled(),
+                leader ? std::vector<std::string>{"leader_ax", "leader_ay"}
+                       : std::vector<std::string>{}),
+        every_(StepsPer(1.0 / sim.config().record_rate, sim.config().timestep)),
+        last_(sim.total_steps()) {}
+  bool Wants(int64_t step) const override { return step % every_ == 0 || step == last_; }
+  void Record(const Frame& f) override {
+    writer_.Write(f.sim, f.sigma_f, f.slots,
+                  leader_ ? leader_->monitor().current().data() : nullptr);
+  }
+  void Finish() override { writer_.Close(); }
+
+ private:
+  const LeaderAccelerationRecorder* leader_;  // owned by the same recorder list
+  TimeseriesWriter writer_;
+  int64_t every_, last_;
+};
+
+std::vector<Vec3> Positions(const Simulation& sim) {
+  std::vector<Vec3> out;
+  for (const auto& s : sim.states()) out.push_back({s.pos[0], s.pos[1], s.pos[2]});
+  return out;
+}
+
+// The vehicles' recent paths, the desired slots and circle: what snapshots and video draw, by
+// the rules replay and the live viewer share (frame_view.hpp).
+class Scenery {
+ public:
+  explicit Scenery(const Simulation& sim)
+      : every_(StepsPer(0.1, sim.config().timestep)),
+        trails_(sim.n_vehicles(), sim.config().render.trail_seconds,
+                every_ * sim.config().timestep) {}
+  // Called every step by the recorders that draw; keeps a point every 0.1 s.
+  void Update(const Simulation& sim) {
+    if (sim.step_index() % every_ != 0 || sim.step_index() == last_step_) return;
+    last_step_ = sim.step_index();
+    trails_.Add(Positions(sim));
+  }
+  int64_t every() const { return every_; }
+  render::Overlay Overlay(const Simulation& sim, const std::vector<double>& slots) const {
+    std::vector<std::array<double, 2>> vehicle_slots;  // [vehicle]; the leader's is not drawn
+    for (int i = 0; i < sim.n_vehicles(); ++i)
+      vehicle_slots.push_back({slots[2 * i], slots[2 * i + 1]});
+    const ExperimentConfig& c = sim.config();
+    const double ring = sim.shape() && c.shape.type == ShapeType::kCircle ? c.shape.radius : 0.0;
+    return FrameOverlay(trails_, Positions(sim), vehicle_slots, c.altitude, ring,
+                        FrameLabel(c.name, sim.time()));
+  }
+
+ private:
+  int64_t every_;
+  TrailBuffer trails_;
+  int64_t last_step_ = -1;
+};
+
+// An offscreen view of the scene with its overlay, for snapshots and video.
+const std::vector<unsigned char>& RenderFrame(render::OffscreenRenderer& renderer,
+                                              const Scenery& scenery, const Frame& f) {
+  const std::vector<Vec3> positions = Positions(f.sim);
+  const Vec3 target = CameraTarget(f.sim.config().render, positions);
+  return renderer.Render(f.sim.data(), FollowingCamera(f.sim.config().render, positions, target),
+                         scenery.Overlay(f.sim, f.slots), target.data());
+}
+
+// snapshots/t<sss.ss>.png at the configured times.
+class SnapshotRecorder final : public Recorder {
+ public:
+  SnapshotRecorder(const Simulation& sim, const RunDirectory& dir, std::shared_ptr<Scenery> scenery)
+      : dir_(dir),
+        scenery_(std::move(scenery)),
+        renderer_(sim.model(), sim.config().render.width, sim.config().render.height,
+                  sim.config().render.shadows) {
+    for (double t : sim.config().render.snapshots) {
+      steps_.push_back(std::llround(t / sim.config().timestep));
+    }
+  }
+  bool Wants(int64_t step) const override {
+    return step % scenery_->every() == 0 ||
+           std::find(steps_.begin(), steps_.end(), step) != steps_.end();
+  }
+  void Record(const Frame& f) override {
+    scenery_->Update(f.sim);
+    if (std::find(steps_.begin(), steps_.end(), f.step) == steps_.end()) return;
+    const RenderConfig& r = f.sim.config().render;
+    const std::string name = fmt::format("snapshots/t{:06.2f}.png", f.sim.time());
+    render::WritePng(dir_.Path(name), RenderFrame(renderer_, *scenery_, f).data(), r.width,
+                     r.height);
+    files_.push_back(name);
+  }
+  void Summarize(nlohmann::ordered_json* summary) const override {
+    (*summary)["snapshots"] = files_;
+  }
+
+ private:
+  const RunDirectory& dir_;
+  std::shared_ptr<Scenery> scenery_;
+  render::OffscreenRenderer renderer_;
+  std::vector<int64_t> steps_;
+  std::vector<std::string> files_;
+};
+
+// video.mp4 through ffmpeg, at [render] video_fps.
+class VideoRecorder final : public Recorder {
+ public:
+  VideoRecorder(const Simulation& sim, const RunDirectory& dir, std::shared_ptr<Scenery> scenery)
+      : scenery_(std::move(scenery)),
+        renderer_(sim.model(), sim.config().render.video_width, sim.config().render.video_height,
+                  sim.config().render.video_shadows),
+        writer_(dir.Path("video.mp4"), sim.config().render.video_width,
+                sim.config().render.video_height, sim.config().render.video_fps),
+        every_(StepsPer(1.0 / sim.config().render.video_fps, sim.config().timestep)) {}
+  bool Wants(int64_t step) const override {
+    return step % every_ == 0 || step % scenery_->every() == 0;
+  }
+  void Record(const Frame& f) override {
+    scenery_->Update(f.sim);
+    if (f.step % every_ == 0) writer_.AddFrame(RenderFrame(renderer_, *scenery_, f).data());
+  }
+  void Finish() override { writer_.Close(); }
+
+ private:
+  std::shared_ptr<Scenery> scenery_;
+  render::OffscreenRenderer renderer_;
+  render::VideoWriter writer_;
+  int64_t every_;
+};
+
+}  // namespace
+
+std::vector<std::unique_ptr<Recorder>> MakeRecorders(const Simulation& sim, const RunDirectory* dir,
+                                                     const RecorderOptions& options) {
+  std::vector<std::unique_ptr<Recorder>> out;
+  if (!dir) return out;
+  auto leader = std::make_unique<LeaderAccelerationRecorder>(sim);
+  const LeaderAccelerationRecorder* leader_columns =
+      sim.config().record_leader_acceleration ? leader.get() : nullptr;
+  out.push_back(std::move(leader));  // first: its OnStep runs before the CSV row is written
+  if (options.record) {
+    out.push_back(std::make_unique<TimeseriesRecorder>(sim, *dir, leader_columns));
+  }
+  const RenderConfig& r = sim.config().render;
+  auto scenery = std::make_shared<Scenery>(sim);
+  if (options.render && !r.snapshots.empty()) {
+    out.push_back(std::make_unique<SnapshotRecorder>(sim, *dir, scenery));
+  }
+  if (options.render && r.video) out.push_back(std::make_unique<VideoRecorder>(sim, *dir, scenery));
+  return out;
+}
+
+}  // namespace mjf::runner

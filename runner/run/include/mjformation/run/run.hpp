@@ -1,0 +1,44 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// run_experiment as a library: the CLI's `run` and the tests call the same function.
+#ifndef MJFORMATION_RUN_RUN_HPP_
+#define MJFORMATION_RUN_RUN_HPP_
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "mjformation/config/config.hpp"
+
+namespace mjf::runner {
+
+struct RunOptions {
+  std::string out_dir;     // the run directory; empty: write nothing (benchmarks)
+  bool overwrite = false;  // replace an existing run directory
+  bool progress = false;   // progress line on stderr
+  bool render = true;      // snapshots and video as configured
+  bool record = true;      // timeseries.csv
+};
+
+struct RunResult {
+  bool complete = false;
+  std::string error;          // why the run stopped early
+  int signal = 0;             // SIGINT / SIGTERM when the run was interrupted, else 0
+  std::string summary_error;  // summary.json could not be written (e.g. a full disk)
+  double wall_time_s = 0;     // stepping loop only
+  double sim_time_s = 0;
+  int64_t steps = 0;
+  nlohmann::ordered_json summary;  // what summary.json holds
+};
+
+// Runs one experiment end to end. Input errors (config, scene, plugins, a run directory that
+// may not be replaced) throw before anything is written; from then on nothing is thrown: any
+// failure or interrupt returns complete = false with everything recorded so far kept and
+// summary.json saying so (or summary_error when even that could not be written).
+RunResult RunExperiment(const ExperimentConfig& config, const RunOptions& options);
+
+// The project's version string and MuJoCo's.
+std::string VersionString();
+
+}  // namespace mjf::runner
+
+#endif  // MJFORMATION_RUN_RUN_HPP_

@@ -1,0 +1,21 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// summary.json: what a run was, how far it got, and its metrics (keys: docs/ARCHITECTURE.md).
+#ifndef MJFORMATION_RUN_SUMMARY_HPP_
+#define MJFORMATION_RUN_SUMMARY_HPP_
+
+#include <nlohmann/json.hpp>
+
+#include "mjformation/run/run.hpp"
+
+namespace mjf::runner {
+
+class Simulation;
+
+// `recorded`: what the recorders and metrics added ("metrics", "snapshots", ...).
+nlohmann::ordered_json BuildSummary(const Simulation& sim, const RunResult& result,
+                                    const nlohmann::ordered_json& recorded);
+
+}  // namespace mjf::runner
+
+#endif  // MJFORMATION_RUN_SUMMARY_HPP_

@@ -1,0 +1,163 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// One run end to end, with one failure contract (docs/ARCHITECTURE.md, "Failure contract"):
+// input errors throw before the run directory exists; from then on nothing escapes: an
+// exception, an engine error, a plugin failure or a signal ends the run with everything recorded
+// kept and summary.json saying complete = false, why, and the simulated time reached.
+#include "mjformation/run/run.hpp"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <memory>
+
+#include "mjformation/record/metrics.hpp"
+#include "mjformation/record/output.hpp"
+#include "mjformation/record/recorders.hpp"
+#include "mjformation/run/interrupt.hpp"
+#include "mjformation/run/summary.hpp"
+#include "mjformation/sim/simulation.hpp"
+
+#ifndef MJF_VERSION
+#define MJF_VERSION "0.0.0"
+#endif
+
+namespace mjf::runner {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+class ProgressLine {
+ public:
+  ProgressLine(bool enabled, std::string name, double duration)
+      : enabled_(enabled && isatty(STDERR_FILENO)), name_(std::move(name)), duration_(duration) {}
+  void Update(double t, double sigma_f, Clock::time_point start) {
+    if (!enabled_) return;
+    const auto now = Clock::now();
+    if (now - last_ < std::chrono::milliseconds(250)) return;
+    last_ = now;
+    const double wall = std::chrono::duration<double>(now - start).count();
+    std::fprintf(stderr, "\r[%s] t = %6.2f / %.2f s (%3.0f%%)  %6.1fx real time  sigma_f = %-9.4g",
+                 name_.c_str(), t, duration_, 100.0 * t / duration_, wall > 0 ? t / wall : 0.0,
+                 sigma_f);
+    std::fflush(stderr);
+  }
+  void Finish() {
+    if (enabled_) std::fprintf(stderr, "\n");
+  }
+
+ private:
+  bool enabled_;
+  std::string name_;
+  double duration_;
+  Clock::time_point last_{};
+};
+
+std::string SignalName(int signal) {
+  return signal == SIGINT ? "SIGINT" : signal == SIGTERM ? "SIGTERM" : std::to_string(signal);
+}
+
+// The step loop: controls, frames for the recorders that want them, integration. Throws
+// whatever a step or a recorder throws; stops early (returns) on an interrupt request.
+void StepLoop(Simulation& sim, std::vector<std::unique_ptr<Recorder>>& recorders,
+              OnlineMetrics& metrics, ProgressLine& progress, RunResult* result) {
+  const int64_t record_every = StepsPer(1.0 / sim.config().record_rate, sim.config().timestep);
+  std::vector<double> slots(2 * static_cast<size_t>(sim.n_vehicles()));
+  const auto start = Clock::now();
+  for (int64_t step = 0; step <= sim.total_steps(); ++step) {
+    if (InterruptRequested()) {
+      result->signal = InterruptSignal();
+      result->error = "interrupted by " + SignalName(result->signal);
+      return;
+    }
+    sim.ComputeControls();
+    for (const auto& r : recorders) r->OnStep(sim);
+    const bool record_tick = step % record_every == 0 || step == sim.total_steps();
+    bool wanted = record_tick;
+    for (const auto& r : recorders) wanted = wanted || r->Wants(step);
+    if (wanted) {
+      const double sigma_f = metrics.Sample(sim, &slots, record_tick);
+      const Frame frame{sim, step, sigma_f, slots};
+      for (const auto& r : recorders) {
+        if (r->Wants(step)) r->Record(frame);
+      }
+      progress.Update(sim.time(), sigma_f, start);
+    }
+    metrics.StepControls(sim);
+    if (step < sim.total_steps()) sim.Integrate();
+  }
+  result->complete = true;
+}
+
+// Runs `action`; an exception becomes the run's error (the first one is kept) and
+// complete = false. Nothing escapes.
+template <typename Action>
+void Guarded(RunResult* result, Action action) {
+  try {
+    action();
+  } catch (const std::exception& e) {
+    if (result->error.empty()) result->error = e.what();
+    result->complete = false;
+  } catch (...) {
+    if (result->error.empty()) result->error = "unknown exception";
+    result->complete = false;
+  }
+}
+
+// Everything after the run directory exists: recorders, steps, closing. Never throws.
+void RunInDirectory(Simulation& sim, const RunDirectory* dir, const RunOptions& options,
+                    RunResult* result, nlohmann::ordered_json* recorder_summary) {
+  std::vector<std::unique_ptr<Recorder>> recorders;
+  OnlineMetrics metrics(sim);
+  ProgressLine progress(options.progress, sim.config().name, sim.config().duration);
+  const auto start = Clock::now();
+  Guarded(result, [&] {
+    recorders = MakeRecorders(sim, dir, {options.record, options.render});
+    StepLoop(sim, recorders, metrics, progress, result);
+  });
+  progress.Finish();
+  result->wall_time_s = std::chrono::duration<double>(Clock::now() - start).count();
+  result->sim_time_s = sim.time();
+  result->steps = sim.step_index();
+  // Each recorder is closed even when another failed: every row recorded is kept.
+  for (auto& r : recorders) Guarded(result, [&] { r->Finish(); });
+  for (const auto& r : recorders) r->Summarize(recorder_summary);
+  (*recorder_summary)["metrics"] = metrics.Summary(sim);
+}
+
+}  // namespace
+
+std::string VersionString() {
+  return fmt::format("mjformation {} (MuJoCo {}, plugin ABI {})", MJF_VERSION, mj_versionString(),
+                     MJF_ABI_VERSION);
+}
+
+RunResult RunExperiment(const ExperimentConfig& config, const RunOptions& options) {
+  // Everything that can be wrong with the input fails here, before a file is written.
+  Simulation sim(config);
+  std::unique_ptr<RunDirectory> dir;
+  if (!options.out_dir.empty()) {
+    dir = std::make_unique<RunDirectory>(options.out_dir, options.overwrite);
+  }
+  RunResult result;
+  nlohmann::ordered_json recorded = nlohmann::ordered_json::object();
+  Guarded(&result, [&] {
+    if (!dir) return;
+    dir->WriteText("config.toml", ConfigEcho(config));
+    dir->WriteText("scene.xml", sim.scene_xml());
+  });
+  if (result.error.empty()) RunInDirectory(sim, dir.get(), options, &result, &recorded);
+  result.summary = BuildSummary(sim, result, recorded);
+  try {
+    if (dir) dir->WriteText("summary.json", result.summary.dump(2) + "\n");
+  } catch (const std::exception& e) {
+    result.summary_error = e.what();
+    result.complete = false;
+  }
+  return result;
+}
+
+}  // namespace mjf::runner

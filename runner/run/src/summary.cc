@@ -1,0 +1,80 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+#include "mjformation/run/summary.hpp"
+
+#include <mujoco/mujoco.h>
+
+#include "mjformation/config/realism_config.hpp"
+#include "mjformation/record/output.hpp"
+#include "mjformation/sim/simulation.hpp"
+
+#ifndef MJF_VERSION
+#define MJF_VERSION "0.0.0"
+#endif
+
+namespace mjf::runner {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+Json PluginJson(const PluginInstance& p) {
+  Json a = Json::object();
+  for (const auto& [k, v] : p.attributes()) a[k] = v;
+  return Json{{"name", p.descriptor().name}, {"attributes", a}};
+}
+
+// What ran: experiment, versions, vehicles, plugins, shape.
+void DescribeExperiment(const Simulation& sim, Json& s) {
+  const ExperimentConfig& config = sim.config();
+  s["seed"] = config.seed;
+  s["config_sha256"] = Sha256Hex(ConfigEcho(config));
+  s["versions"] = {{"mjformation", MJF_VERSION},
+                   {"mujoco", mj_versionString()},
+                   {"plugin_abi", MJF_ABI_VERSION}};
+  s["n_followers"] = config.followers;
+  s["vehicle_model"] = config.model;
+  s["rotor_model"] = ToString(config.rotor_model);
+  s["plugins"]["leader"] = PluginJson(sim.leader_plugin());
+  s["plugins"]["formation"] = sim.formation_plugin()
+                                  ? PluginJson(*sim.formation_plugin())
+                                  : Json{{"name", config.formation.plugin}, {"per_follower", true}};
+  s["plugins"]["attitude"] = PluginJson(sim.attitude_plugin(0));
+  s["shape"] = {{"type", ToString(config.shape.type)},
+                {"radius", config.shape.radius},
+                {"omega", config.shape.omega}};
+  AddRealismSummary(config, &s);  // "sensors" / "wind", only when switched on
+}
+
+}  // namespace
+
+Json BuildSummary(const Simulation& sim, const RunResult& result, const Json& recorded) {
+  const ExperimentConfig& config = sim.config();
+  Json s;
+  s["experiment"] = config.name;
+  s["complete"] = result.complete;
+  s["error"] = result.complete ? Json(nullptr) : Json(result.error);
+  if (result.signal) s["interrupted_by_signal"] = result.signal;  // only on interrupted runs
+  s["paper_experiment"] = config.paper_experiment;
+  s["sim_time_s"] = result.sim_time_s;  // the simulated time reached
+  s["duration_s"] = config.duration;
+  s["timestep_s"] = config.timestep;
+  s["steps"] = result.steps;
+  DescribeExperiment(sim, s);
+  s["metrics"] = recorded.contains("metrics") ? recorded["metrics"] : Json(nullptr);
+  Json report = Json::object();
+  for (const auto& [k, v] : sim.FormationReport()) report[k] = JsonNumber(v);
+  s["plugin_report"] = report;
+  s["snapshots"] = recorded.contains("snapshots") ? recorded["snapshots"] : Json::array();
+  if (sim.channel()) s["network"] = sim.channel()->Summary();  // per-agent execution only
+  for (const auto& [k, v] : recorded.items()) {
+    if (!s.contains(k)) s[k] = v;  // further recorders' keys, after the established ones
+  }
+  // Timing varies run to run; it is the only part of the run directory that does.
+  const double wall = result.wall_time_s;
+  s["timing"] = {{"wall_time_s", wall},
+                 {"real_time_factor", wall > 0 ? result.sim_time_s / wall : 0.0},
+                 {"steps_per_second", wall > 0 ? result.steps / wall : 0.0}};
+  if (sim.threads() > 1) s["timing"]["threads"] = sim.threads();  // partitioned physics
+  return s;
+}
+
+}  // namespace mjf::runner

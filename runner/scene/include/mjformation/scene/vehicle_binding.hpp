@@ -1,0 +1,54 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// The scene plan: where each vehicle starts, and where its sensors, body and actuators live in
+// the composed model (resolved once, before any step; a missing name fails here, never mid-run).
+#ifndef MJFORMATION_SCENE_VEHICLE_BINDING_HPP_
+#define MJFORMATION_SCENE_VEHICLE_BINDING_HPP_
+
+#include <mjformation/plugin.h>
+#include <mujoco/mujoco.h>
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "mjformation/config/config.hpp"
+
+namespace mjf::runner {
+
+// Where vehicle i's sensor values and actuators live in the composed model.
+struct VehicleBinding {
+  int body = -1;
+  int sensor_pos = -1, sensor_vel = -1, sensor_quat = -1, sensor_gyro = -1;  // sensordata adr
+  std::vector<int> actuators;  // ids in the composed model (actuator rotor model)
+  std::vector<int> sites;      // site of each driven actuator (wrench rotor model)
+  std::vector<mjfActuatorInfo> actuator_info;
+  mjfVehicleInfo info{};  // points into actuator_info: do not copy a binding
+};
+
+struct VehicleBindings {
+  std::vector<VehicleBinding> vehicles;  // 0 = leader
+  std::vector<double> wrench_gain;       // actuator gain per driven actuator (same per vehicle)
+  int actuators_per_vehicle = 0;
+};
+
+// Initial positions: the leader at leader_start, followers at follower_start or, by default,
+// on a ring about the origin with at least 1.5 m between neighbours; all at the altitude.
+// start_jitter adds a seeded uniform perturbation (same seed, same positions).
+std::vector<std::array<double, 3>> InitialPositions(const ExperimentConfig& config);
+
+// Reads mass, inertia and actuator geometry from the vehicle model alone (`vehicle_xml`, the
+// adapted foreign model, or else the file [vehicles] model), then binds every vehicle of the
+// composed model. Throws SceneError / PluginError naming what is missing. `first` and `count`
+// (-1: all 1 + N): the vehicles the composed model holds (a partition of the swarm).
+VehicleBindings BindVehicles(const mjModel* composed, const ExperimentConfig& config,
+                             const mjfPlugin& attitude, const std::string& vehicle_xml = "",
+                             int first = 0, int count = -1);
+
+// The vehicles' true states from MuJoCo's sensors (after mj_step1 or mj_forward).
+void ReadTrueStates(const mjData* data, const VehicleBindings& bindings,
+                    std::vector<mjfVehicleState>* states);
+
+}  // namespace mjf::runner
+
+#endif  // MJFORMATION_SCENE_VEHICLE_BINDING_HPP_

@@ -1,0 +1,217 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+#include "mjformation/scene/vehicle_binding.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <random>
+
+#include "mjformation/control/plugin_host.hpp"
+#include "mjformation/scene/scene.hpp"
+
+namespace mjf::runner {
+namespace {
+
+// Actuator data of the vehicle model alone, in the order the attitude plugin names them.
+std::vector<mjfActuatorInfo> ActuatorInfo(const mjModel* m, const mjfPlugin& plugin,
+                                          const std::string& vehicle_path,
+                                          std::vector<std::string>* site_names,
+                                          std::vector<double>* gains) {
+  mjData* d = mj_makeData(m);
+  mj_forward(m, d);
+  const int body = mj_name2id(m, mjOBJ_BODY, "vehicle");
+  std::vector<mjfActuatorInfo> out;
+  for (int k = 0; k < plugin.n_actuators; ++k) {
+    const char* name = plugin.actuators[k];
+    const int a = mj_name2id(m, mjOBJ_ACTUATOR, name);
+    if (a < 0) {
+      mj_deleteData(d);
+      std::string have;
+      for (int j = 0; j < m->nu; ++j) {
+        have += (have.empty() ? "" : ", ") + std::string(mj_id2name(m, mjOBJ_ACTUATOR, j));
+      }
+      throw PluginError(
+          vehicle_path + ": attitude plugin '" + plugin.name + "' drives actuator '" + name +
+          "', which this vehicle model lacks (it has: " + (have.empty() ? "none" : have) + ")");
+    }
+    mjfActuatorInfo info{};
+    std::memcpy(info.gear, m->actuator_gear + 6 * a, sizeof(info.gear));
+    if (m->actuator_ctrllimited[a]) {
+      info.ctrl_min = m->actuator_ctrlrange[2 * a];
+      info.ctrl_max = m->actuator_ctrlrange[2 * a + 1];
+    } else {
+      info.ctrl_min = -std::numeric_limits<double>::infinity();
+      info.ctrl_max = std::numeric_limits<double>::infinity();
+    }
+    info.time_constant =
+        m->actuator_dyntype[a] == mjDYN_FILTER ? m->actuator_dynprm[mjNDYN * a] : 0;
+    std::string site_name;
+    if (m->actuator_trntype[a] == mjTRN_SITE) {
+      const int site = m->actuator_trnid[2 * a];
+      site_name = mj_id2name(m, mjOBJ_SITE, site);
+      // Site relative to the centre of mass, in body axes: R^T (site - com).
+      double rel[3];
+      mju_sub3(rel, d->site_xpos + 3 * site, d->xipos + 3 * body);
+      mju_mulMatTVec(info.site_pos, d->xmat + 9 * body, rel, 3, 3);
+    }
+    site_names->push_back(site_name);
+    gains->push_back(m->actuator_gainprm[mjNGAIN * a]);
+    out.push_back(info);
+  }
+  mj_deleteData(d);
+  return out;
+}
+
+// The vehicle model alone: mass, inertia and the attitude plugin's actuators.
+struct VehicleModelInfo {
+  double mass = 0;
+  double inertia[3] = {0, 0, 0};
+  std::vector<mjfActuatorInfo> actuators;
+  std::vector<std::string> site_names;
+  std::vector<double> gains;
+};
+
+// The wrench rotor model reproduces MuJoCo's site actuators only for fixed-gain, unbiased
+// actuators with no or filter dynamics.
+void RequireWrenchCompatible(const mjModel* vehicle, const ExperimentConfig& config,
+                             const mjfPlugin& attitude, const VehicleModelInfo& info) {
+  for (int k = 0; k < attitude.n_actuators; ++k) {
+    const int a = mj_name2id(vehicle, mjOBJ_ACTUATOR, attitude.actuators[k]);
+    if (info.site_names[k].empty() || vehicle->actuator_gaintype[a] != mjGAIN_FIXED ||
+        vehicle->actuator_biastype[a] != mjBIAS_NONE ||
+        (vehicle->actuator_dyntype[a] != mjDYN_NONE &&
+         vehicle->actuator_dyntype[a] != mjDYN_FILTER)) {
+      throw SceneError(config.model_path + ": [vehicles] rotor_model = \"wrench\" needs " +
+                       "site actuators with fixed gain, no bias and no or filter dynamics; "
+                       "actuator '" +
+                       attitude.actuators[k] + "' is not one");
+    }
+  }
+}
+
+VehicleModelInfo ReadVehicleModel(const ExperimentConfig& config, const mjfPlugin& attitude,
+                                  const std::string& vehicle_xml) {
+  char error[1024] = {0};
+  mjModel* vehicle = vehicle_xml.empty()
+                         ? mj_loadXML(config.model_path.c_str(), nullptr, error, sizeof(error))
+                         : CompileModel(vehicle_xml, config.model_path + " (adapted)");
+  if (!vehicle) throw SceneError(config.model_path + ": MuJoCo cannot load it: " + error);
+  VehicleModelInfo info;
+  try {
+    const int body = mj_name2id(vehicle, mjOBJ_BODY, "vehicle");
+    if (body < 0) throw SceneError(config.model_path + ": no body named 'vehicle'");
+    info.actuators =
+        ActuatorInfo(vehicle, attitude, config.model_path, &info.site_names, &info.gains);
+    info.mass = vehicle->body_subtreemass[body];
+    std::memcpy(info.inertia, vehicle->body_inertia + 3 * body, sizeof(info.inertia));
+    if (config.rotor_model == RotorModel::kWrench) {
+      RequireWrenchCompatible(vehicle, config, attitude, info);
+    }
+  } catch (...) {
+    mj_deleteModel(vehicle);
+    throw;
+  }
+  mj_deleteModel(vehicle);
+  return info;
+}
+
+// Sensor addresses of vehicle `prefix` in the composed model.
+void BindSensors(const mjModel* m, const std::string& prefix, const std::string& model_path,
+                 VehicleBinding* b) {
+  struct Needed {
+    const char* name;
+    int type;
+    int dim;
+    int VehicleBinding::*adr;
+  };
+  static const Needed kNeeded[] = {{"pos", mjSENS_FRAMEPOS, 3, &VehicleBinding::sensor_pos},
+                                   {"vel", mjSENS_FRAMELINVEL, 3, &VehicleBinding::sensor_vel},
+                                   {"quat", mjSENS_FRAMEQUAT, 4, &VehicleBinding::sensor_quat},
+                                   {"gyro", mjSENS_GYRO, 3, &VehicleBinding::sensor_gyro}};
+  for (const Needed& s : kNeeded) {
+    const int id = mj_name2id(m, mjOBJ_SENSOR, (prefix + s.name).c_str());
+    if (id < 0 || m->sensor_dim[id] != s.dim || m->sensor_type[id] != s.type) {
+      throw SceneError(model_path + ": the vehicle model needs a sensor named '" + s.name + "' (" +
+                       std::to_string(s.dim) +
+                       " values; framepos, framelinvel, framequat and gyro for pos, vel, quat, "
+                       "gyro; see docs/ARCHITECTURE.md)" +
+                       (id < 0 ? "; it has none" : "; it has one of another type or size"));
+    }
+    b->*(s.adr) = m->sensor_adr[id];
+  }
+}
+
+}  // namespace
+
+std::vector<std::array<double, 3>> InitialPositions(const ExperimentConfig& c) {
+  std::vector<std::array<double, 3>> out;
+  out.push_back({c.leader_start[0], c.leader_start[1], c.altitude});
+  const double ring = std::max(2.0, 1.5 * c.followers / (2 * M_PI));
+  std::mt19937_64 rng(c.seed);
+  for (int i = 0; i < c.followers; ++i) {
+    std::array<double, 3> p;
+    if (!c.follower_start.empty()) {
+      p = {c.follower_start[i][0], c.follower_start[i][1], c.altitude};
+    } else {
+      const double a = 2 * M_PI * i / c.followers;
+      p = {ring * std::cos(a), ring * std::sin(a), c.altitude};
+    }
+    for (int k = 0; k < 2; ++k) {
+      // Uniform in [-jitter, jitter] from raw 53-bit draws: the same on every platform.
+      const double u = static_cast<double>(rng() >> 11) * 0x1.0p-53;
+      p[k] += c.start_jitter * (2 * u - 1);
+    }
+    out.push_back(p);
+  }
+  return out;
+}
+
+VehicleBindings BindVehicles(const mjModel* composed, const ExperimentConfig& config,
+                             const mjfPlugin& attitude, const std::string& vehicle_xml, int first,
+                             int count) {
+  const VehicleModelInfo vehicle = ReadVehicleModel(config, attitude, vehicle_xml);
+  VehicleBindings out;
+  out.wrench_gain = vehicle.gains;
+  out.actuators_per_vehicle = attitude.n_actuators;
+  const int n = count < 0 ? config.followers + 1 : count;
+  out.vehicles.resize(n);
+  const double gravity = mju_norm3(composed->opt.gravity);
+  for (int i = 0; i < n; ++i) {
+    VehicleBinding& b = out.vehicles[i];
+    const std::string prefix = VehiclePrefix(first + i);
+    b.body = mj_name2id(composed, mjOBJ_BODY, (prefix + "vehicle").c_str());
+    BindSensors(composed, prefix, config.model_path, &b);
+    b.actuator_info = vehicle.actuators;
+    for (int k = 0; k < attitude.n_actuators; ++k) {
+      if (config.rotor_model == RotorModel::kWrench) {
+        b.sites.push_back(
+            mj_name2id(composed, mjOBJ_SITE, (prefix + vehicle.site_names[k]).c_str()));
+      } else {
+        b.actuators.push_back(
+            mj_name2id(composed, mjOBJ_ACTUATOR, (prefix + attitude.actuators[k]).c_str()));
+      }
+    }
+    b.info.mass = vehicle.mass;
+    std::memcpy(b.info.inertia, vehicle.inertia, sizeof(vehicle.inertia));
+    b.info.gravity = gravity;
+    b.info.n_actuators = attitude.n_actuators;
+    b.info.actuators = b.actuator_info.data();
+  }
+  return out;
+}
+
+void ReadTrueStates(const mjData* data, const VehicleBindings& bindings,
+                    std::vector<mjfVehicleState>* states) {
+  const mjtNum* s = data->sensordata;
+  for (size_t i = 0; i < states->size(); ++i) {
+    const VehicleBinding& b = bindings.vehicles[i];
+    mjfVehicleState& st = (*states)[i];
+    std::memcpy(st.pos, s + b.sensor_pos, sizeof(st.pos));
+    std::memcpy(st.vel, s + b.sensor_vel, sizeof(st.vel));
+    std::memcpy(st.quat, s + b.sensor_quat, sizeof(st.quat));
+    std::memcpy(st.gyro, s + b.sensor_gyro, sizeof(st.gyro));
+  }
+}
+
+}  // namespace mjf::runner

@@ -1,0 +1,41 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// How the attitude plugins' controls reach MuJoCo, chosen once per simulation
+// ([vehicles] rotor_model): MuJoCo's own actuators (d->ctrl), or the runner's wrench model
+// (each rotor's thrust and yaw torque as a generalized force over the vehicle's own dofs).
+#ifndef MJFORMATION_SIM_ACTUATION_HPP_
+#define MJFORMATION_SIM_ACTUATION_HPP_
+
+#include <mujoco/mujoco.h>
+
+#include <memory>
+#include <vector>
+
+#include "mjformation/config/config.hpp"
+#include "mjformation/scene/vehicle_binding.hpp"
+
+namespace mjf::runner {
+
+class Actuation {
+ public:
+  virtual ~Actuation() = default;
+  // Hands every vehicle's controls ([vehicle][actuator]) to MuJoCo, before mj_step2.
+  // qfrc_applied has been cleared when this model uses it (UsesAppliedForces).
+  virtual void Apply(const std::vector<double>& controls, mjData* data) = 0;
+  // After mj_step2: advances the actuation's own state (the wrench model's motor lag).
+  virtual void Advance(const std::vector<double>& controls) = 0;
+  // True when Apply writes qfrc_applied (the caller clears it once per step).
+  virtual bool UsesAppliedForces() const = 0;
+};
+
+// The actuation model the experiment asks for.
+std::unique_ptr<Actuation> MakeActuation(RotorModel model, const mjModel* m,
+                                         const VehicleBindings& bindings, double timestep);
+
+// Adds J^T [force; torque] of a wrench acting at `body`'s centre of mass (world frame) to
+// qfrc_applied, over the dofs that move the body only (O(dofs of the body's chain)).
+void AddWrenchAtCentreOfMass(const mjModel* m, mjData* d, int body, const mjtNum wrench[6]);
+
+}  // namespace mjf::runner
+
+#endif  // MJFORMATION_SIM_ACTUATION_HPP_

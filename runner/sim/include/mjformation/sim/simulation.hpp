@@ -1,0 +1,165 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// One simulation: the scene plan compiled into MuJoCo, the control tick, the actuation model and
+// the force stages, stepped as
+//   mj_step1 -> true states -> ControlTick (sensors, guidance, formation, attitude)
+//   -> Actuation + force stages -> mj_step2.
+// Everything a run can get wrong in its input is checked in the constructor, before any step.
+#ifndef MJFORMATION_SIM_SIMULATION_HPP_
+#define MJFORMATION_SIM_SIMULATION_HPP_
+
+#include <mjformation/plugin.h>
+#include <mujoco/mujoco.h>
+
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "mjformation/config/config.hpp"
+#include "mjformation/control/control_tick.hpp"
+#include "mjformation/control/errors.hpp"
+#include "mjformation/control/plugin_host.hpp"
+#include "mjformation/control/stages.hpp"
+#include "mjformation/scene/vehicle_binding.hpp"
+#include "mjformation/sim/actuation.hpp"
+#include "mjformation/sim/partitioned_physics.hpp"
+
+namespace mjf::core {
+class Graph;
+class Shape;
+}  // namespace mjf::core
+
+namespace mjf::runner {
+
+class Simulation {
+ public:
+  // Composes the scene, compiles it, binds sensors and actuators, loads and creates the plugins.
+  // Throws ConfigError / SceneError / PluginError with messages naming file, line and key.
+  explicit Simulation(const ExperimentConfig& config);
+  ~Simulation();
+  Simulation(const Simulation&) = delete;
+  Simulation& operator=(const Simulation&) = delete;
+
+  // Computes sensors (mj_step1), runs the control tick and hands the controls and external
+  // forces to MuJoCo. Throws SimulationError.
+  void ComputeControls();
+  // Integrates one step (mj_step2) and checks the new state: non-finite values or MuJoCo
+  // warnings throw SimulationError.
+  void Integrate();
+
+  const ExperimentConfig& config() const { return config_; }
+  const mjModel* model() const { return model_.get(); }
+  // The whole swarm's state. With partitioned physics ([run] threads > 1) it is brought up to
+  // date from the partitions on first access after a step (positions only: what rendering uses).
+  mjData* data() {
+    SyncWholeData();
+    return data_.get();
+  }
+  const mjData* data() const {
+    SyncWholeData();
+    return data_.get();
+  }
+  // Physics partitions stepped in parallel (1: the single whole-swarm model).
+  int threads() const { return partitions_ ? partitions_->size() : 1; }
+  // The partitions (nullptr with threads = 1).
+  PartitionedPhysics* partitions() { return partitions_.get(); }
+  const std::string& scene_xml() const { return scene_xml_; }
+  int64_t step_index() const { return step_; }
+  int64_t total_steps() const { return total_steps_; }
+  double time() const { return static_cast<double>(step_) * config_.timestep; }
+  int n_vehicles() const { return static_cast<int>(truth_.size()); }
+  int n_followers() const { return n_vehicles() - 1; }
+  // The true states (MuJoCo's sensors) of the last ComputeControls.
+  const std::vector<mjfVehicleState>& states() const { return truth_; }
+  // What the controllers saw (the truth with ideal sensors).
+  const std::vector<mjfVehicleState>& measured() const { return tick_->measured(); }
+  const std::vector<mjfVehicleState>& measured_states() const { return measured(); }
+  // The wind at each vehicle this step (m/s, world); empty when [wind] is calm.
+  const std::vector<std::array<double, 3>>& wind() const;
+  const std::vector<mjfSetpoint>& setpoints() const { return tick_->setpoints(); }
+  const std::vector<double>& controls() const { return tick_->controls(); }
+  int actuators_per_vehicle() const { return bindings_.actuators_per_vehicle; }
+  const VehicleBinding& binding(int vehicle) const { return bindings_.vehicles[vehicle]; }
+  // The desired formation (nullptr when [formation.shape] type = "none").
+  const core::Shape* shape() const { return shape_.get(); }
+  const PluginInstance& leader_plugin() const { return *tick_->plugins().leader; }
+  const PluginInstance* formation_plugin() const { return tick_->plugins().formation.get(); }
+  // Per-agent execution: the channel stage (network, links, metrics); nullptr in central mode.
+  const AgentChannel* channel() const { return tick_->channel(); }
+  const PluginInstance& attitude_plugin(int vehicle) const {
+    return *tick_->plugins().attitude[vehicle];
+  }
+  const PluginRegistry& registry() const { return *registry_; }
+  // The formation plugin's scalar report ("delta", "error_bound", ...), if any.
+  std::vector<std::pair<std::string, double>> FormationReport() const;
+  // Bring your own quadrotor: what adapting the model dropped, renamed and added (empty for a
+  // model that follows the vehicle contract).
+  const std::vector<std::string>& vehicle_notes() const { return vehicle_notes_; }
+
+ private:
+  void AdaptForeignVehicle(const mjfPlugin& attitude);
+  void BuildGraphAndShape();
+  std::unique_ptr<AgentChannel> MakeChannel() const;
+  ControlPlugins CreatePlugins(const LoadedPlugin& attitude, const AgentChannel* channel) const;
+  const LoadedPlugin& FindAgentPlugin(const LoadedPlugin& named) const;
+  std::vector<std::unique_ptr<PluginInstance>> CreateAgents(const LoadedPlugin& agent,
+                                                            const mjfCreateContext& base,
+                                                            const AgentChannel& channel) const;
+  void RequireFormationInputs() const;
+  std::unique_ptr<PluginInstance> CreateFormation(const LoadedPlugin& formation,
+                                                  const mjfCreateContext& base) const;
+  mjfCreateContext VehicleContext(const mjfCreateContext& base, int vehicle) const;
+  std::vector<mjfSetpoint> InitialSetpoints() const;
+  void ComputeForces();
+  void ApplyForces();
+  void MakePartitions(const mjfPlugin& attitude);
+  void CheckState() const;
+  void SyncWholeData() const;
+
+  struct ModelDeleter {
+    void operator()(mjModel* m) const { mj_deleteModel(m); }
+  };
+  struct DataDeleter {
+    void operator()(mjData* d) const { mj_deleteData(d); }
+  };
+
+  ExperimentConfig config_;
+  std::unique_ptr<PluginRegistry> registry_;  // outlives every plugin instance
+  std::string scene_xml_;
+  std::string vehicle_xml_;  // adapted foreign model ([vehicles] body/rotors), else empty
+  std::vector<std::string> vehicle_notes_;
+  // Freed in reverse order: the tick (plugins may hold pointers into the model) goes first.
+  std::unique_ptr<mjModel, ModelDeleter> model_;
+  std::unique_ptr<mjData, DataDeleter> data_;
+  int64_t step_ = 0;
+  int64_t total_steps_ = 0;
+
+  std::vector<std::array<double, 3>> initial_positions_;
+  VehicleBindings bindings_;
+  std::vector<mjfVehicleState> truth_;
+
+  std::unique_ptr<core::Graph> graph_;
+  std::unique_ptr<core::Shape> shape_;
+  mjfGraph abi_graph_{};
+  mjfShape abi_shape_{};
+  std::vector<int> edge_from_, edge_to_;
+  std::vector<double> edge_weight_;
+
+  std::unique_ptr<ControlTick> tick_;
+  std::unique_ptr<Actuation> actuation_;
+  std::vector<std::unique_ptr<ForceStage>> force_stages_;
+  std::vector<double> external_force_;  // [vehicle][3], N, world frame
+
+  // [run] threads > 1: the physics of the swarm split into partitions; model_ and data_ then
+  // hold the whole scene for rendering and the plugins' model pointer, and are not stepped.
+  std::unique_ptr<PartitionedPhysics> partitions_;
+  mutable bool whole_data_stale_ = false;
+};
+
+// Euler angles (roll, pitch, yaw; ZYX convention, rad) of a w-x-y-z quaternion.
+std::array<double, 3> EulerZYX(const double quat[4]);
+
+}  // namespace mjf::runner
+
+#endif  // MJFORMATION_SIM_SIMULATION_HPP_

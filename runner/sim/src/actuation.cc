@@ -1,0 +1,157 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+#include "mjformation/sim/actuation.hpp"
+
+#include <algorithm>
+
+namespace mjf::runner {
+// The wrench rotor model: what MuJoCo's site transmission with a filter actuator would apply,
+// computed per vehicle in O(1) instead of through the dense nu x nv actuator_moment of 2.2.2.
+// force = gain * act (act: first-order motor lag of the clamped control, updated in Integrate);
+// the wrench gear * force acts at the site, in the site's frame.
+//
+// The vehicle's summed wrench (force f at its centre of mass, torque t) goes to MuJoCo as the
+// generalized force J^T [f; t] in qfrc_applied, computed here from cdof over the vehicle's own
+// dofs only. Handing it over as xfrc_applied instead makes MuJoCo 2.2.2 (mj_xfrcAccumulate ->
+// mj_applyFT) build and clear two dense 3 x nv Jacobians per vehicle every step: O(N nv) =
+// O(N^2), 97% of a step at 1000 followers (docs/PERFORMANCE.md). The maths is mj_jac's: for each
+// dof j of the body's chain, J_j . [f; t] = (cdof_lin + cdof_rot x (point - subtree_com)) . f +
+// cdof_rot . t; only the floating-point summation order differs.
+// The small vector helpers are written out in MuJoCo's own operation order (mju_mulMatVec,
+// mju_cross, mju_dot3, without FMA), so the results are bit for bit those of the mju_* calls, at a
+// fraction of the cost of calling through the shared library's PLT for every rotor of every
+// vehicle on every step.
+namespace {
+inline void MulMat3Vec(mjtNum res[3], const mjtNum m[9], const mjtNum v[3]) {
+  for (int r = 0; r < 3; ++r) res[r] = m[3 * r] * v[0] + m[3 * r + 1] * v[1] + m[3 * r + 2] * v[2];
+}
+inline void Cross(mjtNum res[3], const mjtNum a[3], const mjtNum b[3]) {
+  res[0] = a[1] * b[2] - a[2] * b[1];
+  res[1] = a[2] * b[0] - a[0] * b[2];
+  res[2] = a[0] * b[1] - a[1] * b[0];
+}
+inline mjtNum Dot3(const mjtNum a[3], const mjtNum b[3]) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+}  // namespace
+
+void AddWrenchAtCentreOfMass(const mjModel* m, mjData* d, int body, const mjtNum wrench[6]) {
+  const mjtNum* com = d->xipos + 3 * body;
+  // J^T wrench at the centre of mass, over the dofs that move this body (as mj_jac walks them).
+  while (body && !m->body_dofnum[body]) body = m->body_parentid[body];
+  if (!body) return;
+  const mjtNum* root_com = d->subtree_com + 3 * m->body_rootid[body];
+  mjtNum offset[3];
+  for (int j = 0; j < 3; ++j) offset[j] = com[j] - root_com[j];
+  for (int j = m->body_dofadr[body] + m->body_dofnum[body] - 1; j >= 0; j = m->dof_parentid[j]) {
+    const mjtNum* cdof = d->cdof + 6 * j;
+    mjtNum lin[3];
+    Cross(lin, cdof, offset);
+    for (int k = 0; k < 3; ++k) lin[k] += cdof[3 + k];
+    d->qfrc_applied[j] += Dot3(lin, wrench) + Dot3(cdof, wrench + 3);
+  }
+}
+
+namespace {
+
+// MuJoCo's own actuators: the controls go to d->ctrl.
+class ActuatorActuation final : public Actuation {
+ public:
+  explicit ActuatorActuation(const VehicleBindings& bindings) : bindings_(bindings) {}
+  void Apply(const std::vector<double>& controls, mjData* data) override {
+    const int per = bindings_.actuators_per_vehicle;
+    for (size_t i = 0; i < bindings_.vehicles.size(); ++i) {
+      const VehicleBinding& b = bindings_.vehicles[i];
+      const double* c = controls.data() + i * per;
+      for (int k = 0; k < per; ++k) data->ctrl[b.actuators[k]] = c[k];
+    }
+  }
+  void Advance(const std::vector<double>&) override {}
+  bool UsesAppliedForces() const override { return false; }
+
+ private:
+  const VehicleBindings& bindings_;
+};
+
+// The wrench rotor model (see the comment above AddWrenchAtCentreOfMass's helpers).
+class WrenchActuation final : public Actuation {
+ public:
+  WrenchActuation(const mjModel* m, const VehicleBindings& bindings, double timestep)
+      : model_(m),
+        bindings_(bindings),
+        timestep_(timestep),
+        rotor_state_(bindings.vehicles.size() * bindings.actuators_per_vehicle, 0.0) {}
+  void Apply(const std::vector<double>& controls, mjData* data) override;
+  void Advance(const std::vector<double>& controls) override;
+  bool UsesAppliedForces() const override { return true; }
+
+ private:
+  // Summed rotor wrench of vehicle i about its centre of mass, world frame.
+  void VehicleWrench(int i, const std::vector<double>& controls, const mjData* data,
+                     mjtNum wrench[6]) const;
+
+  const mjModel* model_;
+  const VehicleBindings& bindings_;
+  double timestep_;
+  std::vector<double> rotor_state_;  // motor lag states, like MuJoCo's act
+};
+
+void WrenchActuation::VehicleWrench(int i, const std::vector<double>& controls, const mjData* data,
+                                    mjtNum wrench[6]) const {
+  const VehicleBinding& b = bindings_.vehicles[i];
+  const int per = bindings_.actuators_per_vehicle;
+  const mjtNum* com = data->xipos + 3 * b.body;
+  const size_t base = static_cast<size_t>(i) * per;
+  for (int k = 0; k < per; ++k) {
+    const mjfActuatorInfo& a = b.actuator_info[k];
+    // force = gain * act (act: first-order motor lag of the clamped control, see Advance).
+    const double force =
+        bindings_.wrench_gain[k] * (a.time_constant > 0
+                                        ? rotor_state_[base + k]
+                                        : std::clamp(controls[base + k], a.ctrl_min, a.ctrl_max));
+    const mjtNum* xmat = data->site_xmat + 9 * b.sites[k];
+    const mjtNum* xpos = data->site_xpos + 3 * b.sites[k];
+    mjtNum f[3], t[3], local[3], arm[3], moment[3];
+    for (int j = 0; j < 3; ++j) local[j] = a.gear[j] * force;
+    MulMat3Vec(f, xmat, local);
+    for (int j = 0; j < 3; ++j) local[j] = a.gear[3 + j] * force;
+    MulMat3Vec(t, xmat, local);
+    for (int j = 0; j < 3; ++j) arm[j] = xpos[j] - com[j];
+    Cross(moment, arm, f);
+    for (int j = 0; j < 3; ++j) {
+      wrench[j] += f[j];
+      wrench[3 + j] += t[j] + moment[j];
+    }
+  }
+}
+
+void WrenchActuation::Apply(const std::vector<double>& controls, mjData* data) {
+  for (size_t i = 0; i < bindings_.vehicles.size(); ++i) {
+    mjtNum wrench[6] = {0, 0, 0, 0, 0, 0};
+    VehicleWrench(static_cast<int>(i), controls, data, wrench);
+    AddWrenchAtCentreOfMass(model_, data, bindings_.vehicles[i].body, wrench);
+  }
+}
+
+void WrenchActuation::Advance(const std::vector<double>& controls) {
+  // Motor lag, integrated like MuJoCo's filter dynamics: act += dt (ctrl - act) / tau.
+  const int per = bindings_.actuators_per_vehicle;
+  for (size_t i = 0; i < bindings_.vehicles.size(); ++i) {
+    for (int k = 0; k < per; ++k) {
+      const mjfActuatorInfo& a = bindings_.vehicles[i].actuator_info[k];
+      const size_t idx = i * per + k;
+      if (a.time_constant <= 0) continue;
+      const double ctrl = std::clamp(controls[idx], a.ctrl_min, a.ctrl_max);
+      rotor_state_[idx] += timestep_ * (ctrl - rotor_state_[idx]) / a.time_constant;
+    }
+  }
+}
+
+}  // namespace
+
+std::unique_ptr<Actuation> MakeActuation(RotorModel model, const mjModel* m,
+                                         const VehicleBindings& bindings, double timestep) {
+  if (model == RotorModel::kWrench) return std::make_unique<WrenchActuation>(m, bindings, timestep);
+  return std::make_unique<ActuatorActuation>(bindings);
+}
+
+}  // namespace mjf::runner

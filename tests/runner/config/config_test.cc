@@ -1,0 +1,104 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// Bad input in the experiment file: every case gets one clear message naming the file (and
+// line/key) and is refused before any simulation starts.
+#include "mjformation/config/config.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "test_util.hpp"
+
+namespace mjf::runner {
+namespace {
+
+using mjf::testing::HoverExperiment;
+using mjf::testing::Parse;
+using ::testing::AllOf;
+using ::testing::HasSubstr;
+
+// The message of the exception `statement` throws (empty if none).
+template <typename F>
+std::string ErrorOf(F statement) {
+  try {
+    statement();
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ConfigTest, ValidFileParses) {
+  ExperimentConfig c = Parse(HoverExperiment(3, 5.0));
+  EXPECT_EQ(c.followers, 3);
+  EXPECT_DOUBLE_EQ(c.duration, 5.0);
+  EXPECT_EQ(c.leader.plugin, "hover");
+  EXPECT_EQ(c.name, "hover");
+}
+
+TEST(ConfigTest, MissingFile) {
+  EXPECT_THAT(ErrorOf([] { LoadExperiment("/nonexistent/exp.toml"); }),
+              AllOf(HasSubstr("/nonexistent/exp.toml"), HasSubstr("cannot open")));
+}
+
+TEST(ConfigTest, MalformedTomlNamesLine) {
+  EXPECT_THAT(ErrorOf([] { Parse("[run]\nduration = 4.0\nseed = = 3\n", "bad.toml"); }),
+              AllOf(HasSubstr("bad.toml:3:"), HasSubstr("TOML syntax error")));
+}
+
+TEST(ConfigTest, UnknownKeyNamesLineAndKey) {
+  const std::string text = HoverExperiment() + "[render]\nwidht = 640\n";
+  EXPECT_THAT(
+      ErrorOf([&] { Parse(text, "typo.toml"); }),
+      AllOf(HasSubstr("typo.toml:"), HasSubstr("[render] widht"), HasSubstr("unknown key")));
+}
+
+TEST(ConfigTest, UnknownSection) {
+  EXPECT_THAT(ErrorOf([] { Parse("[runn]\nduration = 1.0\n"); }),
+              AllOf(HasSubstr("exp.toml:1"), HasSubstr("[runn]"), HasSubstr("unknown section")));
+}
+
+TEST(ConfigTest, WrongTypeNamesKey) {
+  EXPECT_THAT(ErrorOf([] { Parse("[run]\nduration = \"forty\"\n"); }),
+              AllOf(HasSubstr("exp.toml:2"), HasSubstr("[run] duration"),
+                    HasSubstr("expected a number, got a string")));
+  EXPECT_THAT(ErrorOf([] { Parse("[vehicles]\nfollowers = 2.5\n"); }),
+              AllOf(HasSubstr("[vehicles] followers"), HasSubstr("expected an integer")));
+}
+
+TEST(ConfigTest, OutOfRangeValues) {
+  EXPECT_THAT(ErrorOf([] { Parse("[run]\nduration = -1.0\n"); }), HasSubstr("must be > 0"));
+  EXPECT_THAT(ErrorOf([] { Parse("[run]\ntimestep = 0.5\n"); }), HasSubstr("[run] timestep"));
+  EXPECT_THAT(ErrorOf([] { Parse("[vehicles]\nfollowers = 2\n[topology]\nleader_links = [3]\n"); }),
+              AllOf(HasSubstr("[topology] leader_links"), HasSubstr("1..2")));
+  EXPECT_THAT(
+      ErrorOf([] {
+        Parse("[vehicles]\nfollowers = 2\n[topology]\nleader_links = [1]\nedges = [[1, 7]]\n");
+      }),
+      AllOf(HasSubstr("exp.toml:5"), HasSubstr("[topology] edges")));
+}
+
+TEST(ConfigTest, OverridesApplyAndAreChecked) {
+  const std::string dir = mjf::testing::TempDir("ovr");
+  const std::string path = mjf::testing::WriteFile(dir + "/e.toml", HoverExperiment());
+  ExperimentConfig c = LoadExperiment(path, {"run.duration=7.5", "formation.gain=2"});
+  EXPECT_DOUBLE_EQ(c.duration, 7.5);
+  EXPECT_EQ(c.formation.attributes.at("gain").text, "2");
+  // A whole section can be replaced with an inline table.
+  c = LoadExperiment(path, {"attitude={plugin=\"pointmass_direct\"}"});
+  EXPECT_EQ(c.attitude.plugin, "pointmass_direct");
+  EXPECT_TRUE(c.attitude.attributes.empty());
+  EXPECT_THAT(ErrorOf([&] { LoadExperiment(path, {"attitude=3"}); }),
+              HasSubstr("expected section.key=value"));
+  EXPECT_THAT(ErrorOf([&] { LoadExperiment(path, {"run.duration"}); }),
+              HasSubstr("expected section.key=value"));
+  EXPECT_THAT(ErrorOf([&] { LoadExperiment(path, {"run.duration=fast"}); }), HasSubstr("not TOML"));
+}
+
+TEST(ConfigTest, MissingModelFile) {
+  EXPECT_THAT(ErrorOf([] { Parse("[vehicles]\nmodel = \"nothere.xml\"\n"); }),
+              AllOf(HasSubstr("nothere.xml"), HasSubstr("not found")));
+}
+
+}  // namespace
+}  // namespace mjf::runner
