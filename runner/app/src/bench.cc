@@ -226,6 +226,12 @@ void AddBenchCommand(CLI::App& app, CliCommands* c) {
   c->bench->add_option("--set", c->overrides, "override a value: section.key=value");
   c->bench->add_option("--json", c->bench_json, "also write the figures to this JSON file");
   c->bench->add_flag("--render", c->bench_render, "also time offscreen rendering");
+  c->bench
+      ->add_option("--threads", c->bench_threads,
+                   "physics partitions to time the full pipeline with, e.g. 1,2 (prints the "
+                   "speed-up over the first)")
+      ->delimiter(',')
+      ->check(CLI::PositiveNumber);
   c->bench->add_flag("--memory", c->bench_memory,
                      "also run the first size 10x longer and compare peak memory");
 }
@@ -234,44 +240,72 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-// One size: bare MuJoCo against the full pipeline, printed as a table row.
-Json BenchPoint(const ExperimentConfig& base, int n, const std::string& scratch) {
-  const ExperimentConfig config = Resized(base, n);
-  // Other processes share the machine: short points are measured kRepeats times, bare and full
-  // alternating, and the fastest of each is kept (the least disturbed run).
-  nlohmann::json bare = InChild([&] { return BareMujoco(config); });
-  nlohmann::json full = InChild([&] { return Pipeline(config, scratch); });
-  int repeats = 1;
-  for (; repeats < kRepeats && full["wall_s"].get<double>() < kRepeatBelowS; ++repeats) {
-    const nlohmann::json b = InChild([&] { return BareMujoco(config); });
-    const nlohmann::json f = InChild([&] { return Pipeline(config, scratch); });
-    if (b["wall_s"].get<double>() < bare["wall_s"].get<double>()) bare = b;
-    if (f["wall_s"].get<double>() < full["wall_s"].get<double>()) full = f;
-  }
+// One row: bare MuJoCo against the full pipeline at one thread count (`speed_up`: over the
+// first thread count measured; printed only with --threads).
+Json PointRow(const ExperimentConfig& config, int n, const nlohmann::json& bare,
+              const nlohmann::json& full, int repeats, int threads, double speed_up,
+              bool with_threads) {
   const double steps = full["steps"].get<double>();
   const double bare_wall = bare["wall_s"].get<double>(), full_wall = full["wall_s"].get<double>();
   const double ratio = full_wall / bare_wall;
   // What the pipeline (sensors, network, controllers, recording) adds to a bare step, per
   // follower: constant in n when its cost is linear in the number of followers.
   const double per_follower_us = (full_wall - bare_wall) / steps / n * 1e6;
-  std::printf("%9d %9.0f %14.0f %14.0f %15.3f %9.2f %9.2f %10.1f %5d %13.3f\n", n, steps,
+  std::printf("%9d %9.0f %14.0f %14.0f %15.3f %9.2f %9.2f %10.1f %5d %13.3f", n, steps,
               steps / bare_wall, steps / full_wall, ratio, config.duration / bare_wall,
               config.duration / full_wall, full["peak_rss_mib"].get<double>(), repeats,
               per_follower_us);
+  if (with_threads) std::printf(" %7d %8.2f", threads, speed_up);
+  std::printf("\n");
   std::fflush(stdout);
-  return {{"followers", n},
-          {"steps", steps},
-          {"best_of", repeats},
-          {"bare_wall_s", bare_wall},
-          {"full_wall_s", full_wall},
-          {"ratio_full_over_bare", ratio},
-          {"pipeline_us_per_follower_step", per_follower_us},
-          {"real_time_factor_bare", config.duration / bare_wall},
-          {"real_time_factor_full", config.duration / full_wall},
-          {"peak_rss_mib_full", full["peak_rss_mib"]},
-          {"peak_rss_mib_bare", bare["peak_rss_mib"]},
-          {"bare_final_min_z_m", bare["final_min_z_m"]},
-          {"bare_final_min_tilt_rad", bare["final_min_tilt_rad"]}};
+  Json row = {{"followers", n},
+              {"steps", steps},
+              {"best_of", repeats},
+              {"bare_wall_s", bare_wall},
+              {"full_wall_s", full_wall},
+              {"ratio_full_over_bare", ratio},
+              {"pipeline_us_per_follower_step", per_follower_us},
+              {"real_time_factor_bare", config.duration / bare_wall},
+              {"real_time_factor_full", config.duration / full_wall},
+              {"peak_rss_mib_full", full["peak_rss_mib"]},
+              {"peak_rss_mib_bare", bare["peak_rss_mib"]},
+              {"bare_final_min_z_m", bare["final_min_z_m"]},
+              {"bare_final_min_tilt_rad", bare["final_min_tilt_rad"]}};
+  if (with_threads) {
+    row["threads"] = threads;
+    row["speed_up"] = speed_up;
+  }
+  return row;
+}
+
+// One size: bare MuJoCo (one model, one thread) against the full pipeline at each thread
+// count, printed as table rows.
+std::vector<Json> BenchPoint(const ExperimentConfig& base, int n, const std::vector<int>& threads,
+                             const std::string& scratch) {
+  const ExperimentConfig config = Resized(base, n);
+  std::vector<ExperimentConfig> configs(threads.size(), config);
+  for (size_t t = 0; t < threads.size(); ++t) configs[t].threads = threads[t];
+  // Other processes share the machine: short points are measured kRepeats times, bare and full
+  // alternating, and the fastest of each is kept (the least disturbed run).
+  nlohmann::json bare = InChild([&] { return BareMujoco(config); });
+  std::vector<nlohmann::json> full;
+  for (const auto& c : configs) full.push_back(InChild([&] { return Pipeline(c, scratch); }));
+  int repeats = 1;
+  for (; repeats < kRepeats && full[0]["wall_s"].get<double>() < kRepeatBelowS; ++repeats) {
+    const nlohmann::json b = InChild([&] { return BareMujoco(config); });
+    if (b["wall_s"].get<double>() < bare["wall_s"].get<double>()) bare = b;
+    for (size_t t = 0; t < configs.size(); ++t) {
+      const nlohmann::json f = InChild([&] { return Pipeline(configs[t], scratch); });
+      if (f["wall_s"].get<double>() < full[t]["wall_s"].get<double>()) full[t] = f;
+    }
+  }
+  std::vector<Json> rows;
+  for (size_t t = 0; t < configs.size(); ++t) {
+    const double speed_up = full[0]["wall_s"].get<double>() / full[t]["wall_s"].get<double>();
+    rows.push_back(PointRow(config, n, bare, full[t], repeats, threads[t], speed_up,
+                            threads.size() > 1 || threads[0] != base.threads));
+  }
+  return rows;
 }
 
 // Peak memory of a run ten times longer: nothing may grow with run length.
@@ -338,14 +372,22 @@ int BenchCommand(const CliCommands& c) {
   std::printf("%s: %.1f s at %g s steps, rotor model %s, recording at %g Hz\n",
               c.experiment.c_str(), base.duration, base.timestep, ToString(base.rotor_model),
               base.record_rate);
-  std::printf("%9s %9s %14s %14s %12s %9s %9s %10s %5s %13s\n", "followers", "steps",
-              "bare steps/s", "full steps/s", "ratio full/bare", "RTF bare", "RTF full", "peak MiB",
-              "runs", "us/foll/step");
-  for (int n : sizes) report["points"].push_back(BenchPoint(base, n, scratch));
+  std::vector<int> threads = c.bench_threads;
+  if (threads.empty()) threads.push_back(base.threads);
+  const bool with_threads = threads.size() > 1 || threads[0] != base.threads;
+  std::printf("%9s %9s %14s %14s %12s %9s %9s %10s %5s %13s", "followers", "steps", "bare steps/s",
+              "full steps/s", "ratio full/bare", "RTF bare", "RTF full", "peak MiB", "runs",
+              "us/foll/step");
+  if (with_threads) std::printf(" %7s %8s", "threads", "speed-up");
+  std::printf("\n");
+  for (int n : sizes) {
+    for (Json& row : BenchPoint(base, n, threads, scratch)) report["points"].push_back(row);
+  }
   if (sizes.size() > 1) {
     // Linear scaling: the largest size's per-follower pipeline cost against the smallest's.
+    // (at the first thread count: the rows of one size follow each other)
     const Json& first = report["points"].front();
-    const Json& last = report["points"].back();
+    const Json& last = report["points"][(sizes.size() - 1) * threads.size()];
     const double growth = last["pipeline_us_per_follower_step"].get<double>() /
                           first["pipeline_us_per_follower_step"].get<double>();
     std::printf(

@@ -20,6 +20,11 @@ namespace {
 int RunCommand(const CliCommands& c) {
   ExperimentConfig config = LoadExperiment(c.experiment, c.overrides);
   for (const auto& p : c.plugin_path) config.plugin_path.push_back(p);
+  if (c.run_threads > 0) {
+    // How to run, not what: the results are the same, so config.toml keeps the file's text.
+    config.threads = c.run_threads;
+    config.threads_line = 0;
+  }
   RunOptions options;
   options.out_dir = c.out.empty() ? "runs/" + config.name : c.out;
   options.overwrite = c.overwrite;
@@ -118,6 +123,10 @@ void AddCommands(CLI::App& app, CliCommands* c) {
   c->run->add_flag("--overwrite", c->overwrite, "replace an existing run directory");
   c->run->add_flag("--no-render", c->no_render, "skip snapshots and video");
   c->run->add_flag("--quiet,-q", c->quiet, "no progress line or closing line");
+  c->run
+      ->add_option("--threads", c->run_threads,
+                   "physics partitions stepped in parallel (default: [run] threads, 1)")
+      ->check(CLI::PositiveNumber);
 
   c->check = app.add_subcommand(
       "check", "Check an experiment file (config, model, plugins, topology) without running it");

@@ -64,14 +64,24 @@ bool FinishedBefore(const SweepPlan& plan, const RunSpec& run, RunOutcome* outco
   return true;
 }
 
-RunOutcome ExecuteRun(const SweepPlan& plan, const RunSpec& run, bool render) {
+ExperimentConfig WithThreads(ExperimentConfig config, int threads) {
+  config.threads = threads;
+  return config;
+}
+
+// `max_threads`: the physics partitions one run may use ([run] threads above it is lowered to
+// it: the results are the same bit for bit, docs/PERFORMANCE.md).
+RunOutcome ExecuteRun(const SweepPlan& plan, const RunSpec& run, bool render,
+                      int max_threads = 1 << 30) {
   RunOutcome outcome;
   RunOptions options;
   options.out_dir = plan.out + "/" + run.name;
   options.overwrite = true;  // the sweep directory was checked (or is being resumed)
   options.render = render;
   try {
-    const RunResult r = RunExperiment(run.config, options);
+    const RunResult r = run.config.threads <= max_threads
+                            ? RunExperiment(run.config, options)
+                            : RunExperiment(WithThreads(run.config, max_threads), options);
     outcome.summary = r.summary;
     if (!r.complete) outcome.error = r.error.empty() ? "incomplete" : r.error;
   } catch (const std::exception& e) {
@@ -147,15 +157,33 @@ void Progress::Done(size_t i, RunOutcome outcome) {
   }
 }
 
+// -j runs at once, each with up to `threads` physics partitions: the runs keep the cores they
+// asked for (-j is the cheaper parallelism: runs share nothing), the partitions get what is left,
+// so runs x partitions never exceeds the machine's cores (and at least one partition per run).
+int ThreadsPerRun(const SweepPlan& plan, int jobs) {
+  int asked = 1;
+  for (const RunSpec& r : plan.runs) asked = std::max(asked, r.config.threads);
+  const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  const int per_run = std::max(1, cores / jobs);
+  if (asked > per_run) {
+    std::fprintf(stderr,
+                 "sweep: [run] threads = %d lowered to %d per run (%d at a time on %d cores; same "
+                 "results)\n",
+                 asked, per_run, jobs, cores);
+  }
+  return per_run;
+}
+
 void RunThreaded(const SweepPlan& plan, const CliCommands& c, const std::vector<size_t>& todo,
                  Progress* progress) {
   const int jobs = std::max(1, std::min<int>(c.sweep_jobs, static_cast<int>(todo.size())));
   std::fprintf(stderr, "sweep: %zu runs, %d at a time, into %s\n", todo.size(), jobs,
                plan.out.c_str());
+  const int max_threads = ThreadsPerRun(plan, jobs);
   std::atomic<size_t> next{0};
   auto worker = [&] {
     for (size_t k; !InterruptRequested() && (k = next++) < todo.size();) {
-      progress->Done(todo[k], ExecuteRun(plan, plan.runs[todo[k]], !c.no_render));
+      progress->Done(todo[k], ExecuteRun(plan, plan.runs[todo[k]], !c.no_render, max_threads));
     }
   };
   std::vector<std::thread> threads;

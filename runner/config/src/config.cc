@@ -215,6 +215,10 @@ void ParseRunSection(const Reporter& reporter, SectionReader run, const std::str
   c.paper_experiment = static_cast<int>(run.Integer("paper_experiment", 0));
   c.reaching_band = run.Number("reaching_band", 0.0);
   c.record_leader_acceleration = run.Bool("record_leader_acceleration", false);
+  const int64_t threads = run.Integer("threads", 1);
+  if (threads < 1 || threads > 1024) run.Fail("threads", "must be in [1, 1024] (1: one model)");
+  c.threads = static_cast<int>(threads);
+  if (const toml::node* node = run.Node("threads")) c.threads_line = node->source().begin.line;
   if (const toml::array* a = run.Array("plugin_path")) {
     for (const toml::node& item : *a) {
       auto v = item.value_exact<std::string>();

@@ -51,9 +51,16 @@ ControlTick::~ControlTick() {
 
 void ControlTick::Run(int64_t step, const std::vector<mjfVehicleState>& truth,
                       const struct mjModel_* model, const struct mjData_* data) {
+  RunSwarmStages(step, truth, model, data);
+  RunAttitude(0, n_vehicles(), plugin_error_.data(), plugin_error_.size());
+}
+
+void ControlTick::RunSwarmStages(int64_t step, const std::vector<mjfVehicleState>& truth,
+                                 const struct mjModel_* model, const struct mjData_* data) {
   const double time = static_cast<double>(step) * timestep_;
   sensors_->Measure(step, time, truth, &measured_);
-  mjfStepContext ctx{};
+  mjfStepContext& ctx = tick_ctx_;
+  ctx = mjfStepContext{};
   ctx.time = time;
   ctx.step = step;
   ctx.timestep = timestep_;
@@ -66,7 +73,6 @@ void ControlTick::Run(int64_t step, const std::vector<mjfVehicleState>& truth,
   ctx.error_size = plugin_error_.size();
   RunGuidanceAndFormation(ctx, truth);
   RequireFiniteSetpoints(time);
-  RunAttitude(ctx);
 }
 
 void ControlTick::RunGuidanceAndFormation(mjfStepContext& ctx,
@@ -132,8 +138,11 @@ void ControlTick::RequireFiniteSetpoints(double time) const {
   }
 }
 
-void ControlTick::RunAttitude(mjfStepContext& ctx) {
-  for (int i = 0; i < n_vehicles(); ++i) {
+void ControlTick::RunAttitude(int first, int count, char* error, size_t error_size) {
+  mjfStepContext ctx = tick_ctx_;
+  ctx.error = error;
+  ctx.error_size = error_size;
+  for (int i = first; i < first + count; ++i) {
     ctx.controls = controls_.data() + static_cast<size_t>(i) * actuators_per_vehicle_;
     Call(*plugins_.attitude[i], ctx, i);
     for (int k = 0; k < actuators_per_vehicle_; ++k) {
@@ -148,7 +157,7 @@ void ControlTick::RunAttitude(mjfStepContext& ctx) {
 }
 
 void ControlTick::Call(PluginInstance& plugin, mjfStepContext& ctx, int vehicle) {
-  plugin_error_[0] = '\0';
+  ctx.error[0] = '\0';
   // Built only on failure: a tick allocates nothing.
   auto who = [&] {
     return TimeTag(ctx.time) + ": plugin '" + plugin.descriptor().name + "'" +
@@ -164,9 +173,9 @@ void ControlTick::Call(PluginInstance& plugin, mjfStepContext& ctx, int vehicle)
     throw SimulationError(who() + " threw a non-standard exception");
   }
   if (code == 0) return;
-  plugin_error_.back() = '\0';
+  ctx.error[ctx.error_size - 1] = '\0';
   throw SimulationError(who() + " failed (code " + std::to_string(code) +
-                        "): " + (plugin_error_[0] ? plugin_error_.data() : "no reason given"));
+                        "): " + (ctx.error[0] ? ctx.error : "no reason given"));
 }
 
 }  // namespace mjf::runner

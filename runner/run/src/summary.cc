@@ -73,6 +73,7 @@ Json BuildSummary(const Simulation& sim, const RunResult& result, const Json& re
   s["timing"] = {{"wall_time_s", wall},
                  {"real_time_factor", wall > 0 ? result.sim_time_s / wall : 0.0},
                  {"steps_per_second", wall > 0 ? result.steps / wall : 0.0}};
+  if (sim.threads() > 1) s["timing"]["threads"] = sim.threads();  // partitioned physics
   return s;
 }
 

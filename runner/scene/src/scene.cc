@@ -160,7 +160,7 @@ void AddVehicleCopies(XMLDocument& scene, XMLElement* root, const XMLElement* vr
   const int n_vehicles = static_cast<int>(request.positions.size());
   for (int i = 0; i < n_vehicles; ++i) {
     XMLElement* copy = body->DeepClone(&scene)->ToElement();
-    PrefixNames(copy, VehiclePrefix(i));
+    PrefixNames(copy, VehiclePrefix(request.first_vehicle + i));
     copy->SetAttribute("pos", FormatVec(request.positions[i]).c_str());
     world->InsertEndChild(copy);
   }
@@ -172,7 +172,7 @@ void AddVehicleCopies(XMLDocument& scene, XMLElement* root, const XMLElement* vr
     for (int i = 0; i < n_vehicles; ++i) {
       for (const XMLElement* c = s->FirstChildElement(); c; c = c->NextSiblingElement()) {
         XMLElement* copy = c->DeepClone(&scene)->ToElement();
-        PrefixNames(copy, VehiclePrefix(i));
+        PrefixNames(copy, VehiclePrefix(request.first_vehicle + i));
         target->InsertEndChild(copy);
       }
     }

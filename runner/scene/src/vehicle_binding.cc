@@ -168,17 +168,18 @@ std::vector<std::array<double, 3>> InitialPositions(const ExperimentConfig& c) {
 }
 
 VehicleBindings BindVehicles(const mjModel* composed, const ExperimentConfig& config,
-                             const mjfPlugin& attitude, const std::string& vehicle_xml) {
+                             const mjfPlugin& attitude, const std::string& vehicle_xml, int first,
+                             int count) {
   const VehicleModelInfo vehicle = ReadVehicleModel(config, attitude, vehicle_xml);
   VehicleBindings out;
   out.wrench_gain = vehicle.gains;
   out.actuators_per_vehicle = attitude.n_actuators;
-  const int n = config.followers + 1;
+  const int n = count < 0 ? config.followers + 1 : count;
   out.vehicles.resize(n);
   const double gravity = mju_norm3(composed->opt.gravity);
   for (int i = 0; i < n; ++i) {
     VehicleBinding& b = out.vehicles[i];
-    const std::string prefix = VehiclePrefix(i);
+    const std::string prefix = VehiclePrefix(first + i);
     b.body = mj_name2id(composed, mjOBJ_BODY, (prefix + "vehicle").c_str());
     BindSensors(composed, prefix, config.model_path, &b);
     b.actuator_info = vehicle.actuators;

@@ -16,6 +16,7 @@
 #include "mjformation/scene/scene.hpp"
 #include "mjformation/scene/vehicle_adapter.hpp"
 #include "mjformation/sim/mujoco_errors.hpp"
+#include "mjformation/sim/step_checks.hpp"
 
 namespace mjf::runner {
 namespace {
@@ -94,6 +95,18 @@ Simulation::Simulation(const ExperimentConfig& config) : config_(config) {
   actuation_ = MakeActuation(config_.rotor_model, model_.get(), bindings_, config_.timestep);
   force_stages_ = MakeForceStages(config_);
   external_force_.assign(3 * truth_.size(), 0.0);
+  MakePartitions(*attitude.descriptor);
+}
+
+// [run] threads > 1: the same scene request, split by vehicle ranges (partitioned_physics.hpp).
+void Simulation::MakePartitions(const mjfPlugin& attitude) {
+  std::vector<int> bodies;
+  for (const VehicleBinding& b : bindings_.vehicles) bodies.push_back(b.body);
+  CheckPartitionable(config_, model_.get(), bodies);
+  if (config_.threads == 1) return;
+  partitions_ = std::make_unique<PartitionedPhysics>(
+      config_, MakeSceneRequest(config_, initial_positions_, vehicle_xml_, vehicle_notes_),
+      attitude, vehicle_xml_, model_.get());
 }
 
 Simulation::~Simulation() = default;
@@ -293,6 +306,22 @@ std::vector<mjfSetpoint> Simulation::InitialSetpoints() const {
 
 void Simulation::ComputeControls() {
   ClearMujocoWarning();
+  if (partitions_) {
+    // The partitions' controls and forces are handed over in Integrate, on their threads; the
+    // plugins get no mjData (no single one holds the swarm's state).
+    partitions_->Step1(&truth_);
+    whole_data_stale_ = true;
+    tick_->RunSwarmStages(step_, truth_, reinterpret_cast<const struct mjModel_*>(model_.get()),
+                          nullptr);
+    // Each vehicle's attitude plugin on its partition's thread (they share nothing).
+    partitions_->ForEachRange(
+        [](void* tick, int first, int count, char* error, size_t size) {
+          static_cast<ControlTick*>(tick)->RunAttitude(first, count, error, size);
+        },
+        tick_.get());
+    if (!force_stages_.empty()) ComputeForces();
+    return;
+  }
   mj_step1(model_.get(), data_.get());
   ReadTrueStates(data_.get(), bindings_, &truth_);
   tick_->Run(step_, truth_, reinterpret_cast<const struct mjModel_*>(model_.get()),
@@ -305,9 +334,13 @@ void Simulation::ComputeControls() {
 }
 
 // Every force stage's force on each vehicle, at its centre of mass.
-void Simulation::ApplyForces() {
+void Simulation::ComputeForces() {
   std::fill(external_force_.begin(), external_force_.end(), 0.0);
   for (auto& stage : force_stages_) stage->AddForces(step_, time(), truth_, &external_force_);
+}
+
+void Simulation::ApplyForces() {
+  ComputeForces();
   for (int i = 0; i < n_vehicles(); ++i) {
     const mjtNum wrench[6] = {
         external_force_[3 * i], external_force_[3 * i + 1], external_force_[3 * i + 2], 0, 0, 0};
@@ -316,32 +349,31 @@ void Simulation::ApplyForces() {
 }
 
 void Simulation::Integrate() {
+  if (partitions_) {
+    // The simulated time reached on a failure is the one-model run's: the step counts when
+    // the failure was the state check after it (see below), not an engine error inside it.
+    try {
+      partitions_->Step2(tick_->controls(), force_stages_.empty() ? nullptr : &external_force_,
+                         static_cast<double>(step_ + 1) * config_.timestep);
+    } catch (...) {
+      if (partitions_->failed_after_integration()) ++step_;
+      throw;
+    }
+    ++step_;
+    return;
+  }
   mj_step2(model_.get(), data_.get());
   actuation_->Advance(tick_->controls());
   ++step_;
   CheckState();
 }
 
-void Simulation::CheckState() const {
-  for (int w = 0; w < mjNWARNING; ++w) {
-    if (w == mjWARN_VGEOMFULL) continue;  // a rendering matter, not the physics'
-    if (data_->warning[w].number > 0) {
-      std::string text = mju_warningText(w, data_->warning[w].lastinfo);
-      while (!text.empty() && (text.back() == '.' || text.back() == ' ')) text.pop_back();
-      throw SimulationError(TimeTag() + ": MuJoCo warning: " + text +
-                            " (the simulation is no longer trustworthy)");
-    }
-  }
-  for (int i = 0; i < model_->nq; ++i) {
-    if (!std::isfinite(data_->qpos[i])) {
-      throw SimulationError(TimeTag() + ": non-finite qpos[" + std::to_string(i) + "]");
-    }
-  }
-  for (int i = 0; i < model_->nv; ++i) {
-    if (!std::isfinite(data_->qvel[i])) {
-      throw SimulationError(TimeTag() + ": non-finite qvel[" + std::to_string(i) + "]");
-    }
-  }
+void Simulation::CheckState() const { CheckStepState(model_.get(), data_.get(), time()); }
+
+void Simulation::SyncWholeData() const {
+  if (!whole_data_stale_) return;
+  partitions_->CopyInto(model_.get(), data_.get());
+  whole_data_stale_ = false;
 }
 
 const std::vector<std::array<double, 3>>& Simulation::wind() const {
@@ -351,8 +383,6 @@ const std::vector<std::array<double, 3>>& Simulation::wind() const {
   }
   return kCalm;
 }
-
-std::string Simulation::TimeTag() const { return fmt::format("t = {:.3f} s", time()); }
 
 std::vector<std::pair<std::string, double>> Simulation::FormationReport() const {
   const PluginInstance* formation = formation_plugin();

@@ -23,12 +23,14 @@ struct CliCommands {
   bool overwrite = false;
   bool no_render = false;
   bool quiet = false;
+  int run_threads = 0;  // --threads (0: the file's [run] threads)
   // bench
   std::vector<int> bench_followers;
   double bench_duration = 0;
   std::string bench_json;
   bool bench_render = false;
   bool bench_memory = false;
+  std::vector<int> bench_threads;  // --threads 1,2: time the full pipeline at each
   // sweep
   std::vector<std::string> sweep_vary;
   int sweep_jobs = 2;

@@ -126,6 +126,10 @@ struct ExperimentConfig {
   double reaching_band = 0.0;            // |s| band for the reaching time; 0: the plugin's "delta"
   // Adds leader_ax, leader_ay (measured, m/s^2) to timeseries.csv; off keeps the old columns.
   bool record_leader_acceleration = false;
+  // Physics partitions, each stepped on its own thread in lockstep with the one control tick
+  // (partitioned_physics.hpp); 1: the single whole-swarm model. Same results either way.
+  int threads = 1;
+  int threads_line = 0;  // for messages; 0: not in the file (default or --threads)
 
   // [vehicles]
   std::string model = "quadrotor";  // "quadrotor", "pointmass" or a path to an MJCF file

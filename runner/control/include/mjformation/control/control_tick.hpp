@@ -49,6 +49,14 @@ class ControlTick {
   // the plugins as raw access and may be NULL. Throws SimulationError.
   void Run(int64_t step, const std::vector<mjfVehicleState>& truth,
            const struct mjModel_* model = nullptr, const struct mjData_* data = nullptr);
+  // Run in two parts, for partitioned physics: first everything the swarm shares (sensors,
+  // guidance, formation, the setpoint check), then the attitude plugins of vehicles
+  // [first, first + count). Each attitude instance reads only its own vehicle's state and
+  // setpoint and writes only its own controls, so ranges may run on different threads at once,
+  // each with its own `error` buffer (error_size chars) for the plugins' messages.
+  void RunSwarmStages(int64_t step, const std::vector<mjfVehicleState>& truth,
+                      const struct mjModel_* model, const struct mjData_* data);
+  void RunAttitude(int first, int count, char* error, size_t error_size);
 
   int n_vehicles() const { return static_cast<int>(setpoints_.size()); }
   int actuators_per_vehicle() const { return actuators_per_vehicle_; }
@@ -61,7 +69,6 @@ class ControlTick {
 
  private:
   void RunGuidanceAndFormation(mjfStepContext& ctx, const std::vector<mjfVehicleState>& truth);
-  void RunAttitude(mjfStepContext& ctx);
   // The channel stage: each follower's instance, handed only its own state and messages.
   void RunAgents(const mjfStepContext& ctx, const std::vector<mjfVehicleState>& truth);
   void ResetFollowerSetpoints();
@@ -79,6 +86,7 @@ class ControlTick {
   double altitude_;
   double timestep_;
   std::array<char, 512> plugin_error_{};
+  mjfStepContext tick_ctx_{};  // the context of the current tick (RunSwarmStages)
 };
 
 }  // namespace mjf::runner

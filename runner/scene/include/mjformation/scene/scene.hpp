@@ -24,8 +24,11 @@ struct SceneRequest {
   std::string scene_path;                        // the world
   std::string vehicle_path;                      // one vehicle
   std::vector<std::array<double, 3>> positions;  // initial position of vehicles 0..N, m
-  double timestep = 0.001;                       // s
-  int offscreen_width = 1280;                    // offscreen buffer, pixels
+  // Index of the first vehicle (names uav<first_vehicle + i>_): a partition of the swarm
+  // (partitioned_physics.hpp) holds a contiguous range of it.
+  int first_vehicle = 0;
+  double timestep = 0.001;     // s
+  int offscreen_width = 1280;  // offscreen buffer, pixels
   int offscreen_height = 720;
   bool strip_actuators = false;   // wrench rotor model: rotors become body wrenches, no actuators
   bool disable_contacts = false;  // <option><flag contact="disable"/>: no collision detection

@@ -39,9 +39,11 @@ std::vector<std::array<double, 3>> InitialPositions(const ExperimentConfig& conf
 
 // Reads mass, inertia and actuator geometry from the vehicle model alone (`vehicle_xml`, the
 // adapted foreign model, or else the file [vehicles] model), then binds every vehicle of the
-// composed model. Throws SceneError / PluginError naming what is missing.
+// composed model. Throws SceneError / PluginError naming what is missing. `first` and `count`
+// (-1: all 1 + N): the vehicles the composed model holds (a partition of the swarm).
 VehicleBindings BindVehicles(const mjModel* composed, const ExperimentConfig& config,
-                             const mjfPlugin& attitude, const std::string& vehicle_xml = "");
+                             const mjfPlugin& attitude, const std::string& vehicle_xml = "",
+                             int first = 0, int count = -1);
 
 // The vehicles' true states from MuJoCo's sensors (after mj_step1 or mj_forward).
 void ReadTrueStates(const mjData* data, const VehicleBindings& bindings,

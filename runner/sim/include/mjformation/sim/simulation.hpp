@@ -23,6 +23,7 @@
 #include "mjformation/control/stages.hpp"
 #include "mjformation/scene/vehicle_binding.hpp"
 #include "mjformation/sim/actuation.hpp"
+#include "mjformation/sim/partitioned_physics.hpp"
 
 namespace mjf::core {
 class Graph;
@@ -49,8 +50,20 @@ class Simulation {
 
   const ExperimentConfig& config() const { return config_; }
   const mjModel* model() const { return model_.get(); }
-  mjData* data() { return data_.get(); }
-  const mjData* data() const { return data_.get(); }
+  // The whole swarm's state. With partitioned physics ([run] threads > 1) it is brought up to
+  // date from the partitions on first access after a step (positions only: what rendering uses).
+  mjData* data() {
+    SyncWholeData();
+    return data_.get();
+  }
+  const mjData* data() const {
+    SyncWholeData();
+    return data_.get();
+  }
+  // Physics partitions stepped in parallel (1: the single whole-swarm model).
+  int threads() const { return partitions_ ? partitions_->size() : 1; }
+  // The partitions (nullptr with threads = 1).
+  PartitionedPhysics* partitions() { return partitions_.get(); }
   const std::string& scene_xml() const { return scene_xml_; }
   int64_t step_index() const { return step_; }
   int64_t total_steps() const { return total_steps_; }
@@ -98,9 +111,11 @@ class Simulation {
                                                   const mjfCreateContext& base) const;
   mjfCreateContext VehicleContext(const mjfCreateContext& base, int vehicle) const;
   std::vector<mjfSetpoint> InitialSetpoints() const;
+  void ComputeForces();
   void ApplyForces();
+  void MakePartitions(const mjfPlugin& attitude);
   void CheckState() const;
-  std::string TimeTag() const;  // "t = 1.234 s", for messages
+  void SyncWholeData() const;
 
   struct ModelDeleter {
     void operator()(mjModel* m) const { mj_deleteModel(m); }
@@ -135,6 +150,11 @@ class Simulation {
   std::unique_ptr<Actuation> actuation_;
   std::vector<std::unique_ptr<ForceStage>> force_stages_;
   std::vector<double> external_force_;  // [vehicle][3], N, world frame
+
+  // [run] threads > 1: the physics of the swarm split into partitions; model_ and data_ then
+  // hold the whole scene for rendering and the plugins' model pointer, and are not stepped.
+  std::unique_ptr<PartitionedPhysics> partitions_;
+  mutable bool whole_data_stale_ = false;
 };
 
 // Euler angles (roll, pitch, yaw; ZYX convention, rad) of a w-x-y-z quaternion.

@@ -1,0 +1,328 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+#include "mjformation/sim/partitioned_physics.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <condition_variable>
+#include <cstdio>
+#include <cstring>
+#include <exception>
+#include <mutex>
+#include <thread>
+
+#include "mjformation/sim/actuation.hpp"
+#include "mjformation/control/errors.hpp"
+#include "mjformation/sim/mujoco_errors.hpp"
+#include "mjformation/sim/step_checks.hpp"
+#include "mjformation/scene/vehicle_binding.hpp"
+
+namespace mjf::runner {
+
+// K - 1 worker threads that run one job per partition in lockstep with the caller, which runs
+// partition 0. A phase is short (tens of microseconds to a millisecond), so a worker first spins
+// briefly on the phase counter, then sleeps on a condition variable: on a machine with a core
+// per partition it never pays a wake-up, on a loaded one it does not burn a core while the
+// control tick runs. No allocation after construction.
+class LockstepPool {
+ public:
+  using Job = void (*)(void* context, int partition);
+  explicit LockstepPool(int workers) {
+    for (int k = 1; k <= workers; ++k) threads_.emplace_back([this, k] { Work(k); });
+  }
+  ~LockstepPool() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      stop_ = true;
+      generation_.fetch_add(1, std::memory_order_release);
+    }
+    start_.notify_all();
+    for (auto& t : threads_) t.join();
+  }
+  LockstepPool(const LockstepPool&) = delete;
+  LockstepPool& operator=(const LockstepPool&) = delete;
+
+  // Runs job(context, k) for every partition k (0 here, the others on the workers) and returns
+  // when all have finished. `job` must not throw.
+  void Run(Job job, void* context) {
+    job_ = job;
+    context_ = context;
+    pending_.store(static_cast<int>(threads_.size()), std::memory_order_relaxed);
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      generation_.fetch_add(1, std::memory_order_release);
+    }
+    start_.notify_all();
+    job(context, 0);
+    for (int s = 0; s < kSpins; ++s) {
+      if (pending_.load(std::memory_order_acquire) == 0) return;
+      Pause();
+    }
+    std::unique_lock<std::mutex> lock(mutex_);
+    done_.wait(lock, [this] { return pending_.load(std::memory_order_acquire) == 0; });
+  }
+
+ private:
+  static constexpr int kSpins = 1000;  // 4-50 us of pause instructions, by CPU generation
+  static void Pause() {
+#if defined(__x86_64__) || defined(__i386__)
+    __builtin_ia32_pause();
+#endif
+  }
+
+  void Work(int k) {
+    uint64_t seen = 0;
+    for (;;) {
+      uint64_t g = generation_.load(std::memory_order_acquire);
+      for (int s = 0; s < kSpins && g == seen; ++s) {
+        Pause();
+        g = generation_.load(std::memory_order_acquire);
+      }
+      if (g == seen) {
+        std::unique_lock<std::mutex> lock(mutex_);
+        start_.wait(lock, [&] { return generation_.load(std::memory_order_acquire) != seen; });
+        g = generation_.load(std::memory_order_acquire);
+      }
+      seen = g;
+      if (stop_) return;
+      job_(context_, k);
+      if (pending_.fetch_sub(1, std::memory_order_acq_rel) == 1) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        done_.notify_one();
+      }
+    }
+  }
+
+  std::vector<std::thread> threads_;
+  std::mutex mutex_;
+  std::condition_variable start_, done_;
+  std::atomic<uint64_t> generation_{0};
+  std::atomic<int> pending_{0};
+  bool stop_ = false;  // written under mutex_ with a generation change
+  Job job_ = nullptr;
+  void* context_ = nullptr;
+};
+
+namespace {
+struct ModelDeleter {
+  void operator()(mjModel* m) const { mj_deleteModel(m); }
+};
+struct DataDeleter {
+  void operator()(mjData* d) const { mj_deleteData(d); }
+};
+}  // namespace
+
+// One partition: vehicles [first, first + count) in a model of their own.
+struct Partition {
+  int first = 0, count = 0;
+  std::unique_ptr<mjModel, ModelDeleter> model;
+  std::unique_ptr<mjData, DataDeleter> data;
+  VehicleBindings bindings;  // vehicle i of the partition is vehicle first + i of the swarm
+  std::unique_ptr<Actuation> actuation;
+  std::vector<mjfVehicleState> truth;  // this partition's vehicles
+  std::vector<double> controls;        // this partition's slice of the swarm's controls
+  StateOffsets offsets;                // where it sits in the whole model
+  int act_offset = 0;
+  std::exception_ptr error;  // set by a failed phase
+  bool integrated = false;   // Step2 got past mj_step2 (a failure was then the state check's)
+  std::array<char, 512> message{};  // a range job's plugin messages
+};
+
+namespace {
+
+std::string ThreadsWhere(const ExperimentConfig& c) {
+  return c.source_path + (c.threads_line > 0 ? ":" + std::to_string(c.threads_line) : "") +
+         ": [run] threads";
+}
+
+// Vehicle geoms that can touch a copy of themselves on another vehicle: MuJoCo collides two
+// geoms when (contype1 & conaffinity2) || (contype2 & conaffinity1); every vehicle is a copy of
+// the same model, so vehicle 0's geoms tell for all.
+std::string InterVehicleContact(const mjModel* m, int vehicle_body) {
+  std::vector<int> geoms;
+  for (int g = 0; g < m->ngeom; ++g) {
+    if (m->body_rootid[m->geom_bodyid[g]] == vehicle_body) geoms.push_back(g);
+  }
+  for (int a : geoms) {
+    for (int b : geoms) {
+      if ((m->geom_contype[a] & m->geom_conaffinity[b]) ||
+          (m->geom_contype[b] & m->geom_conaffinity[a])) {
+        const char* na = mj_id2name(m, mjOBJ_GEOM, a);
+        return fmt::format(
+            "geom {} (contype {}, conaffinity {}) of one vehicle collides with geom "
+            "{} of another (contype {}, conaffinity {})",
+            na ? na : std::to_string(a), m->geom_contype[a], m->geom_conaffinity[a], b,
+            m->geom_contype[b], m->geom_conaffinity[b]);
+      }
+    }
+  }
+  return "";
+}
+
+}  // namespace
+
+void CheckPartitionable(const ExperimentConfig& config, const mjModel* whole,
+                        const std::vector<int>& vehicle_bodies) {
+  if (config.threads < 1) throw ConfigError(ThreadsWhere(config) + ": must be >= 1");
+  const int cores = static_cast<int>(std::thread::hardware_concurrency());
+  if (config.threads > 1 && cores > 0 && config.threads > cores) {
+    std::fprintf(stderr,
+                 "warning: %s: %d threads on a machine with %d cores: the partitions will take "
+                 "turns on the cores (same results, slower)\n",
+                 ThreadsWhere(config).c_str(), config.threads, cores);
+  }
+  if (config.threads == 1) return;
+  if (config.threads > static_cast<int>(vehicle_bodies.size())) {
+    throw ConfigError(ThreadsWhere(config) + ": " + std::to_string(config.threads) +
+                      " partitions for " + std::to_string(vehicle_bodies.size()) +
+                      " vehicles: at most one partition per vehicle");
+  }
+  if (whole->opt.disableflags & mjDSBL_CONTACT) return;
+  const std::string contact = InterVehicleContact(whole, vehicle_bodies[0]);
+  if (!contact.empty()) {
+    throw ConfigError(ThreadsWhere(config) + ": = " + std::to_string(config.threads) +
+                      " needs vehicles that do not touch each other through MuJoCo, but " +
+                      contact + "; use threads = 1, or [vehicles] contacts = false");
+  }
+}
+
+PartitionedPhysics::PartitionedPhysics(const ExperimentConfig& config, const SceneRequest& request,
+                                       const mjfPlugin& attitude, const std::string& vehicle_xml,
+                                       const mjModel* whole) {
+  const int n = static_cast<int>(request.positions.size());
+  const int k_parts = config.threads;
+  int nq = 0, nv = 0, na = 0, nu = 0;
+  for (int k = 0; k < k_parts; ++k) {
+    auto p = std::make_unique<Partition>();
+    p->first = static_cast<int>(static_cast<int64_t>(n) * k / k_parts);
+    p->count = static_cast<int>(static_cast<int64_t>(n) * (k + 1) / k_parts) - p->first;
+    SceneRequest part = request;
+    part.positions.assign(request.positions.begin() + p->first,
+                          request.positions.begin() + p->first + p->count);
+    part.first_vehicle = p->first;
+    p->model.reset(CompileModel(ComposeScene(part), fmt::format("partition {} of the scene", k)));
+    p->data.reset(mj_makeData(p->model.get()));
+    p->bindings = BindVehicles(p->model.get(), config, attitude, vehicle_xml, p->first, p->count);
+    p->actuation = MakeActuation(config.rotor_model, p->model.get(), p->bindings, config.timestep);
+    p->truth.resize(p->count);
+    p->controls.assign(static_cast<size_t>(p->count) * p->bindings.actuators_per_vehicle, 0.0);
+    p->offsets = {nq, nv, nu};
+    p->act_offset = na;
+    nq += p->model->nq;
+    nv += p->model->nv;
+    na += p->model->na;
+    nu += p->model->nu;
+    parts_.push_back(std::move(p));
+  }
+  // Every degree of freedom exactly once: the scene itself has no moving bodies of its own
+  // (they would be simulated once per partition), and the layout is the vehicles' in order.
+  if (nq != whole->nq || nv != whole->nv || na != whole->na || nu != whole->nu) {
+    throw ConfigError(ThreadsWhere(config) + ": the scene " + config.scene_path +
+                      " has joints or actuator states of its own (besides the vehicles'), which "
+                      "cannot be split between partitions; use threads = 1");
+  }
+  pool_ = std::make_unique<LockstepPool>(k_parts - 1);
+}
+
+PartitionedPhysics::~PartitionedPhysics() = default;
+
+void PartitionedPhysics::RunPhase(Phase phase) {
+  struct Ctx {
+    PartitionedPhysics* self;
+    Phase phase;
+  } ctx{this, phase};
+  pool_->Run(
+      [](void* c, int k) {
+        auto* x = static_cast<Ctx*>(c);
+        x->self->RunPartition(k, x->phase);
+      },
+      &ctx);
+  // The lowest failed partition's error: the same message whatever the threads' timing.
+  for (auto& p : parts_) {
+    if (p->error) {
+      std::exception_ptr e = p->error;
+      failed_after_integration_ = p->integrated;
+      for (auto& q : parts_) q->error = nullptr;
+      std::rethrow_exception(e);
+    }
+  }
+}
+
+void PartitionedPhysics::RunPartition(int k, Phase phase) {
+  Partition& p = *parts_[k];
+  const mjModel* m = p.model.get();
+  mjData* d = p.data.get();
+  try {
+    if (phase == Phase::kStep1) {
+      ClearMujocoWarning();
+      mj_step1(m, d);
+      ReadTrueStates(d, p.bindings, &p.truth);
+      std::copy(p.truth.begin(), p.truth.end(), truth_->begin() + p.first);
+      return;
+    }
+    if (phase == Phase::kRange) {
+      range_job_(range_context_, p.first, p.count, p.message.data(), p.message.size());
+      return;
+    }
+    const int per = p.bindings.actuators_per_vehicle;
+    std::copy(controls_->begin() + static_cast<ptrdiff_t>(p.first) * per,
+              controls_->begin() + static_cast<ptrdiff_t>(p.first + p.count) * per,
+              p.controls.begin());
+    // The whole-swarm order (simulation.cc): clear, rotor wrenches, then external forces.
+    if (p.actuation->UsesAppliedForces() || forces_) mju_zero(d->qfrc_applied, m->nv);
+    p.actuation->Apply(p.controls, d);
+    if (forces_) {
+      for (int i = 0; i < p.count; ++i) {
+        const double* f = forces_->data() + 3 * static_cast<size_t>(p.first + i);
+        const mjtNum wrench[6] = {f[0], f[1], f[2], 0, 0, 0};
+        AddWrenchAtCentreOfMass(m, d, p.bindings.vehicles[i].body, wrench);
+      }
+    }
+    p.integrated = false;
+    mj_step2(m, d);
+    p.integrated = true;
+    p.actuation->Advance(p.controls);
+    CheckStepState(m, d, time_after_, p.offsets);
+  } catch (...) {
+    p.error = std::current_exception();
+  }
+}
+
+void PartitionedPhysics::Step1(std::vector<mjfVehicleState>* truth) {
+  truth_ = truth;
+  RunPhase(Phase::kStep1);
+}
+
+void PartitionedPhysics::ForEachRange(RangeJob job, void* context) {
+  range_job_ = job;
+  range_context_ = context;
+  RunPhase(Phase::kRange);
+}
+
+void PartitionedPhysics::Step2(const std::vector<double>& controls,
+                               const std::vector<double>* forces, double time_after) {
+  controls_ = &controls;
+  forces_ = forces;
+  time_after_ = time_after;
+  RunPhase(Phase::kStep2);
+}
+
+mjData* PartitionedPhysics::partition_data(int k) { return parts_.at(k)->data.get(); }
+
+void PartitionedPhysics::CopyInto(const mjModel* whole, mjData* data) const {
+  for (const auto& p : parts_) {
+    const mjModel* m = p->model.get();
+    const mjData* d = p->data.get();
+    std::memcpy(data->qpos + p->offsets.qpos, d->qpos, sizeof(mjtNum) * m->nq);
+    std::memcpy(data->qvel + p->offsets.dof, d->qvel, sizeof(mjtNum) * m->nv);
+    if (m->na) std::memcpy(data->act + p->act_offset, d->act, sizeof(mjtNum) * m->na);
+    data->time = d->time;
+  }
+  mj_kinematics(whole, data);
+  mj_comPos(whole, data);
+  mj_camlight(whole, data);
+}
+
+}  // namespace mjf::runner

@@ -1,0 +1,87 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// A physics step allocates nothing, on any thread: this binary replaces malloc/calloc/realloc
+// (as tests/formation/no_allocation_test.cc does for the plugins' compute()) and counts the calls
+// made while Simulation::ComputeControls and Integrate run, with one model and with partitioned
+// physics (whose worker threads' allocations count too), for both rotor models with wind and
+// sensors on.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "mjformation/sim/simulation.hpp"
+#include "test_util.hpp"
+
+#if defined(__SANITIZE_ADDRESS__)
+#define MJF_COUNT_MALLOC 0
+#else
+#define MJF_COUNT_MALLOC 1
+#endif
+
+namespace {
+std::atomic<bool> counting{false};
+std::atomic<long> allocations{0};
+}  // namespace
+
+#if MJF_COUNT_MALLOC
+extern "C" {
+void* __libc_malloc(size_t);
+void* __libc_calloc(size_t, size_t);
+void* __libc_realloc(void*, size_t);
+void __libc_free(void*);
+void* malloc(size_t size) {
+  if (counting.load(std::memory_order_relaxed)) ++allocations;
+  return __libc_malloc(size);
+}
+void* calloc(size_t n, size_t size) {
+  if (counting.load(std::memory_order_relaxed)) ++allocations;
+  return __libc_calloc(n, size);
+}
+void* realloc(void* p, size_t size) {
+  if (counting.load(std::memory_order_relaxed)) ++allocations;
+  return __libc_realloc(p, size);
+}
+void free(void* p) { __libc_free(p); }
+}
+#endif
+
+namespace mjf::runner {
+namespace {
+
+long AllocationsPerSteps(const std::string& rotor_model, int threads) {
+  ExperimentConfig c = LoadExperiment(
+      std::string(MJF_SOURCE_DIR) + "/experiments/exp2.toml",
+      {"run.duration=1.0", "run.metric_window=[0.5, 1.0]", "render.snapshots=[]",
+       "vehicles.rotor_model=\"" + rotor_model + "\"", "sensors={preset=\"typical\"}",
+       "wind={mean=[3.0, 1.0, 0.0], turbulence=\"moderate\"}"});
+  c.threads = threads;
+  Simulation sim(c);
+  for (int k = 0; k < 20; ++k) {  // warm-up: first-touch paths may allocate once
+    sim.ComputeControls();
+    sim.Integrate();
+  }
+  allocations = 0;
+  counting = true;
+  for (int k = 0; k < 200; ++k) {
+    sim.ComputeControls();
+    sim.Integrate();
+  }
+  counting = false;
+  return allocations.load();
+}
+
+TEST(StepNoAllocationTest, OneModelAndPartitionsAllocateNothingPerStep) {
+  if (!MJF_COUNT_MALLOC) GTEST_SKIP() << "malloc is not replaceable under AddressSanitizer";
+  for (const char* rotor : {"actuator", "wrench"}) {
+    for (int threads : {1, 2}) {
+      EXPECT_EQ(AllocationsPerSteps(rotor, threads), 0)
+          << rotor << " rotor model, " << threads << " thread(s)";
+    }
+  }
+}
+
+}  // namespace
+}  // namespace mjf::runner
