@@ -1,0 +1,321 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// mjformation._core: the runner library for Python (docs/PYTHON.md). The Python package
+// (python/mjformation/) wraps it; this file only converts. Every call that simulates releases the
+// GIL; input errors become ValueError with the runner's FILE:LINE: [section] key message.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cerrno>
+#include <csignal>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <mutex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "mjformation/runner/cli.hpp"
+#include "mjformation/runner/config.hpp"
+#include "mjformation/runner/interrupt.hpp"
+#include "mjformation/runner/output.hpp"
+#include "mjformation/runner/paths.hpp"
+#include "mjformation/runner/plugin_host.hpp"
+#include "mjformation/runner/run.hpp"
+#include "mjformation/runner/scene.hpp"
+#include "mjformation/runner/simulation.hpp"
+#include "python_law.hpp"
+
+namespace py = pybind11;
+namespace rn = mjf::runner;
+
+namespace {
+
+// The runner's SIGINT/SIGTERM handling for as long as some run or sweep is under way (several
+// may run on Python threads at once), then Python's own handlers again. A Ctrl-C thus ends
+// every run cleanly (marked incomplete) and the caller raises KeyboardInterrupt.
+class SignalScope {
+ public:
+  SignalScope() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (active_++ > 0) return;
+    rn::ClearInterrupt();
+    sigaction(SIGINT, nullptr, &old_int_);
+    sigaction(SIGTERM, nullptr, &old_term_);
+    sigaction(SIGXFSZ, nullptr, &old_xfsz_);
+    rn::InstallInterruptHandlers();
+  }
+  ~SignalScope() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (--active_ > 0) return;
+    sigaction(SIGINT, &old_int_, nullptr);
+    sigaction(SIGTERM, &old_term_, nullptr);
+    sigaction(SIGXFSZ, &old_xfsz_, nullptr);
+  }
+  SignalScope(const SignalScope&) = delete;
+  SignalScope& operator=(const SignalScope&) = delete;
+
+ private:
+  static inline std::mutex mutex_;
+  static inline int active_ = 0;
+  static inline struct sigaction old_int_ {}, old_term_{}, old_xfsz_{};
+};
+
+rn::ExperimentConfig Load(const std::string& path, const std::vector<std::string>& overrides,
+                          const std::vector<std::string>& plugin_path) {
+  rn::ExperimentConfig config = rn::LoadExperiment(path, overrides);
+  for (const auto& p : plugin_path) config.plugin_path.push_back(p);
+  return config;
+}
+
+py::dict RunResultDict(const rn::RunResult& r) {
+  py::dict d;
+  d["complete"] = r.complete;
+  d["error"] = r.error;
+  d["signal"] = r.signal;
+  d["summary_error"] = r.summary_error;
+  d["wall_time_s"] = r.wall_time_s;
+  d["sim_time_s"] = r.sim_time_s;
+  d["steps"] = r.steps;
+  d["summary"] = r.summary.dump();
+  return d;
+}
+
+py::dict Run(const std::string& path, const std::vector<std::string>& overrides,
+             const std::vector<std::string>& plugin_path, const std::string& out, bool overwrite,
+             bool render, bool record) {
+  const rn::ExperimentConfig config = Load(path, overrides, plugin_path);
+  rn::RunOptions options;
+  options.out_dir = out;
+  options.overwrite = overwrite;
+  options.render = render;
+  options.record = record;
+  rn::RunResult result;
+  {
+    py::gil_scoped_release nogil;
+    SignalScope signals;
+    result = rn::RunExperiment(config, options);
+  }
+  return RunResultDict(result);
+}
+
+// `mjformation <args>` in-process (the sweep and check commands), with the GIL released.
+int CommandLine(const std::vector<std::string>& args) {
+  std::vector<const char*> argv{"mjformation"};
+  for (const auto& a : args) argv.push_back(a.c_str());
+  py::gil_scoped_release nogil;
+  SignalScope signals;
+  const int code = rn::RunCommandLine(static_cast<int>(argv.size()), argv.data());
+  std::fflush(stdout);
+  return code;
+}
+
+py::dict Check(const std::string& path, const std::vector<std::string>& overrides,
+               const std::vector<std::string>& plugin_path) {
+  const rn::ExperimentConfig config = Load(path, overrides, plugin_path);
+  std::unique_ptr<rn::Simulation> sim;
+  {
+    py::gil_scoped_release nogil;
+    sim = std::make_unique<rn::Simulation>(config);
+  }
+  py::dict d;
+  d["experiment"] = config.name;
+  d["followers"] = config.followers;
+  d["model"] = config.model_path;
+  d["bodies"] = sim->model()->nbody;
+  d["leader"] = config.leader.plugin;
+  d["formation"] = config.formation.plugin;
+  d["attitude"] = config.attitude.plugin;
+  d["vehicle_notes"] = sim->vehicle_notes();
+  return d;
+}
+
+py::list Plugins(const std::vector<std::string>& plugin_path) {
+  rn::PluginRegistry registry(rn::PluginSearchPath(plugin_path));
+  py::list out;
+  for (const auto& p : registry.plugins()) {
+    const mjfPlugin& d = *p.descriptor;
+    py::dict attributes;
+    for (int k = 0; k < d.n_attributes; ++k) {
+      const mjfAttribute& a = d.attributes[k];
+      attributes[a.key] = py::dict(py::arg("default") = a.default_value
+                                                            ? py::object(py::str(a.default_value))
+                                                            : py::object(py::none()),
+                                   py::arg("doc") = a.doc ? a.doc : "");
+    }
+    out.append(py::dict(py::arg("name") = d.name, py::arg("kind") = rn::KindName(d.kind),
+                        py::arg("doc") = d.doc ? d.doc : "", py::arg("library") = p.library,
+                        py::arg("attributes") = attributes));
+  }
+  return out;
+}
+
+// timeseries.csv (or any numeric CSV with a header) as (header, rows x columns float array):
+// one pass of strtod in C++, empty cells NaN, rows with the wrong number of cells (a truncated
+// last line) dropped.
+py::tuple ReadCsv(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw py::value_error(path + ": cannot open (" + std::strerror(errno) + ")");
+  std::stringstream buffer;
+  buffer << file.rdbuf();
+  const std::string text = buffer.str();
+  size_t eol = text.find('\n');
+  if (text.empty() || eol == std::string::npos) throw py::value_error(path + ": no header line");
+  std::vector<std::string> header;
+  for (size_t start = 0;;) {
+    const size_t comma = text.find(',', start);
+    const size_t end = comma == std::string::npos || comma > eol ? eol : comma;
+    std::string name = text.substr(start, end - start);
+    while (!name.empty() && (name.back() == '\r' || name.back() == ' ')) name.pop_back();
+    header.push_back(name);
+    if (end == eol) break;
+    start = end + 1;
+  }
+  const size_t columns = header.size();
+  std::vector<double> values, row(columns);
+  const char* p = text.data() + eol + 1;
+  const char* const stop = text.data() + text.size();
+  while (p < stop) {
+    size_t k = 0;
+    bool ok = true;
+    for (;; ++k) {
+      char* end = nullptr;
+      double v = std::strtod(p, &end);
+      if (end == p) v = std::numeric_limits<double>::quiet_NaN();  // empty cell
+      while (end < stop && *end != ',' && *end != '\n') ++end;     // skip what strtod left
+      if (k < columns) row[k] = v; else ok = false;
+      p = end;
+      if (p >= stop || *p == '\n') break;
+      ++p;  // the comma
+    }
+    if (ok && k + 1 == columns && p < stop) values.insert(values.end(), row.begin(), row.end());
+    ++p;  // the newline; a last line without one is a truncated row and was not kept
+  }
+  const py::ssize_t rows = static_cast<py::ssize_t>(values.size() / columns);
+  py::array_t<double> data({rows, static_cast<py::ssize_t>(columns)});
+  std::memcpy(data.mutable_data(), values.data(), values.size() * sizeof(double));
+  return py::make_tuple(header, data);
+}
+
+py::array_t<double> States(const std::vector<mjfVehicleState>& states) {
+  py::array_t<double> out({static_cast<py::ssize_t>(states.size()), py::ssize_t{13}});
+  std::memcpy(out.mutable_data(), states.data(), states.size() * sizeof(mjfVehicleState));
+  return out;
+}
+
+// Desired x, y of every vehicle (the leader's setpoint, then leader + f_i), as the recorders see
+// them: the setpoints' reference positions.
+py::array_t<double> Slots(const rn::Simulation& sim) {
+  py::array_t<double> out({static_cast<py::ssize_t>(sim.n_vehicles()), py::ssize_t{2}});
+  for (int v = 0; v < sim.n_vehicles(); ++v) {
+    out.mutable_at(v, 0) = sim.setpoints()[v].pos[0];
+    out.mutable_at(v, 1) = sim.setpoints()[v].pos[1];
+  }
+  return out;
+}
+
+py::array_t<double> Setpoints(const rn::Simulation& sim) {
+  const auto& sp = sim.setpoints();
+  constexpr py::ssize_t kSize = sizeof(mjfSetpoint) / sizeof(double);  // acc pos vel yaw sliding
+  py::array_t<double> out({static_cast<py::ssize_t>(sp.size()), kSize});
+  std::memcpy(out.mutable_data(), sp.data(), sp.size() * sizeof(mjfSetpoint));
+  return out;
+}
+
+void Step(rn::Simulation& sim, int64_t n) {
+  py::gil_scoped_release nogil;
+  for (int64_t k = 0; k < n && sim.step_index() < sim.total_steps(); ++k) {
+    sim.ComputeControls();
+    sim.Integrate();
+  }
+}
+
+// leader_weight[i] = a_i0, adjacency[i, j] = a_ij (edge j -> i), followers 0-based.
+py::dict GraphDict(const rn::Simulation& sim) {
+  const rn::ExperimentConfig& c = sim.config();
+  const py::ssize_t n = c.followers;
+  py::array_t<double> leader({n}), adjacency({n, n});
+  std::memcpy(leader.mutable_data(), c.leader_weight.data(), n * sizeof(double));
+  std::fill(adjacency.mutable_data(), adjacency.mutable_data() + n * n, 0.0);
+  for (const auto& e : c.edges) adjacency.mutable_at(e.to, e.from) = e.weight;
+  py::dict d;
+  d["leader_weight"] = leader;
+  d["adjacency"] = adjacency;
+  return d;
+}
+
+void BindSimulation(py::module_& m) {
+  py::class_<rn::Simulation>(m, "Simulation")
+      .def(py::init([](const std::string& path, const std::vector<std::string>& overrides,
+                       const std::vector<std::string>& plugin_path) {
+             const rn::ExperimentConfig config = Load(path, overrides, plugin_path);
+             py::gil_scoped_release nogil;
+             return std::make_unique<rn::Simulation>(config);
+           }),
+           py::arg("experiment"), py::arg("overrides"), py::arg("plugin_path"))
+      .def("compute_controls",
+           [](rn::Simulation& s) {
+             py::gil_scoped_release nogil;
+             s.ComputeControls();
+           })
+      .def("step", &Step, py::arg("n") = 1)
+      .def_property_readonly("time", &rn::Simulation::time)
+      .def_property_readonly("step_index", &rn::Simulation::step_index)
+      .def_property_readonly("total_steps", &rn::Simulation::total_steps)
+      .def_property_readonly("n_vehicles", &rn::Simulation::n_vehicles)
+      .def_property_readonly("states", [](const rn::Simulation& s) { return States(s.states()); })
+      .def_property_readonly("measured",
+                             [](const rn::Simulation& s) { return States(s.measured()); })
+      .def_property_readonly("setpoints", &Setpoints)
+      .def_property_readonly("slots", &Slots)
+      .def_property_readonly("controls",
+                             [](const rn::Simulation& s) {
+                               const auto& c = s.controls();
+                               py::array_t<double> out(
+                                   {static_cast<py::ssize_t>(s.n_vehicles()),
+                                    static_cast<py::ssize_t>(s.actuators_per_vehicle())});
+                               std::memcpy(out.mutable_data(), c.data(), c.size() * sizeof(double));
+                               return out;
+                             })
+      .def_property_readonly("graph", &GraphDict)
+      .def_property_readonly("scene_xml", &rn::Simulation::scene_xml);
+}
+
+void RegisterExceptions(py::module_& m) {
+  static py::exception<rn::SimulationError> simulation_error(m, "SimulationError",
+                                                             PyExc_RuntimeError);
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const rn::ConfigError& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    } catch (const rn::PluginError& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    } catch (const rn::SceneError& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    } catch (const rn::OutputError& e) {
+      PyErr_SetString(PyExc_OSError, e.what());
+    } catch (const rn::SimulationError& e) {
+      PyErr_SetString(simulation_error.ptr(), e.what());
+    }
+  });
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_core, m) {
+  m.doc() = "mjformation's runner library (use the mjformation package, not this module)";
+  rn::RegisterInProcessPlugin(&mjf::python::CentralLawPlugin(), "in-process (mjformation Python)");
+  rn::RegisterInProcessPlugin(&mjf::python::AgentLawPlugin(), "in-process (mjformation Python)");
+  RegisterExceptions(m);
+  m.def("run", &Run, py::arg("experiment"), py::arg("overrides"), py::arg("plugin_path"),
+        py::arg("out"), py::arg("overwrite"), py::arg("render"), py::arg("record"));
+  m.def("command_line", &CommandLine, py::arg("args"));
+  m.def("check", &Check, py::arg("experiment"), py::arg("overrides"), py::arg("plugin_path"));
+  m.def("plugins", &Plugins, py::arg("plugin_path"));
+  m.def("read_csv", &ReadCsv, py::arg("path"));
+  m.def("version", &rn::VersionString);
+  BindSimulation(m);
+}
