@@ -291,8 +291,9 @@ def plugins(plugin_path=None) -> list[dict]:
 class Simulation:
     """One simulation, stepped from Python: step(n), time, states, measured, slots, graph.
 
-    Each physics step is: sensors -> control tick (plugins, or the Python law) -> integrate.
-    states / measured / setpoints / slots are those of the last control tick.
+    It always stands at a control tick: states / measured / setpoints / slots / controls are
+    those of `time`, as the timeseries.csv row at that time records them. step(n) integrates n
+    physics steps, each followed by the next tick (sensors, plugins or the Python law).
     """
 
     def __init__(self, experiment, set=None, formation=None, plugin_path=None):

@@ -224,11 +224,13 @@ py::array_t<double> Setpoints(const rn::Simulation& sim) {
   return out;
 }
 
+// The Python Simulation is always at a control tick: its states, setpoints and slots are those of
+// time(), as a timeseries.csv row at that time records them. step(n): integrate, then the tick.
 void Step(rn::Simulation& sim, int64_t n) {
   py::gil_scoped_release nogil;
   for (int64_t k = 0; k < n && sim.step_index() < sim.total_steps(); ++k) {
-    sim.ComputeControls();
     sim.Integrate();
+    sim.ComputeControls();
   }
 }
 
@@ -252,14 +254,11 @@ void BindSimulation(py::module_& m) {
                        const std::vector<std::string>& plugin_path) {
              const rn::ExperimentConfig config = Load(path, overrides, plugin_path);
              py::gil_scoped_release nogil;
-             return std::make_unique<rn::Simulation>(config);
+             auto sim = std::make_unique<rn::Simulation>(config);
+             sim->ComputeControls();  // the tick at t = 0
+             return sim;
            }),
            py::arg("experiment"), py::arg("overrides"), py::arg("plugin_path"))
-      .def("compute_controls",
-           [](rn::Simulation& s) {
-             py::gil_scoped_release nogil;
-             s.ComputeControls();
-           })
       .def("step", &Step, py::arg("n") = 1)
       .def_property_readonly("time", &rn::Simulation::time)
       .def_property_readonly("step_index", &rn::Simulation::step_index)
