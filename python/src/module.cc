@@ -60,8 +60,7 @@ class SignalScope {
  private:
   static inline std::mutex mutex_;
   static inline int active_ = 0;
-  static inline struct sigaction old_int_ {}, old_term_{}, old_xfsz_{};
-};
+  static inline struct sigaction old_int_ { }, old_term_{}, old_xfsz_{}; };
 
 rn::ExperimentConfig Load(const std::string& path, const std::vector<std::string>& overrides,
                           const std::vector<std::string>& plugin_path) {
@@ -140,10 +139,10 @@ py::list Plugins(const std::vector<std::string>& plugin_path) {
     py::dict attributes;
     for (int k = 0; k < d.n_attributes; ++k) {
       const mjfAttribute& a = d.attributes[k];
-      attributes[a.key] = py::dict(py::arg("default") = a.default_value
-                                                            ? py::object(py::str(a.default_value))
-                                                            : py::object(py::none()),
-                                   py::arg("doc") = a.doc ? a.doc : "");
+      attributes[a.key] =
+          py::dict(py::arg("default") = a.default_value ? py::object(py::str(a.default_value))
+                                                        : py::object(py::none()),
+                   py::arg("doc") = a.doc ? a.doc : "");
     }
     out.append(py::dict(py::arg("name") = d.name, py::arg("kind") = rn::KindName(d.kind),
                         py::arg("doc") = d.doc ? d.doc : "", py::arg("library") = p.library,
@@ -185,7 +184,10 @@ py::tuple ReadCsv(const std::string& path) {
       double v = std::strtod(p, &end);
       if (end == p) v = std::numeric_limits<double>::quiet_NaN();  // empty cell
       while (end < stop && *end != ',' && *end != '\n') ++end;     // skip what strtod left
-      if (k < columns) row[k] = v; else ok = false;
+      if (k < columns)
+        row[k] = v;
+      else
+        ok = false;
       p = end;
       if (p >= stop || *p == '\n') break;
       ++p;  // the comma
@@ -269,15 +271,15 @@ void BindSimulation(py::module_& m) {
                              [](const rn::Simulation& s) { return States(s.measured()); })
       .def_property_readonly("setpoints", &Setpoints)
       .def_property_readonly("slots", &Slots)
-      .def_property_readonly("controls",
-                             [](const rn::Simulation& s) {
-                               const auto& c = s.controls();
-                               py::array_t<double> out(
-                                   {static_cast<py::ssize_t>(s.n_vehicles()),
-                                    static_cast<py::ssize_t>(s.actuators_per_vehicle())});
-                               std::memcpy(out.mutable_data(), c.data(), c.size() * sizeof(double));
-                               return out;
-                             })
+      .def_property_readonly(
+          "controls",
+          [](const rn::Simulation& s) {
+            const auto& c = s.controls();
+            py::array_t<double> out({static_cast<py::ssize_t>(s.n_vehicles()),
+                                     static_cast<py::ssize_t>(s.actuators_per_vehicle())});
+            std::memcpy(out.mutable_data(), c.data(), c.size() * sizeof(double));
+            return out;
+          })
       .def_property_readonly("graph", &GraphDict)
       .def_property_readonly("scene_xml", &rn::Simulation::scene_xml);
 }

@@ -53,8 +53,8 @@ int64_t StepsPerSample(const mjfCreateContext* ctx) {
 // "ZeroDivisionError: division by zero": the last line of the traceback Python would print.
 std::string LastTracebackLine(py::error_already_set& e) {
   try {
-    py::object lines = py::module_::import("traceback")
-                           .attr("format_exception_only")(e.type(), e.value());
+    py::object lines =
+        py::module_::import("traceback").attr("format_exception_only")(e.type(), e.value());
     std::string last = py::str(lines[py::int_(-1)]);
     while (!last.empty() && (last.back() == '\n' || last.back() == ' ')) last.pop_back();
     return last;
@@ -79,7 +79,8 @@ int Guarded(const mjfStepContext* ctx, Call call) {
       reason = e.what();
     }
   }
-  if (ctx->error && ctx->error_size > 0) std::snprintf(ctx->error, ctx->error_size, "%s", reason.c_str());
+  if (ctx->error && ctx->error_size > 0)
+    std::snprintf(ctx->error, ctx->error_size, "%s", reason.c_str());
   return 1;
 }
 
@@ -106,9 +107,10 @@ py::array_t<double> Copy(const double* data, std::vector<py::ssize_t> shape) {
 void ReadInput(const py::object& result, size_t count, double* out, const char* expected) {
   auto u = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(result);
   if (!u || static_cast<size_t>(u.size()) != count) {
-    throw std::runtime_error(std::string("the formation law returned ") +
-                             std::string(py::str(py::repr(result)).cast<std::string>()).substr(0, 80) +
-                             "; expected " + expected);
+    throw std::runtime_error(
+        std::string("the formation law returned ") +
+        std::string(py::str(py::repr(result)).cast<std::string>()).substr(0, 80) + "; expected " +
+        expected);
   }
   std::memcpy(out, u.data(), count * sizeof(double));
 }
@@ -129,8 +131,8 @@ struct Central {
 
 py::object GraphInfo(const mjfGraph& g) {
   py::array_t<double> leader({static_cast<py::ssize_t>(g.n_followers)});
-  py::array_t<double> adjacency({static_cast<py::ssize_t>(g.n_followers),
-                                 static_cast<py::ssize_t>(g.n_followers)});
+  py::array_t<double> adjacency(
+      {static_cast<py::ssize_t>(g.n_followers), static_cast<py::ssize_t>(g.n_followers)});
   std::memcpy(leader.mutable_data(), g.leader_weight, g.n_followers * sizeof(double));
   std::fill(adjacency.mutable_data(), adjacency.mutable_data() + adjacency.size(), 0.0);
   for (int e = 0; e < g.n_edges; ++e) {
@@ -144,7 +146,8 @@ py::object GraphInfo(const mjfGraph& g) {
 
 void* CreateCentral(const mjfCreateContext* ctx) {
   return CreateGuarded(ctx, [&]() -> void* {
-    if (!ctx->graph || !ctx->shape) throw std::invalid_argument("the host passed no graph or shape");
+    if (!ctx->graph || !ctx->shape)
+      throw std::invalid_argument("the host passed no graph or shape");
     auto self = std::make_unique<Central>();
     self->n = ctx->graph->n_followers;
     self->shape = *ctx->shape;
@@ -152,8 +155,9 @@ void* CreateCentral(const mjfCreateContext* ctx) {
     self->period = self->steps_per_sample * ctx->timestep;
     self->offsets.assign(6 * self->n, 0.0);
     self->input.assign(2 * self->n, 0.0);
-    py::tuple resolved = py::module_::import("mjformation._laws")
-                             .attr("resolve_central")(Attribute(ctx, "law"), GraphInfo(*ctx->graph));
+    py::tuple resolved =
+        py::module_::import("mjformation._laws")
+            .attr("resolve_central")(Attribute(ctx, "law"), GraphInfo(*ctx->graph));
     self->law = resolved[0];
     self->graph = resolved[1];
     return self.release();
@@ -303,8 +307,8 @@ void CallAgent(Agent& a, const mjfStepContext* ctx) {
   for (size_t m = 0; m < a.neighbours.size(); ++m) {
     messages[py::int_(a.neighbours[m])] = Copy(&a.found[m]->state.pos[0], {kStateSize});
   }
-  py::object leader = in.leader ? py::object(Copy(&in.leader->state.pos[0], {kStateSize}))
-                                : py::object(py::none());
+  py::object leader =
+      in.leader ? py::object(Copy(&in.leader->state.pos[0], {kStateSize})) : py::object(py::none());
   a.shape.evaluate(a.shape.self, ctx->time, a.offsets.data());
   py::object u = a.law(ctx->time, Copy(&in.self->pos[0], {kStateSize}), messages, leader,
                        Copy(a.offsets.data(), {a.n, 6}));

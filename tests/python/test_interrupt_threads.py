@@ -78,11 +78,12 @@ def test_two_runs_on_two_threads_progress_in_parallel_with_their_solo_bytes(exp2
         time.sleep(0.001)
     for t in threads:
         t.join()
-    # The two runs' law calls interleave: each ran while the other was under way
+    # The two runs' law calls interleave: each ran while the other was under way (with the GIL
+    # held through a run, the second would start after the first ended: no call inside). The
+    # machine is shared, so how much they overlap varies; that they do is what is checked.
     a, b = np.array(laws["a"].times), np.array(laws["b"].times)
     assert len(a) == len(b) == 161
-    inside_a = np.sum((b > a[0]) & (b < a[-1]))
-    assert inside_a > 40 and np.sum((a > b[0]) & (a < b[-1])) > 40
+    assert np.sum((b > a[0]) & (b < a[-1])) >= 5 and np.sum((a > b[0]) & (a < b[-1])) >= 5
     assert ticks > 20
     for name in settings:
         solo = (tmp_path / f"solo_{name}/timeseries.csv").read_bytes()

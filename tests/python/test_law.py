@@ -83,7 +83,8 @@ def test_an_exception_in_the_law_ends_the_run_incomplete_with_its_last_line(exp2
     assert run.summary["complete"] is False
     assert run.summary["error"].endswith("ZeroDivisionError: division by zero")
     assert run.summary["sim_time_s"] == pytest.approx(0.5)
-    assert len(run.timeseries["t"]) == 51  # everything recorded up to then is kept
+    # everything recorded before the failing tick is kept (rows 0 .. 0.49 s)
+    assert run.timeseries["t"][-1] == pytest.approx(0.49) and len(run.timeseries["t"]) == 50
 
 
 def test_a_law_returning_the_wrong_shape_is_reported(exp2, tmp_path):
