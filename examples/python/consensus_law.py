@@ -44,6 +44,7 @@ def consensus_agent(hood):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--duration", type=float, default=40.0)
+    parser.add_argument("--figure", default="consensus_python_vs_cpp.png")
     parser.add_argument("--experiment", default=str(Path(__file__).parents[2] / "experiments/exp2.toml"))
     args = parser.parse_args()
     short = {"run.duration": args.duration, "run.metric_window": [0.0, args.duration],
@@ -57,6 +58,21 @@ def main():
     print(f"consensus in Python:    mean sigma_f {py.summary['metrics']['sigma_f_mean']:.6f}"
           f"  (summary names it: {py.summary['plugins']['formation']})")
     print(f"largest sigma_f difference over the run: {diff:.3g}")
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(7, 3.5))
+    ax.semilogy(cpp.timeseries["t"], cpp.timeseries["sigma_f"], lw=3, alpha=0.4,
+                label="consensus_linear (C++ plugin)")
+    ax.semilogy(py.timeseries["t"], py.timeseries["sigma_f"], "k--", lw=1,
+                label=f"consensus in Python (largest difference {diff:.2g})")
+    ax.set(xlabel="t [s]", ylabel="sigma_f [m] (68)", title="Exp 2 vehicles, linear consensus")
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(args.figure, dpi=120)
+    print(f"figure: {args.figure}")
 
 
 if __name__ == "__main__":
