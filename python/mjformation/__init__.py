@@ -260,12 +260,12 @@ def run(experiment, set=None, out=None, render=False, formation=None, overwrite=
     """
     temporary = out is None
     out = Path(tempfile.mkdtemp(prefix="mjformation_")) / "run" if temporary else Path(out)
-    with _LawInUse(formation, experiment) as law_overrides:
+    in_use = _LawInUse(formation, experiment)
+    with in_use as law_overrides:
         result = _core.run(str(experiment), law_overrides + _overrides(set),
                            _plugin_path(plugin_path), str(out), overwrite, render, record)
-        law = _as_law(formation) if formation is not None else None
-        if law is not None and law.per_agent:
-            _annotate_agent_summary(out, _laws._key(law), law)
+        if in_use.law is not None and in_use.law.per_agent:
+            _annotate_agent_summary(out, in_use.key, in_use.law)
     result["summary"] = json.loads(result["summary"])
     r = Run(out, result, temporary)
     if result["signal"] == signal.SIGINT:
