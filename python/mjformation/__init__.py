@@ -206,8 +206,7 @@ class Run:
     def timeseries(self) -> dict[str, np.ndarray]:
         """timeseries.csv as {column: float array} (one read in C++, empty cells NaN)."""
         if self._timeseries is None:
-            header, data = _core.read_csv(str(self.path / "timeseries.csv"))
-            data = np.ascontiguousarray(data.T)  # each column contiguous
+            header, data = _core.read_csv(str(self.path / "timeseries.csv"))  # columns x rows
             self._timeseries = {name: data[j] for j, name in enumerate(header)}
         return self._timeseries
 
@@ -267,8 +266,9 @@ def run(experiment, set=None, out=None, render=False, formation=None, overwrite=
         if in_use.law is not None and in_use.law.per_agent:
             _annotate_agent_summary(out, in_use.key, in_use.law)
     result["summary"] = json.loads(result["summary"])
-    r = Run(out, result, temporary)
-    if result["signal"] == signal.SIGINT:
+    interrupted = result["signal"] == signal.SIGINT
+    r = Run(out, result, temporary and not interrupted)  # a partial run is kept, even a temporary
+    if interrupted:
         raise KeyboardInterrupt(f"mjformation.run interrupted; partial run kept in {out}")
     return r
 
