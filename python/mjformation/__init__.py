@@ -25,10 +25,13 @@ from ._laws import Graph, Neighbourhood
 
 _HERE = Path(__file__).resolve().parent
 # Installed: the prefix's models and plugins (lib/python3.X/dist-packages/mjformation -> prefix).
-_PREFIX = _HERE.parents[3] if len(_HERE.parents) > 3 else _HERE
-if (_PREFIX / "share/mjformation/mjcf").is_dir():
-    os.environ.setdefault("MJF_MJCF_DIR", str(_PREFIX / "share/mjformation/mjcf"))
-_INSTALLED_PLUGINS = [str(p) for p in [_PREFIX / "lib/mjformation/plugins"] if p.is_dir()]
+# In the build tree (build/python/mjformation) the runner's compiled-in paths serve instead.
+_INSTALLED_PLUGINS = []
+if _HERE.parent.name in ("dist-packages", "site-packages") and len(_HERE.parents) > 3:
+    _PREFIX = _HERE.parents[3]
+    if (_PREFIX / "share/mjformation/mjcf").is_dir():
+        os.environ.setdefault("MJF_MJCF_DIR", str(_PREFIX / "share/mjformation/mjcf"))
+    _INSTALLED_PLUGINS = [str(p) for p in [_PREFIX / "lib/mjformation/plugins"] if p.is_dir()]
 
 from . import _core  # noqa: E402  (after MJF_MJCF_DIR: the runner reads it at load time)
 from ._core import SimulationError  # noqa: E402,F401
