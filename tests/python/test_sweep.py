@@ -33,3 +33,15 @@ def test_sweep_with_a_bad_override_raises_value_error(exp2, tmp_path):
     with pytest.raises(ValueError, match=r"exp2.toml:\d+: \[formation\]"):
         mjformation.sweep(exp2, vary={"formation.q": [1.0]}, set={"formation.q": -1.0},
                           out=tmp_path / "s")
+
+
+def test_a_python_law_sweeps_on_the_worker_threads(exp2, tmp_path):
+    from consensus_law import consensus
+
+    sw = mjformation.sweep(exp2, vary={"formation.period": [0.01, 0.05]}, jobs=2, set=short(1.0),
+                           formation=mjformation.FormationLaw(consensus), out=tmp_path / "s")
+    assert sw.complete and len(sw.runs) == 2
+    for run, period in zip(sw.runs, ("0.01", "0.05")):
+        assert run.summary["plugins"]["formation"]["attributes"] == {
+            "law": "consensus_law.consensus", "period": period}
+        assert run.summary["plugin_report"]["python_calls"] == 1 + round(1.0 / float(period))
