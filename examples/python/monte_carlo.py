@@ -12,7 +12,6 @@ from pathlib import Path
 import matplotlib
 
 matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
 
 import mjformation  # noqa: E402
 
@@ -38,15 +37,10 @@ def main():
     print(table[cols].to_string(index=False))
     runs = sweep.frame(runs=True)  # one row per run
     print(f"{len(runs)} runs, {int(runs['complete'].sum())} complete")
-    fig, ax = plt.subplots(figsize=(6, 3.5))
-    mean = table["sigma_f_mean_mean"]
-    err = [mean - table["sigma_f_mean_ci95_low"], table["sigma_f_mean_ci95_high"] - mean]
-    ax.errorbar(table["formation.period"], mean, yerr=err, fmt="o-", capsize=4,
-                label=f"mean over {args.seeds} seeds, 95 % CI")
-    ax.plot(runs["formation.period"], runs["sigma_f_mean"], "k.", alpha=0.4, label="runs")
+    ax = sweep.plot("sigma_f_mean", x="formation.period")  # mean, 95 % CI, and every run
     ax.set(xlabel="sample period T [s]", ylabel="mean sigma_f on [25, 40] s [m]",
            title="Exp 2, ideal point mass, start jittered 0.5 m")
-    ax.legend()
+    fig = ax.figure
     fig.tight_layout()
     fig.savefig(args.figure, dpi=120)
     print(f"figure: {args.figure}")

@@ -51,6 +51,29 @@ class Sweep:
         return pd.DataFrame(rows)
 
 
+    def plot(self, metric: str = "sigma_f_mean", x: str | None = None, ax=None, label=None):
+        """metric against the varied parameter `x` (default: the first one), per cell the mean
+        with its 95 % Student-t interval (needs seeds), and each run as a dot. Returns the axes."""
+        import matplotlib.pyplot as plt
+
+        cells, runs = self.frame(), self.frame(runs=True)
+        if f"{metric}_mean" not in cells:
+            raise ValueError(f"no per-cell statistics of '{metric}' (a sweep with seeds= has them)")
+        keys = [k for k in cells.columns if "." in k]
+        x = x or (keys[0] if keys else None)
+        if x is None:
+            raise ValueError("the sweep varies no parameter: nothing to plot against")
+        ax = ax or plt.subplots(figsize=(6, 3.5))[1]
+        mean = cells[f"{metric}_mean"]
+        err = [mean - cells[f"{metric}_ci95_low"], cells[f"{metric}_ci95_high"] - mean]
+        ax.errorbar(cells[x], mean, yerr=err, fmt="o-", capsize=4,
+                    label=label or f"mean of {self.table['seeds']} seeds, 95 % CI")
+        ax.plot(runs[x], runs[metric], "k.", alpha=0.4, label="runs")
+        ax.set(xlabel=x, ylabel=metric)
+        ax.legend()
+        return ax
+
+
 def _scalar(v):
     if isinstance(v, str):
         try:
