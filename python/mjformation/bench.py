@@ -83,7 +83,8 @@ def main(argv=None) -> int:
           f"{1e6 * (every_cpu - cpp_cpu) / 40001:.1f} us CPU per call)")
     print(f"  Run.timeseries ({rows} rows x {cols} columns): {1e3 * min(loads):.1f} ms "
           f"(target < 200 ms)")
-    return 0 if min(py / cpp, py_cpu / cpp_cpu) <= 1.2 and min(loads) < 0.2 else 1
+    # The cost is the CPU time: on a shared machine wall time is mostly waiting for a core.
+    return 0 if py_cpu <= 1.2 * cpp_cpu and min(loads) < 0.2 else 1
 
 
 if __name__ == "__main__":
