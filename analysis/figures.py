@@ -9,10 +9,8 @@ import argparse
 import sys
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-
-from mjfanalysis import plots  # noqa: E402
-from mjfanalysis.io import load_run  # noqa: E402
+from mjfanalysis import plots
+from mjfanalysis.io import load_run
 
 
 def main(argv=None) -> int:

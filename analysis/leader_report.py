@@ -12,9 +12,7 @@ import argparse
 import sys
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-
-from mjfanalysis.leaders import write_section  # noqa: E402
+from mjfanalysis.leaders import write_section
 
 
 def main(argv=None) -> int:

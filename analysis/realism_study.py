@@ -1,17 +1,19 @@
 #!/usr/bin/env python3
 # Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
-"""Table and figure of the sensor-noise x wind study (scripts/study_realism.sh, issue 11).
+"""Table and figure of the sensor-noise x wind study (scripts/study_realism.sh).
 
 Reads <study>/<exp>/sweep.json (mjformation sweep --seeds) and prints a Markdown table of the
-mean sigma_f over [25, 40] s with its 95 % confidence interval (Student t over the seeds that
+mean sigma_f over the runs' metric window (summary.json metrics.sigma_f_window) with its 95 %
+confidence interval (Student t over the seeds that
 completed) per noise level and mean wind; a cell where runs stopped early (diverged) says how
 many completed.
 Usage: realism_study.py <study folder> [--figure out.png]
 """
 import argparse
-import json
 import re
 from pathlib import Path
+
+from mjfanalysis import load_run, load_sweep, window_label
 
 
 def noise_label(value):
@@ -27,18 +29,19 @@ def wind_speed(value):
 
 
 def load(folder):
-    sweep = json.loads((folder / "sweep.json").read_text())
+    """(complete, {(noise, wind speed): cell}, the runs' metric window) of one sweep."""
+    sweep = load_sweep(folder)
     finished = {}
-    for run in sweep["runs"]:
+    for run in sweep.runs:
         key = (noise_label(run["sensors"]), wind_speed(run["wind"]))
         finished[key] = finished.get(key, 0) + bool(run["finished"])
     cells = {}
-    for cell in sweep["cells"]:
+    for cell in sweep.cells:
         key = (noise_label(cell["sensors"]), wind_speed(cell["wind"]))
         m = cell["metrics"].get("sigma_f_mean", {"n": 0, "mean": None, "ci95": [None, None]})
         cells[key] = {"mean": m["mean"], "ci": m["ci95"], "n": cell["complete_runs"],
                       "finished": finished.get(key, 0), "seeds": cell["seeds"]}
-    return sweep["complete"], cells
+    return sweep.complete, cells, sweep.metric_window
 
 
 def fmt(c):
@@ -67,9 +70,9 @@ def main():
     for folder in sorted(p for p in args.study.iterdir() if (p / "sweep.json").exists()):
         results[folder.name] = load(folder)
     noises = ["ideal", "typical", "3x typical"]
-    for name, (complete, cells) in results.items():
+    for name, (complete, cells, window) in results.items():
         winds = sorted({w for _, w in cells})
-        print(f"\n{name}: mean sigma_f on [25, 40] s, 95 % CI"
+        print(f"\n{name}: mean sigma_f on {window_label(window)}, 95 % CI"
               + ("" if complete else " (SWEEP INCOMPLETE)"))
         print("| sensors | " + " | ".join(f"wind {w:g} m/s" for w in winds) + " |")
         print("|---|" + "---|" * len(winds))
@@ -83,7 +86,7 @@ def main():
         cols = min(2, len(results))
         rows = (len(results) + cols - 1) // cols
         fig, axes = plt.subplots(rows, cols, figsize=(6 * cols, 4 * rows), squeeze=False)
-        for ax, (name, (_, cells)) in zip(axes.flat, results.items()):
+        for ax, (name, (_, cells, window)) in zip(axes.flat, results.items()):
             for noise, marker in zip(noises, "osd"):
                 pts = sorted((w, c) for (n, w), c in cells.items() if n == noise and c["n"] > 0)
                 if not pts:
@@ -97,7 +100,7 @@ def main():
                 ax.errorbar(w, mean, yerr=[low, high], marker=marker, capsize=3, label=noise)
             ax.set_yscale("log")
             ax.set_xlabel("mean wind (m/s), moderate Dryden turbulence")
-            ax.set_ylabel("mean sigma_f on [25, 40] s")
+            ax.set_ylabel(f"mean sigma_f on {window_label(window)}")
             ax.set_title(f"{name}: mean and 95 % CI over seeds")
             ax.grid(True, which="both", alpha=0.3)
             ax.legend()
@@ -110,12 +113,10 @@ def main():
 
 
 def sigma_f_series(run_dir):
-    import numpy as np
-    path = run_dir / "timeseries.csv"
-    if not path.exists():
+    ts = load_run(run_dir).timeseries
+    if ts is None:
         return None
-    data = np.genfromtxt(path, delimiter=",", skip_header=1, usecols=(0, 1))
-    return data[:, 0], data[:, 1]
+    return ts["t"], ts["sigma_f"]
 
 
 def draw_bands(study, results, out):
@@ -129,9 +130,9 @@ def draw_bands(study, results, out):
     fig, axes = plt.subplots(len(results), 3, figsize=(15, 3.6 * len(results)), squeeze=False,
                              sharey=True)
     for row, name in enumerate(results):
-        sweep = json.loads((study / name / "sweep.json").read_text())
+        sweep = load_sweep(study / name)
         groups = {}
-        for run in sweep["runs"]:
+        for run in sweep.runs:
             if run["complete"]:
                 key = (noise_label(run["sensors"]), wind_speed(run["wind"]))
                 groups.setdefault(key, []).append(run["run"])

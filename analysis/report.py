@@ -10,9 +10,7 @@ import argparse
 import sys
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-
-from mjfanalysis.report import write_report  # noqa: E402
+from mjfanalysis.report import write_report
 
 
 def main(argv=None) -> int:

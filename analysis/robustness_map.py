@@ -10,9 +10,7 @@ import argparse
 import sys
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-
-from mjfanalysis import robustness  # noqa: E402
+from mjfanalysis import robustness
 
 
 def main(argv=None) -> int:

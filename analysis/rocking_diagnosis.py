@@ -5,40 +5,37 @@ beside the quadrotor, Exps 2 and 3 (runs written by scripts/rocking_diagnosis.sh
 
 Usage: /usr/bin/python3 analysis/rocking_diagnosis.py OUT_DIR
 Writes OUT_DIR/rocking.md (table) and OUT_DIR/rocking.png (figure).
-Every run is measured the same way, from timeseries.csv, over the metric window [25, 40] s:
+Every run is measured the same way, from timeseries.csv, over the run's metric window (summary.json
+metrics.sigma_f_window):
 the followers' actual horizontal acceleration a (central differences of the recorded velocity),
 as the tilt it needs, atan(|a| / g) (RMS over time and followers, deg), and the dominant
 frequency of a (Hann-weighted spectrum, 0.3-5 Hz, median over followers).
 """
 
-import csv
-import json
 import math
 import re
 import sys
 from pathlib import Path
 
 import numpy as np
+from mjfanalysis import load_run, window_label
 
 G = 9.81
-WINDOW = (25.0, 40.0)
 BAND = (0.3, 5.0)
 
 
-def load(run: Path):
-    with open(run / "timeseries.csv", newline="") as f:
-        reader = csv.reader(f)
-        header = next(reader)
-        data = np.array([[float(x) if x else np.nan for x in row] for row in reader])
-    return {h: data[:, i] for i, h in enumerate(header)}
-
-
-def measure(run: Path) -> dict:
-    ts = load(run)
+def measure(path: Path) -> dict:
+    run = load_run(path)
+    ts = run.timeseries
+    if ts is None:
+        raise ValueError(f"{path}: {run.ts_error}")
+    window = run.metric_window
+    if window is None:
+        raise ValueError(f"{path}: summary.json gives no metrics.sigma_f_window")
     t = ts["t"]
-    summary = json.loads((run / "summary.json").read_text())
+    summary = run.summary
     m = summary["metrics"]
-    sel = (t >= WINDOW[0]) & (t <= WINDOW[1])
+    sel = (t >= window[0]) & (t <= window[1])
     tilts, freqs, cmd = [], [], []
     cross, power_cmd, spectra = 0, 0, []
     i = 1
@@ -71,6 +68,7 @@ def measure(run: Path) -> dict:
     gain = float(np.abs(cross) / power_cmd) if power_cmd > 0 else math.nan
     tilt = np.concatenate(tilts)
     return {
+        "window": window,
         "complete": bool(summary.get("complete")),
         "t_end": float(t[-1]),
         "sigma_f_mean": m["sigma_f_mean"],
@@ -151,7 +149,7 @@ def main(argv=None) -> int:
         if not name.startswith("quad_"):
             continue
         # Lag of each plugin's small-step attitude bandwidth, 2.2 / (10-90 % rise) of the tilt step
-        # (tests/vehicle GeometricTest.StepResponsesOfBothPlugins): 11.4 and 7.1 rad/s.
+        # (tests/plugins/attitude GeometricTest.StepResponsesOfBothPlugins): 11.4 and 7.1 rad/s.
         tau = 0.088 if "pd_cascade" in name else 0.141
         marker = "*" if "pd_cascade" in name else "P"
         kw = dict(color=colors.get(exp), marker=marker, markersize=14, linestyle="none",
@@ -161,7 +159,9 @@ def main(argv=None) -> int:
         axes[2].semilogy([tau], [r["sigma_f_mean"]], **kw)
     axes[0].set_ylabel("RMS tilt needed, atan(|a|/g) (deg)")
     axes[1].set_ylabel("dominant frequency of a (Hz)")
-    axes[2].set_ylabel("mean σ_f over [25, 40] s")
+    windows = {r["window"] for r in results.values()}
+    axes[2].set_ylabel("mean σ_f over " + (window_label(windows.pop()) if len(windows) == 1
+                                           else "each run's metric window"))
     for ax in axes:
         ax.set_xlabel("actuation lag τ (s)")
         ax.grid(True, alpha=0.3)

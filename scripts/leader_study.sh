@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Non-cooperative leaders (issue 9): every experiment of experiments/leaders/ on the quadrotor
+# Non-cooperative leaders: every experiment of experiments/leaders/ on the quadrotor
 # and the point mass (seeded leaders with seeds 1-5), sigma_f against the sample period T
 # (12 periods, 0.005-0.2 s, circle and bang_bang leaders), the theory curves of
 # leader_theory_test, and the report section: RESULTS/report/leaders.md.
@@ -8,6 +8,8 @@
 #   report.py includes the same section)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
+# The analysis entry scripts import mjfanalysis: installed, or from the source tree (analysis/README.md).
+export PYTHONPATH="$root/analysis${PYTHONPATH:+:$PYTHONPATH}"
 out=$root/results
 jobs=2
 report=1
@@ -81,7 +83,7 @@ for vehicle in pointmass quadrotor; do
 done
 
 echo "leader_study: theory curves (model (40)) into $out/leaders/theory_curves.txt"
-"$root/build/tests/formation/leader_theory_test" \
+"$root/build/tests/plugins/core/leader_theory_test" \
   --gtest_filter='*CurvesLeaderOutsideTheBoundsAndMisdeclaredBounds' >"$out/leaders/theory_curves.txt" || status=1
 
 if [ $report = 1 ]; then

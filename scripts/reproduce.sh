@@ -4,11 +4,13 @@
 # simulated network) and writes the report:
 # results/report/report.md (Table 1 beside the paper's, figures, snapshots).
 # With the non-cooperative leader study (scripts/leader_study.sh: maneuvering leaders, sigma_f
-# against T; about 3.1 CPU-minutes) unless --no-leaders, and the robustness map of issue 12
+# against T; about 3.1 CPU-minutes) unless --no-leaders, and the robustness map
 # (results/robustness, 45 short runs) unless --no-map.
 # Usage: scripts/reproduce.sh [--video] [--no-leaders] [--no-map] [--out DIR]
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
+# The analysis entry scripts import mjfanalysis: installed, or from the source tree (analysis/README.md).
+export PYTHONPATH="$root/analysis${PYTHONPATH:+:$PYTHONPATH}"
 out=$root/results
 video=()
 leaders=1
@@ -60,7 +62,7 @@ for e in "${experiments[@]}"; do
   done
 done
 for p in "${pids[@]}"; do wait "$p" || status=1; done
-# Exp 2 with every follower running its own controller over a simulated network (issue 10):
+# Exp 2 with every follower running its own controller over a simulated network:
 # 1 ms latency + up to 1 ms jitter per message, Gilbert-Elliott loss bursts, the central solve of
 # (48)'s u_j(k) coupling. The report shows its per-link and age-of-information figure.
 if "$bin" run "$root/experiments/exp2.toml" --out "$out/exp2_network" --overwrite --quiet \

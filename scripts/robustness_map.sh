@@ -7,6 +7,8 @@
 # Usage: scripts/robustness_map.sh [MAP_DIR]   (default results/robustness; about 1 minute)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
+# The analysis entry scripts import mjfanalysis: installed, or from the source tree (analysis/README.md).
+export PYTHONPATH="$root/analysis${PYTHONPATH:+:$PYTHONPATH}"
 out=${1:-$root/results/robustness}
 bin=$root/build/runner/mjformation
 [ -x "$bin" ] || MJF_BUILD_TARGET=mjformation bash "$root/scripts/build.sh" "$root/build"

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# "Why the vehicles rock" (issue 12, docs/DISCUSSION.md): Exps 2 and 3 on the ideal point mass
+# "Why the vehicles rock" (docs/DISCUSSION.md): Exps 2 and 3 on the ideal point mass
 # with a first-order actuation lag tau (0 .. 0.3 s; the quadrotor plugins' small-step attitude
 # bandwidths give tau = 0.088 s for pd_cascade and 0.141 s for geometric), with and without an
 # acceleration limit equal to the quadrotor's g tan(0.55 rad) = 6.0 m/s^2 per axis, beside the
@@ -7,6 +7,8 @@
 # Usage: scripts/rocking_diagnosis.sh [OUT_DIR]   (default results/rocking; 60 runs, about 2 minutes)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
+# The analysis entry scripts import mjfanalysis: installed, or from the source tree (analysis/README.md).
+export PYTHONPATH="$root/analysis${PYTHONPATH:+:$PYTHONPATH}"
 out=${1:-$root/results/rocking}
 bin=$root/build/runner/mjformation
 [ -x "$bin" ] || MJF_BUILD_TARGET=mjformation bash "$root/scripts/build.sh" "$root/build"

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 #
-# The distributed-execution study (issue 10): Exp 2 and Exp 3 (discrete SMC) on the point mass
+# The distributed-execution study: Exp 2 and Exp 3 (discrete SMC) on the point mass
 # and the quadrotor, every follower running its own smc_discrete_agent over the simulated
 # network, per coupling of (48)'s u_j(k) loop (last received input, Jacobi m = 1 and 3, the
 # host's central solve) x latency {0, 1, 2, 5, 10, 20, 50, 100 ms} (fixed, every link) x
@@ -12,6 +12,8 @@
 # Usage: scripts/study_network.sh [seeds (10)] [out (runs/study_network)] [jobs (2)]
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# The analysis entry scripts import mjfanalysis: installed, or from the source tree (analysis/README.md).
+export PYTHONPATH="$PWD/analysis${PYTHONPATH:+:$PYTHONPATH}"
 seeds=${1:-10}
 out=${2:-runs/study_network}
 jobs=${3:-2}

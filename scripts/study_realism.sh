@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 #
-# The sensor-noise x wind study (issue 11): Exp 2 and Exp 3 (smc_discrete, quadrotor) under
+# The sensor-noise x wind study: Exp 2 and Exp 3 (smc_discrete, quadrotor) under
 # sensor noise {ideal, typical, 3x typical} x mean wind {0, 3, 6, 10 m/s} with moderate Dryden
 # turbulence, N seeds per cell (start positions jittered by 0.5 m per seed so that every cell,
 # the ideal one included, is a sample), then the table and figure (analysis/realism_study.py).
@@ -9,6 +9,8 @@
 # Usage: scripts/study_realism.sh [seeds (20)] [out (runs/study_realism)] [jobs (2)]
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# The analysis entry scripts import mjfanalysis: installed, or from the source tree (analysis/README.md).
+export PYTHONPATH="$PWD/analysis${PYTHONPATH:+:$PYTHONPATH}"
 seeds=${1:-20}
 out=${2:-runs/study_realism}
 jobs=${3:-2}

@@ -5,7 +5,17 @@ The run directory layout, the timeseries.csv columns and the summary.json keys a
 of docs/ARCHITECTURE.md; this package reads nothing else.
 """
 
-from .io import Run, find_runs, load_run, read_config, read_summary, read_timeseries  # noqa: F401
+from .io import (  # noqa: F401
+    Run,
+    Sweep,
+    find_runs,
+    load_run,
+    load_sweep,
+    read_config,
+    read_summary,
+    read_timeseries,
+    window_label,
+)
 from .metrics import (  # noqa: F401
     PAPER_SIGMA_F,
     final_slot_errors,

@@ -110,6 +110,15 @@ class Run:
         return float(v) if isinstance(v, (int, float)) and not isinstance(v, bool) else NAN
 
     @property
+    def metric_window(self) -> tuple[float, float] | None:
+        """The window [t0, t1] (s) the run's windowed metrics use (summary metrics
+        sigma_f_window), or None when the summary does not say."""
+        w = ((self.summary or {}).get("metrics") or {}).get("sigma_f_window")
+        if isinstance(w, list) and len(w) == 2 and all(finite(x) for x in w):
+            return float(w[0]), float(w[1])
+        return None
+
+    @property
     def vehicle_model(self) -> str:
         m = (self.summary or {}).get("vehicle_model")
         if not m and self.config:
@@ -168,3 +177,46 @@ def find_runs(results_dir) -> list[Run]:
 
 def finite(x) -> bool:
     return isinstance(x, (int, float)) and not isinstance(x, bool) and math.isfinite(x)
+
+
+@dataclass
+class Sweep:
+    """One sweep directory (mjformation sweep): sweep.json's runs and cells as written, plus
+    each run as a Run. `runs[i]["run"]` names the run directory, `cells[j]["metrics"][key]`
+    holds n, mean, ci95 over the seeds of that cell."""
+
+    path: Path
+    complete: bool
+    seeds: int
+    runs: list[dict]
+    cells: list[dict]
+
+    def run(self, entry: dict) -> Run:
+        """The run directory of one entry of `runs`."""
+        return load_run(self.path / entry["run"])
+
+    @property
+    def metric_window(self) -> tuple[float, float] | None:
+        """The metric window of the sweep's runs (from the first run whose summary gives it)."""
+        for entry in self.runs:
+            if entry.get("finished"):
+                window = self.run(entry).metric_window
+                if window is not None:
+                    return window
+        return None
+
+
+def load_sweep(path) -> Sweep:
+    """A sweep directory (it holds sweep.json). Raises OSError / ValueError when unreadable."""
+    path = Path(path)
+    with open(path / "sweep.json") as f:
+        data = json.load(f)
+    return Sweep(path=path, complete=bool(data.get("complete")), seeds=int(data.get("seeds", 0)),
+                 runs=list(data.get("runs", [])), cells=list(data.get("cells", [])))
+
+
+def window_label(window: tuple[float, float] | None) -> str:
+    """"[25, 40] s" for a metric window; "the metric window" when unknown."""
+    if window is None:
+        return "the metric window"
+    return f"[{window[0]:g}, {window[1]:g}] s"

@@ -1,5 +1,5 @@
 # Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
-"""Report section "Non-cooperative leader" (issue 9): the protocols against maneuvering leaders
+"""Report section "Non-cooperative leader": the protocols against maneuvering leaders
 of unknown bounded acceleration, and sigma_f against the sample period T.
 
 Inputs (written by scripts/leader_study.sh):

@@ -1,5 +1,5 @@
 # Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
-"""The simulated network of a per-agent run (summary.json "network", issue 10): a few lines of
+"""The simulated network of a per-agent run (summary.json "network"): a few lines of
 text and one figure (per link: delivered and lost messages, measured latency; per follower: the
 age of the information it acts on), for the report's per-run section.
 """

@@ -264,7 +264,7 @@ def _spread(values) -> str:
 
 
 def motion_lines(rows: list[Row]) -> list[str]:
-    """How much the followers rock in the metric window (summary.json keys of issue 12)."""
+    """How much the followers rock in the metric window (summary.json metrics *_in_window)."""
     have = [r for r in rows if ((r.run.summary or {}).get("metrics") or {}).get(
         "rms_tilt_deg_in_window") is not None]
     if not have:
@@ -401,7 +401,7 @@ def write_report(results_dir, out_dir) -> Path:
                  f"| {fmt(r.sigma_csv)} | {fmt(r.sigma_states)} | {agree} |")
     L.append("")
 
-    # --- inner-loop motion (issue 12)
+    # --- inner-loop motion (tilt, oscillation, thrust variation in the window)
     motion = motion_lines(rows)
     if motion:
         L.extend(motion)

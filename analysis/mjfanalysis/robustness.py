@@ -1,5 +1,5 @@
 # Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
-"""The robustness map of issue 12: experiment x tilt_max x attitude plugin, each at its default
+"""The robustness map: experiment x tilt_max x attitude plugin, each at its default
 gains, from the sweep folders that scripts/robustness_map.sh writes.
 
 Layout read: MAP_DIR/<experiment>__<plugin>/sweep.csv (written by `mjformation sweep`) and, per
@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 
 REACHED_TOLERANCE_M = 1.0  # "formation reached": every follower within this of its slot at the end
-TILT_MARGIN_DEG = 10.0     # issue 12: no vehicle beyond its tilt limit by more than this
+TILT_MARGIN_DEG = 10.0     # the map's criterion: no vehicle beyond its tilt limit by more than this
 
 
 @dataclass

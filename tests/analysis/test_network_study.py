@@ -1,5 +1,5 @@
 # Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
-"""analysis/network_study.py on small hand-made sweep.json files (issue 10)."""
+"""analysis/network_study.py on small hand-made sweep.json files."""
 import importlib.util
 import json
 import subprocess

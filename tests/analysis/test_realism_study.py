@@ -1,5 +1,5 @@
 # Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
-"""analysis/realism_study.py on a small hand-made sweep.json (issue 11)."""
+"""analysis/realism_study.py on a small hand-made sweep.json."""
 import importlib.util
 import json
 import subprocess

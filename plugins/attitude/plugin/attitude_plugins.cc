@@ -84,7 +84,7 @@ constexpr const char* kImaxZ = "imax_z";
 constexpr const char* kDamping = "damping";
 constexpr const char* kAllocation = "allocation";
 
-// Defaults equal PdCascade::Gains{} (checked by tests/vehicle/plugin_test.cc).
+// Defaults equal PdCascade::Gains{} (checked by tests/plugins/attitude/plugin_test.cc).
 const mjfAttribute kCascadeAttributes[] = {
     {kTiltMax, "0.35", "rad: limit on the tilt (norm of roll, pitch references)"},
     {kKpAtt, "150", "1/s^2: roll/pitch proportional gain (angular acceleration per rad)"},
@@ -204,8 +204,8 @@ constexpr const char* kZBw = "z_bw";
 constexpr const char* kRateKi = "rate_ki";
 constexpr const char* kThrustMargin = "thrust_margin";
 
-// Defaults equal Geometric::Gains{} (checked by tests/vehicle/plugin_test.cc); 0 = derived from
-// the vehicle info (motor lag, inertia, mass, rotor limits).
+// Defaults equal Geometric::Gains{} (checked by tests/plugins/attitude/plugin_test.cc); 0 = derived
+// from the vehicle info (motor lag, inertia, mass, rotor limits).
 const mjfAttribute kGeometricAttributes[] = {
     {kTiltMax, "0.78", "rad: limit on the angle of the thrust vector from the vertical"},
     {kRateBw, "0", "rad/s: body-rate loop crossover (0: 0.9 / (motor lag + 2 timesteps))"},

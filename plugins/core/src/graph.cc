@@ -16,6 +16,56 @@ std::string EdgeName(size_t k, const Edge& e) {
   return out.str();
 }
 
+// Every a_i0 finite and >= 0.
+void CheckLeaderWeights(const std::vector<double>& leader_weight) {
+  for (int i = 0; i < static_cast<int>(leader_weight.size()); ++i) {
+    const double w = leader_weight[i];
+    if (!std::isfinite(w) || w < 0.0) {
+      std::ostringstream out;
+      out << "graph: leader weight a_" << i + 1 << "0 of follower " << i + 1
+          << " must be finite and >= 0 (got " << w << ")";
+      throw std::invalid_argument(out.str());
+    }
+  }
+}
+
+// Every edge between followers 0..n_followers-1, no self loop, a finite positive weight, no
+// duplicate (the later of two is named).
+void CheckEdges(int n_followers, const std::vector<Edge>& edges) {
+  std::vector<std::pair<long, size_t>> keys;  // (to * n + from, edge index) to find duplicates
+  keys.reserve(edges.size());
+  for (size_t k = 0; k < edges.size(); ++k) {
+    const Edge& e = edges[k];
+    for (int end : {e.from, e.to}) {
+      if (end < 0 || end >= n_followers) {
+        std::ostringstream out;
+        out << "graph: " << EdgeName(k, e) << ": follower " << end + 1 << " is out of range 1.."
+            << n_followers;
+        throw std::invalid_argument(out.str());
+      }
+    }
+    if (e.from == e.to) {
+      throw std::invalid_argument("graph: " + EdgeName(k, e) + " is a self loop (a_ii = 0)");
+    }
+    if (!std::isfinite(e.weight) || e.weight <= 0.0) {
+      std::ostringstream out;
+      out << "graph: " << EdgeName(k, e) << ": weight a_" << e.to + 1 << "," << e.from + 1
+          << " must be finite and > 0 (got " << e.weight << ")";
+      throw std::invalid_argument(out.str());
+    }
+    keys.emplace_back(static_cast<long>(e.to) * n_followers + e.from, k);
+  }
+  std::sort(keys.begin(), keys.end());
+  for (size_t k = 1; k < keys.size(); ++k) {
+    if (keys[k].first == keys[k - 1].first) {
+      const size_t later = std::max(keys[k].second, keys[k - 1].second);
+      const size_t earlier = std::min(keys[k].second, keys[k - 1].second);
+      throw std::invalid_argument("graph: " + EdgeName(later, edges[later]) + " duplicates " +
+                                  EdgeName(earlier, edges[earlier]));
+    }
+  }
+}
+
 }  // namespace
 
 Graph::Graph(int n_followers, std::vector<double> leader_weight, std::vector<Edge> edges)
@@ -31,47 +81,8 @@ Graph::Graph(int n_followers, std::vector<double> leader_weight, std::vector<Edg
                                 std::to_string(leader_weight_.size()) + " entries for " +
                                 std::to_string(n_followers_) + " followers");
   }
-  for (int i = 0; i < n_followers_; ++i) {
-    const double w = leader_weight_[i];
-    if (!std::isfinite(w) || w < 0.0) {
-      std::ostringstream out;
-      out << "graph: leader weight a_" << i + 1 << "0 of follower " << i + 1
-          << " must be finite and >= 0 (got " << w << ")";
-      throw std::invalid_argument(out.str());
-    }
-  }
-  std::vector<std::pair<long, size_t>> keys;  // (to * n + from, edge index) to find duplicates
-  keys.reserve(edges_.size());
-  for (size_t k = 0; k < edges_.size(); ++k) {
-    const Edge& e = edges_[k];
-    for (int end : {e.from, e.to}) {
-      if (end < 0 || end >= n_followers_) {
-        std::ostringstream out;
-        out << "graph: " << EdgeName(k, e) << ": follower " << end + 1 << " is out of range 1.."
-            << n_followers_;
-        throw std::invalid_argument(out.str());
-      }
-    }
-    if (e.from == e.to) {
-      throw std::invalid_argument("graph: " + EdgeName(k, e) + " is a self loop (a_ii = 0)");
-    }
-    if (!std::isfinite(e.weight) || e.weight <= 0.0) {
-      std::ostringstream out;
-      out << "graph: " << EdgeName(k, e) << ": weight a_" << e.to + 1 << "," << e.from + 1
-          << " must be finite and > 0 (got " << e.weight << ")";
-      throw std::invalid_argument(out.str());
-    }
-    keys.emplace_back(static_cast<long>(e.to) * n_followers_ + e.from, k);
-  }
-  std::sort(keys.begin(), keys.end());
-  for (size_t k = 1; k < keys.size(); ++k) {
-    if (keys[k].first == keys[k - 1].first) {
-      const size_t later = std::max(keys[k].second, keys[k - 1].second);
-      const size_t earlier = std::min(keys[k].second, keys[k - 1].second);
-      throw std::invalid_argument("graph: " + EdgeName(later, edges_[later]) + " duplicates " +
-                                  EdgeName(earlier, edges_[earlier]));
-    }
-  }
+  CheckLeaderWeights(leader_weight_);
+  CheckEdges(n_followers_, edges_);
 
   // In-edge adjacency (row i of L_H) and L_H = L + H (Lemma 1).
   in_degree_.assign(n_followers_, 0.0);

@@ -27,6 +27,25 @@ void CompressColumns(const std::vector<std::vector<std::pair<int, double>>>& col
   }
 }
 
+// Self-check of the copied factors against L_H (guards against an Eigen layout change): solves
+// two probe columns with the copied factors and compares L_H x with them.
+void CheckFactors(const Eigen::SparseMatrix<double>& laplacian_h, LaplacianSolver* solver) {
+  const int n = static_cast<int>(laplacian_h.rows());
+  Eigen::Matrix<double, Eigen::Dynamic, 2> probe(n, 2), solution(n, 2);
+  for (int i = 0; i < n; ++i) {
+    probe(i, 0) = 1.0 + (i % 7);
+    probe(i, 1) = std::sin(0.37 * i);
+  }
+  solution = probe;
+  solver->SolveInPlace(solution);
+  const double residual = (laplacian_h * solution - probe).norm();
+  const double scale = probe.norm() + laplacian_h.norm() * solution.norm();
+  if (!(residual <= 1e-10 * scale)) {
+    throw std::logic_error("LaplacianSolver: copied LU factors do not reproduce L_H (residual " +
+                           std::to_string(residual) + ")");
+  }
+}
+
 }  // namespace
 
 LaplacianSolver::LaplacianSolver(const Eigen::SparseMatrix<double>& laplacian_h)
@@ -83,20 +102,7 @@ LaplacianSolver::LaplacianSolver(const Eigen::SparseMatrix<double>& laplacian_h)
   CompressColumns(upper, &upper_offsets_, &upper_rows_, &upper_values_);
   work_.assign(n_, 0.0);
 
-  // Self-check of the copied factors against L_H (guards against an Eigen layout change).
-  Eigen::Matrix<double, Eigen::Dynamic, 2> probe(n_, 2), solution(n_, 2);
-  for (int i = 0; i < n_; ++i) {
-    probe(i, 0) = 1.0 + (i % 7);
-    probe(i, 1) = std::sin(0.37 * i);
-  }
-  solution = probe;
-  SolveInPlace(solution);
-  const double residual = (laplacian_h_ * solution - probe).norm();
-  const double scale = probe.norm() + laplacian_h_.norm() * solution.norm();
-  if (!(residual <= 1e-10 * scale)) {
-    throw std::logic_error("LaplacianSolver: copied LU factors do not reproduce L_H (residual " +
-                           std::to_string(residual) + ")");
-  }
+  CheckFactors(laplacian_h_, this);
 }
 
 void LaplacianSolver::SolveInPlace(Eigen::Matrix<double, Eigen::Dynamic, 2>& columns) {

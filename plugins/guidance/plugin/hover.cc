@@ -1,0 +1,78 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// hover: the adapter of HoverGuidance (holds a point, by default the initial position).
+#include "mjformation/guidance/hover.hpp"
+
+#include <string>
+
+#include "adapter.hpp"
+
+namespace mjf::guidance::adapter {
+namespace {
+
+using mjf::plugin::Attributes;
+using mjf::plugin::ConfigError;
+
+const mjfAttribute kHoverAttributes[] = {
+    {kPosition, "", "m: point to hold 'x y z' (empty: the vehicle's initial position)"},
+    {kAltitude, "", "m: overrides the held z when given"},
+    rows::kYaw,
+    rows::kKp,
+    {kKd, "2", "1/s: velocity gain"},
+};
+
+struct HoverInstance {
+  int vehicle;
+  HoverGuidance guidance;
+};
+
+void* HoverCreate(const mjfCreateContext* ctx) {
+  return mjf::plugin::CreateOrExplain(ctx, [ctx]() -> void* {
+    const Attributes attributes(ctx);
+    HoverGuidance::Config config;
+    if (!Blank(attributes.String(kPosition))) {
+      const auto p = attributes.Numbers(kPosition, 3);
+      config.position = {p[0], p[1], p[2]};
+    } else if (ctx->initial_pos) {
+      config.position = Get(ctx->initial_pos);
+    } else {
+      throw ConfigError(std::string("attribute '") + kPosition +
+                        "' is needed: the host gave no initial position");
+    }
+    if (!Blank(attributes.String(kAltitude))) config.position[2] = attributes.Number(kAltitude);
+    config.yaw = attributes.Number(kYaw);
+    config.gains = ReadGains(attributes);
+    return new HoverInstance{CheckVehicle(ctx), HoverGuidance(config)};
+  });
+}
+
+int HoverCompute(void* instance, const mjfStepContext* ctx) {
+  auto* self = static_cast<HoverInstance*>(instance);
+  if (self->vehicle >= ctx->n_vehicles) {
+    return mjf::plugin::Fail(ctx, "called for a vehicle the step does not have");
+  }
+  const mjfVehicleState& s = ctx->states[self->vehicle];
+  Write(self->guidance.Update(Get(s.pos), Get(s.vel)), &ctx->setpoints[self->vehicle]);
+  return 0;
+}
+
+void HoverDestroy(void* instance) { delete static_cast<HoverInstance*>(instance); }
+
+}  // namespace
+
+const mjfPlugin kHover = {
+    MJF_ABI_VERSION,
+    "hover",
+    MJF_KIND_GUIDANCE,
+    "holds a point (default: the initial position): a = kp (p_ref - p) - kd v",
+    static_cast<int>(sizeof(kHoverAttributes) / sizeof(kHoverAttributes[0])),
+    kHoverAttributes,
+    0,
+    nullptr,
+    HoverCreate,
+    HoverCompute,
+    nullptr,
+    HoverDestroy,
+    nullptr};
+
+}  // namespace mjf::guidance::adapter
