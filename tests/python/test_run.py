@@ -67,11 +67,16 @@ def test_bad_config_raises_value_error_with_the_cli_message(cli, exp2, tmp_path)
 
 
 def test_timeseries_is_the_analysis_loader_in_numpy(exp2, tmp_path):
-    from mjfanalysis.io import read_timeseries
+    from mjfanalysis import io
 
     run = mjformation.run(exp2, set=short(3.0), out=tmp_path / "r")
     columns = run.timeseries
-    reference = read_timeseries(tmp_path / "r/timeseries.csv")
+    # mjfanalysis reads through the module's loader when it is importable ...
+    assert io._module_reader is mjformation._core.read_csv
+    for name, values in io.read_timeseries(tmp_path / "r/timeseries.csv").items():
+        np.testing.assert_array_equal(columns[name], values, err_msg=name)
+    # ... and its pure-Python reader gives the same arrays
+    reference = io.read_timeseries_csv(tmp_path / "r/timeseries.csv")
     assert list(columns) == list(reference)
     for name, values in reference.items():
         np.testing.assert_array_equal(columns[name], values, err_msg=name)  # NaN == NaN here
