@@ -19,7 +19,9 @@ INTERRUPTED = textwrap.dedent("""
     import mjformation
     threading.Timer(float(sys.argv[3]), lambda: os.kill(os.getpid(), signal.SIGINT)).start()
     try:
-        mjformation.run(sys.argv[1], out=sys.argv[2])
+        # 400 s of flight: far more than the signal's delay, on an idle machine too (40 s of
+        # Exp 2 can finish in under a second)
+        mjformation.run(sys.argv[1], out=sys.argv[2], set={"run.duration": 400.0})
         print("no interrupt")
     except KeyboardInterrupt as e:
         # Python's own Ctrl-C handling is back once the run is over
