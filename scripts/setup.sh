@@ -9,6 +9,7 @@ PACKAGES=(
   libglfw3-dev xvfb xdotool
   libopenmpi-dev openmpi-bin
   python3 python3-numpy python3-matplotlib python3-pytest
+  python3-dev pybind11-dev python3-pybind11 python3-pandas
 )
 missing=()
 for p in "${PACKAGES[@]}"; do

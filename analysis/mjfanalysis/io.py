@@ -14,6 +14,11 @@ import numpy as np
 
 NAN = float("nan")
 
+try:  # the runner's own loader, when the Python module is built or installed
+    from mjformation._core import read_csv as _module_reader
+except ImportError:
+    _module_reader = None
+
 
 def _cell(text: str) -> float:
     text = text.strip()
@@ -29,8 +34,17 @@ def read_timeseries(path) -> dict[str, np.ndarray]:
     """timeseries.csv as {column name: float array}; empty cells become NaN.
 
     A run killed while writing may leave a truncated last line: rows whose number of cells does
-    not match the header are dropped.
+    not match the header are dropped. With the mjformation Python module importable this is its
+    C++ reader (docs/PYTHON.md; same arrays, tested), else the csv module below.
     """
+    if _module_reader is not None:
+        header, data = _module_reader(str(path))  # columns x rows
+        return {name: data[j] for j, name in enumerate(header)}
+    return read_timeseries_csv(path)
+
+
+def read_timeseries_csv(path) -> dict[str, np.ndarray]:
+    """read_timeseries in pure Python (the csv module)."""
     with open(path, newline="") as f:
         reader = csv.reader(f)
         try:

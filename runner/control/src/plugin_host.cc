@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstring>
 #include <filesystem>
+#include <mutex>
 #include <set>
 
 #include "mjformation/config/paths.hpp"
@@ -25,6 +26,51 @@ const char* KindName(mjfKind kind) {
       return "per-agent formation";
   }
   return "unknown";
+}
+
+namespace {
+
+struct InProcessPlugins {
+  std::mutex mutex;
+  std::vector<LoadedPlugin> plugins;
+};
+
+InProcessPlugins& InProcess() {
+  static InProcessPlugins registered;  // process-wide by design: the embedding program's own
+  return registered;
+}
+
+}  // namespace
+
+void RegisterInProcessPlugin(const mjfPlugin* plugin, const std::string& origin) {
+  if (plugin == nullptr) return;
+  InProcessPlugins& in_process = InProcess();
+  std::lock_guard<std::mutex> lock(in_process.mutex);
+  for (const LoadedPlugin& p : in_process.plugins) {
+    if (p.descriptor == plugin) return;  // idempotent
+  }
+  in_process.plugins.push_back({plugin, origin});
+}
+
+void PluginRegistry::AddInProcessPlugins() {
+  InProcessPlugins& in_process = InProcess();
+  std::lock_guard<std::mutex> lock(in_process.mutex);
+  for (const LoadedPlugin& p : in_process.plugins) {
+    if (p.descriptor->abi_version != MJF_ABI_VERSION) {
+      problems_.push_back(p.library + ": plugin '" + p.descriptor->name + "' speaks ABI " +
+                          std::to_string(p.descriptor->abi_version));
+      continue;
+    }
+    const bool duplicate = std::any_of(plugins_.begin(), plugins_.end(), [&](auto& q) {
+      return std::strcmp(q.descriptor->name, p.descriptor->name) == 0;
+    });
+    if (duplicate) {
+      problems_.push_back(p.library + ": plugin '" + p.descriptor->name +
+                          "' shadowed by a library on the search path");
+      continue;
+    }
+    plugins_.push_back(p);
+  }
 }
 
 PluginRegistry::PluginRegistry(const std::vector<std::string>& search_path)
@@ -84,6 +130,7 @@ PluginRegistry::PluginRegistry(const std::vector<std::string>& search_path)
       }
     }
   }
+  AddInProcessPlugins();
 }
 
 PluginRegistry::~PluginRegistry() {

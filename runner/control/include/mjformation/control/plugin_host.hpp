@@ -53,6 +53,7 @@ class PluginRegistry {
   std::vector<void*> handles_;
   std::vector<LoadedPlugin> plugins_;
   std::vector<std::string> problems_;
+  void AddInProcessPlugins();
 };
 
 // One live plugin instance.
@@ -82,6 +83,12 @@ class PluginInstance {
   void* instance_ = nullptr;
   std::vector<std::pair<std::string, std::string>> attributes_;
 };
+
+// In-process plugins: descriptors compiled into the embedding program (e.g. the Python module's
+// formation law that calls back into Python), not loaded from a library. Every registry created
+// afterwards lists them after the libraries of its search path, with `origin` as their library.
+// The descriptor must live as long as the process; same ABI check as a library's. Thread-safe.
+void RegisterInProcessPlugin(const mjfPlugin* plugin, const std::string& origin);
 
 // The attribute checks of PluginInstance alone (also used by `mjformation check`).
 std::vector<std::pair<std::string, std::string>> ResolveAttributes(const mjfPlugin& plugin,

@@ -1,0 +1,339 @@
+# Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+"""mjformation from Python: run, sweep and read experiments, and fly a formation law written in
+Python on the same vehicles, runner, recorders and summary as a C++ plugin (docs/PYTHON.md).
+
+    import mjformation
+    run = mjformation.run("experiments/exp2.toml", set={"formation.q": 3.0})
+    run.summary["metrics"]["sigma_f_mean"], run.timeseries["sigma_f"]
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import signal
+import tempfile
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Callable
+
+import numpy as np
+
+from . import _laws
+from ._laws import Graph, Neighbourhood
+
+_HERE = Path(__file__).resolve().parent
+# Installed: the prefix's models and plugins (lib/python3.X/dist-packages/mjformation -> prefix).
+# In the build tree (build/python/mjformation) the runner's compiled-in paths serve instead.
+_INSTALLED_PLUGINS = []
+if _HERE.parent.name in ("dist-packages", "site-packages") and len(_HERE.parents) > 3:
+    _PREFIX = _HERE.parents[3]
+    if (_PREFIX / "share/mjformation/mjcf").is_dir():
+        os.environ.setdefault("MJF_MJCF_DIR", str(_PREFIX / "share/mjformation/mjcf"))
+    _INSTALLED_PLUGINS = [str(p) for p in [_PREFIX / "lib/mjformation/plugins"] if p.is_dir()]
+
+from . import _core  # noqa: E402  (after MJF_MJCF_DIR: the runner reads it at load time)
+from ._core import SimulationError  # noqa: E402,F401
+
+__all__ = [
+    "run", "load", "sweep", "plugins", "check", "Run", "Sweep", "Simulation", "FormationLaw",
+    "AgentLaw", "Graph", "Neighbourhood", "SimulationError", "version",
+]
+
+STATE_COLUMNS = ("px", "py", "pz", "vx", "vy", "vz", "qw", "qx", "qy", "qz", "gx", "gy", "gz")
+
+
+def version() -> str:
+    return _core.version()
+
+
+# ---- formation laws in Python ----------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class FormationLaw:
+    """A central formation law: function(t, states, offsets, graph) -> (N, 2) accelerations.
+
+    t: s; states: (1 + N, 13) measured states, row 0 the leader, columns STATE_COLUMNS;
+    offsets: (N, 6) desired offsets f_i(t) = (px, py, vx, vy, ax, ay) from the leader
+    (Definition 1); graph: Graph. Called once per `period` seconds (None or 0: every physics
+    step), its output held in between; returns each follower's horizontal acceleration u_i.
+    """
+
+    function: Callable
+    period: float | None = None
+    per_agent = False
+
+
+@dataclass(frozen=True)
+class AgentLaw:
+    """A per-agent law ([execution] mode = "per_agent"): factory(neighbourhood) -> agent, one
+    per follower; agent(t, me, messages, leader, offsets) -> (2,) acceleration.
+
+    me: (13,) own measured state; messages: {neighbour j: (13,) state as received};
+    leader: (13,) the leader's state as received, or None without a leader link;
+    offsets: (N, 6) f(t) of every follower (mission data every vehicle carries).
+    """
+
+    function: Callable
+    period: float | None = None
+    per_agent = True
+
+
+def _as_law(formation) -> FormationLaw | AgentLaw:
+    if isinstance(formation, (FormationLaw, AgentLaw)):
+        return formation
+    if callable(formation):
+        return FormationLaw(formation)
+    raise TypeError(f"formation= takes a callable, FormationLaw or AgentLaw, not {formation!r}")
+
+
+def _law_overrides(law, key: str, experiment) -> list[str]:
+    """Replaces [formation] by the in-process plugin, keeping [formation.shape] (a section
+    override replaces the whole table)."""
+    plugin = "python_agent" if law.per_agent else "python"
+    table = {"plugin": plugin, "law": key}
+    if law.period:
+        table["period"] = float(law.period)
+    shape = _read_toml(experiment).get("formation", {}).get("shape")
+    if shape is not None:
+        table["shape"] = shape
+    overrides = [f"formation={_toml_value(table)}"]
+    if law.per_agent:
+        overrides.append('execution.mode="per_agent"')
+    return overrides
+
+
+def _read_toml(path) -> dict:
+    import tomllib
+
+    try:
+        with open(path, "rb") as f:
+            return tomllib.load(f)
+    except (OSError, tomllib.TOMLDecodeError):
+        return {}  # the runner reports it, with its own message
+
+
+class _LawInUse:
+    """Registers a Python law for the duration of a run (with statement)."""
+
+    def __init__(self, formation, experiment):
+        self.law = None if formation is None else _as_law(formation)
+        self.experiment = experiment
+        self.key = None
+
+    def __enter__(self) -> list[str]:
+        if self.law is None:
+            return []
+        self.key = _laws.acquire(self.law)
+        return _law_overrides(self.law, self.key, self.experiment)
+
+    def __exit__(self, *exc):
+        if self.key is not None:
+            _laws.release(self.key)
+
+
+# ---- overrides ---------------------------------------------------------------------------------
+
+
+def _toml_value(value) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, (int, float, np.integer, np.floating)):
+        return repr(float(value)) if isinstance(value, (float, np.floating)) else str(int(value))
+    if isinstance(value, str):
+        return json.dumps(value)
+    if isinstance(value, dict):
+        return "{" + ", ".join(f"{k} = {_toml_value(v)}" for k, v in value.items()) + "}"
+    if isinstance(value, (list, tuple, np.ndarray)):
+        return "[" + ", ".join(_toml_value(v) for v in value) + "]"
+    raise TypeError(f"cannot write {value!r} as a TOML value")
+
+
+def _overrides(set) -> list[str]:
+    """set={"formation.q": 3.0} or ["formation.q=3.0", ...] (the CLI's --set strings)."""
+    if set is None:
+        return []
+    if isinstance(set, dict):
+        return [f"{k}={_toml_value(v)}" for k, v in set.items()]
+    if isinstance(set, str):
+        return [set]
+    return [str(s) for s in set]
+
+
+def _plugin_path(plugin_path) -> list[str]:
+    extra = [plugin_path] if isinstance(plugin_path, (str, os.PathLike)) else list(plugin_path or [])
+    return [str(p) for p in extra] + _INSTALLED_PLUGINS
+
+
+# ---- runs --------------------------------------------------------------------------------------
+
+
+class Run:
+    """A run directory: summary (dict), config (dict), timeseries ({column: array}), frame()."""
+
+    def __init__(self, path, result: dict | None = None, temporary: bool = False):
+        self.path = Path(path)
+        self.result = result  # what run() returned (None for load())
+        self._temporary = temporary
+        self._summary = self._config = self._timeseries = None
+
+    def __repr__(self) -> str:
+        s = self.summary or {}
+        return f"Run({str(self.path)!r}, complete={s.get('complete')})"
+
+    def __del__(self):
+        if getattr(self, "_temporary", False):
+            shutil.rmtree(self.path.parent, ignore_errors=True)
+
+    @property
+    def complete(self) -> bool:
+        return bool((self.summary or {}).get("complete"))
+
+    @property
+    def summary(self) -> dict | None:
+        if self._summary is None and (self.path / "summary.json").is_file():
+            self._summary = json.loads((self.path / "summary.json").read_text())
+        return self._summary
+
+    @property
+    def config(self) -> dict:
+        if self._config is None:
+            import tomllib
+
+            self._config = tomllib.loads((self.path / "config.toml").read_text())
+        return self._config
+
+    @property
+    def timeseries(self) -> dict[str, np.ndarray]:
+        """timeseries.csv as {column: float array} (one read in C++, empty cells NaN)."""
+        if self._timeseries is None:
+            header, data = _core.read_csv(str(self.path / "timeseries.csv"))  # columns x rows
+            self._timeseries = {name: data[j] for j, name in enumerate(header)}
+        return self._timeseries
+
+    def frame(self):
+        """The tidy long form: one row per (t, vehicle) with px, py, ..., slot_y (pandas)."""
+        import pandas as pd
+
+        ts = self.timeseries
+        t = ts["t"]
+        vehicles = sorted({int(k[3:].split("_")[0]) for k in ts if k.startswith("uav")})
+        parts = []
+        for v in vehicles:
+            prefix = f"uav{v}_"
+            cols = {k[len(prefix):]: ts[k] for k in ts if k.startswith(prefix)}
+            part = pd.DataFrame({"t": t, "vehicle": v, "sigma_f": ts["sigma_f"], **cols})
+            parts.append(part)
+        return pd.concat(parts, ignore_index=True)
+
+
+def load(run_dir) -> Run:
+    """A run directory written by `mjformation run` or mjformation.run."""
+    path = Path(run_dir)
+    if not (path / "config.toml").is_file():
+        raise FileNotFoundError(f"{path}: not a run directory (no config.toml)")
+    return Run(path)
+
+
+def _annotate_agent_summary(run_path: Path, key: str, law) -> None:
+    """Per-agent runs: summary.json names the law (the runner lists no attributes there)."""
+    path = run_path / "summary.json"
+    if not path.is_file():
+        return
+    s = json.loads(path.read_text())
+    formation = s.get("plugins", {}).get("formation", {})
+    formation["attributes"] = {"law": key, "period": str(float(law.period or 0))}
+    tmp = path.with_suffix(".json.tmp")
+    tmp.write_text(json.dumps(s, indent=2) + "\n")
+    tmp.replace(path)
+
+
+def run(experiment, set=None, out=None, render=False, formation=None, overwrite=False,
+        record=True, plugin_path=None) -> Run:
+    """Runs an experiment (the GIL released while it simulates) and returns its Run.
+
+    set: overrides as {"section.key": value} or ["section.key=value", ...] (the CLI's --set);
+    out: the run directory (None: a temporary one, removed with the Run object);
+    formation: a Python formation law (callable, FormationLaw or AgentLaw) flown in place of
+    the experiment's [formation] plugin. A bad configuration raises ValueError (FILE:LINE:
+    [section] key: reason); Ctrl-C ends the run, marked incomplete, and raises KeyboardInterrupt.
+    """
+    temporary = out is None
+    out = Path(tempfile.mkdtemp(prefix="mjformation_")) / "run" if temporary else Path(out)
+    in_use = _LawInUse(formation, experiment)
+    with in_use as law_overrides:
+        result = _core.run(str(experiment), law_overrides + _overrides(set),
+                           _plugin_path(plugin_path), str(out), overwrite, render, record)
+        if in_use.law is not None and in_use.law.per_agent:
+            _annotate_agent_summary(out, in_use.key, in_use.law)
+    result["summary"] = json.loads(result["summary"])
+    interrupted = result["signal"] == signal.SIGINT
+    r = Run(out, result, temporary and not interrupted)  # a partial run is kept, even a temporary
+    if interrupted:
+        raise KeyboardInterrupt(f"mjformation.run interrupted; partial run kept in {out}")
+    return r
+
+
+def check(experiment, set=None, formation=None, plugin_path=None) -> dict:
+    """Validates an experiment (config, model, plugins, topology) without running it."""
+    with _LawInUse(formation, experiment) as law_overrides:
+        return _core.check(str(experiment), law_overrides + _overrides(set),
+                           _plugin_path(plugin_path))
+
+
+def plugins(plugin_path=None) -> list[dict]:
+    """Every plugin found: name, kind, doc, library, attributes {key: {default, doc}}."""
+    return _core.plugins(_plugin_path(plugin_path))
+
+
+# ---- step-level access -------------------------------------------------------------------------
+
+
+class Simulation:
+    """One simulation, stepped from Python: step(n), time, states, measured, slots, graph.
+
+    It always stands at a control tick: states / measured / setpoints / slots / controls are
+    those of `time`, as the timeseries.csv row at that time records them. step(n) integrates n
+    physics steps, each followed by the next tick (sensors, plugins or the Python law).
+    """
+
+    def __init__(self, experiment, set=None, formation=None, plugin_path=None):
+        self._law = _LawInUse(formation, experiment)
+        overrides = self._law.__enter__() + _overrides(set)
+        try:
+            self._sim = _core.Simulation(str(experiment), overrides, _plugin_path(plugin_path))
+        except BaseException:
+            self._law.__exit__()
+            raise
+
+    def __del__(self):
+        self._sim = None
+        law = getattr(self, "_law", None)
+        if law is not None:
+            law.__exit__()
+
+    def step(self, n: int = 1) -> "Simulation":
+        """n physics steps (fewer at the end of the experiment); the GIL is released."""
+        self._sim.step(int(n))
+        return self
+
+    time = property(lambda self: self._sim.time, doc="s, simulated time")
+    step_index = property(lambda self: self._sim.step_index)
+    total_steps = property(lambda self: self._sim.total_steps)
+    n_vehicles = property(lambda self: self._sim.n_vehicles)
+    states = property(lambda self: self._sim.states, doc="(V, 13) true states, STATE_COLUMNS")
+    measured = property(lambda self: self._sim.measured, doc="(V, 13) what the plugins saw")
+    setpoints = property(lambda self: self._sim.setpoints,
+                         doc="(V, 14): acc 3, pos 3, vel 3, yaw, sliding 2 (the setpoint bus)")
+    slots = property(lambda self: self._sim.slots, doc="(V, 2) desired x, y of each vehicle")
+    controls = property(lambda self: self._sim.controls, doc="(V, actuators) the controls")
+
+    @property
+    def graph(self) -> Graph:
+        g = self._sim.graph
+        return Graph(leader_weight=g["leader_weight"], adjacency=g["adjacency"])
+
+
+from ._sweep import Sweep, sweep  # noqa: E402

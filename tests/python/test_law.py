@@ -1,0 +1,100 @@
+# Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+"""A formation law written in Python, through the same runner, recorders and summary."""
+
+import numpy as np
+import pytest
+from conftest import short
+from consensus_law import consensus, consensus_agent
+
+import mjformation
+
+
+def cpp_consensus(exp2, shape, out, overrides=None):
+    return mjformation.run(exp2, out=out, set={
+        **(overrides or {}), "formation": {"plugin": "consensus_linear", "shape": shape}})
+
+
+def test_python_consensus_flies_exp2_to_the_cpp_plugins_numbers(exp2, exp2_shape, tmp_path):
+    # Given consensus_linear (C++) and its numpy re-implementation on Exp 2, 40 s
+    cpp = cpp_consensus(exp2, exp2_shape, tmp_path / "cpp")
+    py = mjformation.run(exp2, formation=consensus, out=tmp_path / "py")
+    # Then sigma_f agrees to 1e-12 at every recorded sample, and the summary names the law
+    assert cpp.complete and py.complete
+    assert len(py.timeseries["sigma_f"]) == 4001
+    assert np.max(np.abs(py.timeseries["sigma_f"] - cpp.timeseries["sigma_f"])) <= 1e-12
+    assert py.summary["plugins"]["formation"] == {
+        "name": "python", "attributes": {"law": "consensus_law.consensus", "period": "0"}}
+    assert py.summary["plugin_report"]["python_calls"] == 40001
+    # and the same recorders wrote the same columns
+    assert list(py.timeseries) == list(cpp.timeseries)
+
+
+def test_per_agent_python_consensus_flies_exp2_to_the_cpp_agents_numbers(exp2, exp2_shape,
+                                                                          tmp_path):
+    per_agent = {"execution.mode": "per_agent"}
+    cpp = cpp_consensus(exp2, exp2_shape, tmp_path / "cpp", per_agent)
+    py = mjformation.run(exp2, formation=mjformation.AgentLaw(consensus_agent),
+                         out=tmp_path / "py")
+    assert cpp.complete and py.complete
+    assert py.summary["plugins"]["formation"]["name"] == "python_agent"
+    assert py.summary["plugins"]["formation"]["attributes"]["law"] == \
+        "consensus_law.consensus_agent"
+    assert np.max(np.abs(py.timeseries["sigma_f"] - cpp.timeseries["sigma_f"])) <= 1e-12
+    assert py.summary["network"] == cpp.summary["network"]
+
+
+def test_an_agent_gets_only_its_own_state_and_its_messages(exp2):
+    seen = {}
+
+    def make(hood):
+        def agent(t, me, messages, leader, offsets):
+            seen[hood.follower] = (sorted(messages), leader is not None, me.shape, offsets.shape)
+            return np.zeros(2)
+        return agent
+
+    sim = mjformation.Simulation(exp2, set=short(0.1), formation=mjformation.AgentLaw(make))
+    sim.step(5)
+    # Follower 1 (index 0) hears the leader and its ring neighbours 2 and 6
+    assert seen[0] == ([1, 5], True, (13,), (6, 6))
+    assert seen[3] == ([2, 4], False, (13,), (6, 6))
+
+
+def test_a_sampled_law_is_called_once_per_period_and_held(exp2):
+    calls = []
+
+    def law(t, states, offsets, graph):
+        calls.append(t)
+        return np.full((6, 2), len(calls), dtype=float)
+
+    sim = mjformation.Simulation(exp2, set=short(1.0),
+                                 formation=mjformation.FormationLaw(law, period=0.05))
+    sim.step(120)
+    assert calls == pytest.approx([0.0, 0.05, 0.1])
+    assert sim.setpoints[1, 0] == 3.0  # acc x of follower 1: the third sample, held
+
+
+def test_an_exception_in_the_law_ends_the_run_incomplete_with_its_last_line(exp2, tmp_path):
+    def law(t, states, offsets, graph):
+        if t >= 0.5:
+            return 1 / 0
+        return np.zeros((6, 2))
+
+    run = mjformation.run(exp2, set=short(2.0), formation=law, out=tmp_path / "r")
+    assert run.summary["complete"] is False
+    assert run.summary["error"].endswith("ZeroDivisionError: division by zero")
+    assert run.summary["sim_time_s"] == pytest.approx(0.5)
+    # everything recorded before the failing tick is kept (rows 0 .. 0.49 s)
+    assert run.timeseries["t"][-1] == pytest.approx(0.49) and len(run.timeseries["t"]) == 50
+
+
+def test_a_law_returning_the_wrong_shape_is_reported(exp2, tmp_path):
+    run = mjformation.run(exp2, set=short(0.5), formation=lambda t, s, f, g: np.zeros(3),
+                          out=tmp_path / "r")
+    assert not run.complete
+    assert "expected an (n_followers, 2) array" in run.summary["error"]
+
+
+def test_a_nan_input_is_the_runners_non_finite_setpoint_failure(exp2, tmp_path):
+    run = mjformation.run(exp2, set=short(0.5), formation=lambda t, s, f, g: np.full((6, 2), np.nan),
+                          out=tmp_path / "r")
+    assert not run.complete and "python" in run.summary["error"]
