@@ -147,15 +147,8 @@ void DiscreteSmc::ApplyAccelLimit(const FormationInput& input) {
     double demand[2];
     ConstrainedDemand(input, i, compensation, demand);
     ++stats_.constrained;
-    const double lambda =
-        LargestFeasibleStep(demand[0], demand[1], u[0] - demand[0], u[1] - demand[1], a);  // (C8)
-    u[0] = demand[0] + lambda * (u[0] - demand[0]);
-    u[1] = demand[1] + lambda * (u[1] - demand[1]);
-    const double norm = Norm2(u[0], u[1]);
-    if (norm > a) {  // rounding of (C8)'s root
-      u[0] *= a / norm;
-      u[1] *= a / norm;
-    }
+    u[0] = demand[0];  // (C8)
+    u[1] = demand[1];
   }
 }
 
