@@ -10,6 +10,8 @@ add_library(mjf_runner STATIC
   ${CMAKE_CURRENT_SOURCE_DIR}/src/interrupt.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/leader_acceleration.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/metrics.cc
+  ${CMAKE_CURRENT_SOURCE_DIR}/src/transient_metrics.cc
+  ${CMAKE_CURRENT_SOURCE_DIR}/src/vehicle_accel_limit.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/mujoco_errors.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/network_config.cc
   ${CMAKE_CURRENT_SOURCE_DIR}/src/output.cc
