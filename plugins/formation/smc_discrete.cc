@@ -28,10 +28,10 @@ const mjfAttribute kDiscreteAttributes[] = {
     {kKeyAccelLimit, "none",
      "followers' horizontal acceleration bound: none (law (48) as printed), vehicle (from the "
      "vehicles: tilt limit, thrust, actuator range) or a number in m/s^2 above the leader's "
-     "bound sqrt(2) max(|u_min|, |u_max|): the input-constrained reaching law (C1)-(C9)"},
+     "bound sqrt(2) max(|u_min|, |u_max|): the input-constrained reaching law (C0)-(C9)"},
     {kKeyReachAccel, "0",
-     "beta of (C4), m/s^2: rate of change of the consensus velocity errors while the bound is "
-     "active; 0 derives it from accel_limit (C6)"},
+     "beta of (C3), m/s^2: the acceleration the constrained law spends on reaching (it brakes "
+     "at beta / 2); 0 derives it per follower from accel_limit, the leader and the slot (C3)"},
 };
 const int kDiscreteAttributeCount =
     static_cast<int>(sizeof(kDiscreteAttributes) / sizeof(kDiscreteAttributes[0]));

@@ -19,12 +19,12 @@ namespace mjf::core {
 namespace {
 
 constexpr double kSqrt2 = 1.41421356237309504880;
-// b of (C3): the braking curve asks for b * beta, leaving (1 - b) beta for the sampling.
+// b of (C4): the braking curve asks for b * beta, leaving (1 - b) beta for the sampling.
 constexpr double kBrakingShare = 0.5;
 
 double Norm2(double x, double y) { return std::sqrt(x * x + y * y); }
 
-// Largest lambda in [0, 1] with ||c + lambda d|| <= a, given ||c|| <= a (C8).
+// Largest lambda in [0, 1] with ||c + lambda d|| <= a, given ||c|| <= a (C5).
 double LargestFeasibleStep(double cx, double cy, double dx, double dy, double a) {
   if (Norm2(cx + dx, cy + dy) <= a) return 1.0;
   if (Norm2(cx, cy) > a) return 0.0;
@@ -53,7 +53,7 @@ void DiscreteSmcParams::ValidateAccelLimit() const {
   }
   if (!(reach_accel >= 0.0 && std::isfinite(reach_accel))) {
     std::ostringstream out;
-    out << "attribute 'reach_accel': must be finite and >= 0 (0: derived, (C6)) (got "
+    out << "attribute 'reach_accel': must be finite and >= 0 (0: derived, (C3)) (got "
         << reach_accel << ")";
     throw std::invalid_argument(out.str());
   }
@@ -100,7 +100,8 @@ void DiscreteSmc::ConstrainedDemand(const FormationInput& input, int i, const do
   for (int axis = 0; axis < 2; ++axis) w[axis] = (-scale * zp[axis] - zv_free[axis]) / T;
   // (C5): u^C = compensation + t w, the largest t in [0, 1] the disc allows. The rows of
   // L_H^-1 H are >= 0 and sum to 1 (L_H 1 = H 1), so ||compensation|| <= sqrt(2) max(|u_min|,
-  // |u_max|) < a by (C0): the projection below only guards a caller that skipped Validate.
+  // |u_max|) < a by (C0), (C6): the projection below only guards a caller that skipped
+  // Validate.
   const double c0 = compensation[0], c1 = compensation[1];
   if (Norm2(c0, c1) <= a) {
     const double t = LargestFeasibleStep(c0, c1, w[0], w[1], a);
@@ -112,8 +113,8 @@ void DiscreteSmc::ConstrainedDemand(const FormationInput& input, int i, const do
   }
 }
 
-// (C7)-(C8) per follower: law (48)'s u_i if feasible, else the largest step from u^C_i
-// towards it that the disc allows. The followers decouple in sigma = L_H^-1 S (C1).
+// (C7)-(C8) per follower: law (48)'s u_i if feasible, else u^C_i. The followers decouple in
+// sigma = L_H^-1 S (C1), so each one's choice is a reaching target of (53) of its own.
 void DiscreteSmc::ApplyAccelLimit(const FormationInput& input) {
   const int n = graph_.num_followers();
   const double a = params_.accel_limit;

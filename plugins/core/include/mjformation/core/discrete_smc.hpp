@@ -29,12 +29,13 @@ struct DiscreteSmcParams {
   // e_ip(k+1) = (1 - T k1/k2) e_ip(k), stable only when T k1/k2 < 2 (see README). Set false
   // only to reproduce the paper's conditions (tests do, to show the divergence).
   bool require_stable_surface = true;
-  // Input-constrained reaching law (docs/DISCUSSION.md, eqs. (C1)-(C9)): the bound a_max on
+  // Input-constrained reaching law (docs/DISCUSSION.md, eqs. (C0)-(C9)): the bound a_max on
   // each follower's horizontal acceleration norm, m/s^2. +infinity (the default) is the
   // paper's law (48), untouched. 'accel_limit'.
   double accel_limit = std::numeric_limits<double>::infinity();
-  // beta of (C4), m/s^2: the per-axis rate at which the constrained law may change a
-  // consensus velocity error. 0 (the default) derives it each sample from the bound, (C6).
+  // beta of (C3)-(C4), m/s^2: the acceleration the constrained law spends on reaching (its
+  // braking curve asks for half of it). 0 (the default) derives it each sample, per follower,
+  // from the bound: what the leader's compensation and the slot leave of it, (C3).
   double reach_accel = 0.0;
 
   // Algorithm 2 / Theorem 2: k1, k2 > 0, eps > 0, q > 0, T > 0, 1 - qT > 0, u_min <= u_max,
@@ -68,7 +69,8 @@ class DiscreteSmc {
   };
   const ConstraintStats& constraint_stats() const { return stats_; }
   bool constrained() const { return std::isfinite(params_.accel_limit); }
-  // ||L_H^-1||_inf = max_i (L_H^-1 1)_i (L_H^-1 >= 0 elementwise), used by (C6).
+  // ||L_H^-1||_inf = max_i (L_H^-1 1)_i (L_H^-1 >= 0 elementwise): how much a consensus
+  // error can grow into a follower's own (reported).
   double norm_inf_inv_lh() const { return norm_inf_inv_lh_; }
   void ResetConstraintStats() { stats_ = ConstraintStats{}; }
 
@@ -93,7 +95,7 @@ class DiscreteSmc {
 
  private:
   // The input-constrained reaching law (discrete_smc_constrained.cc): replaces the
-  // demand of (48) by (C7)-(C9) when it leaves the feasible disc.
+  // demand of (48) by (C7)-(C8) when it leaves the feasible disc.
   void InitAccelLimit();
   void ApplyAccelLimit(const FormationInput& input);
   void ConstrainedDemand(const FormationInput& input, int i, const double* compensation,
