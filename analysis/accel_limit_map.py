@@ -2,7 +2,7 @@
 # Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 """The robustness map under the acceleration limit as Markdown and CSV, 95 % CIs.
 
-Usage: /usr/bin/python3 analysis/accel_limit_map.py MAP_DIR   (writes MAP_DIR/map.md, map.csv)
+Usage: /usr/bin/python3 analysis/accel_limit_map.py MAP_DIR   (writes MAP_DIR/map.md, map_compact.md, map.csv)
 MAP_DIR holds one `mjformation sweep` folder per <experiment>__<vehicle>__<law>
 (scripts/robustness_map.sh).
 """
@@ -25,6 +25,8 @@ def main(argv=None) -> int:
         print(f"accel_limit_map.py: no sweep folder in {args.map_dir}", file=sys.stderr)
         return 2
     (args.map_dir / "map.md").write_text("\n".join(accel_map.markdown(cells)) + "\n")
+    (args.map_dir / "map_compact.md").write_text(
+        "\n".join(accel_map.compact_markdown(cells)) + "\n")
     accel_map.write_csv(cells, args.map_dir / "map.csv")
     n = sum(len(c.runs) for c in cells)
     print(f"accel_limit_map.py: wrote {args.map_dir / 'map.md'} and map.csv ({n} runs)")

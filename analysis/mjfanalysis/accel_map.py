@@ -134,3 +134,33 @@ def write_csv(cells: list, path: Path) -> None:
             w.writerow([c.experiment, c.vehicle, c.tilt_max, c.law, len(c.complete()),
                         c.reached_fraction(), *s["sigma_f"], *s["after5"], *s["settle"],
                         s["demand"][0], s["delivered"][0]])
+
+
+VEHICLES = ("geometric", "pd_cascade_fixed", "pointmass")
+LAWS = ("paper", "constrained")
+
+
+def _cell_text(c) -> str:
+    if c is None:
+        return "not run"
+    if not c.complete():
+        return "refused" if c.refused else "no complete run"
+    s = c.stats()
+    reached = c.reached_fraction()
+    head = f"**{reached * 100:.0f} %**" if reached == 1 else f"{reached * 100:.0f} %"
+    return f"{head} · {_ci(s['sigma_f'], 3)} · {_ci(s['after5'], 1)}"
+
+
+def compact_markdown(cells: list) -> list:
+    """One row per experiment and tilt limit; per vehicle and law: reached (share of seeds) ·
+    mean sigma_f over [25, 40] s ± 95 % CI · worst follower's largest slot distance after 5 s."""
+    index = {(c.experiment, c.vehicle, c.law, c.tilt_max): c for c in cells}
+    present = [v for v in VEHICLES if any(c.vehicle == v for c in cells)]
+    head = "| experiment | tilt_max (rad) | " + " | ".join(
+        f"{v}: {law}" for v in present for law in LAWS) + " |"
+    lines = [head, "|---|---:|" + "---|" * (len(present) * len(LAWS))]
+    for exp, tilt in sorted({(c.experiment, c.tilt_max) for c in cells}):
+        row = ["no variant (continuous)" if exp.startswith("exp1") and law == "constrained"
+               else _cell_text(index.get((exp, v, law, tilt))) for v in present for law in LAWS]
+        lines.append(f"| `{exp}` | {tilt:.2f} | " + " | ".join(row) + " |")
+    return lines
