@@ -51,8 +51,9 @@ TEST(VehicleAccelLimit, SpareThrustBindsWhenTiltIsLarge) {
 }
 
 TEST(VehicleAccelLimit, PointMassUsesTheSmallerHorizontalRange) {
-  // x pushes 4 N either way, y 3 N forward and 6 N back: the disc inside is 3 N / 2 kg.
-  const std::vector<mjfActuatorInfo> force = {Actuator(1, 0, 0, -4, 4), Actuator(0, 1, 0, -6, 3),
+  // x pushes 4 N either way, y 3 N forward and 6 N back: the disc inside is 3 N / 2 kg. The
+  // point mass's actuators drive slide joints, whose gain is gear[0] whatever the joint's axis.
+  const std::vector<mjfActuatorInfo> force = {Actuator(1, 0, 0, -4, 4), Actuator(1, 0, 0, -6, 3),
                                               Actuator(0, 0, 1, -100, 100)};
   std::string why;
   EXPECT_DOUBLE_EQ(VehicleAccelBound(Vehicle(2.0, force), false, 0.0, &why), 1.5);
