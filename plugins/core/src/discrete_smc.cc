@@ -38,6 +38,7 @@ void DiscreteSmcParams::Validate() const {
   }
   ValidateLeaderBounds(u_min, u_max);
   ValidateSign(sign, boundary_layer);
+  ValidateAccelLimit();
 }
 
 DiscreteSmc::DiscreteSmc(const Graph& graph, const DiscreteSmcParams& params)
@@ -47,7 +48,9 @@ DiscreteSmc::DiscreteSmc(const Graph& graph, const DiscreteSmcParams& params)
       acceleration_(2 * graph_.num_followers(), 0.0),
       sliding_(2 * graph_.num_followers(), 0.0),
       error_(4 * graph_.num_followers(), 0.0),
-      rhs_(graph_.num_followers(), 2) {}
+      rhs_(graph_.num_followers(), 2) {
+  if (constrained()) InitAccelLimit();
+}
 
 void DiscreteSmc::Update(const FormationInput& input) {
   const int n = graph_.num_followers();
@@ -80,6 +83,7 @@ void DiscreteSmc::Update(const FormationInput& input) {
       acceleration_[2 * i + axis] = -y / kb + rhs_(i, axis);
     }
   }
+  if (constrained()) ApplyAccelLimit(input);
 }
 
 double DiscreteSmc::delta1(int i) const {

@@ -2,6 +2,7 @@
 #include "adapter.hpp"
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -44,6 +45,24 @@ SwarmSetup::SwarmSetup(const mjfCreateContext* ctx)
 core::SlidingGains ParseGains(const plugin::Attributes& attributes) {
   const std::vector<double> k = attributes.Numbers(kKeyGains, 2);
   return core::SlidingGains{k[0], k[1]};
+}
+
+double ParseAccelLimit(const plugin::Attributes& attributes) {
+  const std::string text = attributes.String(kKeyAccelLimit);
+  if (text == "none") return std::numeric_limits<double>::infinity();
+  if (text == "vehicle") {
+    throw std::invalid_argument(
+        "attribute 'accel_limit': \"vehicle\" must be resolved by the host from the followers' "
+        "vehicle info (this host did not)");
+  }
+  const double value = attributes.Number(kKeyAccelLimit);
+  if (!std::isfinite(value)) {
+    throw std::invalid_argument(
+        "attribute 'accel_limit': must be \"none\", \"vehicle\" or a "
+        "finite number of m/s^2 (got '" +
+        text + "')");
+  }
+  return value;
 }
 
 SwarmBuffers::SwarmBuffers(int n_followers)

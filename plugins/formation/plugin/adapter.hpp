@@ -33,6 +33,13 @@ inline constexpr char kKeyBoundaryLayer[] = "boundary_layer";
 inline constexpr char kKeyEta0[] = "eta0";
 inline constexpr char kKeyKp[] = "kp";
 inline constexpr char kKeyKv[] = "kv";
+inline constexpr char kKeyAccelLimit[] = "accel_limit";
+inline constexpr char kKeyReachAccel[] = "reach_accel";
+
+// 'accel_limit': "none" (+infinity: the paper's law) or a number in m/s^2. "vehicle" is
+// resolved by the host into the followers' smallest bound before create() (the formation
+// plugin sees no vehicle); reaching the plugin unresolved it is refused. Throws naming the key.
+double ParseAccelLimit(const plugin::Attributes& attributes);
 
 // The graph and shape handed to a formation plugin's create(); checks that they exist, agree
 // with n_vehicles and that the graph has a spanning tree (Assumption 2). Throws on failure.

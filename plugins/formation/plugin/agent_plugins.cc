@@ -77,6 +77,13 @@ void* CreateDiscrete(const mjfCreateContext* ctx) {
   return plugin::CreateOrExplain(ctx, [&]() -> void* {
     RequireNeighbourhood(ctx);
     const core::DiscreteSmcParams params = ParseDiscreteParams(plugin::Attributes(ctx));
+    if (std::isfinite(params.accel_limit)) {
+      // The constrained law needs c_i and z_i = (L_H^-1 e)_i, the swarm-wide solve (C1).
+      throw std::invalid_argument(
+          "attribute 'accel_limit': the per-agent protocol has no input-constrained variant "
+          "(it needs the swarm-wide solve with L_H); use mode = \"central\" or accel_limit = "
+          "\"none\"");
+    }
     return new Agent<core::DiscreteSmcAgent>(
         ctx, params, StepsPerSample(params.period, ctx->timestep), params.period);
   });

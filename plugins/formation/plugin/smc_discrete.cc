@@ -25,6 +25,13 @@ const mjfAttribute kDiscreteAttributes[] = {
     {kKeySign, "sgn", "sign function: sgn (paper) or sat (boundary layer)"},
     {kKeyBoundaryLayer, "0.1", "boundary-layer width phi of sat (sign = sat only)"},
     {kKeyEta0, "1e-6", "the small eta_0 > 0 of Delta_1, eq. (49) (reporting only)"},
+    {kKeyAccelLimit, "none",
+     "followers' horizontal acceleration bound: none (law (48) as printed), vehicle (from the "
+     "vehicles: tilt limit, thrust, actuator range) or a number in m/s^2 above the leader's "
+     "bound sqrt(2) max(|u_min|, |u_max|): the input-constrained reaching law (C0)-(C9)"},
+    {kKeyReachAccel, "0",
+     "beta of (C3), m/s^2: the acceleration the constrained law spends on reaching (it brakes "
+     "at beta / 2); 0 derives it per follower from accel_limit, the leader and the slot (C3)"},
 };
 const int kDiscreteAttributeCount =
     static_cast<int>(sizeof(kDiscreteAttributes) / sizeof(kDiscreteAttributes[0]));
@@ -40,6 +47,8 @@ core::DiscreteSmcParams ParseDiscreteParams(const plugin::Attributes& attributes
   params.sign = core::ParseSignFunction(attributes.String(kKeySign));
   params.boundary_layer = attributes.Number(kKeyBoundaryLayer);
   params.eta0 = attributes.Number(kKeyEta0);
+  params.accel_limit = ParseAccelLimit(attributes);
+  params.reach_accel = attributes.Number(kKeyReachAccel);
   params.Validate();
   return params;
 }
@@ -98,7 +107,11 @@ int Compute(void* instance, const mjfStepContext* ctx) {
   return 0;
 }
 
-void Reset(void* instance) { static_cast<Instance*>(instance)->has_sample = false; }
+void Reset(void* instance) {
+  auto* self = static_cast<Instance*>(instance);
+  self->has_sample = false;
+  self->controller.ResetConstraintStats();
+}
 
 void Destroy(void* instance) { delete static_cast<Instance*>(instance); }
 
@@ -118,6 +131,14 @@ void Report(void* instance, mjfReportFn emit, void* user) {
   emit(user, "norm_inv_lh", c.norm_inv_lh());
   emit(user, "period", c.params().period);
   emit(user, "steps_per_sample", static_cast<double>(self->steps_per_sample));
+  if (!c.constrained()) return;  // the paper's law reports what it always did
+  const core::DiscreteSmc::ConstraintStats& stats = c.constraint_stats();
+  emit(user, "accel_limit", c.params().accel_limit);
+  emit(user, "constraint_samples", static_cast<double>(stats.samples));
+  emit(user, "constraint_paper_samples", static_cast<double>(stats.paper));
+  emit(user, "constraint_follower_samples", static_cast<double>(stats.constrained));
+  emit(user, "peak_unconstrained_demand", stats.peak_paper_demand);
+  emit(user, "norm_inf_inv_lh", c.norm_inf_inv_lh());
 }
 
 }  // namespace

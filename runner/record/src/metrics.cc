@@ -41,7 +41,8 @@ OnlineMetrics::OnlineMetrics(const Simulation& sim)
     : window_{sim.config().metric_window[0], sim.config().metric_window[1]},
       min_separation_(kInf),
       timestep_(sim.config().timestep),
-      motion_(sim.n_followers(), window_[0], window_[1]) {
+      motion_(sim.n_followers(), window_[0], window_[1]),
+      transient_(sim.n_followers()) {
   band_ = sim.config().reaching_band;
   if (band_ <= 0) {
     band_ = kDefaultReachingBand;
@@ -71,6 +72,9 @@ double OnlineMetrics::Sample(const Simulation& sim, std::vector<double>* slots, 
   if (!have_initial_) sigma_initial_ = sigma_f;
   have_initial_ = true;
   sigma_final_ = sigma_f;
+  for (int i = 0; i < sim.n_followers(); ++i) {
+    transient_.Add(i, t, final_errors_[i], sim.setpoints()[i + 1].acc, sim.states()[i + 1].vel);
+  }
   if (t >= window_[0] - 1e-9 && t <= window_[1] + 1e-9) {
     sigma_sum_ += sigma_f;
     ++sigma_count_;
@@ -207,6 +211,7 @@ nlohmann::ordered_json OnlineMetrics::Summary(const Simulation& sim) const {
   // Chattering shows here: a steady formation needs only a few degrees of tilt.
   m["max_follower_tilt_deg_in_window"] = max_follower_tilt_in_window_ * 180.0 / M_PI;
   motion_.AddTo(&m);
+  transient_.AddTo(&m);
   (void)sim;
   return m;
 }

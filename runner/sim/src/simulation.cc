@@ -6,11 +6,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
 
 #include "mjformation/config/paths.hpp"
 #include "mjformation/config/source_location.hpp"
 #include "mjformation/control/agent_channel.hpp"
+#include "mjformation/control/vehicle_accel_limit.hpp"
 #include "mjformation/core/graph.hpp"
 #include "mjformation/core/shape.hpp"
 #include "mjformation/scene/scene.hpp"
@@ -228,7 +230,7 @@ ControlPlugins Simulation::CreatePlugins(const LoadedPlugin& attitude,
                       "' runs one instance per follower: it needs [execution] mode = "
                       "\"per_agent\"");
   } else if (formation.descriptor->kind == MJF_KIND_FORMATION) {
-    plugins.formation = CreateFormation(formation, base);
+    plugins.formation = CreateFormation(formation, base, FormationSection(attitude));
   } else {
     // A guidance plugin per follower (e.g. hover): flies the vehicles without a formation law.
     for (int i = 1; i < n_vehicles(); ++i) {
@@ -244,13 +246,51 @@ ControlPlugins Simulation::CreatePlugins(const LoadedPlugin& attitude,
 }
 
 std::unique_ptr<PluginInstance> Simulation::CreateFormation(const LoadedPlugin& formation,
-                                                            const mjfCreateContext& base) const {
+                                                            const mjfCreateContext& base,
+                                                            const PluginSection& section) const {
   RequireFormationInputs();
   mjfCreateContext ctx = base;
   ctx.vehicle = -1;
   ctx.graph = &abi_graph_;
   ctx.shape = &abi_shape_;
-  return std::make_unique<PluginInstance>(formation, config_.formation, config_.source_path, ctx);
+  return std::make_unique<PluginInstance>(formation, section, config_.source_path, ctx);
+}
+
+PluginSection Simulation::FormationSection(const LoadedPlugin& attitude) const {
+  PluginSection section = config_.formation;
+  auto limit = section.attributes.find("accel_limit");
+  if (limit == section.attributes.end() || limit->second.text != "vehicle") return section;
+  // The attitude plugin's tilt limit, as it will resolve it: configured, else its default.
+  const mjfPlugin& plugin = *attitude.descriptor;
+  bool has_tilt = false;
+  std::string tilt_text;
+  for (int k = 0; k < plugin.n_attributes; ++k) {
+    if (std::string(plugin.attributes[k].key) != "tilt_max") continue;
+    has_tilt = true;
+    auto it = config_.attitude.attributes.find("tilt_max");
+    tilt_text = it != config_.attitude.attributes.end() ? it->second.text
+                                                        : plugin.attributes[k].default_value;
+  }
+  const SourceLocation where{config_.source_path, limit->second.line,
+                             SectionKey("formation", "accel_limit")};
+  char* end = nullptr;
+  const double tilt = has_tilt ? std::strtod(tilt_text.c_str(), &end) : 0.0;
+  if (has_tilt && (end == tilt_text.c_str() || !(tilt > 0.0 && tilt < M_PI / 2))) {
+    where.Fail("\"vehicle\" needs the attitude plugin's tilt_max in (0, pi/2) (got '" + tilt_text +
+               "')");
+  }
+  double bound = INFINITY;
+  for (int i = 1; i < n_vehicles(); ++i) {
+    std::string why;
+    const double b = VehicleAccelBound(bindings_.vehicles[i].info, has_tilt, tilt, &why);
+    if (b < 0.0) {
+      where.Fail("\"vehicle\": follower " + std::to_string(i) +
+                 " gives no acceleration bound: " + why);
+    }
+    bound = std::min(bound, b);
+  }
+  limit->second.text = fmt::format("{:.17g}", bound);
+  return section;
 }
 
 // A formation law needs a spanning tree and a consistent desired formation.

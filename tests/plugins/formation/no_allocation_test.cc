@@ -152,15 +152,20 @@ TEST(NoAllocationTest, CoreUpdateDoesNotAllocate) {
   const mjf::core::Graph graph(6, {1, 0, 0, 0, 0, 0}, {{0, 1}, {1, 2}, {2, 3}, {3, 4}, {4, 5}});
   mjf::core::ContinuousSmc continuous(graph, {});
   mjf::core::DiscreteSmc discrete(graph, {});
+  mjf::core::DiscreteSmcParams limited;
+  limited.accel_limit = 3.6;  // the input-constrained reaching law, active from this start
+  mjf::core::DiscreteSmc constrained(graph, limited);
   std::vector<double> leader = {20, 0, 0, 3}, followers(24, 1.0), f(36, 0.5), g(36, 0.4);
   allocations = 0;
   counting = true;
   for (int k = 0; k < 100; ++k) {
     continuous.Update({leader.data(), followers.data(), f.data(), nullptr});
     discrete.Update({leader.data(), followers.data(), f.data(), g.data()});
+    constrained.Update({leader.data(), followers.data(), f.data(), g.data()});
   }
   counting = false;
   EXPECT_EQ(allocations.load(), 0);
+  EXPECT_GT(constrained.constraint_stats().constrained, 0);  // the constrained path ran
   // The counter works: a vector allocates.
   counting = true;
   std::vector<double>* probe = new std::vector<double>(100);

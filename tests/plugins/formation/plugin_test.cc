@@ -269,6 +269,14 @@ TEST_F(FormationPluginTest, BadConfigurationGivesNullAndMessage) {
       {"smc_discrete", {{"eps", "0"}}, "'eps'"},
       {"smc_discrete", {{"u_min", "2"}}, "'u_min' with 'u_max'"},
       {"consensus_linear", {{"kv", "0"}}, "'kv'"},
+      {"smc_discrete", {{"accel_limit", "0"}}, "'accel_limit': the acceleration bound must be > 0"},
+      {"smc_discrete", {{"accel_limit", "-2"}}, "'accel_limit'"},
+      {"smc_discrete", {{"accel_limit", "nan"}}, "'accel_limit'"},
+      {"smc_discrete", {{"accel_limit", "inf"}}, "'accel_limit'"},
+      {"smc_discrete", {{"accel_limit", "fast"}}, "'accel_limit'"},
+      {"smc_discrete", {{"accel_limit", "1.2"}}, "does not exceed the leader's acceleration bound"},
+      {"smc_discrete", {{"accel_limit", "vehicle"}}, "must be resolved by the host"},
+      {"smc_discrete", {{"reach_accel", "-1"}}, "'reach_accel'"},
   };
   for (const Bad& bad : cases) {
     std::string error;

@@ -162,5 +162,35 @@ TEST(FormationInMujocoTest, QuadrotorExp2AtTiltMax078DoesNotFlip) {
   }
 }
 
+// accel_limit = "vehicle": the host resolves it from the followers (g tan(tilt_max) for a
+// rotorcraft, the actuator range for the point mass) and refuses a vehicle without a bound.
+TEST(FormationInMujocoTest, AccelLimitFromTheVehicle) {
+  const std::string geometric = "attitude={plugin=\"geometric\", tilt_max=0.35}";
+  const RunData quad = RunExp2({geometric, "formation.accel_limit=\"vehicle\"", "run.duration=1.0",
+                                "run.metric_window=[0.5, 1.0]", "render.snapshots=[0.0]"});
+  const double resolved = std::stod(
+      quad.summary["plugins"]["formation"]["attributes"]["accel_limit"].get<std::string>());
+  EXPECT_NEAR(resolved, 9.81 * std::tan(0.35), 1e-9);  // the tilt, not the Iris' thrust, binds
+  EXPECT_EQ(quad.summary["metrics"]["peak_demanded_accel"].size(), 6u);
+  for (const auto& peak : quad.summary["metrics"]["peak_demanded_accel"]) {
+    EXPECT_LE(peak.get<double>(), resolved * (1 + 1e-9));
+  }
+  // An unlimited point mass gives no bound: refused before anything runs, naming the key.
+  ExperimentConfig c =
+      LoadExperiment(std::string(MJF_SOURCE_DIR) + "/experiments/exp2.toml",
+                     {"vehicles.model=\"pointmass\"", "attitude={plugin=\"pointmass_direct\"}",
+                      "formation.accel_limit=\"vehicle\""});
+  RunOptions options;
+  options.out_dir = TempDir("exp2_unlimited") + "/run";
+  options.render = false;
+  try {
+    const RunResult r = RunExperiment(c, options);
+    EXPECT_FALSE(r.complete);
+    EXPECT_NE(r.error.find("[formation] accel_limit"), std::string::npos) << r.error;
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("[formation] accel_limit"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace mjf::runner

@@ -6,6 +6,8 @@
 #define MJFORMATION_CORE_DISCRETE_SMC_HPP_
 
 #include <Eigen/Core>
+#include <cmath>
+#include <limits>
 #include <mjformation/core/graph.hpp>
 #include <mjformation/core/laplacian_solver.hpp>
 #include <mjformation/core/sliding.hpp>
@@ -27,11 +29,22 @@ struct DiscreteSmcParams {
   // e_ip(k+1) = (1 - T k1/k2) e_ip(k), stable only when T k1/k2 < 2 (see README). Set false
   // only to reproduce the paper's conditions (tests do, to show the divergence).
   bool require_stable_surface = true;
+  // Input-constrained reaching law (docs/DISCUSSION.md, eqs. (C0)-(C9)): the bound a_max on
+  // each follower's horizontal acceleration norm, m/s^2. +infinity (the default) is the
+  // paper's law (48), untouched. 'accel_limit'.
+  double accel_limit = std::numeric_limits<double>::infinity();
+  // beta of (C3)-(C4), m/s^2: the acceleration the constrained law spends on reaching (its
+  // braking curve asks for half of it). 0 (the default) derives it each sample, per follower,
+  // from the bound: what the leader's compensation and the slot leave of it, (C3).
+  double reach_accel = 0.0;
 
   // Algorithm 2 / Theorem 2: k1, k2 > 0, eps > 0, q > 0, T > 0, 1 - qT > 0, u_min <= u_max,
   // eta0 > 0, phi > 0 (sat); and T k1 / k2 < 2 (require_stable_surface). Throws
   // std::invalid_argument naming the key and the condition.
   void Validate() const;
+  // accel_limit: > 0 and either +infinity (the paper's law) or finite and above the leader's
+  // own acceleration bound sqrt(2) max(|u_min|, |u_max|) (C0); reach_accel >= 0, finite.
+  void ValidateAccelLimit() const;
 };
 
 class DiscreteSmc {
@@ -46,6 +59,20 @@ class DiscreteSmc {
   const std::vector<double>& acceleration() const { return acceleration_; }  // [2i + axis]
   const std::vector<double>& sliding() const { return sliding_; }            // [2i + axis]
   const std::vector<double>& error() const { return error_; }                // [4i + k]
+  // Input constraint (accel_limit finite): what the last sample did and the largest
+  // unconstrained demand ||u_i|| of law (48) so far (max over followers and samples).
+  struct ConstraintStats {
+    long samples = 0;      // samples taken
+    long paper = 0;        // samples where every follower kept law (48), (C7)
+    long constrained = 0;  // follower-samples where (C8) replaced law (48)
+    double peak_paper_demand = 0.0;
+  };
+  const ConstraintStats& constraint_stats() const { return stats_; }
+  bool constrained() const { return std::isfinite(params_.accel_limit); }
+  // ||L_H^-1||_inf = max_i (L_H^-1 1)_i (L_H^-1 >= 0 elementwise): how much a consensus
+  // error can grow into a follower's own (reported).
+  double norm_inf_inv_lh() const { return norm_inf_inv_lh_; }
+  void ResetConstraintStats() { stats_ = ConstraintStats{}; }
 
   // Theorem 2, eqs. (49)-(50), for follower i (uses a_i0): Delta_i = max(Delta1_i, Delta2_i).
   double delta1(int i) const;
@@ -67,11 +94,21 @@ class DiscreteSmc {
   const Graph& graph() const { return graph_; }
 
  private:
+  // The input-constrained reaching law (discrete_smc_constrained.cc): replaces the
+  // demand of (48) by (C7)-(C8) when it leaves the feasible disc.
+  void InitAccelLimit();
+  void ApplyAccelLimit(const FormationInput& input);
+  void ConstrainedDemand(const FormationInput& input, int i, const double* compensation,
+                         double* demand) const;
+
   Graph graph_;
   DiscreteSmcParams params_;
   LaplacianSolver solver_;
   std::vector<double> acceleration_, sliding_, error_;
   Eigen::Matrix<double, Eigen::Dynamic, 2> rhs_;
+  Eigen::Matrix<double, Eigen::Dynamic, 2> constrained_rhs_;  // (C5), accel_limit only
+  double norm_inf_inv_lh_ = 0.0;
+  ConstraintStats stats_;
 };
 
 }  // namespace mjf::core

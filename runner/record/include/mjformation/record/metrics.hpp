@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "mjformation/record/follower_motion.hpp"
+#include "mjformation/record/transient_metrics.hpp"
 
 namespace mjf::runner {
 
@@ -50,7 +51,8 @@ class OnlineMetrics {
   long saturated_steps_ = 0;
   double max_follower_tilt_in_window_ = 0;  // rad
   double timestep_;
-  FollowerMotion motion_;  // RMS tilt, rocking frequency, thrust variation
+  FollowerMotion motion_;       // RMS tilt, rocking frequency, thrust variation
+  TransientMetrics transient_;  // the reaching transient per follower
 };
 
 // Smallest distance between any two of the points (x, y, z triples), O(N log N) by a sweep on x.

@@ -108,7 +108,10 @@ class Simulation {
                                                             const AgentChannel& channel) const;
   void RequireFormationInputs() const;
   std::unique_ptr<PluginInstance> CreateFormation(const LoadedPlugin& formation,
-                                                  const mjfCreateContext& base) const;
+                                                  const mjfCreateContext& base,
+                                                  const PluginSection& section) const;
+  // [formation] with accel_limit = "vehicle" replaced by the followers' smallest bound.
+  PluginSection FormationSection(const LoadedPlugin& attitude) const;
   mjfCreateContext VehicleContext(const mjfCreateContext& base, int vehicle) const;
   std::vector<mjfSetpoint> InitialSetpoints() const;
   void ComputeForces();
