@@ -5,7 +5,8 @@
 # results/report/report.md (Table 1 beside the paper's, figures, snapshots).
 # With the non-cooperative leader study (scripts/leader_study.sh: maneuvering leaders, sigma_f
 # against T; about 3.1 CPU-minutes) unless --no-leaders, and the robustness map
-# (results/robustness, 45 short runs) unless --no-map.
+# under the acceleration limit (results/robustness: one seed per cell, 84 runs; MAP_SEEDS=10 for the
+# published 10-seed table of docs/RESULTS.md) unless --no-map.
 # Usage: scripts/reproduce.sh [--video] [--no-leaders] [--no-map] [--out DIR]
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -80,7 +81,7 @@ if [ $leaders = 1 ]; then
 fi
 if ((map)); then
   echo "reproduce: robustness map (experiment x tilt_max x attitude plugin) into $out/robustness"
-  bash "$root/scripts/robustness_map.sh" "$out/robustness" || status=1
+  SEEDS=${MAP_SEEDS:-1} bash "$root/scripts/robustness_map.sh" "$out/robustness" || status=1
 fi
 # The written discussion (docs/DISCUSSION.md) goes into the report, after the generated one.
 cp "$root/docs/DISCUSSION.md" "$out/discussion.md"
