@@ -40,7 +40,7 @@ def test_keyboard_interrupt_during_run_leaves_a_marked_partial_run(exp2, tmp_pat
     summary = json.loads((out / "summary.json").read_text())
     assert summary["complete"] is False and summary["interrupted_by_signal"] == 2
     assert summary["error"] == "interrupted by SIGINT"
-    assert 0 < summary["sim_time_s"] < 40.0
+    assert 0 < summary["sim_time_s"] < 400.0  # stopped before the 400 s run ended
     assert (out / ".mjformation-run").is_file()
     rows = (out / "timeseries.csv").read_text().splitlines()
     assert len(rows) > 2  # the rows recorded before Ctrl-C are kept
