@@ -181,21 +181,38 @@ ReplayScene::ReplayScene(const Recording& recording) : rec_(recording) {
   const std::string scene_path = rec_.dir + "/scene.xml";
   model_ = CompileModel(ReadText(scene_path, "scene"), scene_path);
   data_ = mj_makeData(model_);
+  mj_kinematics(model_, data_);  // at qpos0: the slide joints' axes and rest positions
   for (int i = 0; i < rec_.n_vehicles; ++i) {
     const std::string prefix = VehiclePrefix(i);
     const int body = mj_name2id(model_, mjOBJ_BODY, (prefix + "vehicle").c_str());
     const int site = mj_name2id(model_, mjOBJ_SITE, (prefix + "imu").c_str());
-    if (body < 0 || site < 0 || model_->body_jntnum[body] < 1 ||
-        model_->jnt_type[model_->body_jntadr[body]] != mjJNT_FREE ||
-        model_->site_bodyid[site] != body) {
+    VehicleJoints joints;
+    if (body >= 0 && site >= 0 && model_->site_bodyid[site] == body)
+      joints = BindJoints(body, site);
+    if (joints.free_qpos < 0 && joints.slide_qpos.size() != 3) {
       Free();
-      throw ReplayError(scene_path + ": no free body " + prefix + "vehicle with its site " +
-                        prefix + "imu for vehicle " + std::to_string(i) + " of timeseries.csv");
+      throw ReplayError(scene_path + ": no body " + prefix + "vehicle with a free joint or three " +
+                        "slide joints and its site " + prefix + "imu for vehicle " +
+                        std::to_string(i) + " of timeseries.csv");
     }
-    qpos_adr_.push_back(model_->jnt_qposadr[model_->body_jntadr[body]]);
+    joints_.push_back(std::move(joints));
     imu_offset_.push_back({model_->site_pos[3 * site], model_->site_pos[3 * site + 1],
                            model_->site_pos[3 * site + 2]});
   }
+}
+
+ReplayScene::VehicleJoints ReplayScene::BindJoints(int body, int site) const {
+  VehicleJoints joints;
+  for (int j = model_->body_jntadr[body]; j < model_->body_jntadr[body] + model_->body_jntnum[body];
+       ++j) {
+    if (model_->jnt_type[j] == mjJNT_FREE) joints.free_qpos = model_->jnt_qposadr[j];
+    if (model_->jnt_type[j] != mjJNT_SLIDE) continue;
+    joints.slide_qpos.push_back(model_->jnt_qposadr[j]);
+    joints.slide_axis.push_back(
+        {data_->xaxis[3 * j], data_->xaxis[3 * j + 1], data_->xaxis[3 * j + 2]});
+  }
+  for (int k = 0; k < 3; ++k) joints.rest[k] = data_->site_xpos[3 * site + k];
+  return joints;
 }
 
 ReplayScene::~ReplayScene() { Free(); }
@@ -219,10 +236,21 @@ void ReplayScene::Pose(int frame) {
     mju_axisAngle2Quat(qz, az, e[2]);
     mju_mulQuat(qzy, qz, qy);
     mju_mulQuat(q, qzy, qx);
+    const VehicleJoints& joints = joints_[i];
+    if (joints.free_qpos < 0) {
+      // Slides (the point mass, orthogonal axes): the imu site moves with the body,
+      // q_j = q0_j + a_j . (p - rest), rest being the site at q0.
+      for (size_t j = 0; j < joints.slide_qpos.size(); ++j) {
+        double q_j = model_->qpos0[joints.slide_qpos[j]];
+        for (int k = 0; k < 3; ++k) q_j += joints.slide_axis[j][k] * (p[k] - joints.rest[k]);
+        data_->qpos[joints.slide_qpos[j]] = q_j;
+      }
+      continue;
+    }
     // The record is the imu site's pose; the body origin is p - R imu_offset.
     double offset[3];
     mju_rotVecQuat(offset, imu_offset_[i].data(), q);
-    double* qpos = data_->qpos + qpos_adr_[i];
+    double* qpos = data_->qpos + joints.free_qpos;
     for (int k = 0; k < 3; ++k) qpos[k] = p[k] - offset[k];
     mju_copy4(qpos + 3, q);
   }

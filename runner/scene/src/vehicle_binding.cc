@@ -147,7 +147,9 @@ void BindSensors(const mjModel* m, const std::string& prefix, const std::string&
 std::vector<std::array<double, 3>> InitialPositions(const ExperimentConfig& c) {
   std::vector<std::array<double, 3>> out;
   out.push_back({c.leader_start[0], c.leader_start[1], c.altitude});
-  const double ring = std::max(2.0, 1.5 * c.followers / (2 * M_PI));
+  // Default start: a ring about the origin, at least 2 m in radius, whose neighbours are at least
+  // 1.5 m apart (chord 2 r sin(pi / n) = 1.5 m, not the arc length, which is longer).
+  const double ring = c.followers < 2 ? 2.0 : std::max(2.0, 0.75 / std::sin(M_PI / c.followers));
   std::mt19937_64 rng(c.seed);
   for (int i = 0; i < c.followers; ++i) {
     std::array<double, 3> p;

@@ -42,12 +42,24 @@ TEST(ReplayCliTest, SnapshotsOfARecordedRunAtTheNearestRecordedTimes) {
 
 // Replay poses each vehicle by its free joint; the point-mass model moves on three slide joints,
 // so its runs cannot be replayed. Refused with the scene named (exit 1), not a crash.
-TEST(ReplayCliTest, APointMassRunIsRefusedByName) {
+TEST(ReplayCliTest, APointMassRunIsReplayed) {
   const std::string base = TempDir("replay_cli_pm");
   RunOptions o;
   o.out_dir = base + "/run";
   o.render = false;
   ASSERT_TRUE(RunExperiment(Parse(PointMassExperiment(-2, 1, 2, 1, 0.02)), o).complete);
+  EXPECT_EQ(Cli({"replay", o.out_dir, "--snapshots", "0.01", "--out", base + "/png"}), 0);
+  EXPECT_TRUE(std::filesystem::exists(base + "/png/replay_t000.01.png"));
+}
+
+TEST(ReplayCliTest, ASceneWithoutTheVehicleBodyIsRefusedByName) {
+  const std::string base = TempDir("replay_cli_nobody");
+  RunOptions o;
+  o.out_dir = base + "/run";
+  o.render = false;
+  ASSERT_TRUE(RunExperiment(Parse(PointMassExperiment(-2, 1, 2, 1, 0.02)), o).complete);
+  // The scene of another model: no vehicle bodies at all.
+  mjf::testing::WriteFile(o.out_dir + "/scene.xml", "<mujoco><worldbody/></mujoco>");
   EXPECT_EQ(Cli({"replay", o.out_dir, "--snapshots", "0.01", "--out", base + "/png"}), 1);
   EXPECT_FALSE(std::filesystem::exists(base + "/png/replay_t000.01.png"));
 }

@@ -83,6 +83,30 @@ TEST_F(ReplayTest, WritesAVideo) {
   EXPECT_GT(st.st_size, 10000);
 }
 
+// The point mass moves on three slide joints, not a free joint: replay poses those.
+TEST(PointMassReplayTest, RendersTheSnapshotsPositionsAtTheSameTimes) {
+  const std::string dir = mjf::testing::TempDir("replay_pm") + "/run";
+  const ExperimentConfig c =
+      LoadExperiment(std::string(MJF_SOURCE_DIR) + "/experiments/exp2.toml",
+                     {"vehicles.model=\"pointmass\"", "attitude={plugin=\"pointmass_direct\"}",
+                      "run.duration=6.0", "run.metric_window=[4.0, 6.0]",
+                      "render.snapshots=[2.0, 6.0]", "render.width=640", "render.height=360"});
+  RunOptions o;
+  o.out_dir = dir;
+  const RunResult r = RunExperiment(c, o);
+  ASSERT_TRUE(r.complete) << r.error;
+  const auto written = RenderReplay(LoadRecording(dir), {2.0, 6.0}, dir + "/replay", "");
+  ASSERT_EQ(written.size(), 2u);
+  for (const char* t : {"002.00", "006.00"}) {
+    EXPECT_LT(DifferentPixels(dir + "/snapshots/t" + std::string(t) + ".png",
+                              dir + "/replay/replay_t" + std::string(t) + ".png"),
+              1e-4)
+        << t;
+  }
+  EXPECT_GT(DifferentPixels(dir + "/snapshots/t002.00.png", dir + "/replay/replay_t006.00.png"),
+            0.01);
+}
+
 TEST(ReplayErrorTest, NamesTheMissingFile) {
   const std::string dir = mjf::testing::TempDir("noreplay");
   try {

@@ -41,8 +41,10 @@ struct Recording {
 // (and row) when one is missing or malformed.
 Recording LoadRecording(const std::string& run_dir);
 
-// The run's scene (scene.xml) posed at recorded frames: each vehicle's free joint is set so its
-// `imu` site (where the sensors read position and attitude) is at the recorded pose.
+// The run's scene (scene.xml) posed at recorded frames: each vehicle's joints are set so its
+// `imu` site (where the sensors read position and attitude) is at the recorded pose: a free joint
+// (quadrotor) takes position and attitude, three slide joints (point mass, which never rotates)
+// the position.
 class ReplayScene {
  public:
   explicit ReplayScene(const Recording& recording);
@@ -58,7 +60,15 @@ class ReplayScene {
   const Recording& rec_;
   mjModel* model_ = nullptr;
   mjData* data_ = nullptr;
-  std::vector<int> qpos_adr_;
+  // How one vehicle is posed: its free joint's qpos address, or its slide joints.
+  struct VehicleJoints {
+    int free_qpos = -1;
+    std::vector<int> slide_qpos;
+    std::vector<Vec3> slide_axis;  // world frame
+    Vec3 rest{};                   // the imu site's world position with the slides at zero
+  };
+  VehicleJoints BindJoints(int body, int site) const;
+  std::vector<VehicleJoints> joints_;
   std::vector<Vec3> imu_offset_;  // imu site in its body's frame
 };
 
