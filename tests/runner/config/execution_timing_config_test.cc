@@ -50,17 +50,17 @@ TEST(ExecutionTimingConfigTest, KeysParse) {
 }
 
 TEST(ExecutionTimingConfigTest, BadValuesAreRefusedWithFileLineAndKey) {
-  const std::string head = "[execution]\nmode = \"per_agent\"\n";  // lines 15-16
+  const std::string head = "[execution]\nmode = \"per_agent\"\n";  // lines 18-19
   EXPECT_THAT(ErrorOf(Experiment(head + "predict = \"kalman\"\n")),
-              AllOf(HasSubstr("t.toml:17"), HasSubstr("[execution] predict"),
+              AllOf(HasSubstr("t.toml:20"), HasSubstr("[execution] predict"),
                     HasSubstr("\"input\"")));
   EXPECT_THAT(ErrorOf(Experiment(head + "clock_offset = 0.05\n")),
-              AllOf(HasSubstr("t.toml:17"), HasSubstr("[execution] clock_offset"),
+              AllOf(HasSubstr("t.toml:20"), HasSubstr("[execution] clock_offset"),
                     HasSubstr("T = 0.05")));
   EXPECT_THAT(ErrorOf(Experiment(head + "clock_offset = -0.001\n")),
               HasSubstr("[execution] clock_offset"));
   EXPECT_THAT(ErrorOf(Experiment(head + "clock_drift_ppm = 1.5e4\n")),
-              AllOf(HasSubstr("t.toml:17"), HasSubstr("[execution] clock_drift_ppm")));
+              AllOf(HasSubstr("t.toml:20"), HasSubstr("[execution] clock_drift_ppm")));
   EXPECT_THAT(ErrorOf(Experiment(head + "clock_drift_ppm = nan\n")),
               AllOf(HasSubstr("[execution] clock_drift_ppm"), HasSubstr("finite")));
   EXPECT_THAT(ErrorOf(Experiment(head + "clock_offset = inf\n")),
@@ -72,7 +72,7 @@ TEST(ExecutionTimingConfigTest, BadValuesAreRefusedWithFileLineAndKey) {
 TEST(ExecutionTimingConfigTest, SubStepLatencyIsRefusedNotRounded) {
   const std::string head = "[execution]\nmode = \"per_agent\"\n";
   EXPECT_THAT(ErrorOf(Experiment(head, "[network]\nlatency = 0.0005\n")),
-              AllOf(HasSubstr("t.toml:18"), HasSubstr("[network] latency"),
+              AllOf(HasSubstr("t.toml:21"), HasSubstr("[network] latency"),
                     HasSubstr("whole number of physics steps")));
   EXPECT_THAT(ErrorOf(Experiment(head, "[network]\n[[network.link]]\nfrom = 0\nto = 1\n"
                                        "latency = 0.0025\n")),
