@@ -38,10 +38,9 @@ const char* ToString(Predict value) {
 }
 
 void ParseExecutionTiming(SectionReader& keys, const ExperimentConfig& c, NetworkConfig& n) {
-  n.predict = keys.Enum("predict", Predict::kNone,
-                        {{"none", Predict::kNone},
-                         {"input", Predict::kInput},
-                         {"attitude", Predict::kAttitude}});
+  n.predict = keys.Enum(
+      "predict", Predict::kNone,
+      {{"none", Predict::kNone}, {"input", Predict::kInput}, {"attitude", Predict::kAttitude}});
   n.clock_offset = keys.Number("clock_offset", 0.0);
   const double period = SamplePeriod(c);
   if (!(n.clock_offset >= 0.0 && n.clock_offset < period)) {
@@ -53,14 +52,16 @@ void ParseExecutionTiming(SectionReader& keys, const ExperimentConfig& c, Networ
   }
   n.clock_drift_ppm = keys.Number("clock_drift_ppm", 0.0);
   if (!(n.clock_drift_ppm >= 0.0 && n.clock_drift_ppm <= kMaxDriftPpm)) {
-    keys.Fail("clock_drift_ppm", "must be in [0, 1e4] ppm (the largest |drift|; each follower "
-                                 "draws its own in [-value, value])");
+    keys.Fail("clock_drift_ppm",
+              "must be in [0, 1e4] ppm (the largest |drift|; each follower "
+              "draws its own in [-value, value])");
   }
-  const bool timing = n.predict != Predict::kNone || n.clock_offset > 0.0 ||
-                      n.clock_drift_ppm > 0.0;
+  const bool timing =
+      n.predict != Predict::kNone || n.clock_offset > 0.0 || n.clock_drift_ppm > 0.0;
   if (timing && n.execution != Execution::kPerAgent) {
-    keys.Fail(keys.Has("predict") ? "predict" : keys.Has("clock_offset") ? "clock_offset"
-                                                                          : "clock_drift_ppm",
+    keys.Fail(keys.Has("predict")        ? "predict"
+              : keys.Has("clock_offset") ? "clock_offset"
+                                         : "clock_drift_ppm",
               "needs mode = \"per_agent\" (central mode sees every state at once)");
   }
 }
@@ -71,8 +72,8 @@ void RequireWholeStepLatency(const SectionReader& keys, double latency, double t
   const double steps = latency / timestep;
   if (std::abs(steps - std::round(steps)) <= 1e-6 * std::max(1.0, steps)) return;
   std::ostringstream out;
-  out << "latency " << latency << " s is not a whole number of physics steps (timestep "
-      << timestep << " s): messages are delivered at steps, so it would be rounded up to "
+  out << "latency " << latency << " s is not a whole number of physics steps (timestep " << timestep
+      << " s): messages are delivered at steps, so it would be rounded up to "
       << std::ceil(steps - 1e-9) * timestep << " s; use a multiple of the timestep or a smaller "
       << "timestep";
   keys.Fail("latency", out.str());

@@ -42,11 +42,9 @@ DelayMargin PredictedDelayMargin(double period, double q, double rho) {
     return m;
   }
   m.without_prediction = period / gain;
-  m.with_prediction = period * (1.0 + 1.0 / gain);
-  if (m.with_prediction >= 2.0 * period) {
-    m.with_prediction = 2.0 * period;
-    m.with_prediction_capped = true;
-  }
+  // From L = T on the whole last hold interval is predicted with the input before it.
+  m.with_prediction_capped = gain < 1.0;
+  m.with_prediction = m.with_prediction_capped ? 2.0 * period : period;
   return m;
 }
 

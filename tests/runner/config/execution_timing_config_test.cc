@@ -41,9 +41,9 @@ TEST(ExecutionTimingConfigTest, DefaultsPredictNothingInPhase) {
 }
 
 TEST(ExecutionTimingConfigTest, KeysParse) {
-  const ExperimentConfig c = mjf::testing::Parse(
-      Experiment("[execution]\nmode = \"per_agent\"\npredict = \"attitude\"\n"
-                 "clock_offset = 0.025\nclock_drift_ppm = 100.0\n"));
+  const ExperimentConfig c =
+      mjf::testing::Parse(Experiment("[execution]\nmode = \"per_agent\"\npredict = \"attitude\"\n"
+                                     "clock_offset = 0.025\nclock_drift_ppm = 100.0\n"));
   EXPECT_EQ(c.network.predict, Predict::kAttitude);
   EXPECT_EQ(c.network.clock_offset, 0.025);
   EXPECT_EQ(c.network.clock_drift_ppm, 100.0);
@@ -51,12 +51,12 @@ TEST(ExecutionTimingConfigTest, KeysParse) {
 
 TEST(ExecutionTimingConfigTest, BadValuesAreRefusedWithFileLineAndKey) {
   const std::string head = "[execution]\nmode = \"per_agent\"\n";  // lines 18-19
-  EXPECT_THAT(ErrorOf(Experiment(head + "predict = \"kalman\"\n")),
-              AllOf(HasSubstr("t.toml:20"), HasSubstr("[execution] predict"),
-                    HasSubstr("\"input\"")));
-  EXPECT_THAT(ErrorOf(Experiment(head + "clock_offset = 0.05\n")),
-              AllOf(HasSubstr("t.toml:20"), HasSubstr("[execution] clock_offset"),
-                    HasSubstr("T = 0.05")));
+  EXPECT_THAT(
+      ErrorOf(Experiment(head + "predict = \"kalman\"\n")),
+      AllOf(HasSubstr("t.toml:20"), HasSubstr("[execution] predict"), HasSubstr("\"input\"")));
+  EXPECT_THAT(
+      ErrorOf(Experiment(head + "clock_offset = 0.05\n")),
+      AllOf(HasSubstr("t.toml:20"), HasSubstr("[execution] clock_offset"), HasSubstr("T = 0.05")));
   EXPECT_THAT(ErrorOf(Experiment(head + "clock_offset = -0.001\n")),
               HasSubstr("[execution] clock_offset"));
   EXPECT_THAT(ErrorOf(Experiment(head + "clock_drift_ppm = 1.5e4\n")),
@@ -74,12 +74,12 @@ TEST(ExecutionTimingConfigTest, SubStepLatencyIsRefusedNotRounded) {
   EXPECT_THAT(ErrorOf(Experiment(head, "[network]\nlatency = 0.0005\n")),
               AllOf(HasSubstr("t.toml:21"), HasSubstr("[network] latency"),
                     HasSubstr("whole number of physics steps")));
-  EXPECT_THAT(ErrorOf(Experiment(head, "[network]\n[[network.link]]\nfrom = 0\nto = 1\n"
-                                       "latency = 0.0025\n")),
+  EXPECT_THAT(ErrorOf(Experiment(head,
+                                 "[network]\n[[network.link]]\nfrom = 0\nto = 1\n"
+                                 "latency = 0.0025\n")),
               HasSubstr("latency"));
   // Whole steps are kept exactly, including one that is not exact in binary (0.003 / 0.001).
-  const ExperimentConfig c =
-      mjf::testing::Parse(Experiment(head, "[network]\nlatency = 0.003\n"));
+  const ExperimentConfig c = mjf::testing::Parse(Experiment(head, "[network]\nlatency = 0.003\n"));
   EXPECT_EQ(c.network.defaults.latency, 0.003);
 }
 

@@ -49,8 +49,8 @@ TEST(AgentClockTest, StepsReadProduceTheConfiguredSampleTimes) {
       ASSERT_EQ(index, last_index + 1) << "a sample skipped at step " << n;
       last_index = index;
       ++samples;
-      const double ideal = (static_cast<double>(index) * period - clocks.offset(i)) /
-                           (1.0 + clocks.drift(i));
+      const double ideal =
+          (static_cast<double>(index) * period - clocks.offset(i)) / (1.0 + clocks.drift(i));
       EXPECT_GE(t, ideal - 1e-9);
       EXPECT_LT(t, ideal + dt + 1e-9) << "follower " << i << " sample " << index;
     }

@@ -42,7 +42,7 @@ TEST(DelayMarginTest, MarginsFollowTheLinearisation) {
   EXPECT_NEAR(m.without_prediction, 0.05 / (0.775 * rho), 1e-15);
   EXPECT_GT(m.without_prediction, 0.003);
   EXPECT_LT(m.without_prediction, 0.004);
-  EXPECT_NEAR(m.with_prediction, 0.05 + m.without_prediction, 1e-15);
+  EXPECT_EQ(m.with_prediction, 0.05);  // (1 - qT) rho > 1: the hold interval is the edge
   EXPECT_FALSE(m.with_prediction_capped);
   const DelayMargin weak = PredictedDelayMargin(0.05, 4.5, 0.5);  // (1 - qT) rho < 1
   EXPECT_TRUE(weak.with_prediction_capped);

@@ -57,7 +57,7 @@ TEST(MessagePredictionTest, NoneLeavesTheMessageAndNaNInputIsZero) {
 
 TEST(MessagePredictionTest, AttitudeGivesTheTiltsAcceleration) {
   mjfMessage m = Sent(0.0, 0.0, 5.0);  // the commanded input is ignored
-  const double tilt = 0.2;            // pitch about +y: the thrust leans towards +x
+  const double tilt = 0.2;             // pitch about +y: the thrust leans towards +x
   m.state.quat[0] = std::cos(tilt / 2);
   m.state.quat[2] = std::sin(tilt / 2);
   double acc[3];

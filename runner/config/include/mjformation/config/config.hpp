@@ -71,8 +71,8 @@ struct NetworkConfig {
   // uniformly in [0, clock_offset] and drift_i in [-clock_drift_ppm, clock_drift_ppm] 1e-6
   // (seeded by the run's seed). All zero: every follower samples in phase with the leader.
   Predict predict = Predict::kNone;
-  double clock_offset = 0.0;      // s, the largest offset; < the sample period
-  double clock_drift_ppm = 0.0;   // ppm, the largest |drift|; <= 1e4
+  double clock_offset = 0.0;     // s, the largest offset; < the sample period
+  double clock_drift_ppm = 0.0;  // ppm, the largest |drift|; <= 1e4
 };
 
 // One plugin attribute as written in the experiment file.

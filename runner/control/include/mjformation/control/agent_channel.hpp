@@ -85,7 +85,7 @@ class AgentChannel {
   int64_t central_skipped_samples_ = 0;  // samples some follower did not publish R_i in
   double time_ = 0.0;
   AgentClocks clocks_;
-  std::vector<mjfMessage> leader_held_;  // [follower] the leader's message as predicted
+  std::vector<mjfMessage> leader_held_;        // [follower] the leader's message as predicted
   std::vector<network::AgeStats> sample_age_;  // [follower] age at the samples the law takes
   double coupling_radius_;                     // rho(L_H^-1 A), for the delay margin
 };
