@@ -284,6 +284,10 @@ nlohmann::json AgentChannel::Summary() const {
           {"topology_events", events},
           {"time_without_spanning_tree_s", network_.time_without_spanning_tree()},
           {"predict", ToString(config_.predict)},
+          // Exchange rounds take no time (Jacobi: loss only; the central solve: at once, over
+          // every follower): the central solve is the ideal reference, not a protocol.
+          {"exchange_rounds", "instantaneous"},
+          {"oracle", config_.coupling == Coupling::kCentralSolve},
           {"age_of_information_at_samples", sample_age},
           {"clocks", ClocksSummary()}};
 }
