@@ -54,7 +54,11 @@ struct Agent {
   int64_t steps_per_sample;
   double horizon;
   bool has_sample = false;
-  int64_t last_sample = -1;  // step of the last sample (later rounds of it sample again)
+  // Sample k is due when the step the follower's clock reads enters a new period (step / steps
+  // per sample changes; the host hands the clock's step, issue 19): decided in round 0, and the
+  // later rounds of that tick sample again.
+  int64_t due_index = -1;
+  bool sample_due = false;
   double leader_pv[4] = {0, 0, 0, 0};
   bool knows_leader = false;
   // f_i(t) and f_i(t + horizon) of this follower, and the same for each neighbour: evaluated
@@ -181,7 +185,6 @@ void Sample(Agent<Law>& a, const mjfStepContext& ctx) {
     a.core.Solve(a.neighbour_w.data());
   }
   a.has_sample = true;
-  a.last_sample = ctx.step;
 }
 
 template <typename Law>
@@ -196,8 +199,12 @@ int Compute(void* instance, const mjfStepContext* ctx) {
     const bool ready = Gather(a, in);
     if (!ready && !a.has_sample) return 0;  // nothing heard yet: hold the initial setpoint
     a.shape.EvaluateOne(ctx->time, a.follower, a.own_f_now);
-    const bool sample_step =
-        !a.has_sample || ctx->step % a.steps_per_sample == 0 || ctx->step == a.last_sample;
+    if (in.round == 0) {
+      const int64_t index = ctx->step / a.steps_per_sample;
+      a.sample_due = !a.has_sample || index != a.due_index;
+      a.due_index = index;
+    }
+    const bool sample_step = a.sample_due;
     // A sample needs a message from every neighbour (and the leader when a_i0 > 0): until
     // each has been heard once, the initial setpoint holds.
     const bool sampled = ready && sample_step;
@@ -239,6 +246,7 @@ void ReportDiscrete(void* instance, mjfReportFn emit, void* user) {
   emit(user, "delta", a.core.delta());  // the host reports the largest over the followers
   emit(user, "period", a.core.params().period);
   emit(user, "steps_per_sample", static_cast<double>(a.steps_per_sample));
+  emit(user, "q", a.core.params().q);  // for the predicted delay margin (docs/NETWORK.md)
 }
 
 template <typename Law>

@@ -41,6 +41,7 @@ network::LinkParams ReadLinkParams(SectionReader& keys, const network::LinkParam
   }
   p.latency = keys.Number("latency", p.latency);
   if (p.latency < 0.0) keys.Fail("latency", "must be >= 0 s");
+  if (keys.Has("latency")) RequireWholeStepLatency(keys, p.latency, timestep);
   p.jitter = keys.Number("jitter", p.jitter);
   if (p.jitter < 0.0) keys.Fail("jitter", "must be >= 0 s");
   p.loss = keys.Number("loss", p.loss);
@@ -121,9 +122,11 @@ void ParseLinkOverrides(const std::string& path, const toml::node* node, Experim
   }
 }
 
-void ParseExecution(const std::string& path, const toml::table& t, NetworkConfig& n) {
+void ParseExecution(const std::string& path, const toml::table& t, const ExperimentConfig& c,
+                    NetworkConfig& n) {
   SectionReader keys(path, &t, "execution");
-  Know(keys, {"mode", "coupling", "jacobi_rounds", "jacobi_divergence"});
+  Know(keys, {"mode", "coupling", "jacobi_rounds", "jacobi_divergence", "predict", "clock_offset",
+              "clock_drift_ppm"});
   keys.RejectUnknown();
   const std::string mode = keys.String("mode", "central");
   if (mode == "per_agent") {
@@ -158,6 +161,7 @@ void ParseExecution(const std::string& path, const toml::table& t, NetworkConfig
   if (n.execution == Execution::kCentral && keys.Has("coupling")) {
     keys.Fail("coupling", "needs mode = \"per_agent\" (central mode solves the coupling exactly)");
   }
+  ParseExecutionTiming(keys, c, n);
 }
 
 }  // namespace
@@ -179,7 +183,7 @@ const char* ToString(Coupling value) {
 
 void ParseNetworkSections(const toml::table& root, ExperimentConfig& c) {
   if (const toml::table* t = root.get_as<toml::table>("execution")) {
-    ParseExecution(c.source_path, *t, c.network);
+    ParseExecution(c.source_path, *t, c, c.network);
   }
   const toml::node* node = root.get("network");
   if (!node) return;

@@ -13,6 +13,13 @@ namespace mjf::runner {
 // of the graph). Throws ConfigError as "FILE:LINE: [section] key: reason".
 void ParseNetworkSections(const toml::table& root, ExperimentConfig& c);
 
+class SectionReader;
+// execution_timing_config.cc (issue 19): [execution] predict, clock_offset, clock_drift_ppm
+// (c: [run] and [formation] parsed already; n.execution read already).
+void ParseExecutionTiming(SectionReader& keys, const ExperimentConfig& c, NetworkConfig& n);
+// Refuses a link latency that is not a whole number of physics steps (it would be rounded).
+void RequireWholeStepLatency(const SectionReader& keys, double latency, double timestep);
+
 }  // namespace mjf::runner
 
 #endif  // MJFORMATION_CONFIG_SRC_NETWORK_CONFIG_HPP_

@@ -8,7 +8,9 @@
 #include <cstdio>
 #include <map>
 
+#include "mjformation/control/delay_margin.hpp"
 #include "mjformation/control/errors.hpp"
+#include "mjformation/control/message_prediction.hpp"
 #include "mjformation/core/discrete_smc_agent.hpp"
 #include "mjformation/core/graph.hpp"
 #include "mjformation/core/laplacian_solver.hpp"
@@ -72,7 +74,11 @@ AgentChannel::AgentChannel(const core::Graph& graph, const NetworkConfig& config
       self_(n_followers_),
       inbox_(n_followers_),
       inputs_(n_followers_),
-      solved_(2 * static_cast<size_t>(n_followers_), 0.0) {
+      solved_(2 * static_cast<size_t>(n_followers_), 0.0),
+      clocks_(n_followers_, config.clock_offset, config.clock_drift_ppm, timestep, seed),
+      leader_held_(n_followers_),
+      sample_age_(n_followers_),
+      coupling_radius_(CouplingSpectralRadius(graph)) {
   for (int i = 0; i < n_followers_; ++i) {
     for (int k = graph.in_begin(i); k < graph.in_end(i); ++k) {
       neighbour_ids_[i].push_back(graph.in_neighbor(k));
@@ -127,6 +133,10 @@ const mjfAgentInput& AgentChannel::Input(int follower, int round) {
   mjfAgentInput& in = inputs_[follower];
   const mjfMessage* leader = nullptr;
   network_.Inbox(follower + 1, round > 0 ? round - 1 : -1, &inbox_[follower], &leader);
+  if (config_.predict != Predict::kNone) {
+    PredictInbox(follower, leader);
+    if (leader) leader = &leader_held_[follower];
+  }
   in.follower = follower;
   in.self = &self_[follower];
   in.n_messages = static_cast<int>(inbox_[follower].size());
@@ -143,7 +153,35 @@ const mjfAgentInput& AgentChannel::Input(int follower, int round) {
   return in;
 }
 
+// Each message carried from the time its state refers to up to this follower's sample time,
+// both read on the clocks that stamped them: tau = c_i(now) - c_j(send time) (issue 19).
+void AgentChannel::PredictInbox(int follower, const mjfMessage* leader) {
+  const double now = clocks_.Local(follower + 1, time_);
+  for (mjfMessage& m : inbox_[follower]) {
+    PredictMessage(config_.predict, now - clocks_.Local(m.sender, m.send_time), &m);
+  }
+  if (!leader) return;
+  leader_held_[follower] = *leader;
+  PredictMessage(config_.predict, now - leader->send_time, &leader_held_[follower]);
+}
+
+// Age of information where the law samples (a follower that wrote a payload in round 0): now
+// minus the send time of the oldest message it acts on.
+void AgentChannel::RecordSampleAge() {
+  for (int i = 0; i < n_followers_; ++i) {
+    if (outgoing_[i].n_payload <= 0) continue;
+    double oldest = time_;
+    for (const mjfMessage& m : inbox_[i]) oldest = std::min(oldest, m.send_time);
+    if (inputs_[i].leader) oldest = std::min(oldest, inputs_[i].leader->send_time);
+    network::AgeStats& a = sample_age_[i];
+    a.sum += time_ - oldest;
+    a.max = std::max(a.max, time_ - oldest);
+    ++a.ticks;
+  }
+}
+
 void AgentChannel::EndRound(int round, const std::vector<mjfSetpoint>& setpoints) {
+  if (round == 0) RecordSampleAge();
   for (int i = 0; i < n_followers_; ++i) {
     mjfMessage& out = outgoing_[i];
     out.sender = i + 1;
@@ -223,6 +261,13 @@ nlohmann::json AgentChannel::Summary() const {
     age.push_back(
         {{"follower", v}, {"mean_s", network_.age(v).mean()}, {"max_s", network_.age(v).max}});
   }
+  Json sample_age = Json::array();
+  for (int i = 0; i < n_followers_; ++i) {
+    sample_age.push_back({{"follower", i + 1},
+                          {"samples", sample_age_[i].ticks},
+                          {"mean_s", sample_age_[i].mean()},
+                          {"max_s", sample_age_[i].max}});
+  }
   Json events = Json::array();
   for (const auto& e : network_.events()) {
     if (events.size() >= 1000) break;  // the count below is complete
@@ -237,7 +282,36 @@ nlohmann::json AgentChannel::Summary() const {
           {"age_of_information", age},
           {"topology_switches", network_.events().size()},
           {"topology_events", events},
-          {"time_without_spanning_tree_s", network_.time_without_spanning_tree()}};
+          {"time_without_spanning_tree_s", network_.time_without_spanning_tree()},
+          {"predict", ToString(config_.predict)},
+          // Exchange rounds take no time (Jacobi: loss only; the central solve: at once, over
+          // every follower): the central solve is the ideal reference, not a protocol.
+          {"exchange_rounds", "instantaneous"},
+          {"oracle", config_.coupling == Coupling::kCentralSolve},
+          {"age_of_information_at_samples", sample_age},
+          {"clocks", ClocksSummary()}};
+}
+
+// The clocks as drawn (in phase: offsets and drifts all 0) and the exchange-round policy.
+nlohmann::json AgentChannel::ClocksSummary() const {
+  nlohmann::json offsets = nlohmann::json::array(), drifts = nlohmann::json::array();
+  for (int i = 0; i < n_followers_; ++i) {
+    offsets.push_back(clocks_.offset(i));
+    drifts.push_back(clocks_.drift(i) * 1e6);
+  }
+  return {{"in_phase", !clocks_.active()}, {"offset_s", offsets}, {"drift_ppm", drifts}};
+}
+
+nlohmann::json AgentChannel::DelayMarginSummary(double period, double q) const {
+  const DelayMargin m = PredictedDelayMargin(period, q, coupling_radius_);
+  auto finite = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); };
+  return {{"coupling_spectral_radius", coupling_radius_},
+          {"period_s", period},
+          {"q", q},
+          {"without_prediction_s", finite(m.without_prediction)},
+          {"with_prediction_s", finite(m.with_prediction)},
+          {"with_prediction_is_lower_bound", m.with_prediction_capped},
+          {"assumes", "a message every step, in-phase clocks, no loss (docs/NETWORK.md)"}};
 }
 
 }  // namespace mjf::runner

@@ -100,8 +100,14 @@ void ControlTick::RunAgents(const mjfStepContext& ctx, const std::vector<mjfVehi
   agent_ctx.states = nullptr;
   agent_ctx.model = nullptr;
   agent_ctx.data = nullptr;
+  const AgentClocks& clocks = channel_->clocks();
   for (int round = 0; round < channel_->n_rounds(); ++round) {
     for (size_t i = 0; i < plugins_.formation_agents.size(); ++i) {
+      if (clocks.active()) {
+        // Each follower runs on its own clock (issue 19): it samples when that clock says so.
+        agent_ctx.time = clocks.Local(static_cast<int>(i) + 1, ctx.time);
+        agent_ctx.step = clocks.LocalStep(static_cast<int>(i), ctx.time);
+      }
       agent_ctx.setpoints = &setpoints_[i + 1];
       agent_ctx.agent = &channel_->Input(static_cast<int>(i), round);
       Call(*plugins_.formation_agents[i], agent_ctx, static_cast<int>(i) + 1);

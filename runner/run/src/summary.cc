@@ -44,6 +44,17 @@ void DescribeExperiment(const Simulation& sim, Json& s) {
   AddRealismSummary(config, &s);  // "sensors" / "wind", only when switched on
 }
 
+// "network", with the predicted delay margin when the law reports its T and q (eq. (48)).
+void AddNetworkSummary(const Simulation& sim, Json& s) {
+  s["network"] = sim.channel()->Summary();
+  double period = 0.0, q = 0.0;
+  for (const auto& [k, v] : sim.FormationReport()) {
+    if (k == "period") period = v;
+    if (k == "q") q = v;
+  }
+  if (period > 0.0) s["network"]["delay_margin"] = sim.channel()->DelayMarginSummary(period, q);
+}
+
 }  // namespace
 
 Json BuildSummary(const Simulation& sim, const RunResult& result, const Json& recorded) {
@@ -64,7 +75,7 @@ Json BuildSummary(const Simulation& sim, const RunResult& result, const Json& re
   for (const auto& [k, v] : sim.FormationReport()) report[k] = JsonNumber(v);
   s["plugin_report"] = report;
   s["snapshots"] = recorded.contains("snapshots") ? recorded["snapshots"] : Json::array();
-  if (sim.channel()) s["network"] = sim.channel()->Summary();  // per-agent execution only
+  if (sim.channel()) AddNetworkSummary(sim, s);  // per-agent execution only
   for (const auto& [k, v] : recorded.items()) {
     if (!s.contains(k)) s[k] = v;  // further recorders' keys, after the established ones
   }

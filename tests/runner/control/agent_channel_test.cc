@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
+#include "mjformation/core/shape.hpp"
 #include "mjformation/run/run.hpp"
 #include "mjformation/sim/simulation.hpp"
 #include "test_util.hpp"
@@ -211,6 +212,102 @@ TEST(AgentChannelTest, DivergentJacobiIsRefusedOrWarned) {
   const double rho = agents.channel()->jacobi_spectral_radius();
   EXPECT_GT(rho, 0.9);  // a ring of six with one leader link converges slowly
   EXPECT_LT(rho, 1.0);
+}
+
+// Exp 2 on the point mass with the central solve and a message every step: does the formation
+// hold over 6 s at this latency? Diverged: the run stops (non-finite state) or a follower ends
+// more than 100 m from the leader (it flies a 10 m circle about it).
+bool HoldsAt(double latency, const char* predict) {
+  ExperimentConfig c =
+      Exp2({"execution={mode=\"per_agent\", coupling=\"central_solve\", "
+            "predict=\"" +
+                std::string(predict) + "\"}",
+            "network={latency=" + std::to_string(latency) + "}"});
+  Simulation sim(c);
+  try {
+    StepThrough(sim, 6000);
+  } catch (const std::exception&) {
+    return false;
+  }
+  for (int i = 1; i < sim.n_vehicles(); ++i) {
+    const double dx = sim.states()[i].pos[0] - sim.states()[0].pos[0];
+    const double dy = sim.states()[i].pos[1] - sim.states()[0].pos[1];
+    if (!(std::hypot(dx, dy) < 100.0)) return false;
+  }
+  return true;
+}
+
+// The margin summary.json predicts (network.delay_margin, docs/NETWORK.md) against the first
+// latency of a grid at which the runs diverge: they agree within one grid step, without
+// prediction (grid 1 ms, margin T / ((1 - qT) rho) = 3.6 ms) and with it (grid 2 ms, margin T).
+TEST(AgentChannelTest, PredictedDelayMarginMatchesDivergenceOnset) {
+  Simulation probe(Exp2({"execution={mode=\"per_agent\", coupling=\"central_solve\"}"}));
+  StepThrough(probe, 1);
+  const nlohmann::json margin = probe.channel()->DelayMarginSummary(0.05, 4.5);
+  struct Case {
+    const char* predict;
+    double predicted, first, grid;
+  };
+  for (const Case& k : {Case{"none", margin["without_prediction_s"].get<double>(), 0.001, 0.001},
+                        Case{"input", margin["with_prediction_s"].get<double>(), 0.044, 0.002}}) {
+    double onset = NAN;
+    for (double latency = k.first; latency < k.first + 8 * k.grid; latency += k.grid) {
+      if (!HoldsAt(std::round(latency * 1000.0) / 1000.0, k.predict)) {
+        onset = latency;
+        break;
+      }
+    }
+    // The first grid latency at or above the margin is where the theory says runs diverge.
+    const double predicted_onset =
+        k.first + std::ceil((k.predicted - k.first) / k.grid - 1e-9) * k.grid;
+    std::printf("predict = %s: margin %.4f s, predicted onset %.3f s, measured onset %.3f s\n",
+                k.predict, k.predicted, predicted_onset, onset);
+    ASSERT_TRUE(std::isfinite(onset)) << k.predict << ": no divergence on the grid";
+    EXPECT_LE(std::abs(onset - predicted_onset), k.grid + 1e-9) << k.predict;
+  }
+}
+
+// predict = "input" carries each message to the receiver's sample time: at L = 0.9 T, where the
+// unpredicted protocol diverges, Exp 2 holds within 1.2x its zero-latency sigma_f.
+TEST(AgentChannelTest, PredictionHoldsTheFormationAtNineTenthsOfThePeriod) {
+  auto sigma = [](const char* net) {
+    Simulation sim(
+        Exp2({"execution={mode=\"per_agent\", coupling=\"central_solve\", "
+              "predict=\"input\"}",
+              net}));
+    StepThrough(sim, 6000);
+    double sum = 0.0;  // sigma_f at 6 s: sum of |x_i - x_0 - f_i| over the followers
+    std::vector<double> f(6 * sim.n_followers());
+    sim.shape()->Evaluate(sim.time(), f.data());
+    for (int i = 1; i < sim.n_vehicles(); ++i) {
+      sum += std::hypot(sim.states()[i].pos[0] - sim.states()[0].pos[0] - f[6 * (i - 1)],
+                        sim.states()[i].pos[1] - sim.states()[0].pos[1] - f[6 * (i - 1) + 1]);
+    }
+    return sum;
+  };
+  const double ideal = sigma("network={latency=0.0}");
+  const double late = sigma("network={latency=0.045}");
+  std::printf("position error sum at 6 s: %.4f (L = 0), %.4f (L = 45 ms, predicted)\n", ideal,
+              late);
+  EXPECT_LT(late, 1.2 * ideal + 0.05);
+}
+
+// Followers on their own clocks sample out of phase: the central solve, which needs every row
+// at one instant, gets none (every sample skipped), while the clocks drawn are within bounds
+// and reported.
+TEST(AgentChannelTest, ClocksOutOfPhaseDefeatTheCentralSolveOracle) {
+  Simulation sim(
+      Exp2({"execution={mode=\"per_agent\", coupling=\"central_solve\", "
+            "clock_offset=0.025, clock_drift_ppm=100.0}"}));
+  StepThrough(sim, 1000);
+  const nlohmann::json s = sim.channel()->Summary();
+  EXPECT_FALSE(s["clocks"]["in_phase"].get<bool>());
+  for (const auto& o : s["clocks"]["offset_s"]) EXPECT_LE(o.get<double>(), 0.025);
+  EXPECT_GE(s["central_solve_skipped_samples"].get<int64_t>(), 19);
+  for (const auto& a : s["age_of_information_at_samples"]) {
+    EXPECT_GE(a["samples"].get<int64_t>(), 19);  // each follower still samples every T
+    EXPECT_LE(a["samples"].get<int64_t>(), 21);
+  }
 }
 
 }  // namespace

@@ -45,6 +45,13 @@ enum class Execution { kCentral, kPerAgent };
 enum class Coupling { kLastInput, kJacobi, kCentralSolve };
 const char* ToString(Execution value);
 const char* ToString(Coupling value);
+// [execution] predict (issue 19): how a receiver carries a neighbour's or the leader's message
+// from the time its state refers to up to its own sample time, before the law sees it.
+// kNone: as received (the default); kInput: model (40) under zero-order hold with the sender's
+// input u_j; kAttitude: with the horizontal acceleration implied by the sender's tilt at hover
+// thrust (vehicles whose attitude loop lags the command).
+enum class Predict { kNone, kInput, kAttitude };
+const char* ToString(Predict value);
 
 struct NetworkConfig {
   Execution execution = Execution::kCentral;
@@ -59,6 +66,13 @@ struct NetworkConfig {
     network::LinkParams params;
   };
   std::vector<LinkOverride> links;  // [[network.link]]
+  // Issue 19 ([execution] keys, execution_timing_config.cc): receiver-side prediction, and the
+  // followers' clocks: follower i's clock reads (1 + drift_i) t + offset_i, with offset_i drawn
+  // uniformly in [0, clock_offset] and drift_i in [-clock_drift_ppm, clock_drift_ppm] 1e-6
+  // (seeded by the run's seed). All zero: every follower samples in phase with the leader.
+  Predict predict = Predict::kNone;
+  double clock_offset = 0.0;     // s, the largest offset; < the sample period
+  double clock_drift_ppm = 0.0;  // ppm, the largest |drift|; <= 1e4
 };
 
 // One plugin attribute as written in the experiment file.

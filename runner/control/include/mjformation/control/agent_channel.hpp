@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "mjformation/config/config.hpp"
+#include "mjformation/control/agent_clock.hpp"
 #include "mjformation/network/network.hpp"
 
 namespace mjf::core {
@@ -52,9 +53,16 @@ class AgentChannel {
   // latency, age of information per follower, topology switches, time without a spanning tree.
   nlohmann::json Summary() const;
   double jacobi_spectral_radius() const { return spectral_radius_; }
+  const AgentClocks& clocks() const { return clocks_; }
+  // summary.json "network.delay_margin" (docs/NETWORK.md): rho(L_H^-1 A) and the margins
+  // predicted for the discrete law (48) with sample period T and q, with and without prediction.
+  nlohmann::json DelayMarginSummary(double period, double q) const;
 
  private:
   void CentralSolve();
+  void PredictInbox(int follower, const mjfMessage* leader);
+  void RecordSampleAge();
+  nlohmann::json ClocksSummary() const;
   static std::vector<network::LinkSpec> Links(const core::Graph& graph, const NetworkConfig& c);
 
   NetworkConfig config_;
@@ -76,6 +84,10 @@ class AgentChannel {
   bool have_solution_ = false;
   int64_t central_skipped_samples_ = 0;  // samples some follower did not publish R_i in
   double time_ = 0.0;
+  AgentClocks clocks_;
+  std::vector<mjfMessage> leader_held_;        // [follower] the leader's message as predicted
+  std::vector<network::AgeStats> sample_age_;  // [follower] age at the samples the law takes
+  double coupling_radius_;                     // rho(L_H^-1 A), for the delay margin
 };
 
 }  // namespace mjf::runner

@@ -1,0 +1,82 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// [execution] predict / clock_offset / clock_drift_ppm, and the whole-step latency rule
+// (issue 19, docs/NETWORK.md): the timing of per-agent execution as a swarm has it. Every value
+// is checked here, before anything runs.
+#include <cmath>
+#include <sstream>
+
+#include "network_config.hpp"
+#include "section_reader.hpp"
+
+namespace mjf::runner {
+namespace {
+
+constexpr double kMaxDriftPpm = 1e4;
+
+// The sample period a follower's clock offset is bounded by: [formation] period when the file
+// gives it (the discrete law's T), else the physics step (laws that sample every step).
+double SamplePeriod(const ExperimentConfig& c) {
+  const auto it = c.formation.attributes.find("period");
+  if (it == c.formation.attributes.end()) return c.timestep;
+  char* end = nullptr;
+  const double period = std::strtod(it->second.text.c_str(), &end);
+  return end != it->second.text.c_str() && period > 0.0 ? period : c.timestep;
+}
+
+}  // namespace
+
+const char* ToString(Predict value) {
+  switch (value) {
+    case Predict::kInput:
+      return "input";
+    case Predict::kAttitude:
+      return "attitude";
+    default:
+      return "none";
+  }
+}
+
+void ParseExecutionTiming(SectionReader& keys, const ExperimentConfig& c, NetworkConfig& n) {
+  n.predict = keys.Enum(
+      "predict", Predict::kNone,
+      {{"none", Predict::kNone}, {"input", Predict::kInput}, {"attitude", Predict::kAttitude}});
+  n.clock_offset = keys.Number("clock_offset", 0.0);
+  const double period = SamplePeriod(c);
+  if (!(n.clock_offset >= 0.0 && n.clock_offset < period)) {
+    std::ostringstream out;
+    out << "must be in [0, T) s with T = " << period
+        << " s the sample period ([formation] period, else the timestep): an offset of a whole "
+           "period is no offset";
+    keys.Fail("clock_offset", out.str());
+  }
+  n.clock_drift_ppm = keys.Number("clock_drift_ppm", 0.0);
+  if (!(n.clock_drift_ppm >= 0.0 && n.clock_drift_ppm <= kMaxDriftPpm)) {
+    keys.Fail("clock_drift_ppm",
+              "must be in [0, 1e4] ppm (the largest |drift|; each follower "
+              "draws its own in [-value, value])");
+  }
+  const bool timing =
+      n.predict != Predict::kNone || n.clock_offset > 0.0 || n.clock_drift_ppm > 0.0;
+  if (timing && n.execution != Execution::kPerAgent) {
+    keys.Fail(keys.Has("predict")        ? "predict"
+              : keys.Has("clock_offset") ? "clock_offset"
+                                         : "clock_drift_ppm",
+              "needs mode = \"per_agent\" (central mode sees every state at once)");
+  }
+}
+
+// The network delivers at physics steps: a latency that is not a whole number of steps would
+// be rounded up without saying so (0.5 ms behaving as 1 ms), so it is refused.
+void RequireWholeStepLatency(const SectionReader& keys, double latency, double timestep) {
+  const double steps = latency / timestep;
+  if (std::abs(steps - std::round(steps)) <= 1e-6 * std::max(1.0, steps)) return;
+  std::ostringstream out;
+  out << "latency " << latency << " s is not a whole number of physics steps (timestep " << timestep
+      << " s): messages are delivered at steps, so it would be rounded up to "
+      << std::ceil(steps - 1e-9) * timestep << " s; use a multiple of the timestep or a smaller "
+      << "timestep";
+  keys.Fail("latency", out.str());
+}
+
+}  // namespace mjf::runner
