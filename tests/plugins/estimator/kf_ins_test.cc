@@ -4,9 +4,13 @@
 // simulator's scheme (semi-implicit Euler), so every figure below is derived, not recorded.
 #include "mjformation/estimator/kf_ins.hpp"
 
+#include "mjformation/realism/sensor_model.hpp"
+
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <cstdio>
 #include <random>
 #include <vector>
 
@@ -187,6 +191,104 @@ TEST(KfIns, MeanNeesIsInsideTheChiSquareBandOverSeeds) {
   const double mean = sum / kSeeds, dof = 6.0 * kSeeds;
   EXPECT_GT(mean, ChiSquareQuantile(0.025, dof) / kSeeds);
   EXPECT_LT(mean, ChiSquareQuantile(0.975, dof) / kSeeds);
+}
+
+// Steady hover, white-noise part (issue 18's figures): the steady-state Riccati solution per axis
+// for each suite, derived here from its own 3-state model (p, v, b; semi-implicit Euler), must
+// reach the targets, and the filter's covariance must converge to it.
+struct Suite {
+  const char* name;
+  realism::SensorParams params;
+  double position_target, velocity_target;  // 1 sigma per axis, m and m/s
+};
+
+// What the filter is told of the accelerometer: its density and the attitude channel's tilt
+// error times g (estimated_sensors.cc, SuiteInfo).
+double AssumedDensity(const realism::SensorParams& p) {
+  const auto& att = p[realism::Channel::kAttitude];
+  return std::hypot(p.accel.noise_density, kG * att.white_std / std::sqrt(att.rate_hz));
+}
+double AssumedWalk(const realism::SensorParams& p) {
+  return std::hypot(p.accel.bias_walk, kG * p[realism::Channel::kAttitude].bias_walk);
+}
+
+// Iterates the discrete Riccati recursion of one axis to its periodic steady state; returns
+// the largest 1-sigma of (p, v) over one sample period after the latency's propagation.
+std::array<double, 2> SteadySigma(const realism::SensorParams& sp, double dt) {
+  const auto& pos = sp[realism::Channel::kPosition];
+  const auto& vel = sp[realism::Channel::kVelocity];
+  const double n = AssumedDensity(sp), w = AssumedWalk(sp);
+  Eigen::Matrix3d F, Q, P = Eigen::Vector3d(1.0, 0.25, 0.04).asDiagonal();
+  F << 1, dt, -dt * dt, 0, 1, -dt, 0, 0, 1;
+  Q << n * n * dt * dt * dt / 3, n * n * dt * dt / 2, 0, n * n * dt * dt / 2, n * n * dt, 0, 0, 0,
+      w * w * dt;
+  Eigen::Matrix<double, 2, 3> H;
+  H << 1, 0, 0, 0, 1, 0;
+  const Eigen::Matrix2d R = Eigen::Vector2d(pos.white_std * pos.white_std,
+                                            vel.white_std * vel.white_std)
+                                .asDiagonal();
+  const int64_t period = std::llround(1.0 / (pos.rate_hz * dt));
+  const int64_t lag = std::llround(pos.latency_s / dt);
+  for (int64_t k = 0; k < std::llround(120.0 / dt); ++k) {
+    P = F * P * F.transpose() + Q;
+    if (k % period == 0) {
+      const Eigen::Matrix<double, 3, 2> K =
+          P * H.transpose() * (H * P * H.transpose() + R).inverse();
+      P = (Eigen::Matrix3d::Identity() - K * H) * P;
+    }
+  }
+  std::array<double, 2> worst{0, 0};
+  for (int64_t k = 0; k < period + lag; ++k) {
+    P = F * P * F.transpose() + Q;
+    worst = {std::max(worst[0], std::sqrt(P(0, 0))), std::max(worst[1], std::sqrt(P(1, 1)))};
+  }
+  return worst;
+}
+
+TEST(KfIns, SteadyHoverRiccatiFiguresMeetTheSuiteTargets) {
+  const Suite suites[] = {{"consumer_gnss", realism::SensorParams::ConsumerGnss(), 0.11, 0.06},
+                          {"rtk", realism::SensorParams::Rtk(), 0.01, 0.025},
+                          {"mocap", realism::SensorParams::MotionCapture(), 0.0005, 0.01}};
+  for (const Suite& s : suites) {
+    const auto sigma = SteadySigma(s.params, 0.001);
+    RecordProperty(std::string(s.name) + "_position_sigma", std::to_string(sigma[0]));
+    RecordProperty(std::string(s.name) + "_velocity_sigma", std::to_string(sigma[1]));
+    std::printf("%s: steady hover 1 sigma per axis: position %.5f m, velocity %.5f m/s\n", s.name,
+                sigma[0], sigma[1]);
+    EXPECT_LE(sigma[0], s.position_target) << s.name;
+    EXPECT_LE(sigma[1], s.velocity_target) << s.name;
+    EXPECT_GT(sigma[0], 0.0) << s.name;
+  }
+}
+
+// The filter's own covariance, at a sample arrival after 30 s of hover, equals the recursion's.
+TEST(KfIns, TheFilterCovarianceConvergesToTheDerivedRiccatiSolution) {
+  const realism::SensorParams sp = realism::SensorParams::ConsumerGnss();
+  KfInsConfig c;
+  c.timestep = 0.001;
+  c.accel_noise_density = AssumedDensity(sp);
+  c.accel_bias_walk = AssumedWalk(sp);
+  c.history = 0.2;
+  KfIns f(c);
+  AidingSample m;
+  m.has_position = m.has_velocity = true;
+  m.position_std = Vec3::Constant(sp[realism::Channel::kPosition].white_std);
+  m.velocity_std = Vec3::Constant(sp[realism::Channel::kVelocity].white_std);
+  double largest[2] = {0, 0};
+  for (int64_t n = 1; n <= 40000; ++n) {
+    f.Propagate(n, Vec3(0, 0, kG));
+    if (n % 100 == 10 && n > 110) {
+      m.time_taken = (n - 110) * 0.001;
+      f.Fuse(m);
+    }
+    if (n > 30000) {
+      largest[0] = std::max(largest[0], std::sqrt(f.covariance()(0, 0)));
+      largest[1] = std::max(largest[1], std::sqrt(f.covariance()(3, 3)));
+    }
+  }
+  const auto derived = SteadySigma(sp, 0.001);
+  EXPECT_NEAR(largest[0], derived[0], 1e-2 * derived[0]);
+  EXPECT_NEAR(largest[1], derived[1], 1e-2 * derived[1]);
 }
 
 }  // namespace
