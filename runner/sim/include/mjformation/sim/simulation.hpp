@@ -18,17 +18,13 @@
 
 #include "mjformation/config/config.hpp"
 #include "mjformation/control/control_tick.hpp"
+#include "mjformation/control/control_wiring.hpp"
 #include "mjformation/control/errors.hpp"
 #include "mjformation/control/plugin_host.hpp"
 #include "mjformation/control/stages.hpp"
 #include "mjformation/scene/vehicle_binding.hpp"
 #include "mjformation/sim/actuation.hpp"
 #include "mjformation/sim/partitioned_physics.hpp"
-
-namespace mjf::core {
-class Graph;
-class Shape;
-}  // namespace mjf::core
 
 namespace mjf::runner {
 
@@ -82,7 +78,7 @@ class Simulation {
   int actuators_per_vehicle() const { return bindings_.actuators_per_vehicle; }
   const VehicleBinding& binding(int vehicle) const { return bindings_.vehicles[vehicle]; }
   // The desired formation (nullptr when [formation.shape] type = "none").
-  const core::Shape* shape() const { return shape_.get(); }
+  const core::Shape* shape() const { return wiring_->shape(); }
   const PluginInstance& leader_plugin() const { return *tick_->plugins().leader; }
   const PluginInstance* formation_plugin() const { return tick_->plugins().formation.get(); }
   // Per-agent execution: the channel stage (network, links, metrics); nullptr in central mode.
@@ -99,21 +95,6 @@ class Simulation {
 
  private:
   void AdaptForeignVehicle(const mjfPlugin& attitude);
-  void BuildGraphAndShape();
-  std::unique_ptr<AgentChannel> MakeChannel() const;
-  ControlPlugins CreatePlugins(const LoadedPlugin& attitude, const AgentChannel* channel) const;
-  const LoadedPlugin& FindAgentPlugin(const LoadedPlugin& named) const;
-  std::vector<std::unique_ptr<PluginInstance>> CreateAgents(const LoadedPlugin& agent,
-                                                            const mjfCreateContext& base,
-                                                            const AgentChannel& channel) const;
-  void RequireFormationInputs() const;
-  std::unique_ptr<PluginInstance> CreateFormation(const LoadedPlugin& formation,
-                                                  const mjfCreateContext& base,
-                                                  const PluginSection& section) const;
-  // [formation] with accel_limit = "vehicle" replaced by the followers' smallest bound.
-  PluginSection FormationSection(const LoadedPlugin& attitude) const;
-  mjfCreateContext VehicleContext(const mjfCreateContext& base, int vehicle) const;
-  std::vector<mjfSetpoint> InitialSetpoints() const;
   void ComputeForces();
   void ApplyForces();
   void MakePartitions(const mjfPlugin& attitude);
@@ -142,12 +123,8 @@ class Simulation {
   VehicleBindings bindings_;
   std::vector<mjfVehicleState> truth_;
 
-  std::unique_ptr<core::Graph> graph_;
-  std::unique_ptr<core::Shape> shape_;
-  mjfGraph abi_graph_{};
-  mjfShape abi_shape_{};
-  std::vector<int> edge_from_, edge_to_;
-  std::vector<double> edge_weight_;
+  // The plugins' graph, shape and contexts: declared before the tick, so it outlives the plugins.
+  std::unique_ptr<ControlWiring> wiring_;
 
   std::unique_ptr<ControlTick> tick_;
   std::unique_ptr<Actuation> actuation_;
