@@ -1,8 +1,6 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 #include "mjformation/control/control_wiring.hpp"
 
-#include "mjformation/control/estimated_sensors.hpp"
-
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -14,6 +12,7 @@
 
 #include "mjformation/config/source_location.hpp"
 #include "mjformation/control/errors.hpp"
+#include "mjformation/control/estimated_sensors.hpp"
 #include "mjformation/control/vehicle_accel_limit.hpp"
 #include "mjformation/core/graph.hpp"
 #include "mjformation/core/shape.hpp"

@@ -105,10 +105,11 @@ void EstimatedSensors::EstimateOne(int vehicle, int64_t step, double time,
   const int code = plugin.Compute(ctx);
   if (code != 0) {
     error_.back() = '\0';
-    throw SimulationError(fmt::format("t = {:.3f} s: estimator plugin '{}' (vehicle {}) failed "
-                                      "(code {}): {}",
-                                      time, plugin.descriptor().name, vehicle, code,
-                                      error_[0] ? error_.data() : "no reason given"));
+    throw SimulationError(
+        fmt::format("t = {:.3f} s: estimator plugin '{}' (vehicle {}) failed "
+                    "(code {}): {}",
+                    time, plugin.descriptor().name, vehicle, code,
+                    error_[0] ? error_.data() : "no reason given"));
   }
 }
 

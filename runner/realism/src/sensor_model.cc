@@ -298,8 +298,8 @@ void SensorModel::Measure(int64_t step, const mjfVehicleState& truth, mjfVehicle
     std::memcpy(targets[k], ch.held.data(), sizeof(double) * ch.dim);
     if (ch.fresh && k <= static_cast<int>(Channel::kVelocity)) {
       const double stated = std::hypot(ch.noise.white_std, ch.noise.wander_sigma);
-      fresh_.push_back({static_cast<Channel>(k), ch.last_sample,
-                        {ch.held[0], ch.held[1], ch.held[2]}, stated});
+      fresh_.push_back(
+          {static_cast<Channel>(k), ch.last_sample, {ch.held[0], ch.held[1], ch.held[2]}, stated});
     }
   }
 }

@@ -4,8 +4,6 @@
 // simulator's scheme (semi-implicit Euler), so every figure below is derived, not recorded.
 #include "mjformation/estimator/kf_ins.hpp"
 
-#include "mjformation/realism/sensor_model.hpp"
-
 #include <gtest/gtest.h>
 
 #include <array>
@@ -13,6 +11,8 @@
 #include <cstdio>
 #include <random>
 #include <vector>
+
+#include "mjformation/realism/sensor_model.hpp"
 
 namespace mjf::estimator {
 namespace {
@@ -224,9 +224,8 @@ std::array<double, 2> SteadySigma(const realism::SensorParams& sp, double dt) {
       w * w * dt;
   Eigen::Matrix<double, 2, 3> H;
   H << 1, 0, 0, 0, 1, 0;
-  const Eigen::Matrix2d R = Eigen::Vector2d(pos.white_std * pos.white_std,
-                                            vel.white_std * vel.white_std)
-                                .asDiagonal();
+  const Eigen::Matrix2d R =
+      Eigen::Vector2d(pos.white_std * pos.white_std, vel.white_std * vel.white_std).asDiagonal();
   const int64_t period = std::llround(1.0 / (pos.rate_hz * dt));
   const int64_t lag = std::llround(pos.latency_s / dt);
   // 120 s of sample periods, each ending with the fusion of the sample taken then.

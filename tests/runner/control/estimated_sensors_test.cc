@@ -36,8 +36,8 @@ std::string ErrorOf(const std::function<void()>& f) {
 }
 
 ExperimentConfig Config(const std::string& sensors) {
-  return Parse(PointMassExperiment(2, 0, -2, 0, 0.02, "", "[sensors]\n" + sensors +
-                                                             "\n[estimator]\nplugin = \"kf_ins\"\n"));
+  return Parse(PointMassExperiment(
+      2, 0, -2, 0, 0.02, "", "[sensors]\n" + sensors + "\n[estimator]\nplugin = \"kf_ins\"\n"));
 }
 
 struct Flight {

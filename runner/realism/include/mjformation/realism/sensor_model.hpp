@@ -60,9 +60,9 @@ struct SensorParams {
   static SensorParams Typical();
   // Issue 18 suites, named for real sensor classes (numbers and sources in sensor_model.cc and
   // docs/REALISM.md); each comes with an accelerometer of the ICM-42688 class.
-  static SensorParams ConsumerGnss();    // u-blox M8N class
-  static SensorParams Rtk();             // u-blox ZED-F9P class
-  static SensorParams MotionCapture();   // optical motion capture (Vicon / OptiTrack class)
+  static SensorParams ConsumerGnss();   // u-blox M8N class
+  static SensorParams Rtk();            // u-blox ZED-F9P class
+  static SensorParams MotionCapture();  // optical motion capture (Vicon / OptiTrack class)
   // The accelerometer of an IMU grade: "icm42688" (data sheet) or "ekf2" (the inflated values
   // PX4's EKF2 assumes for a vibrating airframe). False for an unknown name.
   static bool ImuGrade(const std::string& name, AccelNoise* accel);
@@ -122,9 +122,9 @@ class SensorModel {
     // seconds need not cost three normal draws per 1 kHz gyro sample); var(b) = q^2 t at those
     // times, held in between.
     int64_t bias_every = 1, bias_count = 0;
-    double wander_phi = 0.0;                 // exp(-T / tau)
+    double wander_phi = 0.0;  // exp(-T / tau)
     std::array<double, 3> wander_own{}, wander_common{};
-    bool fresh = false;                      // a new sample in this step
+    bool fresh = false;  // a new sample in this step
   };
   void StepChannel(ChannelState& ch, int64_t step, const double* truth);
   void StepWander(ChannelState& ch, bool first, double error[3]);
