@@ -89,14 +89,16 @@ AidingSample ToSample(const mjfMeasurement& m) {
   return s;
 }
 
-void WriteEstimate(const KfIns& f, const mjfImuSample& imu, mjfEstimate* out) {
+// Attitude and body rate: the channels' current samples (imu.quat is the one of the interval the
+// accelerometer sample covers, a step older).
+void WriteEstimate(const KfIns& f, const mjfVehicleState& now, mjfEstimate* out) {
   const Vec3 p = f.position(), v = f.velocity();
   for (int k = 0; k < 3; ++k) {
     out->state.pos[k] = p[k];
     out->state.vel[k] = v[k];
-    out->state.gyro[k] = imu.gyro[k];
+    out->state.gyro[k] = now.gyro[k];
   }
-  for (int k = 0; k < 4; ++k) out->state.quat[k] = imu.quat[k];
+  for (int k = 0; k < 4; ++k) out->state.quat[k] = now.quat[k];
   for (int r = 0; r < 6; ++r) {
     for (int c = 0; c < 6; ++c) out->covariance[6 * r + c] = f.covariance()(r, c);
   }
@@ -114,7 +116,7 @@ int KfInsCompute(void* instance, const mjfStepContext* ctx) {
       self->filter.Propagate(ctx->step, f);
     }
     for (int k = 0; k < in.n_measurements; ++k) self->filter.Fuse(ToSample(in.measurements[k]));
-    WriteEstimate(self->filter, in.imu, ctx->estimate);
+    WriteEstimate(self->filter, *in.held, ctx->estimate);
     return 0;
   });
 }
