@@ -4,7 +4,8 @@
 // of `radius` m about its start position at `omega` rad/s, by feedforward centripetal
 // acceleration plus a PD correction on the reference. It shows the pieces a plugin written
 // against the installed mjformation needs: the ABI (mjformation/plugin.h), typed attributes and
-// exception-safe create/compute (mjformation/plugin_util.hpp), and MJF_EXPORT_PLUGINS.
+// exception-safe create/compute (mjformation/plugin_util.hpp), and MJF_EXPORT_PLUGINS. Built
+// against plugin ABI 3 (MJF_ABI_VERSION); a library built for another version is refused.
 #include <mjformation/plugin.h>
 
 #include <cmath>

@@ -1,8 +1,12 @@
 /* Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0. */
 /*
- * mjformation plugin ABI, version 2.
+ * mjformation plugin ABI, version 3.
  *
- * Version 2 (this wave): compute() can say why it failed (mjfStepContext.error), and formation
+ * Version 3 (this wave): the estimator kind (MJF_KIND_ESTIMATOR, mjfImuSample, mjfMeasurement,
+ * mjfEstimatorInput, mjfEstimate, mjfSensorInfo; appended to mjfCreateContext and
+ * mjfStepContext). Every new member is at the end of its struct or enum.
+ *
+ * Version 2: compute() can say why it failed (mjfStepContext.error), and formation
  * protocols can run as one instance per follower over a simulated network
  * (MJF_KIND_FORMATION_AGENT, mjfNeighbourhood, mjfAgentInput, mjfMessage). A library built for
  * another version is refused at load with a message naming both versions.
@@ -32,7 +36,7 @@ extern "C" {
 #endif
 
 /* Bump on any change of the structs or callbacks below. */
-#define MJF_ABI_VERSION 2u
+#define MJF_ABI_VERSION 3u
 
 /* Name of the exported entry point: const mjfPlugin* const* mjf_plugin_entry(int* count). */
 #define MJF_ENTRY_SYMBOL "mjf_plugin_entry"
@@ -44,8 +48,10 @@ typedef enum mjfKind_ {
   MJF_KIND_GUIDANCE = 1,  /* one instance per vehicle: own trajectory -> setpoint (leader, hover) */
   MJF_KIND_FORMATION = 2, /* one instance per swarm: neighbours' states -> follower setpoints */
   MJF_KIND_ATTITUDE = 3,  /* one instance per vehicle: setpoint -> actuator controls */
-  MJF_KIND_FORMATION_AGENT = 4 /* one instance per follower: own state + received messages ->
-                                  own setpoint (distributed execution, see mjfAgentInput) */
+  MJF_KIND_FORMATION_AGENT = 4, /* one instance per follower: own state + received messages ->
+                                   own setpoint (distributed execution, see mjfAgentInput) */
+  MJF_KIND_ESTIMATOR = 5 /* ABI 3: one instance per vehicle: IMU + time-stamped measurements ->
+                            the state estimate the controllers see (see mjfEstimatorInput) */
 } mjfKind;
 
 /* A declared attribute. Values reach create() as strings (like mjpPlugin attributes). */
@@ -163,6 +169,62 @@ typedef struct mjfAgentInput_ {
   const double* solved;
 } mjfAgentInput;
 
+/* ABI 3, estimator plugins. What a measurement carries (bits of mjfMeasurement.fields). */
+#define MJF_MEASURES_POSITION 1u
+#define MJF_MEASURES_VELOCITY 2u
+#define MJF_MEASURES_ATTITUDE 4u
+#define MJF_MEASURES_BODY_RATE 8u
+
+/* The inertial sample of one physics step (taken now, no latency). */
+typedef struct mjfImuSample_ {
+  double time;        /* s, when it was taken (= the step's time) */
+  int has_accel;      /* 0: the vehicle has no accelerometer channel */
+  int accel_in_world; /* 1: accel is in the world frame (point mass), 0: body frame */
+  double accel[3];    /* specific force a - g, m/s^2 (at rest, level: +g up) */
+  double quat[4];     /* attitude channel, w x y z, body -> world (rotates a body-frame accel) */
+  double gyro[3];     /* rad/s, body frame */
+} mjfImuSample;
+
+/* One sample of an aiding sensor (GNSS, RTK, motion capture) that arrived in this step. */
+typedef struct mjfMeasurement_ {
+  double time_taken; /* s, when the sensor took it (arrival time minus its latency) */
+  unsigned fields;   /* MJF_MEASURES_* bits: which of the members below are valid */
+  double pos[3];     /* m, world frame */
+  double vel[3];     /* m/s, world frame */
+  double quat[4];    /* w x y z */
+  double gyro[3];    /* rad/s, body frame */
+  double pos_std[3]; /* m, 1 sigma per axis the suite states for pos (white + wander) */
+  double vel_std[3]; /* m/s, 1 sigma per axis for vel */
+} mjfMeasurement;
+
+/* Handed to an estimator plugin on each compute() (ctx->estimator); it writes ctx->estimate. */
+typedef struct mjfEstimatorInput_ {
+  int vehicle;
+  mjfImuSample imu;
+  int n_measurements; /* the measurements that arrived in this step, oldest taken first */
+  const mjfMeasurement* measurements;
+  const mjfVehicleState* held; /* the sensor stage's held samples (what ABI 2 controllers saw) */
+} mjfEstimatorInput;
+
+/* What an estimator returns for the current time; the controllers see `state` only. */
+typedef struct mjfEstimate_ {
+  mjfVehicleState state;
+  double covariance[36]; /* row-major 6x6 of (pos x y z, vel x y z), m^2, m^2/s, m^2/s^2; NaN:
+                            the estimator does not know it */
+  int64_t rejected;      /* measurements refused by the innovation gate so far */
+  int64_t fused;         /* measurements fused so far */
+} mjfEstimate;
+
+/* What an estimator plugin knows of its vehicle's sensor suite (ctx->sensors at create()). */
+typedef struct mjfSensorInfo_ {
+  int has_accel;
+  int accel_in_world;
+  double accel_noise_density; /* m/s^2/sqrt(Hz), white specific-force noise */
+  double accel_bias_walk;     /* m/s^3/sqrt(Hz), bias random-walk intensity */
+  unsigned position_sources;  /* MJF_MEASURES_* bits provided by some aiding sensor */
+  double max_latency;         /* s, the largest latency of any aiding sensor */
+} mjfSensorInfo;
+
 typedef struct mjfCreateContext_ {
   /* Attributes: every declared key, in declaration order, with defaults filled in. */
   int n_attributes;
@@ -179,6 +241,7 @@ typedef struct mjfCreateContext_ {
   const struct mjModel_* model;          /* raw access, may be NULL (unit tests) */
   char* error; /* create() writes a one-line reason here when it returns NULL */
   size_t error_size;
+  const mjfSensorInfo* sensors; /* ABI 3: estimator plugins; NULL otherwise */
 } mjfCreateContext;
 
 typedef struct mjfStepContext_ {
@@ -196,6 +259,10 @@ typedef struct mjfStepContext_ {
   char* error;
   size_t error_size;
   const mjfAgentInput* agent; /* per-agent formation plugins; NULL otherwise */
+  /* ABI 3, estimator plugins (NULL otherwise): this step's IMU sample and arrived
+   * measurements, and where the estimate for ctx->time goes. ctx->states is NULL for them. */
+  const mjfEstimatorInput* estimator;
+  mjfEstimate* estimate;
 } mjfStepContext;
 
 /* Optional reporting of scalar results into summary.json (e.g. "delta", "error_bound"). */

@@ -28,8 +28,17 @@ static int Compute(void* instance, const mjfStepContext* ctx) {
 static void Destroy(void* instance) { free(instance); }
 static const mjfPlugin kHold = {MJF_ABI_VERSION, "oot_hold", MJF_KIND_GUIDANCE,
   "out-of-tree test plugin", 1, kAttributes, 0, NULL, Create, Compute, NULL, Destroy, NULL};
-static const mjfPlugin* const kPlugins[] = {&kHold};
-const mjfPlugin* const* mjf_plugin_entry(int* count) { *count = 1; return kPlugins; }
+/* ABI 3: an estimator plugin (the held samples, as passthrough does). */
+static void* EstCreate(const mjfCreateContext* ctx) { (void)ctx; return malloc(1); }
+static int EstCompute(void* instance, const mjfStepContext* ctx) {
+  (void)instance;
+  ctx->estimate->state = *ctx->estimator->held;
+  return 0;
+}
+static const mjfPlugin kEst = {MJF_ABI_VERSION, "oot_estimator", MJF_KIND_ESTIMATOR,
+  "out-of-tree estimator", 0, NULL, 0, NULL, EstCreate, EstCompute, NULL, Destroy, NULL};
+static const mjfPlugin* const kPlugins[] = {&kHold, &kEst};
+const mjfPlugin* const* mjf_plugin_entry(int* count) { *count = 2; return kPlugins; }
 C
 cc -std=c11 -Wall -Wextra -Werror -shared -fPIC -I"$work/prefix/include" \
    -o "$work/plugins/liboot_hold.so" "$work/oot_hold.c"
@@ -54,6 +63,10 @@ plugin = "pd_cascade"
 T
 "$work/prefix/bin/mjformation" plugins --plugin-path "$work/plugins" > "$work/plugins.txt"
 grep -q "oot_hold" "$work/plugins.txt" || { cat "$work/plugins.txt"; false; }
+# The installed header is ABI 3 and lists the estimator kind, with the C estimator under it.
+grep -q "#define MJF_ABI_VERSION 3u" "$work/prefix/include/mjformation/plugin.h"
+sed -n '/^estimator plugins:/,$p' "$work/plugins.txt" | grep -q "oot_estimator" \
+  || { cat "$work/plugins.txt"; false; }
 "$work/prefix/bin/mjformation" run "$work/exp.toml" --out "$work/run" \
     --plugin-path "$work/plugins" --no-render -q
 grep -q '"complete": true' "$work/run/summary.json"

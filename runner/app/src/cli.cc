@@ -80,7 +80,8 @@ int PluginsCommand(const CliCommands& c) {
     std::printf("  %s%s\n", dir.c_str(), IsDirectory(dir) ? "" : "  (absent)");
   }
   for (mjfKind kind :
-       {MJF_KIND_GUIDANCE, MJF_KIND_FORMATION, MJF_KIND_FORMATION_AGENT, MJF_KIND_ATTITUDE}) {
+       {MJF_KIND_GUIDANCE, MJF_KIND_FORMATION, MJF_KIND_FORMATION_AGENT, MJF_KIND_ATTITUDE,
+        MJF_KIND_ESTIMATOR}) {
     std::printf("\n%s plugins:\n", KindName(kind));
     for (const auto& p : registry.plugins()) {
       const mjfPlugin& d = *p.descriptor;

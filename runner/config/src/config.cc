@@ -184,7 +184,7 @@ toml::table ParseDocument(const std::string& text, const std::string& path,
 // The sections an experiment file may have, in the order the documentation lists them.
 const char* const kSections[] = {"run",       "vehicles",  "topology", "leader",
                                  "formation", "attitude",  "render",   "sensors",
-                                 "wind",      "execution", "network"};
+                                 "wind",      "execution", "network",  "estimator"};
 
 void RejectUnknownSections(const Reporter& reporter, const toml::table& root) {
   for (auto&& [key, node] : root) {
@@ -502,6 +502,7 @@ ExperimentConfig ParseExperiment(const std::string& text, const std::string& pat
   c.leader = ReadPluginSection(reporter, root, "leader", "circle", {});
   c.formation = ReadPluginSection(reporter, root, "formation", "", {"shape"});
   c.attitude = ReadPluginSection(reporter, root, "attitude", "pd_cascade", {});
+  c.estimator = ReadPluginSection(reporter, root, "estimator", "passthrough", {});
   ParseShapeSection(reporter, table_of("formation"), path, c);
   ParseRenderSection(SectionReader(reporter.path(), table_of("render"), "render"), c.duration,
                      c.render);

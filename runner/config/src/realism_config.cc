@@ -21,8 +21,21 @@ void ParseSensors(const toml::table* table, const std::string& path, ExperimentC
     s.params = realism::SensorParams::Ideal();
   } else if (s.preset == "typical") {
     s.params = realism::SensorParams::Typical();
+  } else if (s.preset == "consumer_gnss") {
+    s.params = realism::SensorParams::ConsumerGnss();
+  } else if (s.preset == "rtk") {
+    s.params = realism::SensorParams::Rtk();
+  } else if (s.preset == "mocap") {
+    s.params = realism::SensorParams::MotionCapture();
   } else {
-    keys.Fail("preset", "unknown preset '" + s.preset + "' (known: ideal, typical)");
+    keys.Fail("preset", "unknown preset '" + s.preset +
+                            "' (known: ideal, typical, consumer_gnss, rtk, mocap)");
+  }
+  if (keys.Has("imu")) {
+    s.imu = keys.String("imu", "");
+    if (!realism::SensorParams::ImuGrade(s.imu, &s.params.accel)) {
+      keys.Fail("imu", "unknown IMU grade '" + s.imu + "' (known: icm42688, ekf2)");
+    }
   }
   if (!(s.scale >= 0)) keys.Fail("scale", "must be >= 0");
   s.params = s.params.Scaled(s.scale);
@@ -33,7 +46,14 @@ void ParseSensors(const toml::table* table, const std::string& path, ExperimentC
     n.bias_walk = keys.Number(name + "_bias_walk", n.bias_walk);
     n.rate_hz = keys.Number(name + "_rate", n.rate_hz);
     n.latency_s = keys.Number(name + "_latency", n.latency_s);
+    n.wander_sigma = keys.Number(name + "_wander", n.wander_sigma);
+    n.wander_tau = keys.Number(name + "_wander_tau", n.wander_tau);
+    n.correlation = keys.Number(name + "_correlation", n.correlation);
   }
+  realism::AccelNoise& a = s.params.accel;
+  if (keys.Has("accel_noise") || keys.Has("accel_bias_walk")) a.enabled = true;
+  a.noise_density = keys.Number("accel_noise", a.noise_density);
+  a.bias_walk = keys.Number("accel_bias_walk", a.bias_walk);
   keys.RejectUnknown();
   const std::string problem = s.params.Validate(c->timestep);
   if (!problem.empty()) {
@@ -213,9 +233,21 @@ void AddRealismSummary(const ExperimentConfig& c, nlohmann::ordered_json* summar
           {"bias_walk", n.bias_walk},
           {"rate_hz", n.rate_hz},
           {"latency_s", n.latency_s}};
+      // Issue 18's keys only when used, so earlier configurations keep their summary bytes.
+      if (n.wander_sigma > 0) {
+        auto& ch = channels[realism::ChannelName(static_cast<realism::Channel>(k))];
+        ch["wander"] = n.wander_sigma;
+        ch["wander_tau_s"] = n.wander_tau;
+        ch["correlation"] = n.correlation;
+      }
     }
     (*summary)["sensors"] = {
         {"preset", c.sensors.preset}, {"scale", c.sensors.scale}, {"channels", channels}};
+    const realism::AccelNoise& a = c.sensors.params.accel;
+    if (a.enabled) {
+      (*summary)["sensors"]["accelerometer"] = {{"noise_density", a.noise_density},
+                                                {"bias_walk", a.bias_walk}};
+    }
   }
   if (c.wind.enabled()) {
     const realism::WindParams& p = c.wind.params;

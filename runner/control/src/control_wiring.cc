@@ -12,6 +12,7 @@
 
 #include "mjformation/config/source_location.hpp"
 #include "mjformation/control/errors.hpp"
+#include "mjformation/control/estimated_sensors.hpp"
 #include "mjformation/control/vehicle_accel_limit.hpp"
 #include "mjformation/core/graph.hpp"
 #include "mjformation/core/shape.hpp"
@@ -68,6 +69,26 @@ void ControlWiring::BuildGraphAndShape() {
                 edge_weight_.data()};
   shape_ = MakeShape(config_);
   if (shape_) abi_shape_ = core::ToAbi(*shape_);
+}
+
+std::unique_ptr<SensorStage> ControlWiring::MakeSensors() const {
+  // "passthrough" is today's stage itself: the held samples, bit for bit, no plugin call.
+  if (config_.estimator.plugin == "passthrough") return MakeSensorStage(config_);
+  const LoadedPlugin& estimator =
+      FindPlugin(registry_, config_, config_.estimator, {MJF_KIND_ESTIMATOR},
+                 "this section needs an estimator plugin (e.g. kf_ins, passthrough)");
+  mjfCreateContext base{};
+  base.timestep = config_.timestep;
+  base.n_vehicles = n_vehicles();
+  base.model = vehicles_.model;
+  const double gravity = vehicles_.info[0] ? vehicles_.info[0]->gravity : 9.81;
+  return std::make_unique<EstimatedSensors>(
+      config_, n_vehicles(), gravity, [&](int vehicle, const mjfSensorInfo& suite) {
+        mjfCreateContext ctx = VehicleContext(base, vehicle);
+        ctx.sensors = &suite;
+        return std::make_unique<PluginInstance>(estimator, config_.estimator, config_.source_path,
+                                                ctx);
+      });
 }
 
 mjfCreateContext ControlWiring::VehicleContext(const mjfCreateContext& base, int vehicle) const {

@@ -24,6 +24,8 @@ const char* KindName(mjfKind kind) {
       return "attitude";
     case MJF_KIND_FORMATION_AGENT:
       return "per-agent formation";
+    case MJF_KIND_ESTIMATOR:
+      return "estimator";
   }
   return "unknown";
 }
@@ -57,8 +59,10 @@ void PluginRegistry::AddInProcessPlugins() {
   std::lock_guard<std::mutex> lock(in_process.mutex);
   for (const LoadedPlugin& p : in_process.plugins) {
     if (p.descriptor->abi_version != MJF_ABI_VERSION) {
-      problems_.push_back(p.library + ": plugin '" + p.descriptor->name + "' speaks ABI " +
-                          std::to_string(p.descriptor->abi_version));
+      problems_.push_back(p.library + ": plugin '" + p.descriptor->name +
+                          "' was built for plugin ABI " +
+                          std::to_string(p.descriptor->abi_version) + ", this runner speaks ABI " +
+                          std::to_string(MJF_ABI_VERSION));
       continue;
     }
     const bool duplicate = std::any_of(plugins_.begin(), plugins_.end(), [&](auto& q) {

@@ -66,18 +66,88 @@ SensorParams SensorParams::Typical() {
   return p;
 }
 
+// Issue 18 suites. Attitude and body rate: the attitude channel as in Typical (an autopilot's
+// attitude estimate), the gyro of the ICM-42688 class. Accelerometer: ImuGrade("icm42688").
+//  ConsumerGnss  u-blox NEO-M8N data sheet (UBX-15031086): 2.5 m CEP horizontal, 0.05 m/s
+//                velocity (50 %), up to 10 Hz. The CEP is taken as mostly wander: for a circular
+//                normal CEP = 1.1774 sigma, so sigma = 2.12 m per axis, tau = 100 s (our
+//                assumption: the slow drift of the satellite geometry and the ionosphere); the
+//                sample-to-sample jitter 0.3 m is our assumption (EKF2_GPS_P_NOISE = 0.5 m is
+//                the floor EKF2 assumes when fusing, not the jitter). Receivers metres apart see
+//                the same satellites and atmosphere: correlation 0.9 (our assumption). Latency
+//                110 ms (PX4 EKF2_GPS_DELAY).
+//  Rtk           u-blox ZED-F9P data sheet: RTK 0.01 m + 1 ppm CEP, 0.05 m/s, up to 20 Hz; white
+//                0.01 m, wander 0.005 m over 60 s with correlation 0.5 (our assumption: the
+//                base station's error is common), latency 50 ms (our assumption).
+//  MotionCapture optical motion capture (Vicon / OptiTrack class): sub-mm positions (0.3 mm
+//                white), 100-360 Hz (200 Hz here), 6-26 ms end to end (10 ms here); velocity by
+//                the system's differentiation, 0.02 m/s; attitude 0.002 rad (our assumption).
+//  gyro          TDK ICM-42688-P data sheet: 0.0028 dps/sqrt(Hz) = 4.89e-5 rad/s/sqrt(Hz), i.e.
+//                1.55e-3 rad/s per sample at 1 kHz; bias walk as Typical (3.88e-5).
+namespace {
+ChannelNoise Icm42688Gyro() { return {4.887e-5 * std::sqrt(1000.0), 3.8785e-5, 0.0, 0.0}; }
+}  // namespace
+
+SensorParams SensorParams::ConsumerGnss() {
+  SensorParams p = Typical();
+  p[Channel::kPosition] = {0.3, 0.0, 10.0, 0.11, 2.5 / 1.1774, 100.0, 0.9};
+  p[Channel::kVelocity] = {0.05, 0.0, 10.0, 0.11};
+  p[Channel::kBodyRate] = Icm42688Gyro();
+  ImuGrade("icm42688", &p.accel);
+  return p;
+}
+
+SensorParams SensorParams::Rtk() {
+  SensorParams p = Typical();
+  p[Channel::kPosition] = {0.01, 0.0, 20.0, 0.05, 0.005, 60.0, 0.5};
+  p[Channel::kVelocity] = {0.05, 0.0, 20.0, 0.05};
+  p[Channel::kBodyRate] = Icm42688Gyro();
+  ImuGrade("icm42688", &p.accel);
+  return p;
+}
+
+SensorParams SensorParams::MotionCapture() {
+  SensorParams p;
+  p[Channel::kPosition] = {0.0003, 0.0, 200.0, 0.01};
+  p[Channel::kVelocity] = {0.02, 0.0, 200.0, 0.01};
+  p[Channel::kAttitude] = {0.002, 0.0, 200.0, 0.01};
+  p[Channel::kBodyRate] = Icm42688Gyro();
+  ImuGrade("icm42688", &p.accel);
+  return p;
+}
+
+// icm42688: TDK ICM-42688-P data sheet, accelerometer noise 75 ug/sqrt(Hz) = 7.355e-4
+//           m/s^2/sqrt(Hz); its bias instability is not a random-walk figure: 1e-4 m/s^3/sqrt(Hz)
+//           is our assumption. ekf2: PX4 EKF2_ACC_NOISE = 0.35 m/s^2 and EKF2_ACC_B_NOISE =
+//           0.003 m/s^3, inflated for airframe vibration.
+bool SensorParams::ImuGrade(const std::string& name, AccelNoise* accel) {
+  if (name == "icm42688") {
+    *accel = {true, 75e-6 * 9.80665, 1e-4};
+  } else if (name == "ekf2") {
+    *accel = {true, 0.35, 0.003};
+  } else {
+    return false;
+  }
+  return true;
+}
+
 SensorParams SensorParams::Scaled(double factor) const {
   SensorParams p = *this;
   for (ChannelNoise& c : p.channel) {
     c.white_std *= factor;
     c.bias_walk *= factor;
+    c.wander_sigma *= factor;
   }
+  p.accel.noise_density *= factor;
+  p.accel.bias_walk *= factor;
   return p;
 }
 
 bool SensorParams::IsIdeal() const {
   for (const ChannelNoise& c : channel) {
-    if (c.white_std != 0 || c.bias_walk != 0 || c.latency_s != 0) return false;
+    if (c.white_std != 0 || c.bias_walk != 0 || c.latency_s != 0 || c.wander_sigma != 0) {
+      return false;
+    }
     // Any rate is a pass-through only when it samples every step; checked in SensorModel.
     if (c.rate_hz != 0) return false;
   }
@@ -109,12 +179,33 @@ std::string SensorParams::Validate(double timestep) const {
              std::to_string(timestep) + " s";
     }
     if (c.latency_s > 10.0) return name + "_latency: must be <= 10 s";
+    if (!(c.wander_sigma >= 0) || !std::isfinite(c.wander_sigma)) {
+      return name + "_wander: must be a finite number >= 0";
+    }
+    if (!(c.wander_tau > 0) || !std::isfinite(c.wander_tau)) {
+      return name + "_wander_tau: must be a finite number > 0 s";
+    }
+    if (!(c.correlation >= 0 && c.correlation <= 1)) {
+      return name + "_correlation: must be in [0, 1]";
+    }
+  }
+  if (!(accel.noise_density >= 0) || !std::isfinite(accel.noise_density)) {
+    return "accel_noise: must be a finite number >= 0";
+  }
+  if (!(accel.bias_walk >= 0) || !std::isfinite(accel.bias_walk)) {
+    return "accel_bias_walk: must be a finite number >= 0";
   }
   return "";
 }
 
-SensorModel::SensorModel(const SensorParams& params, double timestep, uint64_t seed)
-    : ideal_(params.IsIdeal()), timestep_(timestep), normal_(seed) {
+SensorModel::SensorModel(const SensorParams& params, double timestep, uint64_t seed,
+                         uint64_t own_seed, uint64_t common_seed)
+    : ideal_(params.IsIdeal()),
+      timestep_(timestep),
+      normal_(seed),
+      own_normal_(own_seed),
+      common_normal_(common_seed),
+      accel_(params.accel) {
   const std::string problem = params.Validate(timestep);
   if (!problem.empty()) throw std::invalid_argument("sensor model: " + problem);
   for (int k = 0; k < kChannels; ++k) {
@@ -126,6 +217,23 @@ SensorModel::SensorModel(const SensorParams& params, double timestep, uint64_t s
     ch.bias_every = std::max<int64_t>(
         1, static_cast<int64_t>(std::floor(0.01 / (ch.period_steps * timestep) + 1e-9)));
     ch.history.assign(static_cast<size_t>(ch.latency_steps + 1) * ch.dim, 0.0);
+    ch.wander_phi = std::exp(-ch.period_steps * timestep / ch.noise.wander_tau);
+  }
+}
+
+// The Gauss-Markov wander of one new sample (both parts), added to `error`. The first sample
+// draws from the stationary distribution; the common part's stream is the same in every
+// vehicle's model, so every vehicle computes the same common realisation.
+void SensorModel::StepWander(ChannelState& ch, bool first, double error[3]) {
+  const double sigma = ch.noise.wander_sigma, phi = ch.wander_phi;
+  const double drive = first ? sigma : sigma * std::sqrt(1.0 - phi * phi);
+  const double keep = first ? 0.0 : phi;
+  const double w_common = std::sqrt(ch.noise.correlation);
+  const double w_own = std::sqrt(1.0 - ch.noise.correlation);
+  for (int a = 0; a < 3; ++a) {
+    ch.wander_common[a] = keep * ch.wander_common[a] + drive * common_normal_.Next();
+    ch.wander_own[a] = keep * ch.wander_own[a] + drive * own_normal_.Next();
+    error[a] += w_common * ch.wander_common[a] + w_own * ch.wander_own[a];
   }
 }
 
@@ -150,11 +258,14 @@ void SensorModel::StepChannel(ChannelState& ch, int64_t step, const double* trut
         ch.noise.bias_walk * std::sqrt(ch.bias_every * ch.period_steps * timestep_);
     for (double& b : ch.bias) b += scale * normal_.Next();
   }
+  const bool first = ch.last_sample < 0;
   ch.last_sample = std::max<int64_t>(step - ch.latency_steps, 0);
+  ch.fresh = true;
   double error[3];
   for (int a = 0; a < 3; ++a) {
     error[a] = ch.bias[a] + (ch.noise.white_std > 0 ? ch.noise.white_std * normal_.Next() : 0.0);
   }
+  if (ch.noise.wander_sigma > 0) StepWander(ch, first, error);
   if (ch.dim == 4) {
     Perturb(delayed, error, ch.held.data());
   } else {
@@ -168,17 +279,57 @@ void SensorModel::Measure(int64_t step, const mjfVehicleState& truth, mjfVehicle
                            ", got " + std::to_string(step));
   }
   ++next_step_;
+  fresh_.clear();
   if (ideal_) {
     *measured = truth;
+    // Ideal sensors: a fresh exact position and velocity every step.
+    for (Channel c : {Channel::kPosition, Channel::kVelocity}) {
+      const double* v = c == Channel::kPosition ? truth.pos : truth.vel;
+      fresh_.push_back({c, step, {v[0], v[1], v[2]}, 0.0});
+    }
     return;
   }
   const double* sources[kChannels] = {truth.pos, truth.vel, truth.quat, truth.gyro};
   double* targets[kChannels] = {measured->pos, measured->vel, measured->quat, measured->gyro};
   for (int k = 0; k < kChannels; ++k) {
     ChannelState& ch = channels_[k];
+    ch.fresh = false;
     StepChannel(ch, step, sources[k]);
     std::memcpy(targets[k], ch.held.data(), sizeof(double) * ch.dim);
+    if (ch.fresh && k <= static_cast<int>(Channel::kVelocity)) {
+      const double stated = std::hypot(ch.noise.white_std, ch.noise.wander_sigma);
+      fresh_.push_back(
+          {static_cast<Channel>(k), ch.last_sample, {ch.held[0], ch.held[1], ch.held[2]}, stated});
+    }
   }
+}
+
+void SensorModel::Accelerometer(int64_t step, const mjfVehicleState& truth,
+                                const mjfVehicleState& measured, double gravity,
+                                double accel_out[3], double quat_out[4]) {
+  // Step 0 has no interval behind it: at rest, level.
+  const mjfVehicleState& before = step == 0 ? truth : previous_truth_;
+  const mjfVehicleState& seen = step == 0 ? measured : previous_measured_;
+  double a[3];
+  for (int k = 0; k < 3; ++k) a[k] = step == 0 ? 0.0 : (truth.vel[k] - before.vel[k]) / timestep_;
+  a[2] += gravity;  // a - g, g = (0, 0, -gravity)
+  // R^T v with R the rotation of `before.quat` (w x y z): v - 2 w (u x v) + 2 u x (u x v).
+  const double* q = before.quat;
+  const double u[3] = {q[1], q[2], q[3]};
+  const double t[3] = {2 * (u[1] * a[2] - u[2] * a[1]), 2 * (u[2] * a[0] - u[0] * a[2]),
+                       2 * (u[0] * a[1] - u[1] * a[0])};
+  const double ut[3] = {u[1] * t[2] - u[2] * t[1], u[2] * t[0] - u[0] * t[2],
+                        u[0] * t[1] - u[1] * t[0]};
+  const double white = accel_.noise_density / std::sqrt(timestep_);
+  const double walk = accel_.bias_walk * std::sqrt(timestep_);
+  for (int k = 0; k < 3; ++k) {
+    if (walk > 0) accel_bias_[k] += walk * own_normal_.Next();
+    accel_out[k] = a[k] - q[0] * t[k] + ut[k] + accel_bias_[k] +
+                   (white > 0 ? white * own_normal_.Next() : 0.0);
+  }
+  std::memcpy(quat_out, seen.quat, sizeof(double) * 4);
+  previous_truth_ = truth;
+  previous_measured_ = measured;
 }
 
 }  // namespace mjf::realism

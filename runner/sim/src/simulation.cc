@@ -70,7 +70,7 @@ Simulation::Simulation(const ExperimentConfig& config) : config_(config) {
   std::unique_ptr<AgentChannel> channel = wiring_->MakeChannel();  // per-agent execution only
   ControlPlugins plugins = wiring_->CreatePlugins(attitude, channel.get());
   tick_ = std::make_unique<ControlTick>(
-      std::move(plugins), MakeSensorStage(config_), wiring_->InitialSetpoints(),
+      std::move(plugins), wiring_->MakeSensors(), wiring_->InitialSetpoints(),
       bindings_.actuators_per_vehicle, config_.altitude, config_.timestep, std::move(channel));
   actuation_ = MakeActuation(config_.rotor_model, model_.get(), bindings_, config_.timestep);
   force_stages_ = MakeForceStages(config_);

@@ -37,6 +37,32 @@ std::string ErrorOf(const std::string& text) {
   return "";
 }
 
+// Issue 18's keys: each refused with FILE:LINE: [sensors] key and the reason.
+TEST(RealismConfig, SensorSuiteKeysAreRangeChecked) {
+  const std::string base = HoverExperiment(2, 2.0);  // 16 lines
+  const std::pair<const char*, const char*> bad[] = {
+      {"position_wander = -1.0", "[sensors] position_wander"},
+      {"position_wander = inf", "[sensors] position_wander"},
+      {"position_wander_tau = 0.0", "[sensors] position_wander_tau"},
+      {"velocity_correlation = 1.5", "[sensors] velocity_correlation"},
+      {"accel_noise = -0.1", "[sensors] accel_noise"},
+      {"accel_bias_walk = nan", "[sensors] accel_bias_walk"},
+      {"imu = \"mpu6050\"", "[sensors] imu"},
+      {"preset = \"rtk\"\nposition_rate = 30.0", "[sensors] position_rate"}};
+  for (const auto& [line, key] : bad) {
+    EXPECT_THAT(ErrorOf(base + "[sensors]\n" + line + "\n"),
+                AllOf(HasSubstr("exp.toml:"), HasSubstr(key)))
+        << line;
+  }
+  // The presets parse and switch the accelerometer on; typical keeps it off.
+  for (const char* preset : {"consumer_gnss", "rtk", "mocap"}) {
+    const ExperimentConfig c =
+        Parse(base + "[sensors]\npreset = \"" + std::string(preset) + "\"\n");
+    EXPECT_TRUE(c.sensors.params.accel.enabled) << preset;
+  }
+  EXPECT_FALSE(Parse(base + "[sensors]\npreset = \"typical\"\n").sensors.params.accel.enabled);
+}
+
 TEST(RealismConfig, DefaultsAreIdealAndCalm) {
   const ExperimentConfig c = Parse(HoverExperiment());
   EXPECT_FALSE(c.sensors.enabled());
@@ -81,7 +107,7 @@ TEST(RealismConfig, BadInputNamesFileLineAndKey) {
                     HasSubstr("finite")));
   EXPECT_THAT(ErrorOf(base + "[sensors]\npreset = \"perfect\"\n"),
               AllOf(HasSubstr("exp.toml:18:"), HasSubstr("[sensors] preset"),
-                    HasSubstr("known: ideal, typical")));
+                    HasSubstr("known: ideal, typical, consumer_gnss, rtk, mocap")));
   EXPECT_THAT(ErrorOf(base + "[sensors]\nattitude_rate = 300.0\n"),
               AllOf(HasSubstr("[sensors] attitude_rate"), HasSubstr("whole number")));
   EXPECT_THAT(ErrorOf(base + "[sensors]\nscale = \"high\"\n"),

@@ -48,7 +48,10 @@ TEST(InProcessPlugin, IsFoundWithItsOriginAfterTheLibraries) {
             1);
   // the foreign-ABI one is refused, the one named like a library plugin is shadowed by it
   EXPECT_THROW(registry.Find("in_process_foreign", "test"), PluginError);
-  EXPECT_TRUE(Mentions(registry.problems(), "'in_process_foreign' speaks ABI"));
+  EXPECT_TRUE(Mentions(registry.problems(), "'in_process_foreign' was built for plugin ABI " +
+                                                std::to_string(MJF_ABI_VERSION + 7) +
+                                                ", this runner speaks ABI " +
+                                                std::to_string(MJF_ABI_VERSION)));
   EXPECT_NE(registry.Find("circle", "test").descriptor, &kShadowed);
   EXPECT_TRUE(Mentions(registry.problems(), "'circle' shadowed by a library"));
 }

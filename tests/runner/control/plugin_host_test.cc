@@ -47,6 +47,7 @@ TEST(PluginHostTest, KindNames) {
   EXPECT_STREQ(KindName(MJF_KIND_FORMATION), "formation");
   EXPECT_STREQ(KindName(MJF_KIND_ATTITUDE), "attitude");
   EXPECT_STREQ(KindName(MJF_KIND_FORMATION_AGENT), "per-agent formation");
+  EXPECT_STREQ(KindName(MJF_KIND_ESTIMATOR), "estimator");
 }
 
 TEST(PluginHostTest, LoadsTheTestLibrariesAndNotesTheForeignAbi) {
@@ -72,6 +73,15 @@ TEST(PluginHostTest, AWrongAbiPluginIsRefusedNamingBothVersions) {
                     HasSubstr("built for plugin ABI 99"),
                     HasSubstr("this runner speaks ABI " + std::to_string(MJF_ABI_VERSION)),
                     HasSubstr("libmjf_test_badabi.so")));
+}
+
+// ABI 3 added the estimator kind: a library built against ABI 2 is refused, naming 2 and 3.
+TEST(PluginHostTest, AnAbi2PluginIsRefusedNamingBothVersions) {
+  ASSERT_EQ(MJF_ABI_VERSION, 3u);
+  PluginRegistry registry({kTestPlugins});
+  EXPECT_THAT(ErrorOf([&] { registry.Find("previous_abi", "exp.toml:4: [leader]"); }),
+              AllOf(HasSubstr("unknown plugin 'previous_abi'"),
+                    HasSubstr("plugin #1 was built for plugin ABI 2, this runner speaks ABI 3")));
 }
 
 TEST(PluginHostTest, AnUnknownPluginListsTheValidNamesWithTheirKindsAndTheFolders) {

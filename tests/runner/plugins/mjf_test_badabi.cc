@@ -1,5 +1,6 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
-// A plugin that claims another ABI version: the host must refuse it by name.
+// Plugins that claim another ABI version (a future one, and ABI 2, the one before the estimator
+// kind): the host must refuse each naming both versions.
 #include <mjformation/plugin.h>
 
 namespace {
@@ -16,10 +17,13 @@ const mjfPlugin kFutureAbi = {99u,
                               nullptr,
                               nullptr,
                               nullptr};
-const mjfPlugin* const kPlugins[] = {&kFutureAbi};
+const mjfPlugin kPreviousAbi = {
+    2u,      "previous_abi", MJF_KIND_GUIDANCE, "built for ABI 2", 0,       nullptr, 0,
+    nullptr, nullptr,        nullptr,           nullptr,           nullptr, nullptr};
+const mjfPlugin* const kPlugins[] = {&kFutureAbi, &kPreviousAbi};
 }  // namespace
 
 extern "C" const mjfPlugin* const* mjf_plugin_entry(int* count) {
-  *count = 1;
+  *count = 2;
   return kPlugins;
 }

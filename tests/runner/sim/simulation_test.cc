@@ -55,7 +55,7 @@ TEST(SetupErrorTest, AbiMismatchIsNamed) {
   ExperimentConfig c = Parse(text);
   EXPECT_THAT(ErrorOf([&] { Simulation sim(c); }),
               AllOf(HasSubstr("future_abi"), HasSubstr("libmjf_test_badabi.so"),
-                    HasSubstr("ABI 99"), HasSubstr("speaks ABI 2")));
+                    HasSubstr("ABI 99"), HasSubstr("speaks ABI " + std::to_string(MJF_ABI_VERSION))));
 }
 
 TEST(SetupErrorTest, MissingRequiredAttribute) {

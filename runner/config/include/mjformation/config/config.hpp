@@ -83,7 +83,7 @@ struct AttributeValue {
 
 // A [leader] / [formation] / [attitude] section: plugin name plus its attributes.
 struct PluginSection {
-  std::string section;  // "leader", "formation", "attitude"
+  std::string section;  // "leader", "formation", "attitude", "estimator"
   std::string plugin;
   int line = 0;  // line of the `plugin` key
   std::map<std::string, AttributeValue> attributes;
@@ -177,6 +177,7 @@ struct ExperimentConfig {
   PluginSection leader;
   PluginSection formation;
   PluginSection attitude;
+  PluginSection estimator;  // [estimator] (issue 18): per vehicle, default "passthrough"
   ShapeConfig shape;
   RenderConfig render;
   SensorsConfig sensors;  // [sensors] (realism_config.hpp)

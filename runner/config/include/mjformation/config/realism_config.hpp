@@ -16,8 +16,9 @@ namespace mjf::runner {
 
 // [sensors]: what the controllers measure. Default "ideal": the truth, bit for bit.
 struct SensorsConfig {
-  std::string preset = "ideal";  // "ideal" or "typical"
-  double scale = 1.0;            // multiplies the preset's white noise and bias walk
+  std::string preset = "ideal";  // "ideal", "typical", "consumer_gnss", "rtk", "mocap"
+  double scale = 1.0;            // multiplies the preset's white noise, bias walk and wander
+  std::string imu;               // an IMU grade for the accelerometer ("icm42688", "ekf2")
   realism::SensorParams params;  // preset, scaled, then the per-channel keys applied
   bool enabled() const { return !params.IsIdeal(); }
 };

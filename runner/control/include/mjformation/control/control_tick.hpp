@@ -66,6 +66,7 @@ class ControlTick {
   const std::vector<double>& controls() const { return controls_; }  // [vehicle][actuator]
   const ControlPlugins& plugins() const { return plugins_; }
   const AgentChannel* channel() const { return channel_.get(); }
+  const SensorStage& sensors() const { return *sensors_; }
 
  private:
   void RunGuidanceAndFormation(mjfStepContext& ctx, const std::vector<mjfVehicleState>& truth);

@@ -24,6 +24,22 @@ struct ChannelNoise {
   double bias_walk = 0.0;  // random-walk intensity of the bias, unit/sqrt(s): var(b(t)) = q^2 t
   double rate_hz = 0.0;    // samples per second, held in between; 0: every physics step
   double latency_s = 0.0;  // age of the truth a sample reports, s (a whole number of steps)
+  // Issue 18: a first-order Gauss-Markov wander added to each sample, stationary from the start:
+  // w+ = phi w + sigma sqrt(1 - phi^2) n, phi = exp(-T / tau). The part shared by every vehicle
+  // (the same satellites and atmosphere) has weight sqrt(correlation), the vehicle's own
+  // sqrt(1 - correlation): each vehicle's wander has variance sigma^2, pairwise correlation rho.
+  double wander_sigma = 0.0;  // unit, stationary standard deviation per axis
+  double wander_tau = 100.0;  // s, correlation time (> 0)
+  double correlation = 0.0;   // in [0, 1]: the common fraction of the wander's variance
+};
+
+// The accelerometer channel (issue 18): specific force f = R^T (a - g) in body axes (for the
+// point mass, whose body never rotates, that is the world frame), with white noise of density
+// `noise_density` and a bias random walk; every physics step, no latency.
+struct AccelNoise {
+  bool enabled = false;
+  double noise_density = 0.0;  // m/s^2/sqrt(Hz): per-sample std = density / sqrt(dt)
+  double bias_walk = 0.0;      // m/s^3/sqrt(Hz): var(b(t)) = q^2 t
 };
 
 enum class Channel { kPosition = 0, kVelocity, kAttitude, kBodyRate };
@@ -32,6 +48,7 @@ const char* ChannelName(Channel c);  // "position", "velocity", "attitude", "bod
 
 struct SensorParams {
   std::array<ChannelNoise, kChannels> channel;
+  AccelNoise accel;  // issue 18; off unless a suite or the accel_* keys switch it on
 
   ChannelNoise& operator[](Channel c) { return channel[static_cast<int>(c)]; }
   const ChannelNoise& operator[](Channel c) const { return channel[static_cast<int>(c)]; }
@@ -41,6 +58,14 @@ struct SensorParams {
   // A small UAV with a GNSS receiver, an attitude estimate and a MEMS gyro; sources in
   // sensor_model.cc and docs/REALISM.md.
   static SensorParams Typical();
+  // Issue 18 suites, named for real sensor classes (numbers and sources in sensor_model.cc and
+  // docs/REALISM.md); each comes with an accelerometer of the ICM-42688 class.
+  static SensorParams ConsumerGnss();   // u-blox M8N class
+  static SensorParams Rtk();            // u-blox ZED-F9P class
+  static SensorParams MotionCapture();  // optical motion capture (Vicon / OptiTrack class)
+  // The accelerometer of an IMU grade: "icm42688" (data sheet) or "ekf2" (the inflated values
+  // PX4's EKF2 assumes for a vibrating airframe). False for an unknown name.
+  static bool ImuGrade(const std::string& name, AccelNoise* accel);
   // White noise and bias walk multiplied by `factor` (rates and latencies unchanged).
   SensorParams Scaled(double factor) const;
   bool IsIdeal() const;
@@ -51,11 +76,31 @@ struct SensorParams {
 class SensorModel {
  public:
   // Params must pass Validate(timestep) (throws std::invalid_argument otherwise).
-  SensorModel(const SensorParams& params, double timestep, uint64_t seed);
+  // `common_seed` seeds the wander part shared by all vehicles (the same for every vehicle's
+  // model), `own_seed` this vehicle's wander and accelerometer; the white/bias stream of `seed` is
+  // unchanged by them (existing configurations keep their bytes).
+  SensorModel(const SensorParams& params, double timestep, uint64_t seed,
+              uint64_t own_seed = 0x6f776e, uint64_t common_seed = 0x636f6d);
 
   // The measurement at physics step `step` of the true state `truth`. Call once per step with
   // step = 0, 1, 2, ... (the latency buffer counts on it; throws std::logic_error otherwise).
   void Measure(int64_t step, const mjfVehicleState& truth, mjfVehicleState* measured);
+
+  // The samples of the aiding channels (position, velocity) taken fresh in the last Measure(),
+  // stamped with the step they report the truth of (step - latency).
+  struct Fresh {
+    Channel channel;
+    int64_t taken_step;
+    std::array<double, 3> value;
+    double stated_std;  // sqrt(white^2 + wander^2): what the suite says of its accuracy
+  };
+  const std::vector<Fresh>& fresh() const { return fresh_; }
+
+  // The accelerometer over the step that ended at `step` (call after Measure of that step):
+  // f = R(t_{n-1})^T (a - g), a = (v_n - v_{n-1}) / dt, exactly the integrator's acceleration,
+  // plus noise; `quat_out` is the attitude channel's reading at t_{n-1}, which rotates it back.
+  void Accelerometer(int64_t step, const mjfVehicleState& truth, const mjfVehicleState& measured,
+                     double gravity, double accel_out[3], double quat_out[4]);
 
   // The current bias of a channel (for tests and diagnostics).
   const std::array<double, 3>& Bias(Channel c) const { return channels_[static_cast<int>(c)].bias; }
@@ -77,14 +122,23 @@ class SensorModel {
     // seconds need not cost three normal draws per 1 kHz gyro sample); var(b) = q^2 t at those
     // times, held in between.
     int64_t bias_every = 1, bias_count = 0;
+    double wander_phi = 0.0;  // exp(-T / tau)
+    std::array<double, 3> wander_own{}, wander_common{};
+    bool fresh = false;  // a new sample in this step
   };
   void StepChannel(ChannelState& ch, int64_t step, const double* truth);
+  void StepWander(ChannelState& ch, bool first, double error[3]);
 
   bool ideal_;
   double timestep_;
   Gaussian normal_;
   std::array<ChannelState, kChannels> channels_;
   int64_t next_step_ = 0;
+  Gaussian own_normal_, common_normal_;  // wander and accelerometer streams (issue 18)
+  std::vector<Fresh> fresh_;
+  AccelNoise accel_;
+  std::array<double, 3> accel_bias_{};
+  mjfVehicleState previous_truth_{}, previous_measured_{};
 };
 
 }  // namespace mjf::realism

@@ -1,0 +1,99 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// KfIns: a linear Kalman filter per vehicle in the world frame, state x = (p, v, b) with b the
+// accelerometer bias expressed in the world frame (it also absorbs the slowly varying tilt error
+// of the attitude channel, g x delta-theta, which is a world-frame horizontal bias). The input
+// is the specific force rotated into the world frame by the attitude channel: a = R f + g - b.
+// Measurements of p and/or v are fused at the time they were TAKEN: the filter keeps, for every
+// step of a history window at least as long as the largest latency, the posterior and the input
+// of that step; a late measurement rewinds to its own step, is fused there, and the window is
+// re-propagated to now (exact: the same estimate as fusing it on time and propagating). Each
+// fused quantity passes a 5-sigma innovation gate per axis or is counted as rejected.
+// Pure C++17 + Eigen: no MuJoCo, no plugin ABI.
+#ifndef MJFORMATION_ESTIMATOR_KF_INS_HPP_
+#define MJFORMATION_ESTIMATOR_KF_INS_HPP_
+
+#include <Eigen/Dense>
+#include <cstdint>
+#include <deque>
+
+namespace mjf::estimator {
+
+using Vec3 = Eigen::Vector3d;
+using Mat3 = Eigen::Matrix3d;
+using Vec9 = Eigen::Matrix<double, 9, 1>;
+using Mat9 = Eigen::Matrix<double, 9, 9>;
+
+struct KfInsConfig {
+  double timestep = 0.001;  // s, one propagation per step
+  double accel_noise_density =
+      0.0;                       // m/s^2/sqrt(Hz): white specific-force noise the filter assumes
+  double accel_bias_walk = 0.0;  // m/s^3/sqrt(Hz): bias random walk the filter assumes
+  double history = 0.2;          // s kept for late measurements (>= the largest latency)
+  double gate_sigma = 5.0;       // innovation gate, standard deviations per axis
+  double gravity = 9.81;         // m/s^2, world -z
+  Vec3 initial_position = Vec3::Zero();
+  Vec3 initial_velocity = Vec3::Zero();
+  double initial_position_std = 1.0;  // m
+  double initial_velocity_std = 0.5;  // m/s
+  double initial_bias_std = 0.2;      // m/s^2
+};
+
+// One aiding sample: which of p, v it carries, their values and 1-sigma noise per axis.
+struct AidingSample {
+  double time_taken = 0.0;
+  bool has_position = false, has_velocity = false;
+  Vec3 position = Vec3::Zero(), velocity = Vec3::Zero();
+  Vec3 position_std = Vec3::Zero(), velocity_std = Vec3::Zero();
+};
+
+class KfIns {
+ public:
+  explicit KfIns(const KfInsConfig& config);  // throws std::invalid_argument on bad config
+
+  // Propagates one step with the world-frame specific force of the step just ended
+  // (a = f_world + g - b; f_world = R f_body): the state is then at `step`.
+  void Propagate(int64_t step, const Vec3& specific_force_world);
+  // Fuses a sample taken at or before the current step. Returns false when it is refused:
+  // gated out (counted in rejected()) or older than the history (counted in too_old()).
+  bool Fuse(const AidingSample& sample);
+
+  int64_t step() const { return step_; }
+  const Vec9& state() const { return x_; }
+  const Mat9& covariance() const { return P_; }
+  Vec3 position() const { return x_.segment<3>(0); }
+  Vec3 velocity() const { return x_.segment<3>(3); }
+  Vec3 bias() const { return x_.segment<3>(6); }
+  int64_t fused() const { return fused_; }
+  int64_t rejected() const { return rejected_; }
+  int64_t too_old() const { return too_old_; }
+
+  // One step of the linear model (for tests and for the steady-state Riccati derivation).
+  const Mat9& transition() const { return F_; }
+  const Mat9& process_noise() const { return Q_; }
+
+ private:
+  struct Slot {  // the posterior at `step` and the input that propagates it to step + 1
+    int64_t step;
+    Vec9 x;
+    Mat9 P;
+    Vec3 input;
+  };
+  void PropagateOnce(const Vec3& specific_force_world);
+  bool Update(const AidingSample& sample);
+  bool UpdateBlock(int offset, const Vec3& z, const Vec3& std);
+
+  KfInsConfig config_;
+  Mat9 F_, Q_;
+  Vec3 g_;
+  Vec9 x_;
+  Mat9 P_;
+  int64_t step_ = 0;
+  int64_t window_steps_;
+  std::deque<Slot> history_;  // oldest first; back() is the slot of step_ - 1
+  int64_t fused_ = 0, rejected_ = 0, too_old_ = 0;
+};
+
+}  // namespace mjf::estimator
+
+#endif  // MJFORMATION_ESTIMATOR_KF_INS_HPP_

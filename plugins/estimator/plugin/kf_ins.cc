@@ -1,0 +1,150 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// kf_ins: the adapter of KfIns (src/kf_ins.cc). Per step: the accelerometer sample rotated into
+// the world frame by the attitude channel propagates the filter, every arrived measurement is
+// fused at the time it was taken, and the estimate for now is written (attitude and body rate
+// are the attitude and body-rate channels: this filter does not estimate them).
+#include "mjformation/estimator/kf_ins.hpp"
+
+#include <mjformation/plugin_util.hpp>
+#include <string>
+
+#include "adapter.hpp"
+
+namespace mjf::estimator::adapter {
+namespace {
+
+using mjf::plugin::Attributes;
+using mjf::plugin::ConfigError;
+
+const mjfAttribute kKfInsAttributes[] = {
+    {"accel_noise", "", "m/s^2/sqrt(Hz): white specific-force noise assumed (empty: the suite's)"},
+    {"accel_bias_walk", "", "m/s^3/sqrt(Hz): bias random walk assumed (empty: the suite's)"},
+    {"gate_sigma", "5", "innovation gate, standard deviations per axis"},
+    {"initial_position_std", "1", "m: initial position uncertainty (about the start position)"},
+    {"initial_velocity_std", "0.5", "m/s: initial velocity uncertainty (about rest)"},
+    {"initial_bias_std", "0.2", "m/s^2: initial accelerometer bias uncertainty"},
+};
+
+// v rotated from body to world by the unit quaternion q (w x y z): v + 2 w (u x v) + 2 u x (u x v).
+Vec3 Rotate(const double q[4], const double v[3]) {
+  const Vec3 u(q[1], q[2], q[3]);
+  const Vec3 x(v[0], v[1], v[2]);
+  const Vec3 t = 2.0 * u.cross(x);
+  return x + q[0] * t + u.cross(t);
+}
+
+double OrSuite(const Attributes& a, const char* key, double suite) {
+  const std::string text = a.String(key);
+  return text.empty() ? suite : a.Number(key);
+}
+
+KfInsConfig ReadConfig(const mjfCreateContext* ctx) {
+  const mjfSensorInfo* s = ctx->sensors;
+  if (!s) throw ConfigError("the host gave no sensor suite (not an estimator context)");
+  if (!s->has_accel) {
+    throw ConfigError(
+        "needs an accelerometer channel ([sensors] accel_*; the vehicle's contract "
+        "sensor 'accel')");
+  }
+  if (!(s->position_sources & MJF_MEASURES_POSITION)) {
+    throw ConfigError("needs a position source ([sensors] gnss / rtk / mocap, or position_*)");
+  }
+  const Attributes a(ctx);
+  KfInsConfig c;
+  c.timestep = ctx->timestep;
+  c.accel_noise_density = OrSuite(a, "accel_noise", s->accel_noise_density);
+  c.accel_bias_walk = OrSuite(a, "accel_bias_walk", s->accel_bias_walk);
+  c.gate_sigma = a.Number("gate_sigma");
+  c.history = s->max_latency + 2.0 * ctx->timestep;
+  c.gravity = ctx->vehicle_info ? ctx->vehicle_info->gravity : 9.81;
+  if (ctx->initial_pos)
+    c.initial_position = Vec3(ctx->initial_pos[0], ctx->initial_pos[1], ctx->initial_pos[2]);
+  c.initial_position_std = a.Number("initial_position_std");
+  c.initial_velocity_std = a.Number("initial_velocity_std");
+  c.initial_bias_std = a.Number("initial_bias_std");
+  return c;
+}
+
+struct KfInsInstance {
+  explicit KfInsInstance(const mjfCreateContext* ctx)
+      : filter(ReadConfig(ctx)), accel_in_world(ctx->sensors->accel_in_world != 0) {}
+  KfIns filter;
+  bool accel_in_world;
+};
+
+void* KfInsCreate(const mjfCreateContext* ctx) {
+  return mjf::plugin::CreateOrExplain(ctx, [ctx]() -> void* { return new KfInsInstance(ctx); });
+}
+
+AidingSample ToSample(const mjfMeasurement& m) {
+  AidingSample s;
+  s.time_taken = m.time_taken;
+  s.has_position = (m.fields & MJF_MEASURES_POSITION) != 0;
+  s.has_velocity = (m.fields & MJF_MEASURES_VELOCITY) != 0;
+  s.position = Vec3(m.pos[0], m.pos[1], m.pos[2]);
+  s.velocity = Vec3(m.vel[0], m.vel[1], m.vel[2]);
+  s.position_std = Vec3(m.pos_std[0], m.pos_std[1], m.pos_std[2]);
+  s.velocity_std = Vec3(m.vel_std[0], m.vel_std[1], m.vel_std[2]);
+  return s;
+}
+
+// Attitude and body rate: the channels' current samples (imu.quat is the one of the interval the
+// accelerometer sample covers, a step older).
+void WriteEstimate(const KfIns& f, const mjfVehicleState& now, mjfEstimate* out) {
+  const Vec3 p = f.position(), v = f.velocity();
+  for (int k = 0; k < 3; ++k) {
+    out->state.pos[k] = p[k];
+    out->state.vel[k] = v[k];
+    out->state.gyro[k] = now.gyro[k];
+  }
+  for (int k = 0; k < 4; ++k) out->state.quat[k] = now.quat[k];
+  for (int r = 0; r < 6; ++r) {
+    for (int c = 0; c < 6; ++c) out->covariance[6 * r + c] = f.covariance()(r, c);
+  }
+  out->fused = f.fused();
+  out->rejected = f.rejected();
+}
+
+int KfInsCompute(void* instance, const mjfStepContext* ctx) {
+  return mjf::plugin::ComputeOrExplain(ctx, [&] {
+    auto* self = static_cast<KfInsInstance*>(instance);
+    const mjfEstimatorInput& in = *ctx->estimator;
+    if (ctx->step > 0) {
+      const Vec3 f = self->accel_in_world ? Vec3(in.imu.accel[0], in.imu.accel[1], in.imu.accel[2])
+                                          : Rotate(in.imu.quat, in.imu.accel);
+      self->filter.Propagate(ctx->step, f);
+    }
+    for (int k = 0; k < in.n_measurements; ++k) self->filter.Fuse(ToSample(in.measurements[k]));
+    WriteEstimate(self->filter, *in.held, ctx->estimate);
+    return 0;
+  });
+}
+
+void KfInsReport(void* instance, mjfReportFn emit, void* user) {
+  const KfIns& f = static_cast<KfInsInstance*>(instance)->filter;
+  emit(user, "fused", static_cast<double>(f.fused()));
+  emit(user, "gated", static_cast<double>(f.rejected()));
+  emit(user, "too_old", static_cast<double>(f.too_old()));
+}
+
+void KfInsDestroy(void* instance) { delete static_cast<KfInsInstance*>(instance); }
+
+}  // namespace
+
+const mjfPlugin kKfIns = {
+    MJF_ABI_VERSION,
+    "kf_ins",
+    MJF_KIND_ESTIMATOR,
+    "world-frame Kalman filter (p, v, accel bias), IMU input, delayed fusion, 5-sigma gate",
+    static_cast<int>(sizeof(kKfInsAttributes) / sizeof(kKfInsAttributes[0])),
+    kKfInsAttributes,
+    0,
+    nullptr,
+    KfInsCreate,
+    KfInsCompute,
+    nullptr,
+    KfInsDestroy,
+    KfInsReport};
+
+}  // namespace mjf::estimator::adapter

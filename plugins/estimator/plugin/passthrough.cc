@@ -1,0 +1,44 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// passthrough: the estimate is the sensor stage's held samples, bit for bit (what the
+// controllers saw before estimators existed); the covariance is unknown (NaN).
+#include <cmath>
+#include <limits>
+
+#include "adapter.hpp"
+
+namespace mjf::estimator::adapter {
+namespace {
+
+struct Passthrough {
+  int vehicle;
+};
+
+void* PassthroughCreate(const mjfCreateContext* ctx) { return new Passthrough{ctx->vehicle}; }
+
+int PassthroughCompute(void* instance, const mjfStepContext* ctx) {
+  (void)instance;
+  ctx->estimate->state = *ctx->estimator->held;
+  for (double& c : ctx->estimate->covariance) c = std::numeric_limits<double>::quiet_NaN();
+  return 0;
+}
+
+void PassthroughDestroy(void* instance) { delete static_cast<Passthrough*>(instance); }
+
+}  // namespace
+
+const mjfPlugin kPassthrough = {MJF_ABI_VERSION,
+                                "passthrough",
+                                MJF_KIND_ESTIMATOR,
+                                "no estimator: the controllers see the held sensor samples",
+                                0,
+                                nullptr,
+                                0,
+                                nullptr,
+                                PassthroughCreate,
+                                PassthroughCompute,
+                                nullptr,
+                                PassthroughDestroy,
+                                nullptr};
+
+}  // namespace mjf::estimator::adapter

@@ -1,0 +1,116 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+#include "mjformation/control/estimated_sensors.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "mjformation/config/config.hpp"
+#include "mjformation/control/errors.hpp"
+#include "mjformation/realism/gaussian.hpp"
+
+namespace mjf::runner {
+namespace {
+
+using realism::Channel;
+
+// The wander part common to every vehicle: one stream, the same in every vehicle's model.
+constexpr uint64_t kCommonVehicle = 0xC0FFEE;
+
+}  // namespace
+
+mjfSensorInfo SuiteInfo(const realism::SensorParams& p, double gravity) {
+  mjfSensorInfo s{};
+  s.has_accel = p.accel.enabled ? 1 : 0;
+  s.accel_in_world = 0;
+  // The attitude channel's white error e (std sigma per sample at its rate r) rotates the
+  // specific force by e: an acceleration error g e, of density g sigma / sqrt(r); its bias walk
+  // q gives an acceleration bias walking at g q.
+  const realism::ChannelNoise& att = p[Channel::kAttitude];
+  const double rate = att.rate_hz > 0 ? att.rate_hz : 1000.0;
+  const double tilt_density = gravity * att.white_std / std::sqrt(rate);
+  s.accel_noise_density = std::hypot(p.accel.noise_density, tilt_density);
+  s.accel_bias_walk = std::hypot(p.accel.bias_walk, gravity * att.bias_walk);
+  s.position_sources = MJF_MEASURES_POSITION | MJF_MEASURES_VELOCITY;
+  s.max_latency = std::max(p[Channel::kPosition].latency_s, p[Channel::kVelocity].latency_s);
+  return s;
+}
+
+EstimatedSensors::EstimatedSensors(const ExperimentConfig& c, int n_vehicles, double gravity,
+                                   const MakeEstimator& make)
+    : timestep_(c.timestep),
+      gravity_(gravity),
+      suite_(SuiteInfo(c.sensors.params, gravity)),
+      held_(n_vehicles),
+      estimates_(n_vehicles) {
+  models_.reserve(n_vehicles);
+  for (int i = 0; i < n_vehicles; ++i) {
+    // Stream 1 as MeasuredSensors (same white noise and bias for the same seed); 2: this
+    // vehicle's wander and accelerometer; the common wander from one shared stream.
+    models_.emplace_back(c.sensors.params, c.timestep, realism::StreamSeed(c.seed, i, 1),
+                         realism::StreamSeed(c.seed, i, 2),
+                         realism::StreamSeed(c.seed, kCommonVehicle, 3));
+    estimators_.push_back(make(i, suite_));
+  }
+}
+
+void EstimatedSensors::Measure(int64_t step, double time, const std::vector<mjfVehicleState>& truth,
+                               std::vector<mjfVehicleState>* measured) {
+  for (size_t i = 0; i < models_.size(); ++i) {
+    EstimateOne(static_cast<int>(i), step, time, truth[i]);
+    (*measured)[i] = estimates_[i].state;
+  }
+}
+
+void EstimatedSensors::EstimateOne(int vehicle, int64_t step, double time,
+                                   const mjfVehicleState& truth) {
+  realism::SensorModel& model = models_[vehicle];
+  model.Measure(step, truth, &held_[vehicle]);
+  mjfEstimatorInput in{};
+  in.vehicle = vehicle;
+  in.imu.time = time;
+  in.imu.has_accel = suite_.has_accel;
+  model.Accelerometer(step, truth, held_[vehicle], gravity_, in.imu.accel, in.imu.quat);
+  std::copy(held_[vehicle].gyro, held_[vehicle].gyro + 3, in.imu.gyro);
+  // Position and velocity samples taken at the same step travel as one measurement.
+  arrived_.clear();
+  for (const auto& f : model.fresh()) {
+    if (arrived_.empty() || std::llround(arrived_.back().time_taken / timestep_) != f.taken_step) {
+      arrived_.push_back(mjfMeasurement{});
+      arrived_.back().time_taken = static_cast<double>(f.taken_step) * timestep_;
+    }
+    mjfMeasurement& m = arrived_.back();
+    const bool pos = f.channel == Channel::kPosition;
+    m.fields |= pos ? MJF_MEASURES_POSITION : MJF_MEASURES_VELOCITY;
+    std::copy(f.value.begin(), f.value.end(), pos ? m.pos : m.vel);
+    std::fill_n(pos ? m.pos_std : m.vel_std, 3, f.stated_std);
+  }
+  std::sort(arrived_.begin(), arrived_.end(),
+            [](const auto& a, const auto& b) { return a.time_taken < b.time_taken; });
+  in.n_measurements = static_cast<int>(arrived_.size());
+  in.measurements = arrived_.data();
+  in.held = &held_[vehicle];
+  mjfStepContext ctx{};
+  ctx.time = time;
+  ctx.step = step;
+  ctx.timestep = timestep_;
+  ctx.n_vehicles = static_cast<int>(models_.size());
+  ctx.error = error_.data();
+  ctx.error_size = error_.size();
+  ctx.estimator = &in;
+  ctx.estimate = &estimates_[vehicle];
+  error_[0] = '\0';
+  PluginInstance& plugin = *estimators_[vehicle];
+  const int code = plugin.Compute(ctx);
+  if (code != 0) {
+    error_.back() = '\0';
+    throw SimulationError(
+        fmt::format("t = {:.3f} s: estimator plugin '{}' (vehicle {}) failed "
+                    "(code {}): {}",
+                    time, plugin.descriptor().name, vehicle, code,
+                    error_[0] ? error_.data() : "no reason given"));
+  }
+}
+
+}  // namespace mjf::runner
