@@ -30,13 +30,13 @@ Geometric::Gains Geometric::Resolve(const Gains& gains, const Vehicle& vehicle,
                                       : kRateBwPerSampleRate / vehicle.timestep;
     // Torque authority: a tilt error e at att_bw = rate_bw / 4 asks the rate loop for a rate
     // att_bw e, which it answers with about rate_bw^2 e / 4 of angular acceleration. Kept within
-    // the weakest axis' authority alpha (torque at hover / inertia) for e = 0.1 rad, the cascade
-    // stays linear for the tilt errors of formation flight: rate_bw <= sqrt(4 alpha / e). The
-    // lag bound decides for rotor vehicles of 1-4 kg; the cap for weak-torque vehicles such as
-    // Menagerie's Crazyflie (1e-5 N m on 2.4e-5 kg m^2: 4 rad/s instead of 25), which flip
-    // when every rate error saturates the torque.
-    const double alpha =
-        std::min({angular_authority[0], angular_authority[1], angular_authority[2]});
+    // the weaker tilt axis' authority alpha (torque at hover / inertia) for e = 0.1 rad, the
+    // cascade stays linear for the tilt errors of formation flight: rate_bw <= sqrt(4 alpha / e).
+    // The lag bound decides for rotor vehicles of 1-4 kg (the Iris: 33 rad/s, cap 49); the cap
+    // for weak-torque vehicles such as Menagerie's Crazyflie (1e-5 N m on 2.4e-5 kg m^2: 4 rad/s
+    // instead of 25), which flip when every rate error saturates the torque. Yaw is left out:
+    // its loop runs at att_bw / 2 and the mixer gives yaw up first.
+    const double alpha = std::min(angular_authority[0], angular_authority[1]);
     g.rate_bw = std::min(g.rate_bw, std::sqrt(4 * alpha / kLinearTiltError));
   }
   // Cascade separation: the attitude loop a factor 4 below the rate loop, yaw and altitude a
