@@ -64,6 +64,7 @@ AdaptedVehicle AdaptVehicle(const VehicleMapping& m) {
   Notes notes;
   ScopeDefaults(&doc, root, body, &notes);
   ScopeSizes(root, &notes);
+  NoteModelOptions(root, &notes);
   DropWorldExtras(body, &notes);
   DropSections(root, &notes);
   RenameVehicleBody(root, body, m.body, m.model_path, m.body_where, &notes);

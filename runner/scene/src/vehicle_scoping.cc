@@ -112,6 +112,34 @@ void DropWorldExtras(XMLElement* body, Notes* notes) {
   DropLights(body, notes);
 }
 
+void NoteModelOptions(const XMLElement* root, Notes* notes) {
+  const XMLElement* option = root->FirstChildElement("option");
+  if (!option) return;
+  for (const char* a : {"timestep", "integrator"}) {
+    if (const char* v = option->Attribute(a)) {
+      notes->push_back(std::string("the model's <option ") + a + "=\"" + v +
+                       "\"> is replaced by the experiment's ([run] timestep; integrator Euler: "
+                       "the mj_step1/mj_step2 split of MuJoCo 2.2.2 integrates with Euler)");
+    }
+  }
+  for (const char* a : {"gravity", "density", "viscosity", "wind"}) {
+    if (const char* v = option->Attribute(a)) {
+      notes->push_back(std::string("kept the model's <option ") + a + "=\"" + v +
+                       "\"> for the whole scene" +
+                       (std::string(a) == "gravity" ? ""
+                                                    : ": MuJoCo's fluid forces act on every "
+                                                      "vehicle alike"));
+    }
+  }
+  for (const XMLElement* f = option->FirstChildElement("flag"); f;
+       f = f->NextSiblingElement("flag")) {
+    for (auto* at = f->FirstAttribute(); at; at = at->Next()) {
+      notes->push_back(std::string("kept the model's <flag ") + at->Name() + "=\"" + at->Value() +
+                       "\"> for the whole scene");
+    }
+  }
+}
+
 void DropSections(XMLElement* root, Notes* notes) {
   for (XMLElement* s = root->FirstChildElement(); s;) {
     XMLElement* next = s->NextSiblingElement();

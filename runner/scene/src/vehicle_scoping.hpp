@@ -28,6 +28,12 @@ void ScopeSizes(tinyxml2::XMLElement* root, Notes* notes);
 // the vehicle's own lights (N copies of a light would relight the shared scene).
 void DropWorldExtras(tinyxml2::XMLElement* body, Notes* notes);
 
+// The model's <option> as the composed scene will have it, one note per value that changes or
+// matters: its timestep and integrator are replaced by the experiment's (scene.cc), its gravity,
+// density, viscosity and wind are kept for the whole scene (every vehicle is a copy of this
+// model, so the fluid forces they imply act on all of them alike), its flags are kept.
+void NoteModelOptions(const tinyxml2::XMLElement* root, Notes* notes);
+
 // Sections scene.cc does not copy (keyframes, visual, statistic, extensions, ...).
 void DropSections(tinyxml2::XMLElement* root, Notes* notes);
 

@@ -83,5 +83,19 @@ TEST(VehicleScopingTest, DefaultsAndSizesAreScopedToTheVehicle) {
   EXPECT_EQ(f.notes.size(), 2u);
 }
 
+TEST(VehicleScopingTest, ModelOptionsAreListed) {
+  tinyxml2::XMLDocument doc;
+  ASSERT_EQ(doc.Parse("<mujoco><option integrator=\"RK4\" density=\"1.225\" "
+                      "viscosity=\"1.8e-5\"><flag energy=\"enable\"/></option></mujoco>"),
+            tinyxml2::XML_SUCCESS);
+  Notes notes;
+  NoteModelOptions(doc.RootElement(), &notes);
+  ASSERT_EQ(notes.size(), 4u);
+  EXPECT_NE(notes[0].find("<option integrator=\"RK4\"> is replaced"), std::string::npos);
+  EXPECT_NE(notes[1].find("density=\"1.225\"> for the whole scene: MuJoCo's fluid forces"),
+            std::string::npos);
+  EXPECT_NE(notes[3].find("<flag energy=\"enable\">"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace mjf::runner
