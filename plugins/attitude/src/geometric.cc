@@ -37,7 +37,8 @@ Geometric::Gains Geometric::Resolve(const Gains& gains, const Vehicle& vehicle,
     // instead of 25), which flip when every rate error saturates the torque. Yaw is left out:
     // its loop runs at att_bw / 2 and the mixer gives yaw up first.
     const double alpha = std::min(angular_authority[0], angular_authority[1]);
-    g.rate_bw = std::min(g.rate_bw, std::sqrt(4 * alpha / kLinearTiltError));
+    // No authority at hover thrust: the vehicle cannot hover, which Derive() reports.
+    if (alpha > 0) g.rate_bw = std::min(g.rate_bw, std::sqrt(4 * alpha / kLinearTiltError));
   }
   // Cascade separation: the attitude loop a factor 4 below the rate loop, yaw and altitude a
   // further 2 and 2.5 below.
