@@ -4,7 +4,9 @@
  *
  * Version 3 (this wave): the estimator kind (MJF_KIND_ESTIMATOR, mjfImuSample, mjfMeasurement,
  * mjfEstimatorInput, mjfEstimate, mjfSensorInfo; appended to mjfCreateContext and
- * mjfStepContext). Every new member is at the end of its struct or enum.
+ * mjfStepContext), and the vehicle info says which actuation contract the vehicle's actuators
+ * follow (mjfVehicleInfo.actuation: four rotors, or one collective thrust and three body
+ * moments). Every new member is at the end of its struct or enum.
  *
  * Version 2: compute() can say why it failed (mjfStepContext.error), and formation
  * protocols can run as one instance per follower over a simulated network
@@ -61,7 +63,7 @@ typedef struct mjfAttribute_ {
   const char* doc;           /* one line: meaning and unit */
 } mjfAttribute;
 
-/* What the vehicle's sensors report (never qpos): see mjcf/README.md for the sensor names. */
+/* What the vehicle's sensors report (never qpos): see docs/VEHICLES.md for the sensor names. */
 typedef struct mjfVehicleState_ {
   double pos[3];  /* m, world frame */
   double vel[3];  /* m/s, world frame */
@@ -92,6 +94,17 @@ typedef struct mjfActuatorInfo_ {
   double time_constant; /* s, first-order actuator lag (dyntype filter), 0 when none */
 } mjfActuatorInfo;
 
+/* How the actuators an attitude plugin drives move the vehicle (mjfVehicleInfo.actuation). */
+typedef enum mjfActuation_ {
+  /* Rotors: each actuator is one rotor (force along its gear at its site, plus its reaction
+   * torque); the plugin allocates the wrench over them (docs/VEHICLES.md). */
+  MJF_ACTUATION_ROTORS = 0,
+  /* Thrust and moments: actuator 0 is the collective thrust along body z, actuators 1..3 the
+   * body moments about x, y, z ([vehicles] thrust, moments); each control is that wrench
+   * component divided by its gear, within its ctrlrange. No mixing. */
+  MJF_ACTUATION_THRUST_MOMENTS = 1
+} mjfActuation;
+
 /* What an attitude or guidance plugin knows of its vehicle. */
 typedef struct mjfVehicleInfo_ {
   double mass;       /* kg, whole vehicle */
@@ -99,6 +112,7 @@ typedef struct mjfVehicleInfo_ {
   double gravity;    /* m/s^2, magnitude */
   int n_actuators;   /* equals the plugin's n_actuators */
   const mjfActuatorInfo* actuators;
+  int actuation; /* appended in version 3: an mjfActuation, what the actuators above are */
 } mjfVehicleInfo;
 
 /* Directed follower graph (paper section 2): follower indices 0..n-1 here (paper's i = index+1). */

@@ -12,10 +12,13 @@ namespace {
 
 // Rate loop crossover when the vehicle reports no motor lag: the sampling alone limits it.
 constexpr double kRateBwPerSampleRate = 0.05;  // rad/s per Hz of control rate
+// The tilt error the default cascade must answer without saturating the torque (see Resolve).
+constexpr double kLinearTiltError = 0.1;  // rad
 
 }  // namespace
 
-Geometric::Gains Geometric::Resolve(const Gains& gains, const Vehicle& vehicle) {
+Geometric::Gains Geometric::Resolve(const Gains& gains, const Vehicle& vehicle,
+                                    const Vec3& angular_authority) {
   Gains g = gains;
   // Rate loop: plant 1/s (angular acceleration -> rate) behind the motor lag tau plus about two
   // control periods of sampling delay; crossover at 0.9 / tau_eff leaves 48 deg of phase margin
@@ -25,6 +28,17 @@ Geometric::Gains Geometric::Resolve(const Gains& gains, const Vehicle& vehicle) 
   if (g.rate_bw == 0) {
     g.rate_bw = vehicle.motor_lag > 0 ? 0.9 / (vehicle.motor_lag + 2 * vehicle.timestep)
                                       : kRateBwPerSampleRate / vehicle.timestep;
+    // Torque authority: a tilt error e at att_bw = rate_bw / 4 asks the rate loop for a rate
+    // att_bw e, which it answers with about rate_bw^2 e / 4 of angular acceleration. Kept within
+    // the weaker tilt axis' authority alpha (torque at hover / inertia) for e = 0.1 rad, the
+    // cascade stays linear for the tilt errors of formation flight: rate_bw <= sqrt(4 alpha / e).
+    // The lag bound decides for rotor vehicles of 1-4 kg (the Iris: 33 rad/s, cap 49); the cap
+    // for weak-torque vehicles such as Menagerie's Crazyflie (1e-5 N m on 2.4e-5 kg m^2: 4 rad/s
+    // instead of 25), which flip when every rate error saturates the torque. Yaw is left out:
+    // its loop runs at att_bw / 2 and the mixer gives yaw up first.
+    const double alpha = std::min(angular_authority[0], angular_authority[1]);
+    // No authority at hover thrust: the vehicle cannot hover, which Derive() reports.
+    if (alpha > 0) g.rate_bw = std::min(g.rate_bw, std::sqrt(4 * alpha / kLinearTiltError));
   }
   // Cascade separation: the attitude loop a factor 4 below the rate loop, yaw and altitude a
   // further 2 and 2.5 below.
@@ -199,7 +213,11 @@ Geometric::Geometric(const Gains& gains, const Vehicle& vehicle,
                      const std::array<RotorGeometry, Mixer::kRotors>& rotors)
     : vehicle_(vehicle), mixer_(rotors) {
   CheckGiven(gains, vehicle);
-  gains_ = Resolve(gains, vehicle);
+  Vec3 authority;  // rad/s^2 per axis at hover thrust
+  for (int i = 0; i < 3; ++i) {
+    authority[i] = mixer_.TorqueAuthority(i, vehicle.mass * vehicle.gravity) / vehicle.inertia[i];
+  }
+  gains_ = Resolve(gains, vehicle, authority);
   CheckResolved(gains_, vehicle);
   derived_ = Derive(gains_, vehicle, mixer_, rotors);
 }

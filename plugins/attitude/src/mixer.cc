@@ -3,10 +3,62 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace mjf::attitude {
+namespace {
+
+const char* const kAxes[] = {"thrust", "roll torque", "pitch torque", "yaw torque"};
+
+std::string Number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), "%.3g", v);
+  return buf;
+}
+
+// Refuses an axis no rotor acts on: "no roll authority: rotors 0-3 give no roll torque".
+void RequireEveryAxis(const Eigen::Matrix4d& b) {
+  const double scale = b.cwiseAbs().maxCoeff();
+  for (int axis = 0; axis < 4; ++axis) {
+    if (b.row(axis).cwiseAbs().maxCoeff() <= 1e-9 * scale) {
+      throw std::invalid_argument(
+          std::string("the rotor layout has no ") + (axis == 0 ? "thrust" : kAxes[axis]) +
+          " authority: none of rotors 0-3 gives any " + kAxes[axis] +
+          (axis == 0 ? "" : " (all on the axis through the centre of mass, or gears without it)") +
+          ": check rotor site positions and gears");
+    }
+  }
+}
+
+// Says which axes and which rotors are dependent in a singular or ill-conditioned B: the left
+// singular vector of the smallest singular value is a combination of wrench axes no rotor
+// changes (c^T B ~ 0), the right one a combination of rotors that changes no axis (B v ~ 0).
+std::string Dependence(const Eigen::JacobiSVD<Eigen::Matrix4d>& svd) {
+  const Eigen::Vector4d c = svd.matrixU().col(3), v = svd.matrixV().col(3);
+  std::vector<int> axes, rotors;
+  for (int i = 0; i < 4; ++i) {
+    if (std::abs(c[i]) > 0.05 * c.cwiseAbs().maxCoeff()) axes.push_back(i);
+    if (std::abs(v[i]) > 0.05 * v.cwiseAbs().maxCoeff()) rotors.push_back(i);
+  }
+  std::string out;
+  if (axes.size() == 2) {
+    out = std::string(kAxes[axes[1]]) + " is proportional to " + kAxes[axes[0]] + " (" +
+          kAxes[axes[1]] + " = " + Number(-c[axes[0]] / c[axes[1]]) + " x " + kAxes[axes[0]] +
+          " for every rotor)";
+  } else {
+    out = "a combination of";
+    for (int i : axes) out += std::string(" ") + kAxes[i] + " (" + Number(c[i]) + ")";
+    out += " is the same for every rotor";
+  }
+  out += "; rotors";
+  for (int k : rotors) out += " " + std::to_string(k) + " (" + Number(v[k]) + ")";
+  return out + " in that proportion change nothing";
+}
+
+}  // namespace
 
 Mixer::Mixer(const std::array<RotorGeometry, kRotors>& rotors) {
   for (int k = 0; k < kRotors; ++k) {
@@ -22,14 +74,17 @@ Mixer::Mixer(const std::array<RotorGeometry, kRotors>& rotors) {
     ctrl_min_[k] = r.ctrl_min;
     ctrl_max_[k] = r.ctrl_max;
   }
-  const Eigen::JacobiSVD<Eigen::Matrix4d> svd(allocation_);
+  RequireEveryAxis(allocation_);
+  const Eigen::JacobiSVD<Eigen::Matrix4d> svd(allocation_,
+                                              Eigen::ComputeFullU | Eigen::ComputeFullV);
   const auto& sv = svd.singularValues();
   condition_ = sv[3] > 0 ? sv[0] / sv[3] : INFINITY;
   if (!(condition_ < kMaxCondition)) {
     throw std::invalid_argument(
         "the rotor allocation matrix (thrust, torques vs rotor thrusts) is singular or "
         "ill-conditioned (condition number " +
-        std::to_string(condition_) + "): check rotor site positions and gears");
+        std::to_string(condition_) + "): " + Dependence(svd) +
+        "; check rotor site positions and gears");
   }
   inverse_ = allocation_.inverse();
 }
@@ -44,6 +99,20 @@ double Mixer::MaxScale(const Eigen::Vector4d& base, const Eigen::Vector4d& delta
     }
   }
   return std::max(s, 0.0);
+}
+
+double Mixer::TorqueAuthority(int axis, double thrust) const {
+  const Eigen::Vector4d base = inverse_.col(0) * thrust;
+  const Eigen::Vector4d per_newton_metre = inverse_.col(1 + axis);
+  double out = INFINITY;
+  for (const double sign : {1.0, -1.0}) {
+    for (int k = 0; k < kRotors; ++k) {
+      const double d = sign * per_newton_metre[k];
+      if (d > 0) out = std::min(out, (ctrl_max_[k] - base[k]) / d);
+      if (d < 0) out = std::min(out, (ctrl_min_[k] - base[k]) / d);
+    }
+  }
+  return std::max(out, 0.0);
 }
 
 bool Mixer::ThrustInterval(const Eigen::Vector4d& extra, double* lo, double* hi) const {

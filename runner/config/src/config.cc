@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <set>
 #include <sstream>
 
@@ -35,8 +36,57 @@ class Reporter {
   std::string path_;
 };
 
-// [vehicles] body and rotors: how a foreign quadrotor model maps onto the vehicle contract
-// (docs/VEHICLES.md); whether the model has them is checked when the model is adapted.
+// The actuator names of [vehicles] `key` (an array), each once across `seen`.
+std::vector<std::string> ActuatorNames(SectionReader& vehicles, const Reporter& reporter,
+                                       const char* key, std::vector<std::string>* seen) {
+  std::vector<std::string> out;
+  const toml::array* a = vehicles.Array(key);
+  if (!a) return out;
+  const std::string where = std::string("[vehicles] ") + key;
+  for (const toml::node& item : *a) {
+    auto v = item.value_exact<std::string>();
+    if (!v || v->empty()) {
+      reporter.Fail(&item, where, "expected actuator names, e.g. [\"m1\", \"m2\"]");
+    }
+    if (std::find(seen->begin(), seen->end(), *v) != seen->end()) {
+      reporter.Fail(&item, where, "'" + *v + "' is listed twice");
+    }
+    seen->push_back(*v);
+    out.push_back(*v);
+  }
+  return out;
+}
+
+// [vehicles] thrust and moments: a thrust-and-moment vehicle's four actuators by role, in the
+// order the attitude plugin drives them (thrust, moment about body x, y, z).
+void ParseThrustAndMoments(SectionReader& vehicles, const Reporter& reporter,
+                           const std::function<int(const char*)>& line, ExperimentConfig* c) {
+  if (!vehicles.Has("thrust") && !vehicles.Has("moments")) return;
+  if (!c->vehicle_rotors.empty()) {
+    vehicles.Fail("thrust", "a vehicle has rotors or thrust and moments, not both");
+  }
+  if (!vehicles.Has("thrust") || !vehicles.Has("moments")) {
+    vehicles.Fail(vehicles.Has("thrust") ? "thrust" : "moments",
+                  "thrust and moments go together: thrust = \"<actuator>\", moments = "
+                  "[\"<about x>\", \"<about y>\", \"<about z>\"]");
+  }
+  const std::string thrust = vehicles.String("thrust", "");
+  if (thrust.empty()) vehicles.Fail("thrust", "must name the model's thrust actuator");
+  std::vector<std::string> seen = {thrust};
+  const std::vector<std::string> moments = ActuatorNames(vehicles, reporter, "moments", &seen);
+  if (moments.size() != 3) {
+    vehicles.Fail("moments", "must name 3 actuators (moments about body x, y, z), not " +
+                                 std::to_string(moments.size()));
+  }
+  c->vehicle_actuation = VehicleActuation::kThrustMoments;
+  c->vehicle_rotors = seen;  // thrust, then the moments
+  c->vehicle_rotors_line = line("thrust");
+  c->vehicle_moments_line = line("moments");
+}
+
+// [vehicles] body and rotors (or thrust and moments): how a foreign vehicle model maps onto
+// the vehicle contract (docs/VEHICLES.md); whether the model has them is checked when the model
+// is adapted.
 void ParseVehicleMapping(SectionReader& vehicles, const Reporter& reporter, ExperimentConfig* c) {
   auto line = [&](const char* key) {
     const toml::node* n = vehicles.Node(key);
@@ -45,21 +95,13 @@ void ParseVehicleMapping(SectionReader& vehicles, const Reporter& reporter, Expe
   c->vehicle_body = vehicles.String("body", "");
   c->vehicle_body_line = line("body");
   if (vehicles.Has("body") && c->vehicle_body.empty()) vehicles.Fail("body", "must not be empty");
-  if (const toml::array* a = vehicles.Array("rotors")) {
+  if (vehicles.Array("rotors")) {
     c->vehicle_rotors_line = line("rotors");
-    for (const toml::node& item : *a) {
-      auto v = item.value_exact<std::string>();
-      if (!v || v->empty()) {
-        reporter.Fail(&item, "[vehicles] rotors", "expected actuator names, e.g. [\"m1\", \"m2\"]");
-      }
-      if (std::find(c->vehicle_rotors.begin(), c->vehicle_rotors.end(), *v) !=
-          c->vehicle_rotors.end()) {
-        reporter.Fail(&item, "[vehicles] rotors", "'" + *v + "' is listed twice");
-      }
-      c->vehicle_rotors.push_back(*v);
-    }
+    std::vector<std::string> seen;
+    c->vehicle_rotors = ActuatorNames(vehicles, reporter, "rotors", &seen);
     if (c->vehicle_rotors.empty()) vehicles.Fail("rotors", "must name the model's rotors");
   }
+  ParseThrustAndMoments(vehicles, reporter, line, c);
 }
 
 // TOML value -> the ABI's attribute string ("3 1" for arrays of numbers).

@@ -41,8 +41,8 @@ void CopyAttributes(const XMLElement* from, XMLElement* to) {
 void PrefixNames(XMLElement* e, const std::string& prefix) {
   // The element's own name and every name it refers to belong to this copy.
   if (const char* v = e->Attribute("name")) e->SetAttribute("name", (prefix + v).c_str());
-  for (const char* attr : mjcf::kReferenceAttributes) {
-    if (const char* v = e->Attribute(attr)) e->SetAttribute(attr, (prefix + v).c_str());
+  for (const auto& ref : mjcf::kReferenceAttributes) {
+    if (const char* v = e->Attribute(ref.name)) e->SetAttribute(ref.name, (prefix + v).c_str());
   }
   for (XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
     PrefixNames(c, prefix);

@@ -3,10 +3,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 #include <random>
 
+#include "mjformation/config/source_location.hpp"
 #include "mjformation/control/plugin_host.hpp"
 #include "mjformation/scene/scene.hpp"
 
@@ -90,6 +92,34 @@ void RequireWrenchCompatible(const mjModel* vehicle, const ExperimentConfig& con
   }
 }
 
+// [vehicles] thrust and moments: actuator 0 pushes along body z only, actuator 1 + i turns about
+// body axis i only (gear read from the model, either sign); anything else is refused naming the
+// key and the model's actuator, before the plugin sees it.
+void RequireThrustAndMoments(const ExperimentConfig& config, const VehicleModelInfo& info) {
+  const char* const kRole[] = {"thrust along body z", "moment about body x", "moment about body y",
+                               "moment about body z"};
+  for (int k = 0; k < 4 && k < static_cast<int>(info.actuators.size()); ++k) {
+    const double* g = info.actuators[k].gear;
+    const int axis = k == 0 ? 2 : 2 + k;  // the one gear entry the role may use
+    bool pure = g[axis] != 0;
+    for (int i = 0; i < 6; ++i) pure &= i == axis || g[i] == 0;
+    if (!pure) {
+      const bool thrust = k == 0;
+      const std::string where =
+          SourceLocation{config.source_path,
+                         thrust ? config.vehicle_rotors_line : config.vehicle_moments_line,
+                         SectionKey("vehicles", thrust ? "thrust" : "moments")}
+              .Prefix();
+      char gear[160];
+      std::snprintf(gear, sizeof(gear), "%g %g %g %g %g %g", g[0], g[1], g[2], g[3], g[4], g[5]);
+      throw SceneError(where + ": " + config.model_path + ": actuator '" +
+                       config.vehicle_rotors[k] + "' is mapped as the " + kRole[k] +
+                       " but its gear is \"" + gear + "\" (the role needs gear entry " +
+                       std::to_string(axis) + " alone non-zero)");
+    }
+  }
+}
+
 VehicleModelInfo ReadVehicleModel(const ExperimentConfig& config, const mjfPlugin& attitude,
                                   const std::string& vehicle_xml) {
   char error[1024] = {0};
@@ -107,6 +137,9 @@ VehicleModelInfo ReadVehicleModel(const ExperimentConfig& config, const mjfPlugi
     std::memcpy(info.inertia, vehicle->body_inertia + 3 * body, sizeof(info.inertia));
     if (config.rotor_model == RotorModel::kWrench) {
       RequireWrenchCompatible(vehicle, config, attitude, info);
+    }
+    if (config.vehicle_actuation == VehicleActuation::kThrustMoments) {
+      RequireThrustAndMoments(config, info);
     }
   } catch (...) {
     mj_deleteModel(vehicle);
@@ -199,6 +232,9 @@ VehicleBindings BindVehicles(const mjModel* composed, const ExperimentConfig& co
     b.info.gravity = gravity;
     b.info.n_actuators = attitude.n_actuators;
     b.info.actuators = b.actuator_info.data();
+    b.info.actuation = config.vehicle_actuation == VehicleActuation::kThrustMoments
+                           ? MJF_ACTUATION_THRUST_MOMENTS
+                           : MJF_ACTUATION_ROTORS;
   }
   return out;
 }

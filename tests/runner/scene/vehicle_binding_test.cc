@@ -185,5 +185,56 @@ TEST_F(BindVehiclesTest, TrueStatesComeFromTheSensors) {
   mj_deleteData(d);
 }
 
+// The thrust-and-moment contract ([vehicles] thrust, moments) on our own 30 g example vehicle
+// (examples/vehicles/midge): the plugins are told the contract, the stock attitude plugins hold
+// it at altitude and fly the leader's (scaled) circle, and a mapping whose roles disagree with
+// the model's gears is refused naming the key and the actuator.
+const std::string kMidge = std::string(MJF_SOURCE_DIR) + "/examples/vehicles/midge/midge.xml";
+
+ExperimentConfig MidgeHover(const std::string& attitude, const std::string& moments) {
+  return LoadExperiment(
+      std::string(MJF_SOURCE_DIR) + "/experiments/hover.toml",
+      {"vehicles.model=\"" + kMidge + "\"", "vehicles.body=\"midge\"", "vehicles.thrust=\"lift\"",
+       "vehicles.moments=" + moments, "attitude={plugin=\"" + attitude + "\"}",
+       "vehicles.altitude=1.0", "leader.altitude=1.0", "leader.radius=2.0",
+       "vehicles.leader_start=[2.0,0.0]", "run.duration=6.0", "run.metric_window=[3.0,6.0]",
+       "render.snapshots=[]"});
+}
+
+TEST(VehicleBindingTest, ThrustAndMomentVehicleHoversAndFliesWithStockPlugins) {
+  for (const std::string attitude : {"geometric", "pd_cascade"}) {
+    Simulation sim(MidgeHover(attitude, "[\"roll\",\"pitch\",\"yaw\"]"));
+    sim.ComputeControls();
+    const double start_x = sim.states()[0].pos[0];
+    while (sim.time() < 6.0) {
+      sim.Integrate();
+      sim.ComputeControls();
+    }
+    for (const mjfVehicleState& s : sim.states()) {
+      EXPECT_NEAR(s.pos[2], 1.0, 0.05) << attitude;         // every vehicle at its altitude
+      EXPECT_GT(s.quat[0], std::cos(0.2 / 2)) << attitude;  // upright: tilt below 0.2 rad
+    }
+    // The leader moved along its 2 m circle (0.157 rad/s for 6 s: 1.8 m of arc).
+    EXPECT_GT(std::abs(sim.states()[0].pos[0] - start_x) + std::abs(sim.states()[0].pos[1]), 1.0)
+        << attitude;
+  }
+}
+
+TEST(VehicleBindingTest, ThrustAndMomentRolesMustMatchTheGears) {
+  try {
+    Simulation sim(MidgeHover("geometric", "[\"pitch\",\"roll\",\"yaw\"]"));
+    FAIL() << "a moment mapped to the wrong axis was accepted";
+  } catch (const std::exception& e) {
+    EXPECT_THAT(e.what(), HasSubstr("[vehicles] moments"));
+    EXPECT_THAT(e.what(), HasSubstr("actuator 'pitch' is mapped as the moment about body x"));
+  }
+}
+
+TEST(VehicleBindingTest, ThrustWithoutMomentsIsRefused) {
+  EXPECT_THROW(LoadExperiment(std::string(MJF_SOURCE_DIR) + "/experiments/hover.toml",
+                              {"vehicles.model=\"" + kMidge + "\"", "vehicles.thrust=\"lift\""}),
+               std::exception);
+}
+
 }  // namespace
 }  // namespace mjf::runner

@@ -22,6 +22,7 @@
 
 #include <Eigen/Geometry>
 #include <array>
+#include <cmath>
 
 #include "mjformation/attitude/mixer.hpp"
 #include "mjformation/attitude/types.hpp"
@@ -90,7 +91,8 @@ class Geometric {
   double altitude_integral() const { return integral_z_; }  // m/s^2
 
   // The resolved bandwidths (rad/s) for given gains and vehicle: 0 entries replaced.
-  static Gains Resolve(const Gains& gains, const Vehicle& vehicle);
+  static Gains Resolve(const Gains& gains, const Vehicle& vehicle,
+                       const Vec3& angular_authority = {INFINITY, INFINITY, INFINITY});
 
  private:
   Gains gains_;  // resolved (no 0 bandwidth)

@@ -41,6 +41,10 @@ class Mixer {
   const Eigen::Matrix4d& inverse() const { return inverse_; }
   double condition_number() const { return condition_; }
 
+  // The largest torque (N m, >= 0) about body axis `axis` (0 x, 1 y, 2 z) the rotors deliver,
+  // in either direction, while they also give the collective `thrust` (hover), no other torque.
+  double TorqueAuthority(int axis, double thrust) const;
+
   // What Mix() keeps when the rotors cannot deliver the whole wrench.
   enum class Priority {
     // Collective thrust (scaled into range), then roll/pitch (scaled together), then yaw. At full

@@ -121,6 +121,9 @@ struct RenderConfig {
   int video_height = 480;
 };
 
+// The actuation contract of the vehicle's actuators (mjfActuation of the plugin ABI).
+enum class VehicleActuation { kRotors = 0, kThrustMoments = 1 };
+
 struct ExperimentConfig {
   std::string source_path;             // the TOML file
   std::string source_text;             // its bytes, echoed to the run directory and hashed
@@ -164,6 +167,11 @@ struct ExperimentConfig {
   std::string vehicle_body;
   std::vector<std::string> vehicle_rotors;
   int vehicle_body_line = 0, vehicle_rotors_line = 0;  // for messages; 0: not in the file
+  // Thrust-and-moment vehicles ([vehicles] thrust = "...", moments = ["...", "...", "..."]):
+  // vehicle_rotors then holds the four actuators in the plugin's order (thrust, moment x, y, z)
+  // and vehicle_rotors_line the line of `thrust`.
+  VehicleActuation vehicle_actuation = VehicleActuation::kRotors;
+  int vehicle_moments_line = 0;
 
   // [topology]
   std::vector<double> leader_weight;  // a_i0 per follower (0-based)
