@@ -15,6 +15,7 @@
 #include "mjformation/config/source_location.hpp"
 #include "network_config.hpp"
 #include "realism_config.hpp"
+#include "safety_config.hpp"
 #include "section_reader.hpp"
 
 namespace mjf::runner {
@@ -26,8 +27,7 @@ class Reporter {
   explicit Reporter(std::string path) : path_(std::move(path)) {}
   [[noreturn]] void Fail(const toml::node* node, const std::string& where,
                          const std::string& message) const {
-    const int line = node ? static_cast<int>(node->source().begin.line) : 0;
-    SourceLocation{path_, line, where}.Fail(message);
+    NodeLocation(path_, node, where).Fail(message);
   }
   const std::string& path() const { return path_; }
 
@@ -76,6 +76,10 @@ std::string AttributeText(const Reporter& reporter, const toml::node& node,
     for (const toml::node& item : *a) {
       if (item.is_array() || item.is_table()) {
         reporter.Fail(&item, where, "nested arrays are not plugin attributes");
+      }
+      // ["3", "1"] would read as the numbers 3 1: an array holds numbers or booleans only.
+      if (item.is_string()) {
+        reporter.Fail(&item, where, "an array attribute holds numbers or booleans, not strings");
       }
       out += (out.empty() ? "" : " ") + AttributeText(reporter, item, where);
     }
@@ -131,7 +135,7 @@ void ApplyOverrides(toml::table& root, const std::vector<std::string>& overrides
     const std::string value = item.substr(eq + 1);
     toml::table parsed;
     try {
-      parsed = toml::parse("v = " + value);
+      parsed = toml::parse("v = " + value, "--set " + item);  // the origin errors name
     } catch (const toml::parse_error& e) {
       throw ConfigError("override '" + item + "': value is not TOML (" +
                         std::string(e.description()) + "); quote strings: key=\"text\"");
@@ -184,7 +188,7 @@ toml::table ParseDocument(const std::string& text, const std::string& path,
 // The sections an experiment file may have, in the order the documentation lists them.
 const char* const kSections[] = {"run",       "vehicles",  "topology", "leader",
                                  "formation", "attitude",  "render",   "sensors",
-                                 "wind",      "execution", "network"};
+                                 "wind",      "execution", "network",   "safety"};
 
 void RejectUnknownSections(const Reporter& reporter, const toml::table& root) {
   for (auto&& [key, node] : root) {
@@ -212,9 +216,12 @@ void ParseRunSection(const Reporter& reporter, SectionReader run, const std::str
     auto w = run.Numbers("metric_window", {c.metric_window[0], c.metric_window[1]}, 2);
     c.metric_window = {w[0], w[1]};
   }
-  c.paper_experiment = static_cast<int>(run.Integer("paper_experiment", 0));
+  const int64_t paper = run.Integer("paper_experiment", 0);
+  if (paper < 0 || paper > 3) run.Fail("paper_experiment", "must be 1, 2 or 3 (or 0: none)");
+  c.paper_experiment = static_cast<int>(paper);
   c.reaching_band = run.Number("reaching_band", 0.0);
   c.record_leader_acceleration = run.Bool("record_leader_acceleration", false);
+  run.MarkUsed("stop_on");  // read with [safety] (safety_config.cc)
   const int64_t threads = run.Integer("threads", 1);
   if (threads < 1 || threads > 1024) run.Fail("threads", "must be in [1, 1024] (1: one model)");
   c.threads = static_cast<int>(threads);
@@ -229,6 +236,9 @@ void ParseRunSection(const Reporter& reporter, SectionReader run, const std::str
   run.RejectUnknown();
   if (c.duration <= 0) run.Fail("duration", "must be > 0 s");
   if (c.timestep <= 0 || c.timestep > 0.01) run.Fail("timestep", "must be in (0, 0.01] s");
+  if (c.duration / c.timestep > 1e10) {  // step counts stay far inside int64
+    run.Fail("duration", "is more than 1e10 physics steps of [run] timestep");
+  }
   if (c.record_rate <= 0 || c.record_rate > 1.0 / c.timestep) {
     run.Fail("record_rate", "must be in (0, 1/timestep] Hz");
   }
@@ -250,6 +260,14 @@ void ParseRunSection(const Reporter& reporter, SectionReader run, const std::str
   if (c.paper_experiment < 0 || c.paper_experiment > 3) {
     run.Fail("paper_experiment", "must be 1, 2 or 3 (or 0: none)");
   }
+  // The default run folder is runs/<name>: a name is one plain folder name, never a path.
+  if (c.name == "." || c.name == ".." ||
+      c.name.find_first_of("/\\") != std::string::npos ||
+      std::any_of(c.name.begin(), c.name.end(),
+                  [](char ch) { return static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f; })) {
+    run.Fail("name", "must be a plain folder name (no '/', '\\', '..' or control characters): "
+                     "runs go into runs/<name>");
+  }
   if (c.name.empty()) {
     // Default name: the file's stem.
     std::string stem = path.substr(path.find_last_of('/') + 1);
@@ -262,7 +280,10 @@ void ParseVehiclesSection(const Reporter& reporter, SectionReader vehicles, cons
   c.model = vehicles.String("model", c.model);
   c.model_path = ResolveModel(c.model, path);
   c.scene_path = ResolveModel(vehicles.String("scene", "scene"), path);
-  c.followers = static_cast<int>(vehicles.Integer("followers", c.followers));
+  // Range-checked before the conversion to int: 4294967297 is not 1 follower.
+  const int64_t followers = vehicles.Integer("followers", c.followers);
+  if (followers < 1 || followers > 100000) vehicles.Fail("followers", "must be in [1, 100000]");
+  c.followers = static_cast<int>(followers);
   c.altitude = vehicles.Number("altitude", c.altitude);
   {
     auto s = vehicles.Numbers("leader_start", {c.leader_start[0], c.leader_start[1]}, 2);
@@ -502,11 +523,15 @@ ExperimentConfig ParseExperiment(const std::string& text, const std::string& pat
   c.leader = ReadPluginSection(reporter, root, "leader", "circle", {});
   c.formation = ReadPluginSection(reporter, root, "formation", "", {"shape"});
   c.attitude = ReadPluginSection(reporter, root, "attitude", "pd_cascade", {});
+  for (PluginSection* section : {&c.leader, &c.formation, &c.attitude}) {
+    section->derived["seed"] = std::to_string(c.seed);
+  }
   ParseShapeSection(reporter, table_of("formation"), path, c);
   ParseRenderSection(SectionReader(reporter.path(), table_of("render"), "render"), c.duration,
                      c.render);
   ParseRealismSections(root, path, &c);  // [sensors], [wind]
   ParseNetworkSections(root, c);
+  ParseSafetySections(root, path, &c);  // [safety], [run] stop_on
   return c;
 }
 

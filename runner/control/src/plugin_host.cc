@@ -180,8 +180,11 @@ std::vector<std::pair<std::string, std::string>> ResolveAttributes(const mjfPlug
   for (int i = 0; i < plugin.n_attributes; ++i) {
     const mjfAttribute& a = plugin.attributes[i];
     auto it = section.attributes.find(a.key);
+    const auto derived = section.derived.find(a.key);
     if (it != section.attributes.end()) {
       resolved.emplace_back(a.key, it->second.text);
+    } else if (derived != section.derived.end()) {
+      resolved.emplace_back(a.key, derived->second);  // e.g. seed = [run] seed
     } else if (a.default_value) {
       resolved.emplace_back(a.key, a.default_value);
     } else {
