@@ -109,8 +109,9 @@ PluginSection ReadPluginSection(const Reporter& reporter, const toml::table& roo
     for (auto&& [key, value] : *table) {
       const std::string k(key.str());
       if (k == "plugin" || reserved.count(k)) continue;
-      out.attributes[k] = {AttributeText(reporter, value, "[" + name + "] " + k),
-                           static_cast<int>(value.source().begin.line)};
+      const SourceLocation at = NodeLocation(reporter.path(), &value, "");
+      out.attributes[k] = {AttributeText(reporter, value, "[" + name + "] " + k), at.line,
+                           at.path == reporter.path() ? "" : at.path};
       // A plugin's `file` attribute is a path relative to the experiment file, like
       // [formation.shape] file: the experiment runs the same from any working folder.
       if (k == "file" && value.is_string()) {
@@ -154,7 +155,8 @@ void ApplyOverrides(toml::table& root, const std::vector<std::string>& overrides
                         "': expected section.key=value, or section={...} to replace a section");
     }
     // section={ plugin = "x" } replaces the whole section (its old keys may not suit x).
-    table->insert_or_assign(key, *parsed.get("v"));
+    // Moved, not copied: a copy of a toml++ node drops its source (the --set origin).
+    table->insert_or_assign(key, std::move(*parsed.get("v")));
   }
 }
 

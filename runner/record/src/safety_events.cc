@@ -43,8 +43,9 @@ std::string DescribeEvent(const SafetyEvent& e) {
     return fmt::format("{} collided at {:.2f} s (separation {:.3f} m)", pair, e.time_s, e.value);
   }
   if (e.kind == "near_miss") {
-    return fmt::format("{} nearly collided at {:.2f} s (separation {:.3f} m)", pair, e.time_s,
-                       e.value);
+    return fmt::format("{} nearly collided at {:.2f} s (separation {:.3f} m, {:.3f} m between "
+                       "their bounding spheres)",
+                       pair, e.time_s, e.value, e.clearance);
   }
   return fmt::format("{} left the region at {:.2f} s ({:.3f} m outside)", who, e.time_s, e.value);
 }
@@ -56,11 +57,13 @@ SafetyMonitor::SafetyMonitor(const SafetyConfig& config, std::vector<double> rad
 }
 
 void SafetyMonitor::Report(const std::string& kind, double t, std::vector<int> vehicles,
-                           double value) {
+                           double value, double clearance) {
   const int other = vehicles.size() > 1 ? vehicles[1] : -1;
   if (!seen_.insert({kind, vehicles[0], other}).second) return;  // once per kind and vehicles
   ++total_;
-  if (events_.size() < kMaxListed) events_.push_back({kind, t, std::move(vehicles), value});
+  if (events_.size() < kMaxListed) {
+    events_.push_back({kind, t, std::move(vehicles), value, clearance});
+  }
 }
 
 // Flip, ground impact (the bounding sphere reaches z = 0 after the vehicle was above it) and
@@ -80,7 +83,7 @@ void SafetyMonitor::CheckVehicle(double t, int i, const mjfVehicleState& s) {
 // Pairs closer than the near-miss margin or their radii: a sweep along x over the vehicles
 // kept sorted by insertion (they move little per step, so this is close to linear).
 void SafetyMonitor::CheckPairs(double t, const std::vector<mjfVehicleState>& states) {
-  const double reach = std::max(config_.near_miss_m, 2 * max_radius_);
+  const double reach = config_.near_miss_m + 2 * max_radius_;
   for (auto& [x, i] : order_) x = states[i].pos[0];
   for (size_t a = 1; a < order_.size(); ++a) {
     for (size_t b = a; b > 0 && order_[b].first < order_[b - 1].first; --b) {
@@ -95,8 +98,11 @@ void SafetyMonitor::CheckPairs(double t, const std::vector<mjfVehicleState>& sta
                                  (p[2] - q[2]) * (p[2] - q[2]));
       const int i = std::min(order_[a].second, order_[b].second);
       const int j = std::max(order_[a].second, order_[b].second);
-      if (d < radii_[i] + radii_[j]) Report("collision", t, {i, j}, d);
-      if (d < config_.near_miss_m) Report("near_miss", t, {i, j}, d);
+      const double clearance = d - radii_[i] - radii_[j];  // between the bounding spheres
+      if (config_.near_miss_m > 0 && clearance < config_.near_miss_m) {
+        Report("near_miss", t, {i, j}, d, clearance);
+      }
+      if (clearance < 0) Report("collision", t, {i, j}, d, clearance);
     }
   }
 }
@@ -116,11 +122,11 @@ nlohmann::ordered_json SafetyMonitor::Summary() const {
   for (const auto& [kind, v, other] : seen_) counts[kind] = counts[kind].get<int64_t>() + 1;
   nlohmann::ordered_json list = nlohmann::ordered_json::array();
   for (const SafetyEvent& e : events_) {
-    list.push_back({{"kind", e.kind},
-                    {"time_s", e.time_s},
-                    {"vehicles", e.vehicles},
-                    {"value", e.value},
-                    {"what", DescribeEvent(e)}});
+    nlohmann::ordered_json item = {
+        {"kind", e.kind}, {"time_s", e.time_s}, {"vehicles", e.vehicles}, {"value", e.value}};
+    if (e.vehicles.size() > 1) item["clearance_m"] = e.clearance;
+    item["what"] = DescribeEvent(e);
+    list.push_back(item);
   }
   nlohmann::ordered_json s = {{"count", total_}, {"by_kind", counts}, {"list", list}};
   if (total_ > static_cast<int64_t>(events_.size())) s["not_listed"] = total_ - events_.size();

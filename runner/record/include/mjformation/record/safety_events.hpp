@@ -26,6 +26,7 @@ struct SafetyEvent {
   double time_s = 0;          // first seen
   std::vector<int> vehicles;  // 0 = leader, i = follower i
   double value = 0;           // tilt (deg), separation (m), altitude (m) or distance outside (m)
+  double clearance = 0;       // pairs: separation minus both bounding radii (m); 0 otherwise
 };
 
 // "follower 6 flipped at 34.19 s (tilt 95.2 deg)": for messages and the closing line.
@@ -47,7 +48,8 @@ class SafetyMonitor {
  private:
   void CheckVehicle(double t, int i, const mjfVehicleState& s);
   void CheckPairs(double t, const std::vector<mjfVehicleState>& states);
-  void Report(const std::string& kind, double t, std::vector<int> vehicles, double value);
+  void Report(const std::string& kind, double t, std::vector<int> vehicles, double value,
+              double clearance = 0);
 
   SafetyConfig config_;
   std::vector<double> radii_;
