@@ -68,7 +68,7 @@ rm sw/keep.txt
 "$bin" sweep e.toml --vary run.seed=1,2 -o sw --overwrite --no-render >/dev/null 2>err2.txt; c2=$?
 "$bin" sweep e.toml --vary run.seed=1,2 -o sw --resume --no-render >/dev/null 2>>err2.txt; c3=$?
 [ $c1 = 1 ] && [ $c2 = 1 ] && [ $c3 = 1 ] && [ "$(cat sw/seed=1/mine.txt)" = mine ] &&
-  grep -qF "keep.txt" err1.txt && grep -qF "mine.txt" err2.txt && ok ||
+  grep -qF "refused, nothing was deleted" err1.txt && grep -qF "mine.txt" err2.txt && ok ||
   fail "exit $c1/$c2/$c3: $(cat err1.txt err2.txt)"
 case="sweep --overwrite and --resume on its own sweep directory"
 rm sw/seed=1/mine.txt
@@ -88,6 +88,7 @@ cat > link.toml <<'T'
 [execution]
 mode = "per_agent"
 [topology]
+leader_links = [1]
 edges = [[1, 2], [2, 1]]
 [network]
 rate = 1000.0
@@ -98,7 +99,7 @@ latency = 0.01
 T
 cat e.toml link.toml > l.toml
 case="[[network.link]] to = 4294967297"
-refused 1 "l.toml:26: [network.link] to: expected a vehicle number (0: the leader, 1..2)" -- run l.toml -o out -q
+refused 1 "l.toml:27: [network.link] to: expected a vehicle number (0: the leader, 1..2)" -- run l.toml -o out -q
 
 # ---- bounded inputs: sweep ----
 case="sweep --seeds 1e9"
@@ -149,7 +150,7 @@ P
 done
 for t in -5 1e9; do
   case="replay --snapshots $t"
-  refused 1 "--snapshots $t" -- replay rec --snapshots "$t" -o out
+  refused 1 "outside the recorded run [0, 1] s" -- replay rec --snapshots "$t" -o out
 done
 for args in "--size -100" "--bogus-flag" "--set" "--speed nan"; do
   case="view $args"
