@@ -99,7 +99,7 @@ latency = 0.01
 T
 cat e.toml link.toml > l.toml
 case="[[network.link]] to = 4294967297"
-refused 1 "l.toml:27: [network.link] to: expected a vehicle number (0: the leader, 1..2)" -- run l.toml -o out -q
+refused 1 "l.toml:24: [network.link] to: expected a vehicle number (0: the leader, 1..2)" -- run l.toml -o out -q
 
 # ---- bounded inputs: sweep ----
 case="sweep --seeds 1e9"
