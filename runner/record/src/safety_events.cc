@@ -31,8 +31,7 @@ double DistanceOutside(const std::array<double, 6>& box, const double p[3]) {
 
 std::string DescribeEvent(const SafetyEvent& e) {
   const std::string who = VehicleName(e.vehicles.at(0));
-  const std::string pair =
-      e.vehicles.size() > 1 ? who + " and " + VehicleName(e.vehicles[1]) : who;
+  const std::string pair = e.vehicles.size() > 1 ? who + " and " + VehicleName(e.vehicles[1]) : who;
   if (e.kind == "flip") {
     return fmt::format("{} flipped at {:.2f} s (tilt {:.1f} deg)", who, e.time_s, e.value);
   }
@@ -43,9 +42,10 @@ std::string DescribeEvent(const SafetyEvent& e) {
     return fmt::format("{} collided at {:.2f} s (separation {:.3f} m)", pair, e.time_s, e.value);
   }
   if (e.kind == "near_miss") {
-    return fmt::format("{} nearly collided at {:.2f} s (separation {:.3f} m, {:.3f} m between "
-                       "their bounding spheres)",
-                       pair, e.time_s, e.value, e.clearance);
+    return fmt::format(
+        "{} nearly collided at {:.2f} s (separation {:.3f} m, {:.3f} m between "
+        "their bounding spheres)",
+        pair, e.time_s, e.value, e.clearance);
   }
   return fmt::format("{} left the region at {:.2f} s ({:.3f} m outside)", who, e.time_s, e.value);
 }

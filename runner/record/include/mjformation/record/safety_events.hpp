@@ -54,9 +54,9 @@ class SafetyMonitor {
   SafetyConfig config_;
   std::vector<double> radii_;
   double max_radius_ = 0;
-  std::vector<char> airborne_;                   // seen above the ground: impacts count after
+  std::vector<char> airborne_;                        // seen above the ground: impacts count after
   std::set<std::tuple<std::string, int, int>> seen_;  // (kind, vehicle, other or -1)
-  std::vector<std::pair<double, int>> order_;    // vehicles by x, kept nearly sorted
+  std::vector<std::pair<double, int>> order_;         // vehicles by x, kept nearly sorted
   std::vector<SafetyEvent> events_;
   int64_t total_ = 0;
 };
