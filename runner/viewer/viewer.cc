@@ -465,12 +465,10 @@ int Main(int argc, char** argv) {
     const int code = app.exit(e);  // --help: 0; every misuse of the command line: 2
     return code == 0 ? 0 : 2;
   }
-  if (!std::isfinite(o.speed) || !std::isfinite(o.screenshot_at)) {  // NaN passes CLI::Range
-    std::fprintf(stderr, "mjformation view: --speed and --screenshot-at must be finite numbers\n");
-    return 2;
-  }
   o.height = o.width * 9 / 16;
-  if (o.experiment.empty() == o.replay_dir.empty()) {
+  // NaN passes CLI::Range.
+  if (!std::isfinite(o.speed) || !std::isfinite(o.screenshot_at) ||
+      o.experiment.empty() == o.replay_dir.empty()) {
     std::fprintf(stderr, "mjformation view: give an experiment file, or --replay RUN_DIR\n");
     return 2;
   }

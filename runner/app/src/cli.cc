@@ -26,7 +26,8 @@ std::string EventsText(const nlohmann::ordered_json& summary) {
   if (list.empty()) return "";
   std::string text = "; " + list[0]["what"].get<std::string>();
   const int64_t more = events["count"].get<int64_t>() - 1;
-  if (more > 0) text += fmt::format("; {} more safety event{} in summary.json", more, more > 1 ? "s" : "");
+  if (more > 0)
+    text += fmt::format("; {} more safety event{} in summary.json", more, more > 1 ? "s" : "");
   return text;
 }
 
@@ -55,13 +56,13 @@ int RunCommand(const CliCommands& c) {
     return r.signal ? 128 + r.signal : 3;
   }
   if (!r.complete) {
-    std::fprintf(stderr,
-                 "mjformation: %s: the run stopped early: %s%s\n  what was recorded up to t = "
-                 "%.3f s is kept in %s (summary.json says \"complete\": false)\n",
-                 config.name.c_str(), EscapeControl(r.error).c_str(),
-                 r.error.find("safety event") == std::string::npos ? EventsText(r.summary).c_str()
-                                                                   : "",
-                 r.sim_time_s, options.out_dir.c_str());
+    std::fprintf(
+        stderr,
+        "mjformation: %s: the run stopped early: %s%s\n  what was recorded up to t = "
+        "%.3f s is kept in %s (summary.json says \"complete\": false)\n",
+        config.name.c_str(), EscapeControl(r.error).c_str(),
+        r.error.find("safety event") == std::string::npos ? EventsText(r.summary).c_str() : "",
+        r.sim_time_s, options.out_dir.c_str());
     return r.signal ? 128 + r.signal : 3;
   }
   if (!c.quiet) {

@@ -131,8 +131,8 @@ void CheckSnapshotTimes(const std::string& dir, const std::vector<double>& times
   }
   for (double t : times) {
     if (!(std::isfinite(t) && t >= 0 && t <= reached + 1e-9)) {
-      throw ConfigError(fmt::format("--snapshots {}: outside the recorded run [0, {}] s", t,
-                                    reached));
+      throw ConfigError(
+          fmt::format("--snapshots {}: outside the recorded run [0, {}] s", t, reached));
     }
   }
 }

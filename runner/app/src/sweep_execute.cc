@@ -158,8 +158,8 @@ void CheckSweepDirectory(const std::string& out, const char* flag) {
         CheckRunDirectory(e.path().string());
         continue;
       } catch (const OutputError& why) {
-        throw OutputError(out + ": " + flag + " refused, nothing was deleted or written: " +
-                          why.what());
+        throw OutputError(out + ": " + flag +
+                          " refused, nothing was deleted or written: " + why.what());
       }
     }
     foreign += (foreign.empty() ? "" : ", ") + e.path().filename().string();

@@ -101,8 +101,7 @@ std::vector<std::string> MetricKeys(const std::vector<RunOutcome>& outcomes) {
 std::vector<std::vector<SampleStats>> CellStats(const SweepPlan& plan,
                                                 const std::vector<RunOutcome>& outcomes,
                                                 const std::vector<std::string>& keys,
-                                                std::vector<int>* completed,
-                                                bool event_free_only) {
+                                                std::vector<int>* completed, bool event_free_only) {
   std::vector<std::vector<std::vector<double>>> samples(
       plan.cells.size(), std::vector<std::vector<double>>(keys.size()));
   completed->assign(plan.cells.size(), 0);
@@ -209,9 +208,9 @@ Json CellsTable(const SweepPlan& plan, const std::vector<RunOutcome>& outcomes, 
       *csv += values + fmt::format("{},{},all_complete_runs,{}", plan.seeds, with_events[cell],
                                    completed[cell]);
       entry["metrics"] = StatsRow(keys, stats[cell], csv);
-      *csv += "\n" + values +
-              fmt::format("{},{},event_free_runs,{}", plan.seeds, with_events[cell],
-                          event_free[cell]);
+      *csv +=
+          "\n" + values +
+          fmt::format("{},{},event_free_runs,{}", plan.seeds, with_events[cell], event_free[cell]);
       entry["metrics_event_free"] = StatsRow(keys, free_stats[cell], csv);
       *csv += "\n";
     }

@@ -190,7 +190,7 @@ toml::table ParseDocument(const std::string& text, const std::string& path,
 // The sections an experiment file may have, in the order the documentation lists them.
 const char* const kSections[] = {"run",       "vehicles",  "topology", "leader",
                                  "formation", "attitude",  "render",   "sensors",
-                                 "wind",      "execution", "network",   "safety"};
+                                 "wind",      "execution", "network",  "safety"};
 
 void RejectUnknownSections(const Reporter& reporter, const toml::table& root) {
   for (auto&& [key, node] : root) {
@@ -202,6 +202,24 @@ void RejectUnknownSections(const Reporter& reporter, const toml::table& root) {
     }
     if (!node.is_table()) reporter.Fail(&node, name, "expected a [section] table");
   }
+}
+
+// The default run folder is runs/<name>: a name is one plain folder name, never a path.
+void CheckRunName(const SectionReader& run, const std::string& name) {
+  if (name == "." || name == ".." || name.find_first_of("/\\") != std::string::npos ||
+      std::any_of(name.begin(), name.end(),
+                  [](char ch) { return static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f; })) {
+    run.Fail("name",
+             "must be a plain folder name (no '/', '\\', '..' or control characters): "
+             "runs go into runs/<name>");
+  }
+}
+
+// [run] paper_experiment, range-checked before the conversion to int.
+int PaperExperiment(SectionReader& run) {
+  const int64_t paper = run.Integer("paper_experiment", 0);
+  if (paper < 0 || paper > 3) run.Fail("paper_experiment", "must be 1, 2 or 3 (or 0: none)");
+  return static_cast<int>(paper);
 }
 
 void ParseRunSection(const Reporter& reporter, SectionReader run, const std::string& path,
@@ -218,9 +236,7 @@ void ParseRunSection(const Reporter& reporter, SectionReader run, const std::str
     auto w = run.Numbers("metric_window", {c.metric_window[0], c.metric_window[1]}, 2);
     c.metric_window = {w[0], w[1]};
   }
-  const int64_t paper = run.Integer("paper_experiment", 0);
-  if (paper < 0 || paper > 3) run.Fail("paper_experiment", "must be 1, 2 or 3 (or 0: none)");
-  c.paper_experiment = static_cast<int>(paper);
+  c.paper_experiment = PaperExperiment(run);
   c.reaching_band = run.Number("reaching_band", 0.0);
   c.record_leader_acceleration = run.Bool("record_leader_acceleration", false);
   run.MarkUsed("stop_on");  // read with [safety] (safety_config.cc)
@@ -259,17 +275,7 @@ void ParseRunSection(const Reporter& reporter, SectionReader run, const std::str
                          c.metric_window[0], c.metric_window[1], c.duration, 0.625 * c.duration,
                          c.duration));
   }
-  if (c.paper_experiment < 0 || c.paper_experiment > 3) {
-    run.Fail("paper_experiment", "must be 1, 2 or 3 (or 0: none)");
-  }
-  // The default run folder is runs/<name>: a name is one plain folder name, never a path.
-  if (c.name == "." || c.name == ".." ||
-      c.name.find_first_of("/\\") != std::string::npos ||
-      std::any_of(c.name.begin(), c.name.end(),
-                  [](char ch) { return static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f; })) {
-    run.Fail("name", "must be a plain folder name (no '/', '\\', '..' or control characters): "
-                     "runs go into runs/<name>");
-  }
+  CheckRunName(run, c.name);
   if (c.name.empty()) {
     // Default name: the file's stem.
     std::string stem = path.substr(path.find_last_of('/') + 1);

@@ -48,8 +48,7 @@ network::LinkParams ReadLinkParams(SectionReader& keys, const network::LinkParam
   p.jitter = keys.Number("jitter", p.jitter);
   if (!(p.jitter >= 0.0 && p.jitter <= duration)) keys.Fail("jitter", within);
   if (p.latency + p.jitter > duration) {
-    keys.Fail(keys.Has("jitter") ? "jitter" : "latency",
-              "latency + jitter " + within);
+    keys.Fail(keys.Has("jitter") ? "jitter" : "latency", "latency + jitter " + within);
   }
   p.loss = keys.Number("loss", p.loss);
   if (!(p.loss >= 0.0 && p.loss <= 1.0)) {
@@ -111,9 +110,9 @@ void ParseLinkOverrides(const std::string& path, const toml::node* node, Experim
       // Range-checked before the conversion to int: 4294967297 is not link 1.
       if (!v || !v->value_exact<int64_t>() || *v->value_exact<int64_t>() < 0 ||
           *v->value_exact<int64_t>() > c.followers) {
-        keys.FailAt(v ? v : &item, key,
-                    "expected a vehicle number (0: the leader, 1.." +
-                        std::to_string(c.followers) + ")");
+        keys.FailAt(
+            v ? v : &item, key,
+            "expected a vehicle number (0: the leader, 1.." + std::to_string(c.followers) + ")");
       }
       *value = static_cast<int>(*v->value_exact<int64_t>());
     }

@@ -145,8 +145,7 @@ void ApplyTurbulence(const SectionReader& keys, const TurbulenceKeys& t, WindCon
 
 // One entry of [wind] gusts: a 1-cosine gust inside the run.
 realism::OneCosineGust ReadGust(const SectionReader& keys, const toml::node& item, int index,
-                                const std::string& path, double duration,
-                                 double timestep) {
+                                const std::string& path, double duration, double timestep) {
   const toml::table* g = item.as_table();
   if (!g) keys.FailAt(&item, "gusts", "expected {start = s, duration = s, amplitude = [x, y, z]}");
   SectionReader gust(path, g, "wind] gusts[" + std::to_string(index));
@@ -159,8 +158,8 @@ realism::OneCosineGust ReadGust(const SectionReader& keys, const toml::node& ite
   one.amplitude = gust.Vector3("amplitude", {0, 0, 0});
   gust.RejectUnknown();
   if (!(one.duration >= 2 * timestep)) {  // a shorter 1-cosine gust never acts on a step
-    gust.Fail("duration", "must be at least two physics steps (" + std::to_string(2 * timestep) +
-                              " s)");
+    gust.Fail("duration",
+              "must be at least two physics steps (" + std::to_string(2 * timestep) + " s)");
   }
   if (one.start < 0 || one.start + one.duration > duration + 1e-9) {
     gust.Fail("start", "the gust [start, start + duration] must lie in the run [0, " +
@@ -195,9 +194,8 @@ void ParseWind(const toml::table* table, const std::string& path, ExperimentConf
   ApplyTurbulence(keys, ReadTurbulenceKeys(keys, *c, w), w);
   if (const toml::array* gusts = keys.Array("gusts")) {
     for (const toml::node& item : *gusts) {
-      w.params.gusts.push_back(
-          ReadGust(keys, item, static_cast<int>(w.params.gusts.size()), path, c->duration,
-                   c->timestep));
+      w.params.gusts.push_back(ReadGust(keys, item, static_cast<int>(w.params.gusts.size()), path,
+                                        c->duration, c->timestep));
     }
   }
   ReadDragKeys(keys, w.drag);

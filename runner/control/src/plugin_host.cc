@@ -175,8 +175,7 @@ std::vector<std::pair<std::string, std::string>> ResolveAttributes(const mjfPlug
       const std::string at = value.origin.empty()
                                  ? where(value.line, key)
                                  : value.origin + ": " + SectionKey(section.section, key);
-      throw PluginError(at + ": plugin '" + plugin.name +
-                        "' has no attribute '" + key +
+      throw PluginError(at + ": plugin '" + plugin.name + "' has no attribute '" + key +
                         "' (its attributes: " + (declared.empty() ? "none" : declared) + ")");
     }
   }
@@ -232,8 +231,8 @@ PluginInstance::PluginInstance(const LoadedPlugin& plugin, const PluginSection& 
   base.error_size = sizeof(error);
   instance_ = descriptor_->create(&base);
   if (!instance_) {
-    throw PluginError(RefusalWhere(section, config_path, error) + " '" + descriptor_->name +
-                      "' (" + plugin.library +
+    throw PluginError(RefusalWhere(section, config_path, error) + " '" + descriptor_->name + "' (" +
+                      plugin.library +
                       ") refused its configuration: " + (error[0] ? error : "no reason given"));
   }
 }

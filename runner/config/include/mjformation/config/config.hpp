@@ -63,8 +63,8 @@ struct NetworkConfig {
 
 // One plugin attribute as written in the experiment file.
 struct AttributeValue {
-  std::string text;  // value converted to the ABI's string form ("3 1" for arrays)
-  int line = 0;      // source line, for messages
+  std::string text;    // value converted to the ABI's string form ("3 1" for arrays)
+  int line = 0;        // source line, for messages
   std::string origin;  // "--set section.key=value" when it came from the command line, else ""
 };
 
@@ -116,15 +116,15 @@ struct RenderConfig {
 // events"). Events are found in every run and reported; only stop_on ends a run at one.
 struct SafetyConfig {
   double flip_tilt_deg = 90.0;  // tilt of the body z axis from vertical beyond this: a flip
-  double near_miss_m = 0.5;  // gap between two vehicles' bounding spheres below this: near miss
+  double near_miss_m = 0.5;     // gap between two vehicles' bounding spheres below this: near miss
   bool has_region = false;      // [safety] region given: leaving it is an event
   std::array<double, 6> region = {0, 0, 0, 0, 0, 0};  // x min, max, y min, max, z min, max (m)
   std::vector<std::string> stop_on;                   // event kinds that end the run (exit 3)
 };
 
 // The kinds of safety event, as summary.json and [run] stop_on name them.
-inline const char* const kSafetyEventKinds[] = {"flip", "ground_impact", "collision",
-                                                 "near_miss", "left_region"};
+inline const char* const kSafetyEventKinds[] = {"flip", "ground_impact", "collision", "near_miss",
+                                                "left_region"};
 
 struct ExperimentConfig {
   std::string source_path;             // the TOML file
