@@ -452,13 +452,23 @@ int Main(int argc, char** argv) {
   app.add_option("--replay", o.replay_dir, "show this run directory instead");
   app.add_option("--set", o.overrides, "override a value: section.key=value (as `run`)");
   app.add_option("--plugin-path", o.plugin_path, "extra folder to search for plugins");
-  app.add_option("--speed", o.speed, "simulated seconds per second (default 1)");
+  app.add_option("--speed", o.speed, "simulated seconds per second (default 1)")
+      ->check(CLI::Range(1e-3, 1e3));
   app.add_option("--screenshot", o.screenshot, "save the window to this PNG (tests)");
-  app.add_option("--screenshot-at", o.screenshot_at, "... at this simulated time, s");
-  app.add_option("--size", o.width, "window width in pixels (height: 9/16 of it)");
-  CLI11_PARSE(app, argc, argv);
+  app.add_option("--screenshot-at", o.screenshot_at, "... at this simulated time, s")
+      ->check(CLI::Range(0.0, 1e7));
+  app.add_option("--size", o.width, "window width in pixels (height: 9/16 of it)")
+      ->check(CLI::Range(160, 7680));
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);  // --help: 0; every misuse of the command line: 2
+    return code == 0 ? 0 : 2;
+  }
   o.height = o.width * 9 / 16;
-  if (o.experiment.empty() == o.replay_dir.empty()) {
+  // NaN passes CLI::Range.
+  if (!std::isfinite(o.speed) || !std::isfinite(o.screenshot_at) ||
+      o.experiment.empty() == o.replay_dir.empty()) {
     std::fprintf(stderr, "mjformation view: give an experiment file, or --replay RUN_DIR\n");
     return 2;
   }

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -48,6 +49,8 @@ void AppendRow(const std::vector<double>& values, const std::string& where, int*
   }
   for (double v : values) {
     if (!std::isfinite(v)) Refuse(where + "a value is not finite (NaN or inf)");
+    // Positions beyond 1e6 m (and times beyond 1e7 s) are typing errors, not a flight plan.
+    if (std::fabs(v) > 1e7) Refuse(where + "a value is beyond +-1e7 (t in s, x, y, z in m)");
   }
   if (!table->t.empty() && !(values[0] > table->t.back())) {
     Refuse(where + "t = " + Num(values[0]) + " is not after the previous row's t = " +
@@ -60,6 +63,10 @@ void AppendRow(const std::vector<double>& values, const std::string& where, int*
 }  // namespace
 
 TrajectoryTable ReadTrajectoryCsv(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    Refuse("attribute 'file': '" + path + "' is a folder, not a CSV file");
+  }
   std::ifstream in(path);
   if (!in) Refuse("attribute 'file': cannot read '" + path + "'");
   TrajectoryTable table;

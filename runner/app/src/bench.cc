@@ -16,6 +16,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <functional>
 #include <nlohmann/json.hpp>
 
@@ -28,6 +29,27 @@
 
 namespace mjf::runner {
 namespace {
+
+// A fresh folder under /tmp (mkdtemp), removed with everything in it when the bench ends: it
+// holds only the scratch run directories the bench itself wrote.
+class ScratchFolder {
+ public:
+  ScratchFolder() {
+    char name[] = "/tmp/mjformation_bench_XXXXXX";
+    if (!mkdtemp(name)) throw OutputError(std::string("/tmp: cannot create ") + name);
+    path_ = name;
+  }
+  ~ScratchFolder() {
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+  }
+  ScratchFolder(const ScratchFolder&) = delete;
+  ScratchFolder& operator=(const ScratchFolder&) = delete;
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+};
 
 using Clock = std::chrono::steady_clock;
 
@@ -212,6 +234,27 @@ constexpr double kRepeatBelowS = 5.0;  // s of pipeline wall time
 
 }  // namespace
 
+namespace {
+
+// A finite number > 0: CLI::PositiveNumber lets NaN through.
+const CLI::Validator kPositiveFinite(
+    [](std::string& text) {
+      double v = 0;
+      try {
+        size_t used = 0;
+        v = std::stod(text, &used);
+        if (used != text.size()) return std::string("expected a number, got ") + text;
+      } catch (const std::exception&) {
+        return std::string("expected a number, got ") + text;
+      }
+      return std::isfinite(v) && v > 0 && v <= 1e6
+                 ? std::string()
+                 : "must be a finite number in (0, 1e6], got " + text;
+    },
+    "POSITIVE");
+
+}  // namespace
+
 void AddBenchCommand(CLI::App& app, CliCommands* c) {
   c->bench = app.add_subcommand(
       "bench",
@@ -221,8 +264,10 @@ void AddBenchCommand(CLI::App& app, CliCommands* c) {
       ->add_option("--followers", c->bench_followers,
                    "swarm sizes to measure (default: the file's); other sizes use a "
                    "generated ring topology")
-      ->delimiter(',');
-  c->bench->add_option("--duration", c->bench_duration, "simulated seconds (default: the file's)");
+      ->delimiter(',')
+      ->check(CLI::Range(1, 100000));  // [vehicles] followers' bound, checked before any vector
+  c->bench->add_option("--duration", c->bench_duration, "simulated seconds (default: the file's)")
+      ->check(kPositiveFinite);
   c->bench->add_option("--set", c->overrides, "override a value: section.key=value");
   c->bench->add_option("--json", c->bench_json, "also write the figures to this JSON file");
   c->bench->add_flag("--render", c->bench_render, "also time offscreen rendering");
@@ -361,7 +406,8 @@ int BenchCommand(const CliCommands& c) {
   base.render.video = false;
   std::vector<int> sizes = c.bench_followers;
   if (sizes.empty()) sizes.push_back(base.followers);
-  const std::string scratch = fmt::format("/tmp/mjformation_bench_{}", getpid());
+  const ScratchFolder folder;  // removed on return: a bench leaves nothing behind
+  const std::string scratch = folder.path() + "/run";
   Json report;
   report["experiment"] = c.experiment;
   report["duration_s"] = base.duration;

@@ -8,6 +8,7 @@
 
 #include "mjformation/config/config.hpp"
 #include "mjformation/config/paths.hpp"
+#include "mjformation/config/source_location.hpp"
 #include "mjformation/control/plugin_host.hpp"
 #include "mjformation/record/output.hpp"
 #include "mjformation/run/run.hpp"
@@ -16,6 +17,19 @@
 
 namespace mjf::runner {
 namespace {
+
+// "; follower 6 flipped at 34.19 s (tilt 179.9 deg); 2 more events in summary.json", or "".
+std::string EventsText(const nlohmann::ordered_json& summary) {
+  if (!summary.contains("events")) return "";
+  const auto& events = summary["events"];
+  const auto& list = events["list"];
+  if (list.empty()) return "";
+  std::string text = "; " + list[0]["what"].get<std::string>();
+  const int64_t more = events["count"].get<int64_t>() - 1;
+  if (more > 0)
+    text += fmt::format("; {} more safety event{} in summary.json", more, more > 1 ? "s" : "");
+  return text;
+}
 
 int RunCommand(const CliCommands& c) {
   ExperimentConfig config = LoadExperiment(c.experiment, c.overrides);
@@ -42,17 +56,20 @@ int RunCommand(const CliCommands& c) {
     return r.signal ? 128 + r.signal : 3;
   }
   if (!r.complete) {
-    std::fprintf(stderr,
-                 "mjformation: %s: the run stopped early: %s\n  what was recorded up to t = %.3f s "
-                 "is kept in %s (summary.json says \"complete\": false)\n",
-                 config.name.c_str(), r.error.c_str(), r.sim_time_s, options.out_dir.c_str());
+    std::fprintf(
+        stderr,
+        "mjformation: %s: the run stopped early: %s%s\n  what was recorded up to t = "
+        "%.3f s is kept in %s (summary.json says \"complete\": false)\n",
+        config.name.c_str(), EscapeControl(r.error).c_str(),
+        r.error.find("safety event") == std::string::npos ? EventsText(r.summary).c_str() : "",
+        r.sim_time_s, options.out_dir.c_str());
     return r.signal ? 128 + r.signal : 3;
   }
   if (!c.quiet) {
     std::printf(
-        "%s: complete, %.1f s simulated in %.2f s (%.1fx real time); mean sigma_f on "
+        "%s: complete%s, %.1f s simulated in %.2f s (%.1fx real time); mean sigma_f on "
         "[%g, %g] s = %s; results in %s\n",
-        config.name.c_str(), r.sim_time_s, r.wall_time_s,
+        config.name.c_str(), EventsText(r.summary).c_str(), r.sim_time_s, r.wall_time_s,
         r.wall_time_s > 0 ? r.sim_time_s / r.wall_time_s : 0.0, config.metric_window[0],
         config.metric_window[1], sigma.c_str(), options.out_dir.c_str());
   }
@@ -154,7 +171,7 @@ int Dispatch(const CLI::App& app, const CliCommands& c) {
     if (c.replay && c.replay->parsed()) return ReplayCommand(c);
     if (c.view && c.view->parsed()) return ViewCommand(c);
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "mjformation: error: %s\n", e.what());
+    std::fprintf(stderr, "mjformation: error: %s\n", EscapeControl(e.what()).c_str());
     return 1;
   }
   return 2;

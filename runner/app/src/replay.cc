@@ -127,10 +127,25 @@ std::vector<std::array<int, 8>> VehicleColumns(const std::vector<std::string>& h
   return cols;
 }
 
+// A cell of the time series: empty (NaN, as the writer leaves it) or a finite number of
+// plausible size; anything else is refused, naming the row and the column.
+double Cell(const std::vector<std::string>& f, int k, const std::string& where,
+            const std::vector<std::string>& header) {
+  if (f[k].empty()) return kNaN;
+  char* end = nullptr;
+  const double v = std::strtod(f[k].c_str(), &end);
+  if (end != f[k].c_str() + f[k].size() || !std::isfinite(v) || std::fabs(v) > 1e9) {
+    throw ReplayError(where + ": column " + header[k] + ": '" + f[k] +
+                      "' is not a finite number within 1e9");
+  }
+  return v;
+}
+
 // One row of the time series appended to `r`.
 void AppendRow(const std::vector<std::string>& f, int ct, int cs,
-               const std::vector<std::array<int, 8>>& cols, Recording* r) {
-  auto num = [&](int k) { return f[k].empty() ? kNaN : std::strtod(f[k].c_str(), nullptr); };
+               const std::vector<std::array<int, 8>>& cols, const std::string& where,
+               const std::vector<std::string>& header, Recording* r) {
+  auto num = [&](int k) { return Cell(f, k, where, header); };
   r->t.push_back(num(ct));
   r->sigma_f.push_back(cs >= 0 ? num(cs) : kNaN);
   std::vector<Vec3> p, a;
@@ -171,7 +186,10 @@ Recording LoadRecording(const std::string& run_dir) {
       throw ReplayError(csv_path + ":" + std::to_string(row) + ": " + std::to_string(f.size()) +
                         " fields, the header has " + std::to_string(header.size()));
     }
-    AppendRow(f, ct, cs, cols, &r);
+    AppendRow(f, ct, cs, cols, csv_path + ":" + std::to_string(row), header, &r);
+    if (!std::isfinite(r.t.back())) {
+      throw ReplayError(csv_path + ":" + std::to_string(row) + ": column t is empty");
+    }
   }
   if (r.t.empty()) throw ReplayError(csv_path + ": no recorded rows");
   return r;

@@ -7,7 +7,11 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <limits>
+#include <nlohmann/json.hpp>
 
 #include "mjformation/app/cli.hpp"
 #include "mjformation/app/replay.hpp"
@@ -114,10 +118,31 @@ void AddReplayCommand(CLI::App& app, CliCommands* c) {
                         "folder for --snapshots PNGs (default: RUN_DIR/replay)");
 }
 
+// --snapshots times lie in the recorded run [0, sim_time_s of its summary.json]: a time outside
+// would render the nearest frame under a misleading name.
+namespace {
+void CheckSnapshotTimes(const std::string& dir, const std::vector<double>& times) {
+  double reached = std::numeric_limits<double>::infinity();
+  std::ifstream in(dir + "/summary.json");
+  try {
+    const auto summary = nlohmann::json::parse(in);
+    if (summary.contains("sim_time_s")) reached = summary["sim_time_s"].get<double>();
+  } catch (const std::exception&) {
+  }
+  for (double t : times) {
+    if (!(std::isfinite(t) && t >= 0 && t <= reached + 1e-9)) {
+      throw ConfigError(
+          fmt::format("--snapshots {}: outside the recorded run [0, {}] s", t, reached));
+    }
+  }
+}
+}  // namespace
+
 int ReplayCommand(const CliCommands& c) {
   if (c.replay_video.empty() && c.replay_snapshots.empty()) {
     return ExecViewer({"--replay", c.replay_dir});
   }
+  CheckSnapshotTimes(c.replay_dir, c.replay_snapshots);
   const Recording rec = LoadRecording(c.replay_dir);
   const std::string out = c.replay_out.empty() ? c.replay_dir + "/replay" : c.replay_out;
   for (const auto& path : RenderReplay(rec, c.replay_snapshots, out, c.replay_video)) {

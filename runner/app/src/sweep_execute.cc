@@ -111,25 +111,106 @@ RunOutcome OutcomeFromText(const std::string& text) {
 
 }  // namespace
 
-std::vector<size_t> PrepareOutput(const SweepPlan& plan, const CliCommands& c,
-                                  std::vector<RunOutcome>* outcomes) {
-  namespace fs = std::filesystem;
+namespace {
+
+namespace fs = std::filesystem;
+
+// Written first into every sweep directory: what --overwrite and --resume check before they
+// touch a folder (as .mjformation-run guards a run directory).
+constexpr const char* kSweepMarker = ".mjformation-sweep";
+
+// The sweep's own files: its marker, its tables, and leftovers of an interrupted atomic write.
+bool IsSweepFile(const fs::directory_entry& e) {
+  const std::string name = e.path().filename().string();
+  if (e.is_symlink() || !e.is_regular_file()) return false;
+  return name == kSweepMarker || name == "sweep.csv" || name == "sweep.json" ||
+         name == "sweep_runs.csv" ||
+         (name.size() > 4 && name.compare(name.size() - 4, 4, ".tmp") == 0);
+}
+
+// A run folder cut before its marker was written: empty, or only an empty snapshots/.
+bool IsUnmarkedRunStart(const fs::path& dir) {
+  for (const auto& e : fs::directory_iterator(dir)) {
+    if (e.path().filename() != "snapshots" || e.is_symlink() || !e.is_directory() ||
+        !fs::is_empty(e.path())) {
+      return false;
+    }
+  }
+  return true;
+}
+
+// Throws OutputError (nothing touched) unless `out` is a sweep directory holding nothing but
+// what a sweep wrote: the marker, the tables and run directories that hold only a run's files.
+void CheckSweepDirectory(const std::string& out, const char* flag) {
+  const fs::path marker = fs::path(out) / kSweepMarker;
+  if (fs::is_symlink(marker) || !fs::is_regular_file(marker)) {
+    throw OutputError(out + ": not a mjformation sweep directory (no " + kSweepMarker +
+                      " marker): " + flag +
+                      " touches only sweep directories; nothing was deleted or written. Choose "
+                      "another --out.");
+  }
+  std::string foreign;
+  for (const auto& e : fs::directory_iterator(out)) {
+    if (IsSweepFile(e)) continue;
+    if (!e.is_symlink() && e.is_directory()) {
+      if (IsUnmarkedRunStart(e.path())) continue;
+      try {
+        CheckRunDirectory(e.path().string());
+        continue;
+      } catch (const OutputError& why) {
+        throw OutputError(out + ": " + flag +
+                          " refused, nothing was deleted or written: " + why.what());
+      }
+    }
+    foreign += (foreign.empty() ? "" : ", ") + e.path().filename().string();
+  }
+  if (!foreign.empty()) {
+    throw OutputError(out + ": holds files a sweep did not write (" + foreign + "); " + flag +
+                      " touches only a sweep's own files, so nothing was deleted or written. Move "
+                      "them or choose another --out.");
+  }
+}
+
+// Creates the sweep directory, or checks an existing one (and with --overwrite empties it).
+void PrepareSweepDirectory(const std::string& out, const CliCommands& c) {
   std::error_code ec;
-  const bool exists = fs::exists(plan.out, ec) && !fs::is_empty(plan.out, ec);
-  if (exists && !c.sweep_resume) {
-    if (!c.overwrite) {
-      throw OutputError(plan.out +
+  if (fs::exists(out, ec) && !fs::is_directory(out, ec)) {
+    throw OutputError(out + ": exists and is not a directory; choose another --out");
+  }
+  if (fs::exists(out, ec) && !fs::is_empty(out, ec)) {
+    if (!c.overwrite && !c.sweep_resume) {
+      throw OutputError(out +
                         ": the sweep directory exists and is not empty; choose another --out, "
                         "pass --resume to finish it or --overwrite to replace it");
     }
-    fs::remove_all(plan.out, ec);
-    if (ec) throw OutputError(plan.out + ": cannot remove: " + ec.message());
+    CheckSweepDirectory(out, c.sweep_resume ? "--resume" : "--overwrite");
+    if (!c.sweep_resume) {
+      // remove_all removes a symbolic link itself, never what it points to.
+      std::vector<fs::path> entries;
+      for (const auto& e : fs::directory_iterator(out)) entries.push_back(e.path());
+      for (const fs::path& e : entries) {
+        if (e.filename() != kSweepMarker) fs::remove_all(e, ec);
+        if (ec) throw OutputError(e.string() + ": cannot remove: " + ec.message());
+      }
+    }
   }
-  fs::create_directories(plan.out, ec);
-  if (ec) throw OutputError(plan.out + ": cannot create directory: " + ec.message());
-  if (access(plan.out.c_str(), W_OK) != 0) {
-    throw OutputError(plan.out + ": cannot write to the sweep directory");
+  fs::create_directories(out, ec);
+  if (ec) throw OutputError(out + ": cannot create directory: " + ec.message());
+  if (access(out.c_str(), W_OK) != 0) {
+    throw OutputError(out + ": cannot write to the sweep directory");
   }
+  if (!fs::exists(fs::path(out) / kSweepMarker)) {
+    WriteTextFile(out + "/" + kSweepMarker,
+                  "This folder is a mjformation sweep directory; `mjformation sweep --overwrite`\n"
+                  "may replace it. Delete this file to protect the folder from that.\n");
+  }
+}
+
+}  // namespace
+
+std::vector<size_t> PrepareOutput(const SweepPlan& plan, const CliCommands& c,
+                                  std::vector<RunOutcome>* outcomes) {
+  PrepareSweepDirectory(plan.out, c);
   outcomes->assign(plan.runs.size(), RunOutcome{});
   std::vector<size_t> todo;
   for (size_t i = 0; i < plan.runs.size(); ++i) {

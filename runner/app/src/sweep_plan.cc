@@ -2,13 +2,20 @@
 //
 // The plan of a sweep: the grid of --vary values times --seeds, every run's configuration
 // parsed and checked before anything runs.
+#include <fmt/format.h>
+
+#include <algorithm>
 #include <cctype>
+#include <cstdio>
 #include <set>
 
+#include "mjformation/sim/simulation.hpp"
 #include "sweep.hpp"
 
 namespace mjf::runner::sweep {
 namespace {
+
+constexpr double kMaxRuns = 100000;  // runs in one sweep
 
 // "formation.q=1,2.5,4.5" -> {formation.q, [1, 2.5, 4.5]}. Commas inside [], {} or quotes do
 // not split: "wind.mean=[3,0,0],[6,0,0]" or "sensors={preset=\"typical\", scale=3.0},{...}".
@@ -55,6 +62,51 @@ std::string PointName(const std::vector<Axis>& axes, const std::vector<size_t>& 
   return name;
 }
 
+// Refuses a grid too large to plan before anything is allocated for it: every run's
+// configuration is built up front.
+void CheckPlanSize(const SweepPlan& plan) {
+  double runs = std::max(1, plan.seeds);
+  for (const Axis& axis : plan.axes) runs *= static_cast<double>(axis.values.size());
+  if (runs > kMaxRuns) {
+    throw ConfigError(fmt::format(
+        "sweep: {:.0f} runs (--vary values x --seeds) is more than {} in one sweep; split it "
+        "into several sweeps",
+        runs, kMaxRuns));
+  }
+}
+
+// Each --vary value checked as `run` would check it (config, model, plugins and their
+// attributes), once per value with the fixed overrides, before the sweep folder exists.
+void CheckAxisValues(const CliCommands& c, const std::vector<Axis>& axes) {
+  for (const Axis& axis : axes) {
+    for (const std::string& value : axis.values) {
+      std::vector<std::string> overrides = c.overrides;
+      overrides.push_back(axis.key + "=" + value);
+      ExperimentConfig config = LoadExperiment(c.experiment, overrides);
+      for (const auto& path : c.plugin_path) config.plugin_path.push_back(path);
+      try {
+        Simulation check(config);
+      } catch (const std::exception& e) {
+        throw ConfigError("--vary " + axis.key + "=" + value + ": " + e.what());
+      }
+    }
+  }
+}
+
+// --seeds varies run.seed, which drives every seeded component; a plugin seed the file pins
+// stays fixed: said once, so the Monte Carlo is not taken for wider than it is.
+void WarnPinnedSeeds(const ExperimentConfig& config) {
+  for (const PluginSection* s : {&config.leader, &config.formation, &config.attitude}) {
+    const auto it = s->attributes.find("seed");
+    if (it == s->attributes.end()) continue;
+    std::fprintf(stderr,
+                 "sweep: note: %s:%d: [%s] seed = %s is pinned in the file: plugin '%s' draws the "
+                 "same random numbers in every run (leave it out to let run.seed drive it)\n",
+                 config.source_path.c_str(), it->second.line, s->section.c_str(),
+                 it->second.text.c_str(), s->plugin.c_str());
+  }
+}
+
 }  // namespace
 
 // A CSV field: as is, or quoted (RFC 4180) when it holds a comma, quote or newline.
@@ -75,6 +127,7 @@ SweepPlan PlanSweep(const CliCommands& c) {
   if (plan.axes.empty() && plan.seeds == 0) {
     throw ConfigError("sweep: give --vary section.key=v1,v2,... and/or --seeds N");
   }
+  CheckPlanSize(plan);
   plan.cells.assign(1, {});
   for (const Axis& axis : plan.axes) {
     std::vector<std::vector<size_t>> next;
@@ -92,6 +145,7 @@ SweepPlan PlanSweep(const CliCommands& c) {
       overrides.push_back(plan.axes[a].key + "=" + plan.axes[a].values[plan.cells[cell][a]]);
     }
     ExperimentConfig base = LoadExperiment(c.experiment, overrides);
+    if (cell == 0 && plan.seeds > 0) WarnPinnedSeeds(base);
     const std::string point = PointName(plan.axes, plan.cells[cell]);
     for (int k = 0; k < std::max(1, plan.seeds); ++k) {
       RunSpec run;
@@ -110,6 +164,7 @@ SweepPlan PlanSweep(const CliCommands& c) {
       plan.runs.push_back(std::move(run));
     }
   }
+  CheckAxisValues(c, plan.axes);
   std::set<std::string> names;
   for (const RunSpec& run : plan.runs) {
     if (!names.insert(run.name).second) {

@@ -40,6 +40,24 @@ std::string RunStatus(const RunOutcome& o) {
   return o.state == RunOutcome::kNotRun ? "not run (sweep interrupted)" : CsvSafe(o.error);
 }
 
+// The safety events a run reported (summary.json "events", absent when none).
+int64_t EventCount(const Json& s) {
+  if (!s.is_object() || !s.contains("events") || !s["events"].contains("count")) return 0;
+  return s["events"]["count"].get<int64_t>();
+}
+std::string FirstEvent(const Json& s) {
+  if (EventCount(s) == 0 || s["events"]["list"].empty()) return "";
+  return s["events"]["list"][0]["what"].get<std::string>();
+}
+// The tables gain their event columns only when some run had an event: the tables of a sweep
+// without one keep their bytes.
+bool AnyEvents(const std::vector<RunOutcome>& outcomes) {
+  for (const RunOutcome& o : outcomes) {
+    if (EventCount(o.summary) > 0) return true;
+  }
+  return false;
+}
+
 // Per-run table: one row per run in plan order (whatever the completion order).
 std::string RunsCsv(const SweepPlan& plan, const std::vector<RunOutcome>& outcomes) {
   std::string csv;
@@ -47,7 +65,8 @@ std::string RunsCsv(const SweepPlan& plan, const std::vector<RunOutcome>& outcom
   if (plan.seeds) csv += "seed,";
   csv += "complete";
   for (const char* m : kMainMetrics) csv += std::string(",") + m;
-  csv += ",run,error\n";
+  const bool events = AnyEvents(outcomes);
+  csv += events ? ",run,error,safety_events,first_safety_event\n" : ",run,error\n";
   for (size_t i = 0; i < plan.runs.size(); ++i) {
     const RunSpec& run = plan.runs[i];
     for (size_t a = 0; a < plan.axes.size(); ++a) {
@@ -56,7 +75,12 @@ std::string RunsCsv(const SweepPlan& plan, const std::vector<RunOutcome>& outcom
     if (plan.seeds) csv += std::to_string(run.seed) + ",";
     csv += outcomes[i].complete() ? "true" : "false";
     for (const char* m : kMainMetrics) csv += "," + MetricText(outcomes[i].summary, m);
-    csv += "," + run.name + "," + (outcomes[i].complete() ? "" : RunStatus(outcomes[i])) + "\n";
+    csv += "," + run.name + "," + (outcomes[i].complete() ? "" : RunStatus(outcomes[i]));
+    if (events) {
+      csv += fmt::format(",{},{}", EventCount(outcomes[i].summary),
+                         CsvSafe(FirstEvent(outcomes[i].summary)));
+    }
+    csv += "\n";
   }
   return csv;
 }
@@ -77,12 +101,13 @@ std::vector<std::string> MetricKeys(const std::vector<RunOutcome>& outcomes) {
 std::vector<std::vector<SampleStats>> CellStats(const SweepPlan& plan,
                                                 const std::vector<RunOutcome>& outcomes,
                                                 const std::vector<std::string>& keys,
-                                                std::vector<int>* completed) {
+                                                std::vector<int>* completed, bool event_free_only) {
   std::vector<std::vector<std::vector<double>>> samples(
       plan.cells.size(), std::vector<std::vector<double>>(keys.size()));
   completed->assign(plan.cells.size(), 0);
   for (size_t i = 0; i < plan.runs.size(); ++i) {
     if (!outcomes[i].complete()) continue;
+    if (event_free_only && EventCount(outcomes[i].summary) > 0) continue;
     const size_t cell = plan.runs[i].cell;
     ++(*completed)[cell];
     const Json& metrics = outcomes[i].summary["metrics"];
@@ -115,6 +140,8 @@ Json RunsJson(const SweepPlan& plan, const std::vector<RunOutcome>& outcomes, bo
     entry["finished"] = o.state == RunOutcome::kFinished;
     entry["run"] = run.name;
     entry["error"] = o.complete() ? Json(nullptr) : Json(RunStatus(o));
+    entry["safety_events"] = EventCount(o.summary);
+    if (EventCount(o.summary) > 0) entry["first_safety_event"] = FirstEvent(o.summary);
     entry["metrics"] = o.summary.is_object() && o.summary.contains("metrics") ? o.summary["metrics"]
                                                                               : Json(nullptr);
     runs.push_back(entry);
@@ -122,37 +149,71 @@ Json RunsJson(const SweepPlan& plan, const std::vector<RunOutcome>& outcomes, bo
   return runs;
 }
 
+// A cell's statistics as CSV cells and as sweep.json's "metrics".
+Json StatsRow(const std::vector<std::string>& keys, const std::vector<SampleStats>& stats,
+              std::string* csv) {
+  Json metrics = Json::object();
+  for (size_t k = 0; k < keys.size(); ++k) {
+    const SampleStats& s = stats[k];
+    *csv += "," + NumberText(s.mean) + "," + NumberText(s.std) + "," + NumberText(s.ci95_low) +
+            "," + NumberText(s.ci95_high);
+    metrics[keys[k]] = {{"n", s.n},
+                        {"mean", JsonNumber(s.mean)},
+                        {"std", JsonNumber(s.std)},
+                        {"ci95", {JsonNumber(s.ci95_low), JsonNumber(s.ci95_high)}}};
+  }
+  return metrics;
+}
+
+// Runs of each cell that reported a safety event (complete or not).
+std::vector<int> RunsWithEvents(const SweepPlan& plan, const std::vector<RunOutcome>& outcomes) {
+  std::vector<int> count(plan.cells.size(), 0);
+  for (size_t i = 0; i < plan.runs.size(); ++i) {
+    count[plan.runs[i].cell] += EventCount(outcomes[i].summary) > 0;
+  }
+  return count;
+}
+
 // With --seeds: the per-cell statistics as sweep.csv's text (`csv`) and sweep.json's "cells".
+// When some run had a safety event, each cell has two rows, said apart by `statistics_over`:
+// over all complete runs, and over the complete runs without a safety event.
 Json CellsTable(const SweepPlan& plan, const std::vector<RunOutcome>& outcomes, std::string* csv) {
   const std::vector<std::string> keys = MetricKeys(outcomes);
-  std::vector<int> completed;
-  const auto stats = CellStats(plan, outcomes, keys, &completed);
+  const bool events = AnyEvents(outcomes);
+  std::vector<int> completed, event_free;
+  const auto stats = CellStats(plan, outcomes, keys, &completed, false);
+  const auto free_stats = CellStats(plan, outcomes, keys, &event_free, true);
+  const std::vector<int> with_events = RunsWithEvents(plan, outcomes);
   for (const Axis& axis : plan.axes) *csv += axis.key + ",";
-  *csv += "seeds,complete_runs";
+  *csv += events ? "seeds,runs_with_safety_events,statistics_over,runs" : "seeds,complete_runs";
   for (const auto& k : keys) *csv += fmt::format(",{0}_mean,{0}_std,{0}_ci95_low,{0}_ci95_high", k);
   *csv += "\n";
   Json cells = Json::array();
   for (size_t cell = 0; cell < plan.cells.size(); ++cell) {
     Json entry;
+    std::string values;
     for (size_t a = 0; a < plan.axes.size(); ++a) {
-      *csv += CsvField(plan.axes[a].values[plan.cells[cell][a]]) + ",";
+      values += CsvField(plan.axes[a].values[plan.cells[cell][a]]) + ",";
       entry[plan.axes[a].key] = plan.axes[a].values[plan.cells[cell][a]];
     }
-    *csv += fmt::format("{},{}", plan.seeds, completed[cell]);
     entry["seeds"] = plan.seeds;
     entry["complete_runs"] = completed[cell];
-    Json metrics = Json::object();
-    for (size_t k = 0; k < keys.size(); ++k) {
-      const SampleStats& s = stats[cell][k];
-      *csv += "," + NumberText(s.mean) + "," + NumberText(s.std) + "," + NumberText(s.ci95_low) +
-              "," + NumberText(s.ci95_high);
-      metrics[keys[k]] = {{"n", s.n},
-                          {"mean", JsonNumber(s.mean)},
-                          {"std", JsonNumber(s.std)},
-                          {"ci95", {JsonNumber(s.ci95_low), JsonNumber(s.ci95_high)}}};
+    entry["runs_with_safety_events"] = with_events[cell];
+    entry["event_free_complete_runs"] = event_free[cell];
+    if (!events) {
+      *csv += values + fmt::format("{},{}", plan.seeds, completed[cell]);
+      entry["metrics"] = StatsRow(keys, stats[cell], csv);
+      *csv += "\n";
+    } else {
+      *csv += values + fmt::format("{},{},all_complete_runs,{}", plan.seeds, with_events[cell],
+                                   completed[cell]);
+      entry["metrics"] = StatsRow(keys, stats[cell], csv);
+      *csv +=
+          "\n" + values +
+          fmt::format("{},{},event_free_runs,{}", plan.seeds, with_events[cell], event_free[cell]);
+      entry["metrics_event_free"] = StatsRow(keys, free_stats[cell], csv);
+      *csv += "\n";
     }
-    *csv += "\n";
-    entry["metrics"] = metrics;
     cells.push_back(entry);
   }
   return cells;

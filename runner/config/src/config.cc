@@ -16,6 +16,7 @@
 #include "mjformation/config/source_location.hpp"
 #include "network_config.hpp"
 #include "realism_config.hpp"
+#include "safety_config.hpp"
 #include "section_reader.hpp"
 
 namespace mjf::runner {
@@ -27,8 +28,7 @@ class Reporter {
   explicit Reporter(std::string path) : path_(std::move(path)) {}
   [[noreturn]] void Fail(const toml::node* node, const std::string& where,
                          const std::string& message) const {
-    const int line = node ? static_cast<int>(node->source().begin.line) : 0;
-    SourceLocation{path_, line, where}.Fail(message);
+    NodeLocation(path_, node, where).Fail(message);
   }
   const std::string& path() const { return path_; }
 
@@ -119,6 +119,10 @@ std::string AttributeText(const Reporter& reporter, const toml::node& node,
       if (item.is_array() || item.is_table()) {
         reporter.Fail(&item, where, "nested arrays are not plugin attributes");
       }
+      // ["3", "1"] would read as the numbers 3 1: an array holds numbers or booleans only.
+      if (item.is_string()) {
+        reporter.Fail(&item, where, "an array attribute holds numbers or booleans, not strings");
+      }
       out += (out.empty() ? "" : " ") + AttributeText(reporter, item, where);
     }
     return out;
@@ -147,8 +151,9 @@ PluginSection ReadPluginSection(const Reporter& reporter, const toml::table& roo
     for (auto&& [key, value] : *table) {
       const std::string k(key.str());
       if (k == "plugin" || reserved.count(k)) continue;
-      out.attributes[k] = {AttributeText(reporter, value, "[" + name + "] " + k),
-                           static_cast<int>(value.source().begin.line)};
+      const SourceLocation at = NodeLocation(reporter.path(), &value, "");
+      out.attributes[k] = {AttributeText(reporter, value, "[" + name + "] " + k), at.line,
+                           at.path == reporter.path() ? "" : at.path};
       // A plugin's `file` attribute is a path relative to the experiment file, like
       // [formation.shape] file: the experiment runs the same from any working folder.
       if (k == "file" && value.is_string()) {
@@ -173,7 +178,7 @@ void ApplyOverrides(toml::table& root, const std::vector<std::string>& overrides
     const std::string value = item.substr(eq + 1);
     toml::table parsed;
     try {
-      parsed = toml::parse("v = " + value);
+      parsed = toml::parse("v = " + value, "--set " + item);  // the origin errors name
     } catch (const toml::parse_error& e) {
       throw ConfigError("override '" + item + "': value is not TOML (" +
                         std::string(e.description()) + "); quote strings: key=\"text\"");
@@ -192,7 +197,8 @@ void ApplyOverrides(toml::table& root, const std::vector<std::string>& overrides
                         "': expected section.key=value, or section={...} to replace a section");
     }
     // section={ plugin = "x" } replaces the whole section (its old keys may not suit x).
-    table->insert_or_assign(key, *parsed.get("v"));
+    // Moved, not copied: a copy of a toml++ node drops its source (the --set origin).
+    table->insert_or_assign(key, std::move(*parsed.get("v")));
   }
 }
 
@@ -224,9 +230,9 @@ toml::table ParseDocument(const std::string& text, const std::string& path,
 }
 
 // The sections an experiment file may have, in the order the documentation lists them.
-const char* const kSections[] = {"run",       "vehicles",  "topology", "leader",
-                                 "formation", "attitude",  "render",   "sensors",
-                                 "wind",      "execution", "network",  "estimator"};
+const char* const kSections[] = {"run",      "vehicles",  "topology", "leader", "formation",
+                                 "attitude", "render",    "sensors",  "wind",   "execution",
+                                 "network",  "estimator", "safety"};
 
 void RejectUnknownSections(const Reporter& reporter, const toml::table& root) {
   for (auto&& [key, node] : root) {
@@ -238,6 +244,24 @@ void RejectUnknownSections(const Reporter& reporter, const toml::table& root) {
     }
     if (!node.is_table()) reporter.Fail(&node, name, "expected a [section] table");
   }
+}
+
+// The default run folder is runs/<name>: a name is one plain folder name, never a path.
+void CheckRunName(const SectionReader& run, const std::string& name) {
+  if (name == "." || name == ".." || name.find_first_of("/\\") != std::string::npos ||
+      std::any_of(name.begin(), name.end(),
+                  [](char ch) { return static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f; })) {
+    run.Fail("name",
+             "must be a plain folder name (no '/', '\\', '..' or control characters): "
+             "runs go into runs/<name>");
+  }
+}
+
+// [run] paper_experiment, range-checked before the conversion to int.
+int PaperExperiment(SectionReader& run) {
+  const int64_t paper = run.Integer("paper_experiment", 0);
+  if (paper < 0 || paper > 3) run.Fail("paper_experiment", "must be 1, 2 or 3 (or 0: none)");
+  return static_cast<int>(paper);
 }
 
 void ParseRunSection(const Reporter& reporter, SectionReader run, const std::string& path,
@@ -254,9 +278,10 @@ void ParseRunSection(const Reporter& reporter, SectionReader run, const std::str
     auto w = run.Numbers("metric_window", {c.metric_window[0], c.metric_window[1]}, 2);
     c.metric_window = {w[0], w[1]};
   }
-  c.paper_experiment = static_cast<int>(run.Integer("paper_experiment", 0));
+  c.paper_experiment = PaperExperiment(run);
   c.reaching_band = run.Number("reaching_band", 0.0);
   c.record_leader_acceleration = run.Bool("record_leader_acceleration", false);
+  run.MarkUsed("stop_on");  // read with [safety] (safety_config.cc)
   const int64_t threads = run.Integer("threads", 1);
   if (threads < 1 || threads > 1024) run.Fail("threads", "must be in [1, 1024] (1: one model)");
   c.threads = static_cast<int>(threads);
@@ -271,6 +296,9 @@ void ParseRunSection(const Reporter& reporter, SectionReader run, const std::str
   run.RejectUnknown();
   if (c.duration <= 0) run.Fail("duration", "must be > 0 s");
   if (c.timestep <= 0 || c.timestep > 0.01) run.Fail("timestep", "must be in (0, 0.01] s");
+  if (c.duration / c.timestep > 1e10) {  // step counts stay far inside int64
+    run.Fail("duration", "is more than 1e10 physics steps of [run] timestep");
+  }
   if (c.record_rate <= 0 || c.record_rate > 1.0 / c.timestep) {
     run.Fail("record_rate", "must be in (0, 1/timestep] Hz");
   }
@@ -289,9 +317,7 @@ void ParseRunSection(const Reporter& reporter, SectionReader run, const std::str
                          c.metric_window[0], c.metric_window[1], c.duration, 0.625 * c.duration,
                          c.duration));
   }
-  if (c.paper_experiment < 0 || c.paper_experiment > 3) {
-    run.Fail("paper_experiment", "must be 1, 2 or 3 (or 0: none)");
-  }
+  CheckRunName(run, c.name);
   if (c.name.empty()) {
     // Default name: the file's stem.
     std::string stem = path.substr(path.find_last_of('/') + 1);
@@ -304,7 +330,10 @@ void ParseVehiclesSection(const Reporter& reporter, SectionReader vehicles, cons
   c.model = vehicles.String("model", c.model);
   c.model_path = ResolveModel(c.model, path);
   c.scene_path = ResolveModel(vehicles.String("scene", "scene"), path);
-  c.followers = static_cast<int>(vehicles.Integer("followers", c.followers));
+  // Range-checked before the conversion to int: 4294967297 is not 1 follower.
+  const int64_t followers = vehicles.Integer("followers", c.followers);
+  if (followers < 1 || followers > 100000) vehicles.Fail("followers", "must be in [1, 100000]");
+  c.followers = static_cast<int>(followers);
   c.altitude = vehicles.Number("altitude", c.altitude);
   {
     auto s = vehicles.Numbers("leader_start", {c.leader_start[0], c.leader_start[1]}, 2);
@@ -545,11 +574,15 @@ ExperimentConfig ParseExperiment(const std::string& text, const std::string& pat
   c.formation = ReadPluginSection(reporter, root, "formation", "", {"shape"});
   c.attitude = ReadPluginSection(reporter, root, "attitude", "pd_cascade", {});
   c.estimator = ReadPluginSection(reporter, root, "estimator", "passthrough", {});
+  for (PluginSection* section : {&c.leader, &c.formation, &c.attitude}) {
+    section->derived["seed"] = std::to_string(c.seed);
+  }
   ParseShapeSection(reporter, table_of("formation"), path, c);
   ParseRenderSection(SectionReader(reporter.path(), table_of("render"), "render"), c.duration,
                      c.render);
   ParseRealismSections(root, path, &c);  // [sensors], [wind]
   ParseNetworkSections(root, c);
+  ParseSafetySections(root, path, &c);  // [safety], [run] stop_on
   return c;
 }
 

@@ -4,6 +4,8 @@
 // over (docs/NETWORK.md). Every value is checked here, before anything runs.
 #include "network_config.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <set>
 #include <sstream>
@@ -23,7 +25,7 @@ void Know(SectionReader& keys, const std::set<std::string>& known) {
 
 // The link keys of the section on top of `base`; every value checked.
 network::LinkParams ReadLinkParams(SectionReader& keys, const network::LinkParams& base,
-                                   double timestep) {
+                                   double timestep, double duration) {
   network::LinkParams p = base;
   if (const toml::node* node = keys.Node("rate")) {
     const double rate = keys.Number("rate", 0.0);
@@ -39,11 +41,16 @@ network::LinkParams ReadLinkParams(SectionReader& keys, const network::LinkParam
     }
     p.period_steps = steps;
   }
+  // Bounded by the run: a later message never arrives, and the delay in steps must fit int64.
+  const std::string within = fmt::format("must be in [0, {}] s (the run's duration)", duration);
   p.latency = keys.Number("latency", p.latency);
-  if (p.latency < 0.0) keys.Fail("latency", "must be >= 0 s");
+  if (!(p.latency >= 0.0 && p.latency <= duration)) keys.Fail("latency", within);
   if (keys.Has("latency")) RequireWholeStepLatency(keys, p.latency, timestep);
   p.jitter = keys.Number("jitter", p.jitter);
-  if (p.jitter < 0.0) keys.Fail("jitter", "must be >= 0 s");
+  if (!(p.jitter >= 0.0 && p.jitter <= duration)) keys.Fail("jitter", within);
+  if (p.latency + p.jitter > duration) {
+    keys.Fail(keys.Has("jitter") ? "jitter" : "latency", "latency + jitter " + within);
+  }
   p.loss = keys.Number("loss", p.loss);
   if (!(p.loss >= 0.0 && p.loss <= 1.0)) {
     keys.Fail("loss", "must be a probability in [0, 1]");
@@ -101,8 +108,12 @@ void ParseLinkOverrides(const std::string& path, const toml::node* node, Experim
     NetworkConfig::LinkOverride link;
     for (auto [key, value] : {std::pair{"from", &link.from}, std::pair{"to", &link.to}}) {
       const toml::node* v = t->get(key);
-      if (!v || !v->value_exact<int64_t>()) {
-        keys.FailAt(v ? v : &item, key, "expected a vehicle number (0: the leader, 1..N)");
+      // Range-checked before the conversion to int: 4294967297 is not link 1.
+      if (!v || !v->value_exact<int64_t>() || *v->value_exact<int64_t>() < 0 ||
+          *v->value_exact<int64_t>() > c.followers) {
+        keys.FailAt(
+            v ? v : &item, key,
+            "expected a vehicle number (0: the leader, 1.." + std::to_string(c.followers) + ")");
       }
       *value = static_cast<int>(*v->value_exact<int64_t>());
     }
@@ -117,7 +128,7 @@ void ParseLinkOverrides(const std::string& path, const toml::node* node, Experim
                       " is configured twice");
     }
     link.line = static_cast<int>(item.source().begin.line);
-    link.params = ReadLinkParams(keys, c.network.defaults, c.timestep);
+    link.params = ReadLinkParams(keys, c.network.defaults, c.timestep, c.duration);
     c.network.links.push_back(link);
   }
 }
@@ -198,7 +209,7 @@ void ParseNetworkSections(const toml::table& root, ExperimentConfig& c) {
   known.insert("link");
   Know(keys, known);
   keys.RejectUnknown();
-  c.network.defaults = ReadLinkParams(keys, network::LinkParams{}, c.timestep);
+  c.network.defaults = ReadLinkParams(keys, network::LinkParams{}, c.timestep, c.duration);
   if (const toml::node* links = keys.Node("link")) ParseLinkOverrides(c.source_path, links, c);
 }
 

@@ -40,6 +40,10 @@ std::string ResolveModel(const std::string& name, const std::string& experiment_
                        (name.size() > 4 && name.compare(name.size() - 4, 4, ".xml") == 0);
   if (is_path) {
     const std::string resolved = ResolveRelative(name, experiment_file);
+    if (IsDirectory(resolved)) {
+      throw ConfigError(experiment_file + ": model file '" + name + "' is a folder (" + resolved +
+                        "), not an MJCF file");
+    }
     if (!IsFile(resolved)) {
       throw ConfigError(experiment_file + ": model file '" + name + "' not found (looked at " +
                         resolved + ")");

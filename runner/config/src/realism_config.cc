@@ -37,7 +37,7 @@ void ParseSensors(const toml::table* table, const std::string& path, ExperimentC
       keys.Fail("imu", "unknown IMU grade '" + s.imu + "' (known: icm42688, ekf2)");
     }
   }
-  if (!(s.scale >= 0)) keys.Fail("scale", "must be >= 0");
+  if (!(s.scale >= 0 && s.scale <= 100)) keys.Fail("scale", "must be in [0, 100] (1: the preset)");
   s.params = s.params.Scaled(s.scale);
   for (int k = 0; k < realism::kChannels; ++k) {
     const std::string name = realism::ChannelName(static_cast<realism::Channel>(k));
@@ -59,6 +59,13 @@ void ParseSensors(const toml::table* table, const std::string& path, ExperimentC
   if (!problem.empty()) {
     const auto colon = problem.find(':');
     keys.Fail(problem.substr(0, colon), problem.substr(colon + 2));
+  }
+  for (int k = 0; k < realism::kChannels; ++k) {  // a later reading never arrives
+    if (s.params.channel[k].latency_s > c->duration) {
+      const std::string key =
+          std::string(realism::ChannelName(static_cast<realism::Channel>(k))) + "_latency";
+      keys.Fail(key, "is longer than the run (" + std::to_string(c->duration) + " s)");
+    }
   }
 }
 
@@ -116,6 +123,9 @@ TurbulenceKeys ReadTurbulenceKeys(SectionReader& keys, const ExperimentConfig& c
 // the altitude, with sigma and scale_length overriding the standard's.
 void ApplyTurbulence(const SectionReader& keys, const TurbulenceKeys& t, WindConfig& w) {
   realism::WindParams& p = w.params;
+  // Checked with or without turbulence: a value that is read must be valid.
+  if (!(t.airspeed >= 0.5 && t.airspeed <= 100)) keys.Fail("airspeed", "must be in [0.5, 100] m/s");
+  if (!(t.altitude >= 0 && t.altitude <= 1000)) keys.Fail("altitude", "must be in [0, 1000] m");
   if (w.turbulence == "none") {
     if (t.has_w20 || t.has_sigma || t.has_length) {
       keys.Fail("turbulence", "is \"none\": w20, sigma and scale_length need a turbulence level");
@@ -155,7 +165,7 @@ void ApplyTurbulence(const SectionReader& keys, const TurbulenceKeys& t, WindCon
 
 // One entry of [wind] gusts: a 1-cosine gust inside the run.
 realism::OneCosineGust ReadGust(const SectionReader& keys, const toml::node& item, int index,
-                                const std::string& path, double duration) {
+                                const std::string& path, double duration, double timestep) {
   const toml::table* g = item.as_table();
   if (!g) keys.FailAt(&item, "gusts", "expected {start = s, duration = s, amplitude = [x, y, z]}");
   SectionReader gust(path, g, "wind] gusts[" + std::to_string(index));
@@ -167,7 +177,10 @@ realism::OneCosineGust ReadGust(const SectionReader& keys, const toml::node& ite
   one.duration = gust.Number("duration", 1);
   one.amplitude = gust.Vector3("amplitude", {0, 0, 0});
   gust.RejectUnknown();
-  if (!(one.duration > 0)) gust.Fail("duration", "must be > 0 s");
+  if (!(one.duration >= 2 * timestep)) {  // a shorter 1-cosine gust never acts on a step
+    gust.Fail("duration",
+              "must be at least two physics steps (" + std::to_string(2 * timestep) + " s)");
+  }
   if (one.start < 0 || one.start + one.duration > duration + 1e-9) {
     gust.Fail("start", "the gust [start, start + duration] must lie in the run [0, " +
                            std::to_string(duration) + "] s");
@@ -201,8 +214,8 @@ void ParseWind(const toml::table* table, const std::string& path, ExperimentConf
   ApplyTurbulence(keys, ReadTurbulenceKeys(keys, *c, w), w);
   if (const toml::array* gusts = keys.Array("gusts")) {
     for (const toml::node& item : *gusts) {
-      w.params.gusts.push_back(
-          ReadGust(keys, item, static_cast<int>(w.params.gusts.size()), path, c->duration));
+      w.params.gusts.push_back(ReadGust(keys, item, static_cast<int>(w.params.gusts.size()), path,
+                                        c->duration, c->timestep));
     }
   }
   ReadDragKeys(keys, w.drag);

@@ -24,11 +24,17 @@ const char* TypeName(const toml::node& node) {
   }
 }
 
+SourceLocation NodeLocation(const std::string& file, const toml::node* node,
+                            const std::string& what) {
+  if (!node) return {file, 0, what};
+  const auto& origin = node->source().path;
+  if (origin && origin->rfind("--set ", 0) == 0) return {*origin, 0, what};
+  return {file, static_cast<int>(node->source().begin.line), what};
+}
+
 void SectionReader::FailAt(const toml::node* node, const std::string& key,
                            const std::string& message) const {
-  const toml::node* where = node ? node : table_;
-  const int line = where ? static_cast<int>(where->source().begin.line) : 0;
-  SourceLocation{path_, line, Where(key)}.Fail(message);
+  NodeLocation(path_, node ? node : table_, Where(key)).Fail(message);
 }
 
 double SectionReader::Number(const std::string& key, double fallback) {

@@ -20,6 +20,11 @@
 
 namespace mjf::runner {
 
+// Where `node` is: FILE:LINE, or for a value that came from the command line its origin
+// "--set section.key=value" (ApplyOverrides parses each with that as its source path).
+SourceLocation NodeLocation(const std::string& file, const toml::node* node,
+                            const std::string& what);
+
 // "a string", "an integer", ...: the kind of value a type error says it got.
 const char* TypeName(const toml::node& node);
 

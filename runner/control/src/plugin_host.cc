@@ -176,16 +176,21 @@ std::vector<std::pair<std::string, std::string>> ResolveAttributes(const mjfPlug
     bool known = false;
     for (int i = 0; i < plugin.n_attributes; ++i) known |= key == plugin.attributes[i].key;
     if (!known) {
-      throw PluginError(where(value.line, key) + ": plugin '" + plugin.name +
-                        "' has no attribute '" + key +
+      const std::string at = value.origin.empty()
+                                 ? where(value.line, key)
+                                 : value.origin + ": " + SectionKey(section.section, key);
+      throw PluginError(at + ": plugin '" + plugin.name + "' has no attribute '" + key +
                         "' (its attributes: " + (declared.empty() ? "none" : declared) + ")");
     }
   }
   for (int i = 0; i < plugin.n_attributes; ++i) {
     const mjfAttribute& a = plugin.attributes[i];
     auto it = section.attributes.find(a.key);
+    const auto derived = section.derived.find(a.key);
     if (it != section.attributes.end()) {
       resolved.emplace_back(a.key, it->second.text);
+    } else if (derived != section.derived.end()) {
+      resolved.emplace_back(a.key, derived->second);  // e.g. seed = [run] seed
     } else if (a.default_value) {
       resolved.emplace_back(a.key, a.default_value);
     } else {
@@ -195,6 +200,23 @@ std::vector<std::pair<std::string, std::string>> ResolveAttributes(const mjfPlug
   }
   return resolved;
 }
+
+namespace {
+
+// Where a plugin's refusal points: at the attribute it names ("attribute 'a_max'" or
+// "'a_max'"), when the file gives it, else at the `plugin =` line.
+std::string RefusalWhere(const PluginSection& section, const std::string& config_path,
+                         const std::string& error) {
+  for (const auto& [key, value] : section.attributes) {
+    if (error.find("'" + key + "'") == std::string::npos) continue;
+    if (!value.origin.empty()) return value.origin + ": " + SectionKey(section.section, key);
+    return SourceLocation{config_path, value.line, SectionKey(section.section, key)}.Prefix() +
+           ": plugin";
+  }
+  return SourceLocation{config_path, section.line, SectionKey(section.section, "plugin")}.Prefix();
+}
+
+}  // namespace
 
 PluginInstance::PluginInstance(const LoadedPlugin& plugin, const PluginSection& section,
                                const std::string& config_path, mjfCreateContext base)
@@ -213,8 +235,8 @@ PluginInstance::PluginInstance(const LoadedPlugin& plugin, const PluginSection& 
   base.error_size = sizeof(error);
   instance_ = descriptor_->create(&base);
   if (!instance_) {
-    const SourceLocation at{config_path, section.line, SectionKey(section.section, "plugin")};
-    throw PluginError(at.Prefix() + " '" + descriptor_->name + "' (" + plugin.library +
+    throw PluginError(RefusalWhere(section, config_path, error) + " '" + descriptor_->name + "' (" +
+                      plugin.library +
                       ") refused its configuration: " + (error[0] ? error : "no reason given"));
   }
 }

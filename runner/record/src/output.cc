@@ -43,9 +43,11 @@ bool IsRunEntry(const fs::directory_entry& e) {
   return false;
 }
 
-// Removes a previous run directory's contents, after checking that it is one and that every
-// entry in it is the runner's. Throws OutputError (and deletes nothing) otherwise.
-void ClearPreviousRun(const fs::path& dir) {
+}  // namespace
+
+// Throws OutputError unless `dir` holds the run marker and only entries the runner wrote.
+void CheckRunDirectory(const std::string& path) {
+  const fs::path dir(path);
   const fs::path marker = dir / kMarker;
   if (fs::is_symlink(marker) || !fs::is_regular_file(marker)) {
     throw OutputError(dir.string() + ": not a mjformation run directory (no " + kMarker +
@@ -63,6 +65,14 @@ void ClearPreviousRun(const fs::path& dir) {
                       "); --overwrite deletes only a run's own files, so nothing was deleted. "
                       "Move them or choose another --out.");
   }
+}
+
+namespace {
+
+// Removes a previous run directory's contents, after checking that it is one and that every
+// entry in it is the runner's. Throws OutputError (and deletes nothing) otherwise.
+void ClearPreviousRun(const fs::path& dir) {
+  CheckRunDirectory(dir.string());
   // remove_all removes a symbolic link itself, never what it points to.
   for (const auto& e : fs::directory_iterator(dir)) {
     if (e.path().filename() != kMarker) fs::remove_all(e.path());

@@ -10,6 +10,7 @@
 #include "mjformation/record/frame_view.hpp"
 #include "mjformation/record/leader_acceleration.hpp"
 #include "mjformation/record/output.hpp"
+#include "mjformation/record/safety_events.hpp"
 #include "mjformation/render.hpp"
 #include "mjformation/sim/simulation.hpp"
 
@@ -172,6 +173,65 @@ class VideoRecorder final : public Recorder {
   int64_t every_;
 };
 
+// Each vehicle's radius about its body's origin that holds every geom of its subtree
+// (bounding spheres, geom_rbound), from the model's rest frames. One pass: bodies are in
+// depth-first order, so a parent's frame (relative to its vehicle) is known before its
+// children's.
+std::vector<double> VehicleRadii(const Simulation& sim) {
+  const mjModel* m = sim.model();
+  std::vector<int> owner(m->nbody, -1);
+  std::vector<std::array<mjtNum, 3>> pos(m->nbody, {0, 0, 0});
+  std::vector<std::array<mjtNum, 4>> quat(m->nbody, {1, 0, 0, 0});
+  for (int v = 0; v < sim.n_vehicles(); ++v) owner[sim.binding(v).body] = v;
+  for (int k = 1; k < m->nbody; ++k) {
+    const int parent = m->body_parentid[k];
+    if (owner[k] >= 0 || owner[parent] < 0) continue;  // a vehicle's own body, or not in one
+    owner[k] = owner[parent];
+    mjtNum offset[3];
+    mju_rotVecQuat(offset, m->body_pos + 3 * k, quat[parent].data());
+    for (int a = 0; a < 3; ++a) pos[k][a] = pos[parent][a] + offset[a];
+    mju_mulQuat(quat[k].data(), quat[parent].data(), m->body_quat + 4 * k);
+  }
+  std::vector<double> radii(sim.n_vehicles(), 0.0);
+  for (int g = 0; g < m->ngeom; ++g) {
+    const int k = m->geom_bodyid[g];
+    if (owner[k] < 0) continue;
+    mjtNum p[3];
+    mju_rotVecQuat(p, m->geom_pos + 3 * g, quat[k].data());
+    for (int a = 0; a < 3; ++a) p[a] += pos[k][a];
+    radii[owner[k]] = std::max(radii[owner[k]], mju_norm3(p) + m->geom_rbound[g]);
+  }
+  return radii;
+}
+
+// Safety events (safety_events.hpp), checked every step; with [run] stop_on, an event of a
+// listed kind ends the run (the exception becomes the run's error: exit 3).
+class SafetyRecorder final : public Recorder {
+ public:
+  explicit SafetyRecorder(const Simulation& sim)
+      : monitor_(sim.config().safety, VehicleRadii(sim)) {}
+  void OnStep(const Simulation& sim) override {
+    const size_t fresh = monitor_.Check(sim.time(), sim.states());
+    const auto& stop_on = sim.config().safety.stop_on;
+    const auto& events = monitor_.events();
+    for (size_t k = events.size() - fresh; k < events.size(); ++k) {
+      if (std::find(stop_on.begin(), stop_on.end(), events[k].kind) != stop_on.end()) {
+        throw std::runtime_error("stopped at a safety event ([run] stop_on): " +
+                                 DescribeEvent(events[k]));
+      }
+    }
+  }
+  bool Wants(int64_t) const override { return false; }
+  void Record(const Frame&) override {}
+  // Only a run with an event gains "events", so event-free runs keep their summary as it was.
+  void Summarize(nlohmann::ordered_json* summary) const override {
+    if (!monitor_.events().empty()) (*summary)["events"] = monitor_.Summary();
+  }
+
+ private:
+  SafetyMonitor monitor_;
+};
+
 }  // namespace
 
 std::vector<std::unique_ptr<Recorder>> MakeRecorders(const Simulation& sim, const RunDirectory* dir,
@@ -182,6 +242,7 @@ std::vector<std::unique_ptr<Recorder>> MakeRecorders(const Simulation& sim, cons
   const LeaderAccelerationRecorder* leader_columns =
       sim.config().record_leader_acceleration ? leader.get() : nullptr;
   out.push_back(std::move(leader));  // first: its OnStep runs before the CSV row is written
+  out.push_back(std::make_unique<SafetyRecorder>(sim));
   if (options.record) {
     out.push_back(std::make_unique<TimeseriesRecorder>(sim, *dir, leader_columns));
   }

@@ -102,7 +102,10 @@ void Simulation::AdaptForeignVehicle(const mjfPlugin& attitude) {
     return SourceLocation{config_.source_path, line, SectionKey("vehicles", key)}.Prefix();
   };
   m.body_where = where(config_.vehicle_body_line, "body");
-  m.rotors_where = where(config_.vehicle_rotors_line, "rotors");
+  // A thrust-and-moment mapping's actuators are named by `thrust` and `moments`, not `rotors`.
+  m.rotors_where = config_.vehicle_actuation == VehicleActuation::kRotors
+                       ? where(config_.vehicle_rotors_line, "rotors")
+                       : where(config_.vehicle_rotors_line, "thrust / moments");
   AdaptedVehicle adapted = AdaptVehicle(m);
   vehicle_xml_ = std::move(adapted.xml);
   vehicle_notes_ = std::move(adapted.notes);

@@ -73,8 +73,8 @@ struct BadCase {
 TEST(NetworkConfigTest, BadValuesNameFileLineSectionKey) {
   // Experiment() has 16 lines; [execution] 2 more; [network] is line 19.
   const BadCase cases[] = {
-      {"[network]\nlatency = -0.01\n", "net.toml:20: [network] latency", ">= 0"},
-      {"[network]\njitter = -1\n", "net.toml:20: [network] jitter", ">= 0"},
+      {"[network]\nlatency = -0.01\n", "net.toml:20: [network] latency", "must be in [0, "},
+      {"[network]\njitter = -1\n", "net.toml:20: [network] jitter", "must be in [0, "},
       {"[network]\nloss = 1.5\n", "net.toml:20: [network] loss", "[0, 1]"},
       {"[network]\nloss = -0.1\n", "net.toml:20: [network] loss", "[0, 1]"},
       {"[network]\nburst_enter = 2.0\n", "net.toml:20: [network] burst_enter", "probability"},

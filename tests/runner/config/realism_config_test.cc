@@ -241,7 +241,7 @@ TEST(RealismConfigTest, GustErrors) {
               HasSubstr("each gust needs start, duration and amplitude"));
   EXPECT_THAT(
       SectionErrorOf("[wind]\ngusts = [{start = 0.5, duration = 0.0, amplitude = [1, 0, 0]}]\n"),
-      HasSubstr("[wind] gusts[0] duration: must be > 0 s"));
+      HasSubstr("[wind] gusts[0] duration: must be at least two physics steps"));
   EXPECT_THAT(
       SectionErrorOf("[wind]\ngusts = [{start = 0.5, duration = 1.0, amplitude = [1, 0, 0]}, "
                      "{start = 0.1, duration = 0.5, amplitude = [0, 60, 0]}]\n"),

@@ -45,7 +45,8 @@ TEST(StageFactoryTest, DefaultsAreIdealSensorsAndNoForces) {
 
 TEST(StageFactoryTest, SensorsSectionGivesSeededNoisyMeasurements) {
   const std::string text =
-      PointMassExperiment(-2, 0, 2, 0, 0.02, "", "[sensors]\npreset = \"typical\"\n");
+      // 1 s: the typical preset's latencies (110 ms) must fit in the run.
+      PointMassExperiment(-2, 0, 2, 0, 1.0, "", "[sensors]\npreset = \"typical\"\n");
   const ExperimentConfig c = Parse(text);
   auto a = MakeSensorStage(c), b = MakeSensorStage(c);
   EXPECT_EQ(dynamic_cast<IdealSensors*>(a.get()), nullptr);

@@ -77,8 +77,9 @@ struct NetworkConfig {
 
 // One plugin attribute as written in the experiment file.
 struct AttributeValue {
-  std::string text;  // value converted to the ABI's string form ("3 1" for arrays)
-  int line = 0;      // source line, for messages
+  std::string text;    // value converted to the ABI's string form ("3 1" for arrays)
+  int line = 0;        // source line, for messages
+  std::string origin;  // "--set section.key=value" when it came from the command line, else ""
 };
 
 // A [leader] / [formation] / [attitude] section: plugin name plus its attributes.
@@ -87,6 +88,10 @@ struct PluginSection {
   std::string plugin;
   int line = 0;  // line of the `plugin` key
   std::map<std::string, AttributeValue> attributes;
+  // Defaults the runner derives for attributes the file leaves out, used only when the plugin
+  // declares the key: "seed" = [run] seed, so run.seed drives every seeded plugin unless the
+  // file pins the plugin's own seed (docs/ARCHITECTURE.md, "Random sources").
+  std::map<std::string, std::string> derived;
 };
 
 // [formation.shape]: the desired formation f_i(t) (Definition 1).
@@ -124,6 +129,20 @@ struct RenderConfig {
 // The actuation contract of the vehicle's actuators (mjfActuation of the plugin ABI).
 enum class VehicleActuation { kRotors = 0, kThrustMoments = 1 };
 
+// [safety] and [run] stop_on: what counts as a safety event (docs/ARCHITECTURE.md, "Safety
+// events"). Events are found in every run and reported; only stop_on ends a run at one.
+struct SafetyConfig {
+  double flip_tilt_deg = 90.0;  // tilt of the body z axis from vertical beyond this: a flip
+  double near_miss_m = 0.5;     // gap between two vehicles' bounding spheres below this: near miss
+  bool has_region = false;      // [safety] region given: leaving it is an event
+  std::array<double, 6> region = {0, 0, 0, 0, 0, 0};  // x min, max, y min, max, z min, max (m)
+  std::vector<std::string> stop_on;                   // event kinds that end the run (exit 3)
+};
+
+// The kinds of safety event, as summary.json and [run] stop_on name them.
+inline const char* const kSafetyEventKinds[] = {"flip", "ground_impact", "collision", "near_miss",
+                                                "left_region"};
+
 struct ExperimentConfig {
   std::string source_path;             // the TOML file
   std::string source_text;             // its bytes, echoed to the run directory and hashed
@@ -147,6 +166,8 @@ struct ExperimentConfig {
   // (partitioned_physics.hpp); 1: the single whole-swarm model. Same results either way.
   int threads = 1;
   int threads_line = 0;  // for messages; 0: not in the file (default or --threads)
+
+  SafetyConfig safety;  // [safety], [run] stop_on
 
   // [vehicles]
   std::string model = "quadrotor";  // "quadrotor", "pointmass" or a path to an MJCF file

@@ -16,6 +16,22 @@ inline std::string SectionKey(const std::string& section, const std::string& key
   return "[" + section + "]" + (key.empty() ? "" : " " + key);
 }
 
+// `text` with control characters (other than newline and tab) and DEL written as \xNN: a
+// message that quotes a user's file never sends terminal escape sequences.
+inline std::string EscapeControl(const std::string& text) {
+  static const char* const kHex = "0123456789abcdef";
+  std::string out;
+  for (char ch : text) {
+    const auto c = static_cast<unsigned char>(ch);
+    if ((c < 0x20 && c != '\n' && c != '\t') || c == 0x7f) {
+      out += std::string("\\x") + kHex[c >> 4] + kHex[c & 15];
+    } else {
+      out += ch;
+    }
+  }
+  return out;
+}
+
 // The file, the line (0: not known, e.g. a default or an override) and what is there
 // (usually SectionKey(...)).
 struct SourceLocation {

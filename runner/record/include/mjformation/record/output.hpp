@@ -25,6 +25,11 @@ class OutputError : public std::runtime_error {
 // failed write leaves the previous file. Throws OutputError naming the file and the reason.
 void WriteTextFile(const std::string& path, const std::string& text);
 
+// Throws OutputError (naming the folder and what is wrong) unless `dir` is a run directory:
+// its .mjformation-run marker is there and every entry is one the runner writes. What a
+// sweep's --overwrite / --resume check before they touch a run folder.
+void CheckRunDirectory(const std::string& dir);
+
 // A run directory. Refuses to reuse a non-empty directory unless `overwrite` (nothing already
 // written is lost by accident); creates snapshots/.
 class RunDirectory {

@@ -1,0 +1,136 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+#include "mjformation/record/safety_events.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace mjf::runner {
+namespace {
+
+std::string VehicleName(int v) { return v == 0 ? "leader" : fmt::format("follower {}", v); }
+
+// Tilt of the body z axis from the world's: cos = R_zz = 1 - 2 (x^2 + y^2) for q = (w, x, y, z).
+double TiltDeg(const double q[4]) {
+  const double cos_tilt = std::clamp(1 - 2 * (q[1] * q[1] + q[2] * q[2]), -1.0, 1.0);
+  return std::acos(cos_tilt) * 180.0 / M_PI;
+}
+
+// How far p lies outside the box (0 inside).
+double DistanceOutside(const std::array<double, 6>& box, const double p[3]) {
+  double d2 = 0;
+  for (int a = 0; a < 3; ++a) {
+    const double out = std::max({box[2 * a] - p[a], p[a] - box[2 * a + 1], 0.0});
+    d2 += out * out;
+  }
+  return std::sqrt(d2);
+}
+
+}  // namespace
+
+std::string DescribeEvent(const SafetyEvent& e) {
+  const std::string who = VehicleName(e.vehicles.at(0));
+  const std::string pair = e.vehicles.size() > 1 ? who + " and " + VehicleName(e.vehicles[1]) : who;
+  if (e.kind == "flip") {
+    return fmt::format("{} flipped at {:.2f} s (tilt {:.1f} deg)", who, e.time_s, e.value);
+  }
+  if (e.kind == "ground_impact") {
+    return fmt::format("{} hit the ground at {:.2f} s (z = {:.3f} m)", who, e.time_s, e.value);
+  }
+  if (e.kind == "collision") {
+    return fmt::format("{} collided at {:.2f} s (separation {:.3f} m)", pair, e.time_s, e.value);
+  }
+  if (e.kind == "near_miss") {
+    return fmt::format(
+        "{} nearly collided at {:.2f} s (separation {:.3f} m, {:.3f} m between "
+        "their bounding spheres)",
+        pair, e.time_s, e.value, e.clearance);
+  }
+  return fmt::format("{} left the region at {:.2f} s ({:.3f} m outside)", who, e.time_s, e.value);
+}
+
+SafetyMonitor::SafetyMonitor(const SafetyConfig& config, std::vector<double> radii)
+    : config_(config), radii_(std::move(radii)), airborne_(radii_.size(), 0) {
+  for (double r : radii_) max_radius_ = std::max(max_radius_, r);
+  for (size_t i = 0; i < radii_.size(); ++i) order_.emplace_back(0.0, static_cast<int>(i));
+}
+
+void SafetyMonitor::Report(const std::string& kind, double t, std::vector<int> vehicles,
+                           double value, double clearance) {
+  const int other = vehicles.size() > 1 ? vehicles[1] : -1;
+  if (!seen_.insert({kind, vehicles[0], other}).second) return;  // once per kind and vehicles
+  ++total_;
+  if (events_.size() < kMaxListed) {
+    events_.push_back({kind, t, std::move(vehicles), value, clearance});
+  }
+}
+
+// Flip, ground impact (the bounding sphere reaches z = 0 after the vehicle was above it) and
+// leaving the region.
+void SafetyMonitor::CheckVehicle(double t, int i, const mjfVehicleState& s) {
+  const double tilt = TiltDeg(s.quat);
+  if (tilt > config_.flip_tilt_deg) Report("flip", t, {i}, tilt);
+  const double clearance = s.pos[2] - radii_[i];
+  if (clearance > 0) airborne_[i] = 1;
+  if (airborne_[i] && clearance <= 0) Report("ground_impact", t, {i}, s.pos[2]);
+  if (config_.has_region) {
+    const double out = DistanceOutside(config_.region, s.pos);
+    if (out > 0) Report("left_region", t, {i}, out);
+  }
+}
+
+// Pairs closer than the near-miss margin or their radii: a sweep along x over the vehicles
+// kept sorted by insertion (they move little per step, so this is close to linear).
+void SafetyMonitor::CheckPairs(double t, const std::vector<mjfVehicleState>& states) {
+  const double reach = config_.near_miss_m + 2 * max_radius_;
+  for (auto& [x, i] : order_) x = states[i].pos[0];
+  for (size_t a = 1; a < order_.size(); ++a) {
+    for (size_t b = a; b > 0 && order_[b].first < order_[b - 1].first; --b) {
+      std::swap(order_[b], order_[b - 1]);
+    }
+  }
+  for (size_t a = 0; a < order_.size(); ++a) {
+    const double* p = states[order_[a].second].pos;
+    for (size_t b = a + 1; b < order_.size() && order_[b].first - order_[a].first < reach; ++b) {
+      const double* q = states[order_[b].second].pos;
+      const double d = std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
+                                 (p[2] - q[2]) * (p[2] - q[2]));
+      const int i = std::min(order_[a].second, order_[b].second);
+      const int j = std::max(order_[a].second, order_[b].second);
+      const double clearance = d - radii_[i] - radii_[j];  // between the bounding spheres
+      if (config_.near_miss_m > 0 && clearance < config_.near_miss_m) {
+        Report("near_miss", t, {i, j}, d, clearance);
+      }
+      if (clearance < 0) Report("collision", t, {i, j}, d, clearance);
+    }
+  }
+}
+
+size_t SafetyMonitor::Check(double t, const std::vector<mjfVehicleState>& states) {
+  const size_t before = events_.size();
+  for (size_t i = 0; i < states.size() && i < radii_.size(); ++i) {
+    CheckVehicle(t, static_cast<int>(i), states[i]);
+  }
+  if (states.size() == radii_.size()) CheckPairs(t, states);
+  return events_.size() - before;
+}
+
+nlohmann::ordered_json SafetyMonitor::Summary() const {
+  nlohmann::ordered_json counts = nlohmann::ordered_json::object();
+  for (const char* kind : kSafetyEventKinds) counts[kind] = 0;
+  for (const auto& [kind, v, other] : seen_) counts[kind] = counts[kind].get<int64_t>() + 1;
+  nlohmann::ordered_json list = nlohmann::ordered_json::array();
+  for (const SafetyEvent& e : events_) {
+    nlohmann::ordered_json item = {
+        {"kind", e.kind}, {"time_s", e.time_s}, {"vehicles", e.vehicles}, {"value", e.value}};
+    if (e.vehicles.size() > 1) item["clearance_m"] = e.clearance;
+    item["what"] = DescribeEvent(e);
+    list.push_back(item);
+  }
+  nlohmann::ordered_json s = {{"count", total_}, {"by_kind", counts}, {"list", list}};
+  if (total_ > static_cast<int64_t>(events_.size())) s["not_listed"] = total_ - events_.size();
+  return s;
+}
+
+}  // namespace mjf::runner

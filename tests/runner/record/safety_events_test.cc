@@ -1,0 +1,114 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// Unit tests of the source:
+// runner/record/src/safety_events.cc: each kind of safety event is found when its threshold is
+// crossed and not before, once per vehicle (or pair), with its time, vehicles and value.
+#include "mjformation/record/safety_events.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+namespace mjf::runner {
+namespace {
+
+mjfVehicleState At(double x, double y, double z) {
+  mjfVehicleState s{};
+  s.pos[0] = x;
+  s.pos[1] = y;
+  s.pos[2] = z;
+  s.quat[0] = 1;
+  return s;
+}
+
+// Rolled by `deg` about x: q = (cos(a/2), sin(a/2), 0, 0).
+mjfVehicleState Rolled(mjfVehicleState s, double deg) {
+  const double a = deg * M_PI / 180.0;
+  s.quat[0] = std::cos(a / 2);
+  s.quat[1] = std::sin(a / 2);
+  return s;
+}
+
+TEST(SafetyMonitor, FarApartLevelAndAloftIsNoEvent) {
+  SafetyMonitor m(SafetyConfig{}, {0.2, 0.2, 0.2});
+  EXPECT_EQ(m.Check(0.0, {At(0, 0, 5), At(3, 0, 5), Rolled(At(0, 3, 5), 89)}), 0u);
+  EXPECT_TRUE(m.events().empty());
+  EXPECT_EQ(m.Summary()["count"], 0);
+}
+
+TEST(SafetyMonitor, FlipBeyondTheThresholdOncePerVehicle) {
+  SafetyMonitor m(SafetyConfig{}, {0.2, 0.2});
+  m.Check(1.0, {At(0, 0, 5), Rolled(At(5, 0, 5), 80)});
+  EXPECT_TRUE(m.events().empty());
+  EXPECT_EQ(m.Check(2.5, {At(0, 0, 5), Rolled(At(5, 0, 5), 120)}), 1u);
+  EXPECT_EQ(m.Check(2.6, {At(0, 0, 5), Rolled(At(5, 0, 5), 170)}), 0u);  // reported once
+  ASSERT_EQ(m.events().size(), 1u);
+  const SafetyEvent& e = m.events()[0];
+  EXPECT_EQ(e.kind, "flip");
+  EXPECT_EQ(e.vehicles, std::vector<int>{1});
+  EXPECT_DOUBLE_EQ(e.time_s, 2.5);
+  EXPECT_NEAR(e.value, 120, 1e-9);
+  EXPECT_EQ(DescribeEvent(e), "follower 1 flipped at 2.50 s (tilt 120.0 deg)");
+}
+
+TEST(SafetyMonitor, GroundImpactOnlyAfterTheVehicleWasAloft) {
+  SafetyMonitor m(SafetyConfig{}, {0.2});
+  m.Check(0.0, {At(0, 0, 0.1)});  // starts on the ground: no impact
+  EXPECT_TRUE(m.events().empty());
+  m.Check(1.0, {At(0, 0, 3)});
+  m.Check(2.0, {At(0, 0, 0.15)});
+  ASSERT_EQ(m.events().size(), 1u);
+  EXPECT_EQ(m.events()[0].kind, "ground_impact");
+  EXPECT_EQ(m.events()[0].vehicles, std::vector<int>{0});
+  EXPECT_EQ(DescribeEvent(m.events()[0]), "leader hit the ground at 2.00 s (z = 0.150 m)");
+}
+
+TEST(SafetyMonitor, NearMissThenCollisionFromTheRadii) {
+  SafetyConfig config;
+  config.near_miss_m = 0.5;
+  SafetyMonitor m(config, {0.2, 0.3, 0.2});
+  m.Check(0.0, {At(0, 0, 5), At(1.01, 0, 5), At(-9, 0, 5)});  // gap 0.51 m
+  EXPECT_TRUE(m.events().empty());
+  m.Check(1.0, {At(0, 0, 5), At(0.9, 0, 5), At(-9, 0, 5)});  // gap 0.4 m: near miss
+  ASSERT_EQ(m.events().size(), 1u);
+  EXPECT_EQ(m.events()[0].kind, "near_miss");
+  EXPECT_NEAR(m.events()[0].clearance, 0.4, 1e-12);
+  m.Check(2.0, {At(0, 0, 5), At(0.45, 0, 5), At(-9, 0, 5)});  // 0.45 < 0.2 + 0.3
+  ASSERT_EQ(m.events().size(), 2u);
+  EXPECT_EQ(m.events()[1].kind, "collision");
+  EXPECT_EQ(m.events()[1].vehicles, (std::vector<int>{0, 1}));
+  EXPECT_NEAR(m.events()[1].value, 0.45, 1e-12);
+  EXPECT_EQ(DescribeEvent(m.events()[1]),
+            "leader and follower 1 collided at 2.00 s (separation 0.450 m)");
+}
+
+TEST(SafetyMonitor, PairsAreFoundWhateverTheirOrderAlongX) {
+  SafetyConfig config;
+  config.near_miss_m = 0;
+  SafetyMonitor m(config, std::vector<double>(5, 0.1));
+  // Vehicles 4 and 0 meet after the others have swapped places along x.
+  m.Check(0.0, {At(0, 0, 5), At(1, 0, 5), At(2, 0, 5), At(3, 0, 5), At(4, 0, 5)});
+  m.Check(1.0, {At(4, 0, 5), At(3, 0, 5), At(2, 0, 5), At(1, 0, 5), At(4.1, 0.05, 5)});
+  ASSERT_EQ(m.events().size(), 1u);
+  EXPECT_EQ(m.events()[0].vehicles, (std::vector<int>{0, 4}));
+}
+
+TEST(SafetyMonitor, LeavingTheRegion) {
+  SafetyConfig config;
+  config.has_region = true;
+  config.region = {-10, 10, -10, 10, 0, 20};
+  SafetyMonitor m(config, {0.2, 0.2});
+  m.Check(0.0, {At(0, 0, 5), At(9, 0, 5)});
+  EXPECT_TRUE(m.events().empty());
+  m.Check(1.0, {At(0, 0, 5), At(13, 4, 5)});
+  ASSERT_EQ(m.events().size(), 1u);
+  EXPECT_EQ(m.events()[0].kind, "left_region");
+  EXPECT_NEAR(m.events()[0].value, 3, 1e-12);
+  const auto s = m.Summary();
+  EXPECT_EQ(s["by_kind"]["left_region"], 1);
+  EXPECT_EQ(s["list"][0]["what"], "follower 1 left the region at 1.00 s (3.000 m outside)");
+}
+
+}  // namespace
+}  // namespace mjf::runner
