@@ -55,14 +55,15 @@ def test_bad_config_raises_value_error_with_the_cli_message(cli, exp2, tmp_path)
                                     capture_output=True, text=True)
         assert cli_result.returncode == 1
         message = cli_result.stderr.strip().removeprefix("mjformation: error: ")
-        # Then run(), check() and Simulation() raise ValueError with the same FILE:LINE message
+        # Then run(), check() and Simulation() raise ValueError with the same message, which
+        # names the override as its origin
         for call in (lambda: mjformation.run(exp2, set=python_set, out=tmp_path / "never"),
                      lambda: mjformation.check(exp2, set=python_set),
                      lambda: mjformation.Simulation(exp2, set=python_set)):
             with pytest.raises(ValueError) as error:
                 call()
             assert str(error.value) == message
-            assert str(error.value).startswith(f"{exp2}:")
+            assert str(error.value).startswith(f"--set {override.split('=')[0]}=")
         assert not (tmp_path / "never").exists()  # nothing written
 
 

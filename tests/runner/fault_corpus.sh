@@ -153,7 +153,7 @@ rm r6/notes.txt
 
 case="metric window outside the run"
 "$bin" run e.toml --out r8 --plugin-path "$plugins" --set 'run.metric_window=[25.0, 80.0]' -q 2>err.txt; code=$?
-[ $code = 1 ] && [ ! -e r8 ] && grep -F "e.toml" err.txt | grep -F "[run] metric_window" >/dev/null &&
+[ $code = 1 ] && [ ! -e r8 ] && grep -F -- "--set run.metric_window=[25.0, 80.0]: [run] metric_window" err.txt >/dev/null &&
   ok || fail "exit $code: $(cat err.txt)"
 
 case="CLI misuse exits 2"

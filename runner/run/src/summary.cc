@@ -52,7 +52,9 @@ void AddNetworkSummary(const Simulation& sim, Json& s) {
     if (k == "period") period = v;
     if (k == "q") q = v;
   }
-  if (period > 0.0) s["network"]["delay_margin"] = sim.channel()->DelayMarginSummary(period, q);
+  // The margin is law (48)'s (T and q); other laws (e.g. consensus_linear) get none.
+  if (period > 0.0 && q > 0.0)
+    s["network"]["delay_margin"] = sim.channel()->DelayMarginSummary(period, q);
 }
 
 }  // namespace

@@ -92,8 +92,8 @@ TEST(SweepSeeds, PerCellStatisticsOverSeeds) {
                              "min_separation_m_ci95_low,min_separation_m_ci95_high"));
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 2);
   EXPECT_THAT(ReadFile(dir + "/s/sweep_runs.csv"), HasSubstr("2.0,2,true,"));
-  // --seeds 0 is refused before anything runs.
-  EXPECT_EQ(Cli({"sweep", exp, "--seeds", "0", "--out", dir + "/zero"}), 1);
+  // --seeds 0 is refused before anything runs (a usage error: out of [1, 100000]).
+  EXPECT_EQ(Cli({"sweep", exp, "--seeds", "0", "--out", dir + "/zero"}), 2);  // usage
   EXPECT_EQ(Cli({"sweep", exp, "--out", dir + "/nothing"}), 1);  // neither --vary nor --seeds
 }
 

@@ -141,7 +141,7 @@ TEST_F(ControlTickTest, ASensorStageIsWhatTheControllersSee) {
 
 TEST_F(ControlTickTest, APluginFailureNamesPluginVehicleTimeAndReason) {
   auto tick = MakeTick(std::make_unique<IdealSensors>(),
-                       Section("leader", "test_fail_message", {{"after", {"0.05", 0}}}));
+                       Section("leader", "test_fail_message", {{"after", {"0.05", 0, ""}}}));
   const auto truth = AtRest();
   for (int step = 0; step < 5; ++step) tick->Run(step, truth);  // t < 0.05 s: holds
   try {
@@ -156,7 +156,7 @@ TEST_F(ControlTickTest, APluginFailureNamesPluginVehicleTimeAndReason) {
 
 TEST_F(ControlTickTest, AnExceptionThrownByAPluginBecomesASimulationError) {
   auto tick = MakeTick(std::make_unique<IdealSensors>(),
-                       Section("leader", "test_throw", {{"after", {"0", 0}}}));
+                       Section("leader", "test_throw", {{"after", {"0", 0, ""}}}));
   EXPECT_THROW(tick->Run(0, AtRest()), SimulationError);
 }
 

@@ -37,7 +37,7 @@ std::string ErrorOf(const std::function<void()>& f) {
 
 ExperimentConfig Config(const std::string& sensors) {
   return Parse(PointMassExperiment(
-      2, 0, -2, 0, 0.02, "", "[sensors]\n" + sensors + "\n[estimator]\nplugin = \"kf_ins\"\n"));
+      2, 0, -2, 0, 1.0, "", "[sensors]\n" + sensors + "\n[estimator]\nplugin = \"kf_ins\"\n"));
 }
 
 struct Flight {

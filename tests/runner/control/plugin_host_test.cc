@@ -192,7 +192,8 @@ PluginSection Section(std::map<std::string, AttributeValue> attributes) {
 }
 
 TEST(PluginHostTest, AttributesInDeclarationOrderWithDefaults) {
-  const auto resolved = ResolveAttributes(kLocal, Section({{"period", {"0.05", 9}}}), "exp.toml");
+  const auto resolved =
+      ResolveAttributes(kLocal, Section({{"period", {"0.05", 9, ""}}}), "exp.toml");
   const std::vector<std::pair<std::string, std::string>> expected = {
       {"gain", "2.0"}, {"period", "0.05"}, {"mode", "fast"}};
   EXPECT_EQ(resolved, expected);
@@ -200,13 +201,14 @@ TEST(PluginHostTest, AttributesInDeclarationOrderWithDefaults) {
 
 TEST(PluginHostTest, UnknownAndMissingAttributesAreNamedWithFileLineAndSection) {
   EXPECT_EQ(ErrorOf([] {
-              ResolveAttributes(kLocal, Section({{"period", {"1", 9}}, {"rho", {"0.1", 11}}}),
+              ResolveAttributes(kLocal,
+                                Section({{"period", {"1", 9, ""}}, {"rho", {"0.1", 11, ""}}}),
                                 "exp.toml");
             }),
             "exp.toml:11: [formation] rho: plugin 'local' has no attribute 'rho' (its "
             "attributes: gain, period, mode)");
   EXPECT_EQ(ErrorOf([] {
-              ResolveAttributes(kLocal, Section({{"gain", {"3", 8}}}), "exp.toml");
+              ResolveAttributes(kLocal, Section({{"gain", {"3", 8, ""}}}), "exp.toml");
             }),
             "exp.toml:7: [formation] period: plugin 'local' requires attribute 'period' (s: "
             "sample period)");
@@ -221,7 +223,8 @@ TEST(PluginHostTest, InstanceLifeCycle) {
   g_counters = {};
   const LoadedPlugin loaded{&kLocal, "inline.so"};
   {
-    PluginInstance instance(loaded, Section({{"period", {"0.05", 9}}, {"mode", {"slow", 10}}}),
+    PluginInstance instance(loaded,
+                            Section({{"period", {"0.05", 9, ""}}, {"mode", {"slow", 10, ""}}}),
                             "exp.toml", mjfCreateContext{});
     EXPECT_EQ(g_counters.created, 1);
     // create() was handed every declared key in declaration order, defaults filled in.
@@ -249,13 +252,15 @@ TEST(PluginHostTest, ARefusedConfigurationNamesPluginLibraryAndReason) {
   g_counters = {};
   const LoadedPlugin loaded{&kLocal, "inline.so"};
   EXPECT_EQ(ErrorOf([&] {
-              PluginInstance p(loaded, Section({{"period", {"1", 9}}, {"mode", {"warp", 10}}}),
+              PluginInstance p(loaded,
+                               Section({{"period", {"1", 9, ""}}, {"mode", {"warp", 10, ""}}}),
                                "exp.toml", mjfCreateContext{});
             }),
             "exp.toml:7: [formation] plugin 'local' (inline.so) refused its configuration: mode "
             "must be fast or slow, not 'warp'");
   EXPECT_THAT(ErrorOf([&] {
-                PluginInstance p(loaded, Section({{"period", {"1", 9}}, {"gain", {"0", 8}}}),
+                PluginInstance p(loaded,
+                                 Section({{"period", {"1", 9, ""}}, {"gain", {"0", 8, ""}}}),
                                  "exp.toml", mjfCreateContext{});
               }),
               HasSubstr("refused its configuration: no reason given"));

@@ -38,9 +38,9 @@ TEST(RecordersTest, WhatAnExperimentGets) {
   EXPECT_TRUE(MakeRecorders(sim, nullptr, {}).empty());  // no directory: nothing kept
   const std::string dir = TempDir("rec_which");
   RunDirectory run(dir, true);
-  // The leader-acceleration monitor always; timeseries.csv when recording.
-  EXPECT_EQ(MakeRecorders(sim, &run, {true, true}).size(), 2u);
-  EXPECT_EQ(MakeRecorders(sim, &run, {false, true}).size(), 1u);
+  // The leader-acceleration monitor and the safety events always; timeseries.csv when recording.
+  EXPECT_EQ(MakeRecorders(sim, &run, {true, true}).size(), 3u);
+  EXPECT_EQ(MakeRecorders(sim, &run, {false, true}).size(), 2u);
 }
 
 TEST(RecordersTest, TheTimeseriesWantsRecordTicksAndTheLastStep) {
