@@ -52,10 +52,10 @@ Simulation::Simulation(const ExperimentConfig& config) : config_(config) {
   // Attribute problems are reported before the (slower) scene compilation.
   ResolveAttributes(*attitude.descriptor, config_.attitude, config_.source_path);
 
-  initial_positions_ = InitialPositions(config_);
+  std::vector<std::array<double, 3>> initial_positions = InitialPositions(config_);
   AdaptForeignVehicle(*attitude.descriptor);  // [vehicles] body / rotors (docs/VEHICLES.md)
   scene_xml_ =
-      ComposeScene(MakeSceneRequest(config_, initial_positions_, vehicle_xml_, vehicle_notes_));
+      ComposeScene(MakeSceneRequest(config_, initial_positions, vehicle_xml_, vehicle_notes_));
   model_.reset(CompileModel(scene_xml_, "composed scene of " + config_.model_path));
   data_.reset(mj_makeData(model_.get()));
   total_steps_ = std::llround(config_.duration / config_.timestep);
@@ -64,7 +64,7 @@ Simulation::Simulation(const ExperimentConfig& config) : config_(config) {
   truth_.resize(config_.followers + 1);
   VehicleContexts contexts;
   for (const VehicleBinding& b : bindings_.vehicles) contexts.info.push_back(&b.info);
-  contexts.initial_positions = initial_positions_;
+  contexts.initial_positions = std::move(initial_positions);  // the wiring owns them from here
   contexts.model = reinterpret_cast<const struct mjModel_*>(model_.get());
   wiring_ = std::make_unique<ControlWiring>(config_, *registry_, std::move(contexts));
   std::unique_ptr<AgentChannel> channel = wiring_->MakeChannel();  // per-agent execution only
@@ -85,7 +85,8 @@ void Simulation::MakePartitions(const mjfPlugin& attitude) {
   CheckPartitionable(config_, model_.get(), bodies);
   if (config_.threads == 1) return;
   partitions_ = std::make_unique<PartitionedPhysics>(
-      config_, MakeSceneRequest(config_, initial_positions_, vehicle_xml_, vehicle_notes_),
+      config_,
+      MakeSceneRequest(config_, wiring_->initial_positions(), vehicle_xml_, vehicle_notes_),
       attitude, vehicle_xml_, model_.get());
 }
 

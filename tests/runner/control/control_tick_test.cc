@@ -15,6 +15,7 @@
 
 #include "mjformation/config/paths.hpp"
 #include "mjformation/control/errors.hpp"
+#include "point_mass_info.hpp"
 
 namespace mjf::runner {
 namespace {
@@ -22,26 +23,8 @@ namespace {
 using ::testing::AllOf;
 using ::testing::HasSubstr;
 
-constexpr double kMass = 1.5, kGravity = 9.81;
-
-// A point mass's three force actuators, as BindVehicles would describe them.
-struct PointMass {
-  mjfActuatorInfo actuators[3];
-  mjfVehicleInfo info{};
-  PointMass() {
-    for (int k = 0; k < 3; ++k) {
-      actuators[k] = mjfActuatorInfo{};
-      actuators[k].gear[k] = 1;
-      actuators[k].ctrl_min = -100;
-      actuators[k].ctrl_max = 100;
-    }
-    info.mass = kMass;
-    info.inertia[0] = info.inertia[1] = info.inertia[2] = 0.01;
-    info.gravity = kGravity;
-    info.n_actuators = 3;
-    info.actuators = actuators;
-  }
-};
+using PointMass = mjf::testing::PointMassInfo;
+constexpr double kMass = PointMass::kMass, kGravity = PointMass::kGravity;
 
 PluginSection Section(const std::string& name, const std::string& plugin,
                       std::map<std::string, AttributeValue> attributes = {}) {

@@ -14,30 +14,14 @@
 #include "mjformation/config/paths.hpp"
 #include "mjformation/control/errors.hpp"
 #include "mjformation/core/shape.hpp"
+#include "point_mass_info.hpp"
 
 namespace mjf::runner {
 namespace {
 
 using ::testing::HasSubstr;
 
-// A point mass's three force actuators.
-struct PointMassInfo {
-  mjfActuatorInfo actuators[3];
-  mjfVehicleInfo info{};
-  PointMassInfo() {
-    for (int k = 0; k < 3; ++k) {
-      actuators[k] = mjfActuatorInfo{};
-      actuators[k].gear[k] = 1;
-      actuators[k].ctrl_min = -100;
-      actuators[k].ctrl_max = 100;
-    }
-    info.mass = 1.5;
-    info.inertia[0] = info.inertia[1] = info.inertia[2] = 0.01;
-    info.gravity = 9.81;
-    info.n_actuators = 3;
-    info.actuators = actuators;
-  }
-};
+using mjf::testing::PointMassInfo;
 
 ExperimentConfig Exp2(std::vector<std::string> overrides) {
   overrides.insert(overrides.begin(),

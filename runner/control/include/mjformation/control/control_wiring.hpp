@@ -64,6 +64,10 @@ class ControlWiring {
 
   // The desired formation (nullptr when [formation.shape] type = "none").
   const core::Shape* shape() const { return shape_.get(); }
+  // Where each vehicle starts (the plugins' initial_pos points into these).
+  const std::vector<std::array<double, 3>>& initial_positions() const {
+    return vehicles_.initial_positions;
+  }
 
  private:
   int n_vehicles() const { return static_cast<int>(vehicles_.info.size()); }

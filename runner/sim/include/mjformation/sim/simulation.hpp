@@ -119,7 +119,6 @@ class Simulation {
   int64_t step_ = 0;
   int64_t total_steps_ = 0;
 
-  std::vector<std::array<double, 3>> initial_positions_;
   VehicleBindings bindings_;
   std::vector<mjfVehicleState> truth_;
 
