@@ -44,7 +44,7 @@ plugin = "pd_cascade"
 T
 "$bin" check "$work/exp.toml" --plugin-path "$work/example-build" > "$work/check.txt"
 # The model comes from the moved prefix, not from the source tree.
-grep -q "model $work/moved/bin/../share/mjformation/mjcf/quadrotor.xml" "$work/check.txt" ||
+grep -q "model $work/moved/share/mjformation/mjcf/quadrotor.xml" "$work/check.txt" ||
   { cat "$work/check.txt"; false; }
 "$bin" run "$work/exp.toml" --out "$work/run" --plugin-path "$work/example-build" --no-render -q
 grep -q '"complete": true' "$work/run/summary.json"
@@ -65,8 +65,26 @@ PY
 cmake --install "$work/example-build" --prefix "$work/moved" >/dev/null
 "$bin" plugins > "$work/plugins.txt"
 grep -q "example_orbit" "$work/plugins.txt" || { cat "$work/plugins.txt"; false; }
-grep -q "library: $work/moved/bin/../lib/mjformation/plugins/libexample_orbit.so" \
+grep -q "library: $work/moved/lib/mjformation/plugins/libexample_orbit.so" \
   "$work/plugins.txt" || { cat "$work/plugins.txt"; false; }
-grep -q "library: $work/moved/bin/../lib/mjformation/plugins/libmjf_attitude.so" \
+grep -q "library: $work/moved/lib/mjformation/plugins/libmjf_attitude.so" \
   "$work/plugins.txt" || { cat "$work/plugins.txt"; false; }
+# The moved install stands alone: it searches only its own prefix and runs Exp 2 from its share/.
+"$bin" --version > "$work/version.txt"
+grep -q "installed in $work/moved" "$work/version.txt" || { cat "$work/version.txt"; false; }
+# (The work folder lies inside the build tree: look for the build tree's own folders.)
+tree_paths=(-e "$build/plugins" -e "$build/lib" -e "$src/mjcf")
+if grep -F -q "${tree_paths[@]}" "$work/version.txt"; then cat "$work/version.txt"; false; fi
+share="$work/moved/share/mjformation"
+for f in experiments/exp2.toml mjcf/README.md docs/VEHICLES.md analysis/report.py examples/plugin/CMakeLists.txt; do
+  test -f "$share/$f" || { echo "not installed: share/mjformation/$f"; false; }
+done
+(cd "$work" && "$bin" run "$share/experiments/exp2.toml" --out "$work/exp2" --no-render -q \
+  --set run.duration=2 --set 'run.metric_window=[1.0, 2.0]' --set 'render.snapshots=[1.0]' \
+  --set 'attitude.plugin="geometric"')
+grep -q '"complete": true' "$work/exp2/summary.json"
+if grep -F -q "${tree_paths[@]}" "$work/exp2/summary.json" "$work/exp2/scene.xml"; then
+  echo "the installed run used the build or source tree"; false
+fi
+grep -q '"attitude_report"' "$work/exp2/summary.json"
 echo "cmake package: example plugin configured, built, loaded from a moved prefix: OK"

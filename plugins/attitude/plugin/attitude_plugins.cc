@@ -252,6 +252,16 @@ void* GeometricCreate(const mjfCreateContext* ctx) {
   });
 }
 
+// The bandwidths actually used (rad/s), after the derivation from the vehicle and the torque cap
+// (summary.json attitude_report), so that a run on a small vehicle shows what it flew with.
+void GeometricReport(void* instance, mjfReportFn emit, void* user) {
+  const Geometric::Gains& g = static_cast<RotorInstance<Geometric>*>(instance)->controller.gains();
+  emit(user, "rate_bw", g.rate_bw);
+  emit(user, "att_bw", g.att_bw);
+  emit(user, "yaw_bw", g.yaw_bw);
+  emit(user, "z_bw", g.z_bw);
+}
+
 const mjfPlugin kGeometric = {
     MJF_ABI_VERSION,
     "geometric",
@@ -266,7 +276,7 @@ const mjfPlugin kGeometric = {
     RotorCompute<Geometric>,
     RotorReset<Geometric>,
     RotorDestroy<Geometric>,
-    nullptr};
+    GeometricReport};
 
 // ---------------------------------------------------------------------------------------------
 // pointmass_direct

@@ -90,15 +90,32 @@ int CheckCommand(const CliCommands& c) {
   return 0;
 }
 
+// What --version adds to the version line: where this runner looks for plugins and models
+// (an installed one: only its own prefix, docs/ARCHITECTURE.md "Installed layout").
+std::string VersionText() {
+  const std::string prefix = InstalledPrefix();
+  std::string text =
+      VersionString() + "\n" +
+      (prefix.empty() ? "running from the build tree\n" : "installed in " + prefix + "\n");
+  text += "plugin search path:";
+  for (const auto& dir : PluginSearchPath({})) text += " " + dir;
+  text += "\nmodel search path:";
+  for (const auto& dir : ModelSearchPath()) text += " " + dir;
+  return text;
+}
+
 int PluginsCommand(const CliCommands& c) {
   PluginRegistry registry(PluginSearchPath(c.plugin_path));
   std::printf("Plugin search path:\n");
   for (const auto& dir : registry.search_path()) {
     std::printf("  %s%s\n", dir.c_str(), IsDirectory(dir) ? "" : "  (absent)");
   }
-  for (mjfKind kind :
-       {MJF_KIND_GUIDANCE, MJF_KIND_FORMATION, MJF_KIND_FORMATION_AGENT, MJF_KIND_ATTITUDE,
-        MJF_KIND_ESTIMATOR}) {
+  std::printf("Model search path:\n");
+  for (const auto& dir : ModelSearchPath()) {
+    std::printf("  %s%s\n", dir.c_str(), IsDirectory(dir) ? "" : "  (absent)");
+  }
+  for (mjfKind kind : {MJF_KIND_GUIDANCE, MJF_KIND_FORMATION, MJF_KIND_FORMATION_AGENT,
+                       MJF_KIND_ATTITUDE, MJF_KIND_ESTIMATOR}) {
     std::printf("\n%s plugins:\n", KindName(kind));
     for (const auto& p : registry.plugins()) {
       const mjfPlugin& d = *p.descriptor;
@@ -128,7 +145,7 @@ int PluginsCommand(const CliCommands& c) {
 }  // namespace
 
 void AddCommands(CLI::App& app, CliCommands* c) {
-  app.set_version_flag("--version", VersionString());
+  app.set_version_flag("--version", VersionText);
   app.require_subcommand(1);
   c->run = app.add_subcommand("run", "Run an experiment file and write its run directory");
   c->run->add_option("experiment", c->experiment, "experiment file (TOML)")->required();

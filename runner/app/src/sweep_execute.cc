@@ -16,6 +16,7 @@
 #include <thread>
 
 #include "mjformation/app/sweep_mpi.h"
+#include "mjformation/config/paths.hpp"
 #include "mjformation/record/output.hpp"
 #include "mjformation/run/interrupt.hpp"
 #include "mjformation/run/run.hpp"
@@ -283,13 +284,9 @@ bool UnderMpiLauncher() {
 
 namespace {
 
-// $MJF_MPI_MODULE, else the build tree's, else the installed one.
+// The first of MpiModuleSearchPath() that loads.
 void* LoadMpiModule(std::string* tried) {
-  std::vector<std::string> candidates;
-  if (const char* env = std::getenv("MJF_MPI_MODULE")) candidates.push_back(env);
-  candidates.push_back(MJF_MPI_MODULE_BUILD_PATH);
-  candidates.push_back(MJF_MPI_MODULE_INSTALL_PATH);
-  for (const auto& path : candidates) {
+  for (const auto& path : MpiModuleSearchPath()) {
     // RTLD_GLOBAL: Open MPI's own components, loaded later, resolve their symbols against libmpi.
     if (void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_GLOBAL)) return handle;
     *tried += "\n  " + path + ": " + dlerror();

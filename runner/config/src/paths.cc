@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <climits>
 #include <cstdlib>
 
 #include "mjformation/config/config.hpp"
@@ -35,6 +36,29 @@ std::string ResolveRelative(const std::string& path, const std::string& relative
   return relative_to_file.substr(0, slash + 1) + path;
 }
 
+std::string InstalledPrefix() {
+  // Resolved once: the executable does not move while it runs.
+  static const std::string prefix = [] {
+    const std::string candidate = ExecutableDir() + "/" MJF_INSTALL_BIN_TO_PREFIX;
+    char resolved[PATH_MAX];
+    if (!IsDirectory(candidate + "/" MJF_INSTALL_DATA_DIR) ||
+        !IsDirectory(candidate + "/" MJF_INSTALL_PLUGIN_DIR) ||
+        realpath(candidate.c_str(), resolved) == nullptr) {
+      return std::string();
+    }
+    return std::string(resolved);
+  }();
+  return prefix;
+}
+
+std::vector<std::string> ModelSearchPath() {
+  std::vector<std::string> dirs;
+  if (const char* env = std::getenv("MJF_MJCF_DIR")) dirs.push_back(env);
+  const std::string prefix = InstalledPrefix();
+  dirs.push_back(prefix.empty() ? MJF_SOURCE_MJCF_DIR : prefix + "/" MJF_INSTALL_DATA_DIR "/mjcf");
+  return dirs;
+}
+
 std::string ResolveModel(const std::string& name, const std::string& experiment_file) {
   const bool is_path = name.find('/') != std::string::npos ||
                        (name.size() > 4 && name.compare(name.size() - 4, 4, ".xml") == 0);
@@ -50,12 +74,7 @@ std::string ResolveModel(const std::string& name, const std::string& experiment_
     }
     return resolved;
   }
-  std::vector<std::string> dirs;
-  if (const char* env = std::getenv("MJF_MJCF_DIR")) dirs.push_back(env);
-  // An installed runner uses the models of its own prefix, wherever the prefix was moved; the
-  // build tree's runner (no such folder next to it) those of the source tree.
-  dirs.push_back(ExecutableDir() + "/../share/mjformation/mjcf");
-  dirs.push_back(MJF_SOURCE_MJCF_DIR);
+  const std::vector<std::string> dirs = ModelSearchPath();
   std::string looked;
   for (const auto& dir : dirs) {
     const std::string candidate = dir + "/" + name + ".xml";
@@ -79,10 +98,17 @@ std::vector<std::string> PluginSearchPath(const std::vector<std::string>& extra)
       start = colon + 1;
     }
   }
-  // Installed: the prefix's own plugins first (the build tree may hold newer, other ones).
-  dirs.push_back(ExecutableDir() + "/../lib/mjformation/plugins");
-  dirs.push_back(MJF_PLUGIN_BUILD_DIR);
+  const std::string prefix = InstalledPrefix();
+  dirs.push_back(prefix.empty() ? MJF_PLUGIN_BUILD_DIR : prefix + "/" MJF_INSTALL_PLUGIN_DIR);
   return dirs;
+}
+
+std::vector<std::string> MpiModuleSearchPath() {
+  std::vector<std::string> paths;
+  if (const char* env = std::getenv("MJF_MPI_MODULE")) paths.push_back(env);
+  const std::string prefix = InstalledPrefix();
+  paths.push_back(prefix.empty() ? MJF_MPI_MODULE_BUILD_PATH : prefix + "/" MJF_INSTALL_MPI_MODULE);
+  return paths;
 }
 
 }  // namespace mjf::runner

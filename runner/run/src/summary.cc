@@ -76,6 +76,14 @@ Json BuildSummary(const Simulation& sim, const RunResult& result, const Json& re
   Json report = Json::object();
   for (const auto& [k, v] : sim.FormationReport()) report[k] = JsonNumber(v);
   s["plugin_report"] = report;
+  // The attitude plugin's report (issue 21: e.g. the bandwidths a small vehicle flew with); only
+  // for plugins that report, so other runs' summaries stay as they were.
+  const auto attitude_report = sim.AttitudeReport();
+  if (!attitude_report.empty()) {
+    Json a = Json::object();
+    for (const auto& [k, v] : attitude_report) a[k] = JsonNumber(v);
+    s["attitude_report"] = a;
+  }
   s["snapshots"] = recorded.contains("snapshots") ? recorded["snapshots"] : Json::array();
   if (sim.channel()) AddNetworkSummary(sim, s);  // per-agent execution only
   for (const auto& [k, v] : recorded.items()) {

@@ -192,13 +192,13 @@ const std::vector<std::array<double, 3>>& Simulation::wind() const {
   return kCalm;
 }
 
-std::vector<std::pair<std::string, double>> Simulation::FormationReport() const {
-  const PluginInstance* formation = formation_plugin();
-  if (formation) return formation->Report();
-  // Per-agent execution: each key's largest value over the followers (e.g. Theorem 2's delta).
+namespace {
+// Each key's largest value over the instances (e.g. Theorem 2's delta over the followers).
+template <typename Instances>
+std::vector<std::pair<std::string, double>> LargestOverInstances(const Instances& instances) {
   std::vector<std::pair<std::string, double>> merged;
-  for (const auto& agent : tick_->plugins().formation_agents) {
-    for (const auto& [key, value] : agent->Report()) {
+  for (const auto& instance : instances) {
+    for (const auto& [key, value] : instance->Report()) {
       auto it = std::find_if(merged.begin(), merged.end(),
                              [&](const auto& kv) { return kv.first == key; });
       if (it == merged.end()) {
@@ -209,6 +209,17 @@ std::vector<std::pair<std::string, double>> Simulation::FormationReport() const 
     }
   }
   return merged;
+}
+}  // namespace
+
+std::vector<std::pair<std::string, double>> Simulation::FormationReport() const {
+  const PluginInstance* formation = formation_plugin();
+  if (formation) return formation->Report();
+  return LargestOverInstances(tick_->plugins().formation_agents);  // per-agent execution
+}
+
+std::vector<std::pair<std::string, double>> Simulation::AttitudeReport() const {
+  return LargestOverInstances(tick_->plugins().attitude);
 }
 
 }  // namespace mjf::runner

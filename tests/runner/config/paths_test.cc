@@ -114,27 +114,29 @@ TEST(PathsTest, MissingModelsNameWhereTheyWereLookedFor) {
   EXPECT_THAT(
       ConfigErrorOf("nosuchvehicle", dir + "/exp.toml"),
       AllOf(HasSubstr("model 'nosuchvehicle' not found"), HasSubstr(dir + "/nosuchvehicle.xml"),
-            HasSubstr("/share/mjformation/mjcf/nosuchvehicle.xml")));
+            HasSubstr(std::string(MJF_SOURCE_DIR) + "/mjcf/nosuchvehicle.xml")));
 }
 
 TEST(PathsTest, PluginSearchPathOrder) {
   ScopedEnv env("MJF_PLUGIN_PATH", "/env/a::/env/b:");  // empty entries are skipped
   const std::vector<std::string> path = PluginSearchPath({"/extra/1", "/extra/2"});
-  ASSERT_EQ(path.size(), 6u);
+  ASSERT_EQ(path.size(), 5u);
   EXPECT_EQ(path[0], "/extra/1");
   EXPECT_EQ(path[1], "/extra/2");
   EXPECT_EQ(path[2], "/env/a");
   EXPECT_EQ(path[3], "/env/b");
-  EXPECT_EQ(path[4], ExecutableDir() + "/../lib/mjformation/plugins");
-  // The build tree's plugin folder, where the project's own plugins are.
-  EXPECT_TRUE(IsDirectory(path[5])) << path[5];
+  // A test runs from the build tree: the build tree's plugin folder, where the project's own
+  // plugins are, and no install folder (an installed runner: tests/runner/cmake_package.sh).
+  EXPECT_EQ(InstalledPrefix(), "");
+  EXPECT_TRUE(IsDirectory(path[4])) << path[4];
+  EXPECT_EQ(path[4].find(ExecutableDir()), std::string::npos) << path[4];
 }
 
 TEST(PathsTest, PluginSearchPathWithoutEnvironment) {
   ScopedEnv env("MJF_PLUGIN_PATH", nullptr);
   const std::vector<std::string> path = PluginSearchPath({});
-  ASSERT_EQ(path.size(), 2u);
-  EXPECT_EQ(path[0], ExecutableDir() + "/../lib/mjformation/plugins");
+  ASSERT_EQ(path.size(), 1u);
+  EXPECT_TRUE(IsDirectory(path[0])) << path[0];
 }
 
 }  // namespace

@@ -15,15 +15,30 @@ std::string ExecutableDir();
 // `path` as given if absolute; else relative to the folder of `relative_to_file`.
 std::string ResolveRelative(const std::string& path, const std::string& relative_to_file);
 
+// The prefix the running executable was installed into (wherever it was moved since: the
+// folder above bin/ when it holds share/mjformation and lib/mjformation/plugins), or "" when it
+// runs from the build tree (or is a test or the Python module). An installed runner searches
+// only its own prefix (and what the user names); the build tree's runner the build and source
+// trees.
+std::string InstalledPrefix();
+
+// The model folders in search order: $MJF_MJCF_DIR, then <prefix>/share/mjformation/mjcf when
+// installed, else the source tree's mjcf/.
+std::vector<std::string> ModelSearchPath();
+
 // A vehicle or scene model: a bare name ("quadrotor") is looked up as <name>.xml in the model
-// folders (MJF_MJCF_DIR, the source tree's mjcf/, <prefix>/share/mjformation/mjcf); anything
-// with a '/' or ending in .xml is a path relative to the experiment file. Throws ConfigError
-// listing where it looked.
+// folders (ModelSearchPath); anything with a '/' or ending in .xml is a path relative to the
+// experiment file. Throws ConfigError listing where it looked.
 std::string ResolveModel(const std::string& name, const std::string& experiment_file);
 
 // Plugin folders in search order: `extra` (from the experiment file / CLI), then each entry of
-// $MJF_PLUGIN_PATH (colon-separated), the build tree's plugins/, and the install folder.
+// $MJF_PLUGIN_PATH (colon-separated), then <prefix>/lib/mjformation/plugins when installed, else
+// the build tree's plugins/.
 std::vector<std::string> PluginSearchPath(const std::vector<std::string>& extra);
+
+// The MPI transport module of `sweep` (runner/mpi): $MJF_MPI_MODULE, then the prefix's
+// lib/mjformation/libmjf_sweep_mpi.so when installed, else the build tree's.
+std::vector<std::string> MpiModuleSearchPath();
 
 bool IsDirectory(const std::string& path);
 bool IsFile(const std::string& path);

@@ -89,6 +89,9 @@ class Simulation {
   const PluginRegistry& registry() const { return *registry_; }
   // The formation plugin's scalar report ("delta", "error_bound", ...), if any.
   std::vector<std::pair<std::string, double>> FormationReport() const;
+  // The attitude plugin's report() (e.g. geometric's resolved bandwidths): each key's largest
+  // value over the vehicles; empty when the plugin reports nothing.
+  std::vector<std::pair<std::string, double>> AttitudeReport() const;
   // Bring your own quadrotor: what adapting the model dropped, renamed and added (empty for a
   // model that follows the vehicle contract).
   const std::vector<std::string>& vehicle_notes() const { return vehicle_notes_; }
