@@ -132,16 +132,18 @@ def _positions(lines: list[Line]) -> tuple[dict, bool]:
     return {v: float(order.index(str(v))) for v in values}, False
 
 
-def _draw_line(ax, line: Line, positions: dict, color, event_free: bool) -> None:
+def _draw_line(ax, line: Line, positions: dict, color, event_free: bool, dx: float) -> None:
+    """The means joined, the 95 % CI bars (open markers where there is none), and beside them
+    (dx to the right, not hidden by the bar) each run: dots, an x for each run left out."""
     pts = sorted(line.points, key=lambda p: positions[p.x])
     xs = [positions[p.x] for p in pts]
-    label = line.label or None
+    label = line.label or "mean"
     if event_free and line.left_out:
-        label = f"{line.label + ': ' if line.label else ''}{line.left_out} run(s) left out"
+        label += f" ({line.left_out} run(s) with safety events left out)"
     ax.plot(xs, [p.mean for p in pts], "-", color=color, label=label)
     for p, xp in zip(pts, xs):
-        ax.plot([xp] * len(p.runs), p.runs, ".", color=color, alpha=0.35, ms=4)
-        ax.plot([xp] * len(p.left_out_runs), p.left_out_runs, "x", color="grey", ms=6)
+        ax.plot([xp + dx] * len(p.runs), p.runs, ".", color=color, alpha=0.5, ms=4)
+        ax.plot([xp + dx] * len(p.left_out_runs), p.left_out_runs, "x", color="grey", ms=6)
         if p.has_interval:
             ax.errorbar([xp], [p.mean], yerr=[[p.mean - p.low], [p.high - p.mean]], fmt="o",
                         color=color, capsize=4)
@@ -159,12 +161,14 @@ def plot_sweep(sweep: Sweep, metric: str = "sigma_f_mean", x: str | None = None,
     ax = ax or plt.subplots(figsize=(7.0, 4.2))[1]
     positions, numeric = _positions(lines)
     colors = plt.get_cmap("tab10")
+    span = max(positions.values()) - min(positions.values())
     for i, line in enumerate(lines):
-        _draw_line(ax, line, positions, colors(i % 10), event_free)
+        _draw_line(ax, line, positions, colors(i % 10), event_free, 0.015 * (span or 1.0))
     if not numeric:
         ax.set_xticks(sorted(set(positions.values())),
                       list(dict.fromkeys(str(v) for v in positions)))
-    ax.plot([], [], "o", mfc="white", color="grey", label="no interval (constant or one run)")
+    if not all(p.has_interval for line in lines for p in line.points):
+        ax.plot([], [], "o", mfc="white", color="grey", label="no interval (constant or one run)")
     left_out = sum(line.left_out for line in lines)
     if left_out:
         ax.plot([], [], "x", color="grey", label="run with a safety event (left out)")

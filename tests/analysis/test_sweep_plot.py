@@ -82,7 +82,8 @@ def test_plot_draws_intervals_only_where_there_are_some(tmp_path):
     assert len(ax.containers) == 3  # four cells, one constant: three error bars
     assert "1 with safety events left out" in ax.get_title()
     labels = [t.get_text() for t in ax.get_legend().get_texts()]
-    assert labels[0] == "sensors=none: 1 run(s) left out" and labels[1] == "sensors=typical"
+    assert labels[:2] == ["sensors=none (1 run(s) with safety events left out)", "sensors=typical"]
+    assert "no interval (constant or one run)" in labels
 
 
 def test_bad_requests_are_clear_errors(tmp_path):

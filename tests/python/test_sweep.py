@@ -27,7 +27,8 @@ def test_sweep_gives_the_cli_tables_and_a_frame(cli, exp2, tmp_path):
     frame = mjf.frame()
     assert isinstance(frame, pd.DataFrame) and list(frame["formation.q"]) == [1.5, 4.5]
     assert (frame["sigma_f_mean_ci95_low"] <= frame["sigma_f_mean_mean"]).all()
-    # The sweep plot: per cell the mean with its 95 % CI against the varied parameter
+    # The sweep plot (mjfanalysis.sweep_plot): per cell the mean against the varied parameter;
+    # Exp 2 has no random input, so its seeds agree and no cell has an interval to draw
     import matplotlib
 
     matplotlib.use("Agg")
@@ -35,7 +36,7 @@ def test_sweep_gives_the_cli_tables_and_a_frame(cli, exp2, tmp_path):
     line = ax.lines[0]
     assert list(line.get_xdata()) == [1.5, 4.5]
     assert list(line.get_ydata()) == list(frame["sigma_f_mean_mean"])
-    assert ax.get_xlabel() == "formation.q" and len(ax.lines[-1].get_xdata()) == 4
+    assert ax.get_xlabel() == "formation.q" and not ax.containers
 
 
 def test_sweep_with_a_bad_override_raises_value_error(exp2, tmp_path):
