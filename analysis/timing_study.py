@@ -10,7 +10,6 @@ latency) beside the delay margin summary.json predicts (network.delay_margin).
 Usage: timing_study.py <study folder> [--table out.md]
 """
 import argparse
-import json
 import re
 from pathlib import Path
 
@@ -35,9 +34,10 @@ def sigma(cell):
     return m["mean"], (high - low) / 2
 
 
-def margin(sweep_dir):
-    for summary in sorted(Path(sweep_dir).glob("*/summary.json")):
-        net = json.loads(summary.read_text()).get("network", {})
+def margin(sweep):
+    """network.delay_margin of the first run (by folder name) whose summary.json gives it."""
+    for run in sorted(sweep.load_runs(), key=lambda r: r.name):
+        net = (run.summary or {}).get("network", {})
         if "delay_margin" in net:
             return net["delay_margin"]
     return {}
@@ -49,7 +49,7 @@ def tables(study):
         central = load_sweep(study / exp / "central").cells[0]
         ref = sigma(central)
         grid = load_sweep(study / exp / "per_agent")
-        dm = margin(study / exp / "per_agent")
+        dm = margin(grid)
         rows = {}
         for cell in grid.cells:
             key = label(cell["execution"])

@@ -3,17 +3,17 @@
 vehicle/attitude plugin x tilt_max x formation law (the paper's (48) or the input-constrained
 reaching law), seeds of start jitter, each cell with its 95 % Student-t confidence interval.
 
-Layout read: MAP_DIR/<experiment>__<vehicle>__<law>/sweep_runs.csv and, per run,
-MAP_DIR/<experiment>__<vehicle>__<law>/<run>/summary.json.
+Layout read: MAP_DIR/<experiment>__<vehicle>__<law>/sweep.json and, per run,
+MAP_DIR/<experiment>__<vehicle>__<law>/<run>/summary.json, through the loader (mjfanalysis.io).
 """
 
 import csv
-import json
 import math
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from .io import load_sweep
 from .leaders import mean_ci
 
 REACHED_TOLERANCE_M = 1.0   # "reached": every follower within 1 m of its slot at the end
@@ -74,19 +74,18 @@ def read_map(map_dir: Path) -> list:
     cells = {}
     for folder in sorted(p for p in Path(map_dir).iterdir() if p.is_dir()):
         m = FOLDER_RE.match(folder.name)
-        runs_csv = folder / "sweep_runs.csv"
-        if not m or not runs_csv.is_file():
+        if not m or not (folder / "sweep.json").is_file():
             continue
-        with runs_csv.open() as f:
-            for row in csv.DictReader(f):
-                tilt = round(_tilt_of(row), 2)
-                key = (m["exp"], m["vehicle"], m["law"], tilt)
-                cell = cells.setdefault(key, Cell(m["exp"], m["vehicle"], m["law"], tilt))
-                summary = folder / row["run"] / "summary.json"
-                if summary.is_file():
-                    cell.runs.append(json.loads(summary.read_text()))
-                if "refused" in (row.get("error") or ""):
-                    cell.refused += 1
+        sweep = load_sweep(folder)
+        for entry in sweep.runs:
+            tilt = round(_tilt_of(entry), 2)
+            key = (m["exp"], m["vehicle"], m["law"], tilt)
+            cell = cells.setdefault(key, Cell(m["exp"], m["vehicle"], m["law"], tilt))
+            summary = sweep.run(entry).summary
+            if summary is not None:
+                cell.runs.append(summary)
+            if "refused" in (entry.get("error") or ""):
+                cell.refused += 1
     return sorted(cells.values(), key=lambda c: (c.experiment, c.vehicle, c.tilt_max, c.law))
 
 

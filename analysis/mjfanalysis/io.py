@@ -1,23 +1,34 @@
 # Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
-"""Reading a run directory: timeseries.csv, summary.json, config.toml (docs/ARCHITECTURE.md)."""
+"""The one loader of run and sweep directories: timeseries.csv, summary.json, config.toml
+(docs/ARCHITECTURE.md), sweep.json. Pure Python (numpy), so that mjfanalysis works alone; the
+mjformation Python module returns these same Run and Sweep objects (docs/PYTHON.md) and, when it
+is importable, lends timeseries.csv its C++ reader."""
 
 from __future__ import annotations
 
 import csv
+import functools
 import json
 import math
 import tomllib
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 NAN = float("nan")
 
-try:  # the runner's own loader, when the Python module is built or installed
-    from mjformation._core import read_csv as _module_reader
-except ImportError:
-    _module_reader = None
+
+@functools.cache
+def module_reader():
+    """The runner's own timeseries reader (mjformation._core.read_csv) when the Python module is
+    built or installed, else None. Looked up on first use, not at import: mjformation imports
+    this module, so an import-time lookup would be circular."""
+    try:
+        from mjformation._core import read_csv
+    except ImportError:
+        return None
+    return read_csv
 
 
 def _cell(text: str) -> float:
@@ -37,8 +48,9 @@ def read_timeseries(path) -> dict[str, np.ndarray]:
     not match the header are dropped. With the mjformation Python module importable this is its
     C++ reader (docs/PYTHON.md; same arrays, tested), else the csv module below.
     """
-    if _module_reader is not None:
-        header, data = _module_reader(str(path))  # columns x rows
+    reader = module_reader()
+    if reader is not None:
+        header, data = reader(str(path))  # columns x rows
         return {name: data[j] for j, name in enumerate(header)}
     return read_timeseries_csv(path)
 
@@ -66,17 +78,23 @@ def read_config(path) -> dict:
         return tomllib.load(f)
 
 
-@dataclass
+@dataclass(repr=False)
 class Run:
-    """One run directory. `status` is "complete", "incomplete" (summary says complete = false)
-    or "unfinished" (no summary.json: still running or killed)."""
+    """One run directory: summary (summary.json as a dict), config (config.toml), timeseries
+    ({column: array}), frame() (pandas). `status` is "complete", "incomplete" (summary says
+    complete = false) or "unfinished" (no summary.json: still running or killed). `result` is
+    what mjformation.run returned for it (None when loaded from disk)."""
 
     path: Path
     summary: dict | None = None
     config: dict | None = None
     config_error: str | None = None
-    _ts: dict | None = field(default=None, repr=False)
+    _ts: dict | None = None
     ts_error: str | None = None
+    result: dict | None = None
+
+    def __repr__(self) -> str:
+        return f"Run({str(self.path)!r}, status={self.status!r})"
 
     @property
     def name(self) -> str:
@@ -113,6 +131,23 @@ class Run:
                 except (OSError, ValueError) as e:
                     self.ts_error = str(e)
         return self._ts
+
+    def frame(self):
+        """The tidy long form (pandas): one row per (t, vehicle), columns t, vehicle (0 = the
+        leader), sigma_f, then the per-vehicle columns without their `uav<i>_` prefix."""
+        import pandas as pd
+
+        ts = self.timeseries
+        if ts is None:
+            raise ValueError(f"{self.path}: {self.ts_error}")
+        vehicles = sorted({int(k[3:].split("_")[0]) for k in ts if k.startswith("uav")})
+        parts = []
+        for v in vehicles:
+            prefix = f"uav{v}_"
+            cols = {k[len(prefix):]: ts[k] for k in ts if k.startswith(prefix)}
+            parts.append(pd.DataFrame({"t": ts["t"], "vehicle": v, "sigma_f": ts["sigma_f"],
+                                       **cols}))
+        return pd.concat(parts, ignore_index=True)
 
     def metric(self, key: str) -> float:
         """summary.json metrics[key] as a float (NaN when absent or null)."""
@@ -193,21 +228,43 @@ def finite(x) -> bool:
     return isinstance(x, (int, float)) and not isinstance(x, bool) and math.isfinite(x)
 
 
-@dataclass
-class Sweep:
-    """One sweep directory (mjformation sweep): sweep.json's runs and cells as written, plus
-    each run as a Run. `runs[i]["run"]` names the run directory, `cells[j]["metrics"][key]`
-    holds n, mean, ci95 over the seeds of that cell."""
+# What sweep.json says of every run besides its varied keys (runner/app/src/sweep_tables.cc).
+_RUN_ENTRY_KEYS = ("seed", "complete", "finished", "run", "error", "safety_events",
+                   "first_safety_event", "metrics")
 
-    path: Path
-    complete: bool
-    seeds: int
-    runs: list[dict]
-    cells: list[dict]
+
+class Sweep:
+    """One sweep directory (mjformation sweep, the CLI's or mjformation.sweep's): sweep.json as
+    written. `runs`: one dict per run (the varied keys, seed, complete, finished, run = its
+    folder, error, safety_events, metrics); `cells` (with --seeds): one dict per grid cell, whose
+    `metrics[key]` holds n, mean, std, ci95 over the cell's complete runs and, when some run had a
+    safety event, `metrics_event_free[key]` the same over the runs without one."""
+
+    def __init__(self, path, table: dict):
+        self.path = Path(path)
+        self.table = table
+
+    def __repr__(self) -> str:
+        return f"Sweep({str(self.path)!r}, runs={len(self.runs)}, complete={self.complete})"
+
+    complete = property(lambda self: bool(self.table.get("complete")))
+    seeds = property(lambda self: int(self.table.get("seeds") or 0))
+    runs = property(lambda self: list(self.table.get("runs", [])))
+    cells = property(lambda self: list(self.table.get("cells", [])))
+
+    @property
+    def varied(self) -> list[str]:
+        """The varied keys ("section.key", or "section" for a whole table), in --vary order."""
+        first = (self.table.get("runs") or [{}])[0]
+        return [k for k in first if k not in _RUN_ENTRY_KEYS]
 
     def run(self, entry: dict) -> Run:
         """The run directory of one entry of `runs`."""
         return load_run(self.path / entry["run"])
+
+    def load_runs(self) -> list[Run]:
+        """Every run of the sweep as a Run, in plan order."""
+        return [self.run(entry) for entry in self.runs]
 
     @property
     def metric_window(self) -> tuple[float, float] | None:
@@ -219,14 +276,51 @@ class Sweep:
                     return window
         return None
 
+    def frame(self, runs: bool = False):
+        """The cell table (or with runs=True the run table) as a pandas DataFrame: the varied
+        keys, then metric columns (`<metric>_mean`, `_std`, `_ci95_low`, `_ci95_high` per cell;
+        `<metric>` per run)."""
+        import pandas as pd
+
+        entries = self.runs if runs or not self.cells else self.cells
+        return pd.DataFrame([_frame_row(entry) for entry in entries])
+
+    def plot(self, metric: str = "sigma_f_mean", x: str | None = None, ax=None, **kwargs):
+        """The sweep plot (mjfanalysis.sweep_plot.plot_sweep): `metric` against the varied key
+        `x`, mean and 95 % CI per cell, one line per value of the other varied keys. Returns the
+        axes."""
+        from .sweep_plot import plot_sweep
+
+        return plot_sweep(self, metric, x=x, ax=ax, **kwargs)
+
+
+def axis_value(v):
+    """A varied value as written in sweep.json: numbers stay numbers; TOML text such as
+    '"none"' or '{preset = "typical"}' is decoded where it is JSON, else kept as text."""
+    if isinstance(v, str):
+        try:
+            return json.loads(v)
+        except ValueError:
+            return v
+    return v
+
+
+def _frame_row(entry: dict) -> dict:
+    row = {k: axis_value(v) for k, v in entry.items() if not k.startswith("metrics")}
+    for name, m in (entry.get("metrics") or {}).items():
+        if isinstance(m, dict) and "mean" in m:
+            row[f"{name}_mean"], row[f"{name}_std"] = m["mean"], m["std"]
+            row[f"{name}_ci95_low"], row[f"{name}_ci95_high"] = m["ci95"]
+        elif isinstance(m, (int, float)) or m is None:
+            row[name] = m
+    return row
+
 
 def load_sweep(path) -> Sweep:
     """A sweep directory (it holds sweep.json). Raises OSError / ValueError when unreadable."""
     path = Path(path)
     with open(path / "sweep.json") as f:
-        data = json.load(f)
-    return Sweep(path=path, complete=bool(data.get("complete")), seeds=int(data.get("seeds", 0)),
-                 runs=list(data.get("runs", [])), cells=list(data.get("cells", [])))
+        return Sweep(path, json.load(f))
 
 
 def window_label(window: tuple[float, float] | None) -> str:

@@ -11,7 +11,6 @@ Every number here is recomputed from timeseries.csv / summary.json, never assume
 
 from __future__ import annotations
 
-import csv
 import math
 import re
 from dataclasses import dataclass, field
@@ -21,7 +20,7 @@ import numpy as np
 
 from . import metrics as M
 from . import plots
-from .io import Run, find_runs, load_run
+from .io import Run, axis_value, find_runs, load_sweep
 
 PROTOCOLS = {
     "exp1_exponential": "smc_continuous (corrected: switching, exponential)",
@@ -274,16 +273,16 @@ class PeriodPoint:
 def read_period_sweep(sweep_dir: Path) -> list[PeriodPoint]:
     """Points of one `mjformation sweep` over formation.period (and maybe leader.seed)."""
     by_t = {}
-    with open(sweep_dir / "sweep.csv", newline="") as f:
-        for row in csv.DictReader(f):
-            if row.get("complete") != "true":
-                continue
-            T = float(row["formation.period"])
-            run = load_run(sweep_dir / row["run"])
-            p = by_t.setdefault(T, PeriodPoint(T, [], run.plugin_report("delta"),
-                                               run.plugin_report("error_bound"),
-                                               run.plugin_report("error_bound_rederived")))
-            p.sigma.append(float(row["sigma_f_mean"]))
+    sweep = load_sweep(sweep_dir)
+    for entry in sweep.runs:
+        if not entry.get("complete"):
+            continue
+        T = float(axis_value(entry["formation.period"]))
+        run = sweep.run(entry)
+        p = by_t.setdefault(T, PeriodPoint(T, [], run.plugin_report("delta"),
+                                           run.plugin_report("error_bound"),
+                                           run.plugin_report("error_bound_rederived")))
+        p.sigma.append(run.metric("sigma_f_mean"))
     return [by_t[T] for T in sorted(by_t)]
 
 
@@ -475,7 +474,7 @@ def section(results_dir: Path, out_dir: Path) -> list[str]:
     if sweep_dir.is_dir():
         sweeps = {}
         for d in sorted(sweep_dir.iterdir()):
-            if (d / "sweep.csv").is_file():
+            if (d / "sweep.json").is_file():
                 vehicle, _, leader = d.name.partition("_")
                 sweeps[(vehicle, leader)] = read_period_sweep(d)
         if sweeps:

@@ -2,17 +2,19 @@
 """The robustness map: experiment x tilt_max x attitude plugin, each at its default
 gains, from the sweep folders that scripts/robustness_map.sh writes.
 
-Layout read: MAP_DIR/<experiment>__<plugin>/sweep.csv (written by `mjformation sweep`) and, per
-run, MAP_DIR/<experiment>__<plugin>/<run>/{summary.json, timeseries.csv}.
+Layout read: MAP_DIR/<experiment>__<plugin>/sweep.json (written by `mjformation sweep`) and, per
+run, MAP_DIR/<experiment>__<plugin>/<run>/{summary.json, timeseries.csv}, through the loader
+(mjfanalysis.io).
 """
 
 import csv
-import json
 import math
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
+
+from .io import load_sweep, read_timeseries
 
 REACHED_TOLERANCE_M = 1.0  # "formation reached": every follower within this of its slot at the end
 TILT_MARGIN_DEG = 10.0     # the map's criterion: no vehicle beyond its tilt limit by more than this
@@ -60,45 +62,40 @@ def _num(text) -> float:
 
 def max_tilt_from_timeseries(path: Path) -> float:
     """Largest follower tilt (deg) in timeseries.csv: acos(cos roll cos pitch) of every uav>=1."""
-    with open(path, newline="") as f:
-        reader = csv.reader(f)
-        header = next(reader)
-        data = np.array([[_num(x) for x in row] for row in reader], dtype=float)
+    ts = read_timeseries(path)
     worst = math.nan
     i = 1
-    while f"uav{i}_roll" in header:
-        roll = data[:, header.index(f"uav{i}_roll")]
-        pitch = data[:, header.index(f"uav{i}_pitch")]
+    while f"uav{i}_roll" in ts:
+        roll, pitch = ts[f"uav{i}_roll"], ts[f"uav{i}_pitch"]
         tilt = np.degrees(np.arccos(np.clip(np.cos(roll) * np.cos(pitch), -1, 1)))
         worst = np.nanmax([worst, np.nanmax(tilt)]) if math.isfinite(worst) else np.nanmax(tilt)
         i += 1
     return float(worst)
 
 
+def _cell(entry: dict, run, experiment: str, plugin: str) -> Cell:
+    cell = Cell(experiment, plugin, float(entry["attitude.tilt_max"]), bool(entry["complete"]),
+                entry.get("error") or "")
+    if cell.complete and run.summary is not None:
+        m = run.summary.get("metrics") or {}
+        cell.sigma_f_mean = _num(m.get("sigma_f_mean"))
+        cell.max_slot_error_m = _num(m.get("max_final_slot_error_m"))
+        cell.rms_tilt_deg = m.get("rms_tilt_deg_in_window")
+        cell.tilt_hz = m.get("tilt_oscillation_hz_in_window")
+        cell.max_tilt_deg_window = _num(m.get("max_follower_tilt_deg_in_window"))
+    if cell.complete and (run.path / "timeseries.csv").exists():
+        cell.max_tilt_deg_run = max_tilt_from_timeseries(run.path / "timeseries.csv")
+    return cell
+
+
 def read_sweep(folder: Path, experiment: str, plugin: str) -> list[Cell]:
-    cells = []
-    with open(folder / "sweep.csv", newline="") as f:
-        for row in csv.DictReader(f):
-            cell = Cell(experiment, plugin, float(row["attitude.tilt_max"]),
-                        row["complete"] == "true", row.get("error", ""))
-            run = folder / row["run"]
-            summary = run / "summary.json"
-            if cell.complete and summary.exists():
-                m = json.loads(summary.read_text())["metrics"]
-                cell.sigma_f_mean = _num(m.get("sigma_f_mean"))
-                cell.max_slot_error_m = _num(m.get("max_final_slot_error_m"))
-                cell.rms_tilt_deg = m.get("rms_tilt_deg_in_window")
-                cell.tilt_hz = m.get("tilt_oscillation_hz_in_window")
-                cell.max_tilt_deg_window = _num(m.get("max_follower_tilt_deg_in_window"))
-            if cell.complete and (run / "timeseries.csv").exists():
-                cell.max_tilt_deg_run = max_tilt_from_timeseries(run / "timeseries.csv")
-            cells.append(cell)
-    return cells
+    sweep = load_sweep(folder)
+    return [_cell(entry, sweep.run(entry), experiment, plugin) for entry in sweep.runs]
 
 
 def read_map(map_dir: Path) -> list[Cell]:
     cells = []
-    for folder in sorted(p for p in Path(map_dir).iterdir() if (p / "sweep.csv").exists()):
+    for folder in sorted(p for p in Path(map_dir).iterdir() if (p / "sweep.json").exists()):
         experiment, _, plugin = folder.name.partition("__")
         cells += read_sweep(folder, experiment, plugin)
     return cells

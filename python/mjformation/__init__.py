@@ -14,11 +14,14 @@ import os
 import shutil
 import signal
 import tempfile
+import weakref
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable
 
 import numpy as np
+
+from mjfanalysis.io import Run, Sweep, load_run, load_sweep
 
 from . import _laws
 from ._laws import Graph, Neighbourhood
@@ -37,7 +40,7 @@ from . import _core  # noqa: E402  (after MJF_MJCF_DIR: the runner reads it at l
 from ._core import SimulationError  # noqa: E402,F401
 
 __all__ = [
-    "run", "load", "sweep", "plugins", "check", "Run", "Sweep", "Simulation", "FormationLaw",
+    "run", "load", "load_sweep", "sweep", "plugins", "check", "Run", "Sweep", "Simulation", "FormationLaw",
     "AgentLaw", "Graph", "Neighbourhood", "SimulationError", "version",
 ]
 
@@ -170,71 +173,12 @@ def _plugin_path(plugin_path) -> list[str]:
 # ---- runs --------------------------------------------------------------------------------------
 
 
-class Run:
-    """A run directory: summary (dict), config (dict), timeseries ({column: array}), frame()."""
-
-    def __init__(self, path, result: dict | None = None, temporary: bool = False):
-        self.path = Path(path)
-        self.result = result  # what run() returned (None for load())
-        self._temporary = temporary
-        self._summary = self._config = self._timeseries = None
-
-    def __repr__(self) -> str:
-        s = self.summary or {}
-        return f"Run({str(self.path)!r}, complete={s.get('complete')})"
-
-    def __del__(self):
-        if getattr(self, "_temporary", False):
-            shutil.rmtree(self.path.parent, ignore_errors=True)
-
-    @property
-    def complete(self) -> bool:
-        return bool((self.summary or {}).get("complete"))
-
-    @property
-    def summary(self) -> dict | None:
-        if self._summary is None and (self.path / "summary.json").is_file():
-            self._summary = json.loads((self.path / "summary.json").read_text())
-        return self._summary
-
-    @property
-    def config(self) -> dict:
-        if self._config is None:
-            import tomllib
-
-            self._config = tomllib.loads((self.path / "config.toml").read_text())
-        return self._config
-
-    @property
-    def timeseries(self) -> dict[str, np.ndarray]:
-        """timeseries.csv as {column: float array} (one read in C++, empty cells NaN)."""
-        if self._timeseries is None:
-            header, data = _core.read_csv(str(self.path / "timeseries.csv"))  # columns x rows
-            self._timeseries = {name: data[j] for j, name in enumerate(header)}
-        return self._timeseries
-
-    def frame(self):
-        """The tidy long form: one row per (t, vehicle) with px, py, ..., slot_y (pandas)."""
-        import pandas as pd
-
-        ts = self.timeseries
-        t = ts["t"]
-        vehicles = sorted({int(k[3:].split("_")[0]) for k in ts if k.startswith("uav")})
-        parts = []
-        for v in vehicles:
-            prefix = f"uav{v}_"
-            cols = {k[len(prefix):]: ts[k] for k in ts if k.startswith(prefix)}
-            part = pd.DataFrame({"t": t, "vehicle": v, "sigma_f": ts["sigma_f"], **cols})
-            parts.append(part)
-        return pd.concat(parts, ignore_index=True)
-
-
 def load(run_dir) -> Run:
-    """A run directory written by `mjformation run` or mjformation.run."""
+    """A run directory written by `mjformation run` or mjformation.run (mjfanalysis's Run)."""
     path = Path(run_dir)
     if not (path / "config.toml").is_file():
         raise FileNotFoundError(f"{path}: not a run directory (no config.toml)")
-    return Run(path)
+    return load_run(path)
 
 
 def _annotate_agent_summary(run_path: Path, key: str, law) -> None:
@@ -255,7 +199,8 @@ def run(experiment, set=None, out=None, render=False, formation=None, overwrite=
     """Runs an experiment (the GIL released while it simulates) and returns its Run.
 
     set: overrides as {"section.key": value} or ["section.key=value", ...] (the CLI's --set);
-    out: the run directory (None: a temporary one, removed with the Run object);
+    out: the run directory (None: a temporary one, removed with the Run object); the Run is
+    mjfanalysis.io.Run, the loader the analysis uses;
     formation: a Python formation law (callable, FormationLaw or AgentLaw) flown in place of
     the experiment's [formation] plugin. A bad configuration raises ValueError (FILE:LINE:
     [section] key: reason); Ctrl-C ends the run, marked incomplete, and raises KeyboardInterrupt.
@@ -269,10 +214,12 @@ def run(experiment, set=None, out=None, render=False, formation=None, overwrite=
         if in_use.law is not None and in_use.law.per_agent:
             _annotate_agent_summary(out, in_use.key, in_use.law)
     result["summary"] = json.loads(result["summary"])
-    interrupted = result["signal"] == signal.SIGINT
-    r = Run(out, result, temporary and not interrupted)  # a partial run is kept, even a temporary
-    if interrupted:
+    if result["signal"] == signal.SIGINT:  # a partial run is kept, even a temporary one
         raise KeyboardInterrupt(f"mjformation.run interrupted; partial run kept in {out}")
+    r = load_run(out)
+    r.result = result
+    if temporary:
+        weakref.finalize(r, shutil.rmtree, out.parent, ignore_errors=True)
     return r
 
 
@@ -336,4 +283,4 @@ class Simulation:
         return Graph(leader_weight=g["leader_weight"], adjacency=g["adjacency"])
 
 
-from ._sweep import Sweep, sweep  # noqa: E402
+from ._sweep import sweep  # noqa: E402

@@ -29,10 +29,12 @@ def test_map_reads_sweeps_and_flags_reach_refusal_and_limit(tmp_path):
     folder.mkdir()
     _run(folder, "tilt_max=0.55", 0.05, 30.0)   # reached, 30 deg < 31.5 deg limit
     _run(folder, "tilt_max=0.35", 40.0, 35.0)   # not reached, 35 deg > 20 + 10 deg
-    (folder / "sweep.csv").write_text(
-        "attitude.tilt_max,complete,run,error\n"
-        "0.55,true,tilt_max=0.55,\n0.35,true,tilt_max=0.35,\n"
-        "0.78,false,tilt_max=0.78,x.toml:3: [attitude] plugin 'p' refused its configuration: no\n")
+    refused = "x.toml:3: [attitude] plugin 'p' refused its configuration: no"
+    runs = [{"attitude.tilt_max": "0.55", "complete": True, "run": "tilt_max=0.55", "error": None},
+            {"attitude.tilt_max": "0.35", "complete": True, "run": "tilt_max=0.35", "error": None},
+            {"attitude.tilt_max": "0.78", "complete": False, "run": "tilt_max=0.78",
+             "error": refused}]
+    (folder / "sweep.json").write_text(json.dumps({"complete": False, "seeds": 0, "runs": runs}))
     cells = {c.tilt_max: c for c in robustness.read_map(tmp_path)}
     assert cells[0.55].reached and not cells[0.35].reached
     assert cells[0.78].refused and not cells[0.78].reached

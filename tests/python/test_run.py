@@ -73,7 +73,7 @@ def test_timeseries_is_the_analysis_loader_in_numpy(exp2, tmp_path):
     run = mjformation.run(exp2, set=short(3.0), out=tmp_path / "r")
     columns = run.timeseries
     # mjfanalysis reads through the module's loader when it is importable ...
-    assert io._module_reader is mjformation._core.read_csv
+    assert io.module_reader() is mjformation._core.read_csv
     for name, values in io.read_timeseries(tmp_path / "r/timeseries.csv").items():
         np.testing.assert_array_equal(columns[name], values, err_msg=name)
     # ... and its pure-Python reader gives the same arrays
