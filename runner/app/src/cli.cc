@@ -104,16 +104,17 @@ std::string VersionText() {
   return text;
 }
 
+void PrintSearchPath(const char* title, const std::vector<std::string>& dirs) {
+  std::printf("%s:\n", title);
+  for (const auto& dir : dirs) {
+    std::printf("  %s%s\n", dir.c_str(), IsDirectory(dir) ? "" : "  (absent)");
+  }
+}
+
 int PluginsCommand(const CliCommands& c) {
   PluginRegistry registry(PluginSearchPath(c.plugin_path));
-  std::printf("Plugin search path:\n");
-  for (const auto& dir : registry.search_path()) {
-    std::printf("  %s%s\n", dir.c_str(), IsDirectory(dir) ? "" : "  (absent)");
-  }
-  std::printf("Model search path:\n");
-  for (const auto& dir : ModelSearchPath()) {
-    std::printf("  %s%s\n", dir.c_str(), IsDirectory(dir) ? "" : "  (absent)");
-  }
+  PrintSearchPath("Plugin search path", registry.search_path());
+  PrintSearchPath("Model search path", ModelSearchPath());
   for (mjfKind kind : {MJF_KIND_GUIDANCE, MJF_KIND_FORMATION, MJF_KIND_FORMATION_AGENT,
                        MJF_KIND_ATTITUDE, MJF_KIND_ESTIMATOR}) {
     std::printf("\n%s plugins:\n", KindName(kind));

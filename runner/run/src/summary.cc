@@ -22,6 +22,13 @@ Json PluginJson(const PluginInstance& p) {
   return Json{{"name", p.descriptor().name}, {"attributes", a}};
 }
 
+// A plugin's report() as a JSON object (key -> number, null when not finite).
+Json ReportJson(const std::vector<std::pair<std::string, double>>& report) {
+  Json out = Json::object();
+  for (const auto& [k, v] : report) out[k] = JsonNumber(v);
+  return out;
+}
+
 // What ran: experiment, versions, vehicles, plugins, shape.
 void DescribeExperiment(const Simulation& sim, Json& s) {
   const ExperimentConfig& config = sim.config();
@@ -73,17 +80,11 @@ Json BuildSummary(const Simulation& sim, const RunResult& result, const Json& re
   s["steps"] = result.steps;
   DescribeExperiment(sim, s);
   s["metrics"] = recorded.contains("metrics") ? recorded["metrics"] : Json(nullptr);
-  Json report = Json::object();
-  for (const auto& [k, v] : sim.FormationReport()) report[k] = JsonNumber(v);
-  s["plugin_report"] = report;
+  s["plugin_report"] = ReportJson(sim.FormationReport());
   // The attitude plugin's report (issue 21: e.g. the bandwidths a small vehicle flew with); only
   // for plugins that report, so other runs' summaries stay as they were.
   const auto attitude_report = sim.AttitudeReport();
-  if (!attitude_report.empty()) {
-    Json a = Json::object();
-    for (const auto& [k, v] : attitude_report) a[k] = JsonNumber(v);
-    s["attitude_report"] = a;
-  }
+  if (!attitude_report.empty()) s["attitude_report"] = ReportJson(attitude_report);
   s["snapshots"] = recorded.contains("snapshots") ? recorded["snapshots"] : Json::array();
   if (sim.channel()) AddNetworkSummary(sim, s);  // per-agent execution only
   for (const auto& [k, v] : recorded.items()) {
