@@ -9,7 +9,8 @@ bin=$build/runner/mjformation
 rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
 failures=0 passed=0
 fail() { echo "FAIL [$case]: $*" >&2; failures=$((failures + 1)); }
-ok() { echo "ok   [$case]"; passed=$((passed + 1)); }
+# ok [DETAIL]: a passed case, with what the user saw (exit code and message) for the record.
+ok() { echo "ok   [$case]${1:+ $1}"; passed=$((passed + 1)); }
 
 # A small point-mass experiment: 2 followers hovering at their start, a circling leader.
 cat > e.toml <<'T'
@@ -45,7 +46,7 @@ refused() {
   elif ! grep -qF -- "$message" err.txt; then fail "message lacks '$message': $(head -c 400 err.txt)"
   elif [ -e out ]; then fail "out/ was created"
   elif ! untouched; then fail "the user's files changed"
-  else ok; fi
+  else ok "exit $code: $(grep -m1 -F -- "$message" err.txt | head -c 300)"; fi
 }
 
 # ---- the overwrite contract ----
