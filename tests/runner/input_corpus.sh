@@ -6,6 +6,7 @@
 set -uo pipefail
 build=$(cd "$1" && pwd) work=$2
 bin=$build/runner/mjformation
+source=$(cd "$(dirname "$0")/../.." && pwd)
 rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
 failures=0 passed=0
 fail() { echo "FAIL [$case]: $*" >&2; failures=$((failures + 1)); }
@@ -195,9 +196,20 @@ close=(--set 'vehicles.follower_start=[[0.0, 0.0], [0.2, 0.0]]')
 case="a collision is reported: summary.json events and the closing line"
 "$bin" run e.toml -o ev --no-render "${close[@]}" >out.txt 2>&1; code=$?
 what=$(/usr/bin/python3 -c "import json; e=json.load(open('ev/summary.json'))['events']; print(e['by_kind']['collision'], e['list'][0]['vehicles'], e['list'][0]['what'])" 2>&1)
-[ $code = 0 ] && grep -qF "complete; follower 1 and follower 2 nearly collided at 0.00 s" out.txt &&
+[ $code = 0 ] && grep -qF "complete; follower 1 and follower 2 collided at 0.00 s (separation 0.200 m); 1 more safety event" out.txt &&
   [ "$what" = "1 [1, 2] follower 1 and follower 2 nearly collided at 0.00 s (separation 0.200 m, -0.060 m between their bounding spheres)" ] &&
   ok || fail "exit $code: $(cat out.txt) / $what"
+case="the stress experiment of issue 20 reports its flip, not the near miss before it"
+# Random-accel leader, typical sensors, 4 m/s wind with moderate turbulence and a gust, per-agent
+# Jacobi over a 20 ms bursty network; seed 2: near misses from 3 s, follower 1 flips at 36.71 s.
+"$bin" run "$source/experiments/leaders/exp2_random_accel.toml" -o stress --no-render --set run.seed=2 \
+  --set 'sensors={preset="typical"}' --set 'execution={mode="per_agent", coupling="jacobi"}' \
+  --set 'wind={mean=[4.0,0.0,0.0], turbulence="moderate", gusts=[{start=20.0, duration=2.0, amplitude=[3.0,0.0,0.0]}]}' \
+  --set 'network={latency=0.02, loss_model="gilbert_elliott", burst_enter=0.03, burst_exit=0.25}' >out.txt 2>&1
+code=$?
+flips=$(/usr/bin/python3 -c "import json; print(json.load(open('stress/summary.json'))['events']['by_kind']['flip'])" 2>&1)
+[ $code = 0 ] && grep -qE "complete; follower [0-9]+ flipped at [0-9.]+ s" out.txt && [ "$flips" -ge 1 ] 2>/dev/null &&
+  ok "$(grep -oE 'complete; follower [0-9]+ flipped at [0-9.]+ s[^,]*' out.txt)" || fail "exit $code: $(tail -c 400 out.txt) / flips $flips"
 case="an event-free run has no events key"
 "$bin" run e.toml -o noev -q --no-render; code=$?
 /usr/bin/python3 -c "import json,sys; sys.exit('events' in json.load(open('noev/summary.json')))" && [ $code = 0 ] &&

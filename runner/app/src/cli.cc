@@ -18,13 +18,29 @@
 namespace mjf::runner {
 namespace {
 
+// How bad an event is, for the closing line: a lost vehicle before a touch before a warning.
+int EventSeverity(const std::string& kind) {
+  static const char* const kWorstFirst[] = {"flip", "ground_impact", "collision", "left_region"};
+  for (int rank = 0; rank < 4; ++rank)
+    if (kind == kWorstFirst[rank]) return 4 - rank;
+  return 0;  // near_miss
+}
+
 // "; follower 6 flipped at 34.19 s (tilt 179.9 deg); 2 more events in summary.json", or "".
+// The event named is the earliest of the most severe kind, so a flip is never hidden behind an
+// earlier near miss.
 std::string EventsText(const nlohmann::ordered_json& summary) {
   if (!summary.contains("events")) return "";
   const auto& events = summary["events"];
   const auto& list = events["list"];
   if (list.empty()) return "";
-  std::string text = "; " + list[0]["what"].get<std::string>();
+  const nlohmann::ordered_json* worst = &list[0];
+  for (const auto& e : list) {  // the list is in time order: keep the first of each severity
+    if (EventSeverity(e["kind"].get<std::string>()) >
+        EventSeverity((*worst)["kind"].get<std::string>()))
+      worst = &e;
+  }
+  std::string text = "; " + (*worst)["what"].get<std::string>();
   const int64_t more = events["count"].get<int64_t>() - 1;
   if (more > 0)
     text += fmt::format("; {} more safety event{} in summary.json", more, more > 1 ? "s" : "");
