@@ -199,6 +199,16 @@ what=$(/usr/bin/python3 -c "import json; e=json.load(open('ev/summary.json'))['e
 [ $code = 0 ] && grep -qF "complete; follower 1 and follower 2 collided at 0.00 s (separation 0.200 m); 1 more safety event" out.txt &&
   [ "$what" = "1 [1, 2] follower 1 and follower 2 nearly collided at 0.00 s (separation 0.200 m, -0.060 m between their bounding spheres)" ] &&
   ok || fail "exit $code: $(cat out.txt) / $what"
+case="--no-render skips the render-only check of snapshot times (run and sweep)"
+# Snapshots at 0.5 s and 5 s in a 1 s run: refused when rendering, accepted with --no-render.
+snap=(--set 'render.snapshots=[0.5, 5.0]')
+"$bin" run e.toml -o nr_run -q --no-render "${snap[@]}" 2>err.txt; code_run=$?
+"$bin" sweep e.toml --vary run.seed=1,2 -o nr_sweep --no-render "${snap[@]}" >/dev/null 2>>err.txt; code_sweep=$?
+"$bin" run e.toml -o r_run -q "${snap[@]}" 2>refused.txt; code_render=$?
+[ $code_run = 0 ] && [ $code_sweep = 0 ] && [ $code_render = 1 ] && [ ! -e r_run ] &&
+  grep -qF "[render] snapshots: times must lie in [0, duration]" refused.txt &&
+  ok "with rendering: exit $code_render: $(head -c 200 refused.txt)" ||
+  fail "run $code_run, sweep $code_sweep, rendering $code_render: $(head -c 300 err.txt) $(head -c 300 refused.txt)"
 case="the stress experiment of issue 20 reports its flip, not the near miss before it"
 # Random-accel leader, typical sensors, 4 m/s wind with moderate turbulence and a gust, per-agent
 # Jacobi over a 20 ms bursty network; seed 2: near misses from 3 s, follower 1 flips at 36.71 s.

@@ -48,7 +48,8 @@ std::string EventsText(const nlohmann::ordered_json& summary) {
 }
 
 int RunCommand(const CliCommands& c) {
-  ExperimentConfig config = LoadExperiment(c.experiment, c.overrides);
+  ExperimentConfig config =
+      LoadExperiment(c.experiment, c.overrides, ExperimentChecks::Rendering(!c.no_render));
   for (const auto& p : c.plugin_path) config.plugin_path.push_back(p);
   if (c.run_threads > 0) {
     // How to run, not what: the results are the same, so config.toml keeps the file's text.
@@ -173,7 +174,9 @@ void AddCommands(CLI::App& app, CliCommands* c) {
       "section: 'attitude={plugin=\"pointmass_direct\"}'");
   c->run->add_option("--plugin-path", c->plugin_path, "extra folder to search for plugins");
   c->run->add_flag("--overwrite", c->overwrite, "replace an existing run directory");
-  c->run->add_flag("--no-render", c->no_render, "skip snapshots and video");
+  c->run->add_flag(
+      "--no-render", c->no_render,
+      "skip snapshots and video (and the render-only checks: snapshot times beyond the run)");
   c->run->add_flag("--quiet,-q", c->quiet, "no progress line or closing line");
   c->run
       ->add_option("--threads", c->run_threads,

@@ -51,9 +51,10 @@ void AddSweepCommand(CLI::App& app, CliCommands* c) {
       ->add_option("--vary", c->sweep_vary,
                    "a swept parameter: section.key=v1,v2,... (repeat for a grid)")
       ->allow_extra_args(false);
-  c->sweep->add_option("--seeds", c->sweep_seeds,
-                       "Monte Carlo: N runs per grid cell with seeds run.seed + 0..N-1; "
-                       "sweep.csv then holds per cell mean, std and 95 % CI of every metric")
+  c->sweep
+      ->add_option("--seeds", c->sweep_seeds,
+                   "Monte Carlo: N runs per grid cell with seeds run.seed + 0..N-1; "
+                   "sweep.csv then holds per cell mean, std and 95 % CI of every metric")
       ->check(CLI::Range(1, 100000));
   c->sweep->add_option("--set", c->overrides, "fixed override: section.key=value");
   c->sweep->add_option("--out,-o", c->out, "sweep directory (default: runs/<run.name>_sweep)");
@@ -64,7 +65,9 @@ void AddSweepCommand(CLI::App& app, CliCommands* c) {
   c->sweep->add_flag("--overwrite", c->overwrite, "replace an existing sweep directory");
   c->sweep->add_flag("--resume", c->sweep_resume,
                      "finish an interrupted sweep: rerun only runs missing or incomplete");
-  c->sweep->add_flag("--no-render", c->no_render, "skip snapshots and video");
+  c->sweep->add_flag(
+      "--no-render", c->no_render,
+      "skip snapshots and video (and the render-only checks: snapshot times beyond the run)");
 }
 
 }  // namespace mjf::runner

@@ -82,7 +82,8 @@ void CheckAxisValues(const CliCommands& c, const std::vector<Axis>& axes) {
     for (const std::string& value : axis.values) {
       std::vector<std::string> overrides = c.overrides;
       overrides.push_back(axis.key + "=" + value);
-      ExperimentConfig config = LoadExperiment(c.experiment, overrides);
+      ExperimentConfig config =
+          LoadExperiment(c.experiment, overrides, ExperimentChecks::Rendering(!c.no_render));
       for (const auto& path : c.plugin_path) config.plugin_path.push_back(path);
       try {
         Simulation check(config);
@@ -144,7 +145,8 @@ SweepPlan PlanSweep(const CliCommands& c) {
     for (size_t a = 0; a < plan.axes.size(); ++a) {
       overrides.push_back(plan.axes[a].key + "=" + plan.axes[a].values[plan.cells[cell][a]]);
     }
-    ExperimentConfig base = LoadExperiment(c.experiment, overrides);
+    ExperimentConfig base =
+        LoadExperiment(c.experiment, overrides, ExperimentChecks::Rendering(!c.no_render));
     if (cell == 0 && plan.seeds > 0) WarnPinnedSeeds(base);
     const std::string point = PointName(plan.axes, plan.cells[cell]);
     for (int k = 0; k < std::max(1, plan.seeds); ++k) {
@@ -157,7 +159,8 @@ SweepPlan PlanSweep(const CliCommands& c) {
       } else {
         std::vector<std::string> seeded = overrides;
         seeded.push_back("run.seed=" + std::to_string(run.seed));
-        run.config = LoadExperiment(c.experiment, seeded);
+        run.config =
+            LoadExperiment(c.experiment, seeded, ExperimentChecks::Rendering(!c.no_render));
         run.name = (point.empty() ? "" : point + "_") + "seed=" + std::to_string(run.seed);
       }
       for (const auto& path : c.plugin_path) run.config.plugin_path.push_back(path);

@@ -504,11 +504,13 @@ void ReadRenderValues(SectionReader& render, RenderConfig& r) {
   r.video_height = static_cast<int>(render.Integer("video_height", r.video_height));
 }
 
-void ParseRenderSection(SectionReader render, double duration, RenderConfig& r) {
+// `check_times`: snapshot times must lie inside the run (only when the run renders).
+void ParseRenderSection(SectionReader render, double duration, bool check_times, RenderConfig& r) {
   ReadRenderValues(render, r);
   render.RejectUnknown();
   for (double t : r.snapshots) {
-    if (t < 0 || t > duration + 1e-9) render.Fail("snapshots", "times must lie in [0, duration]");
+    if (t < 0 || (check_times && t > duration + 1e-9))
+      render.Fail("snapshots", "times must lie in [0, duration]");
   }
   if (r.width < 16 || r.height < 16 || r.width > 4096 || r.height > 4096) {
     render.Fail("width", "width and height must be in [16, 4096] pixels");
@@ -550,7 +552,8 @@ const char* ToString(ShapeType value) {
 }
 
 ExperimentConfig ParseExperiment(const std::string& text, const std::string& path,
-                                 const std::vector<std::string>& overrides) {
+                                 const std::vector<std::string>& overrides,
+                                 ExperimentChecks checks) {
   Reporter reporter(path);
   toml::table root = ParseDocument(text, path, overrides);
   RejectUnknownSections(reporter, root);
@@ -579,20 +582,20 @@ ExperimentConfig ParseExperiment(const std::string& text, const std::string& pat
   }
   ParseShapeSection(reporter, table_of("formation"), path, c);
   ParseRenderSection(SectionReader(reporter.path(), table_of("render"), "render"), c.duration,
-                     c.render);
+                     checks.render, c.render);
   ParseRealismSections(root, path, &c);  // [sensors], [wind]
   ParseNetworkSections(root, c);
   ParseSafetySections(root, path, &c);  // [safety], [run] stop_on
   return c;
 }
 
-ExperimentConfig LoadExperiment(const std::string& path,
-                                const std::vector<std::string>& overrides) {
+ExperimentConfig LoadExperiment(const std::string& path, const std::vector<std::string>& overrides,
+                                ExperimentChecks checks) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw ConfigError(path + ": cannot open the experiment file");
   std::ostringstream text;
   text << in.rdbuf();
-  return ParseExperiment(text.str(), path, overrides);
+  return ParseExperiment(text.str(), path, overrides, checks);
 }
 
 }  // namespace mjf::runner

@@ -222,14 +222,27 @@ std::vector<ExperimentConfig::Edge> GeneratedEdges(int n, bool ring);
 // file for type "table". Throws ConfigError naming the file (and row) on bad input.
 std::unique_ptr<core::Shape> MakeShape(const ExperimentConfig& config);
 
+// Which checks apply: a run without rendering (`--no-render`) skips the render-only ones
+// ([render] snapshots inside the run), since nothing is rendered.
+struct ExperimentChecks {
+  bool render = true;
+  static ExperimentChecks Rendering(bool render) {
+    ExperimentChecks checks;
+    checks.render = render;
+    return checks;
+  }
+};
+
 // Reads and checks an experiment file; `overrides` are "section.key=value" strings (TOML
 // values) applied on top, e.g. "formation.rho=0.1". Throws ConfigError.
 ExperimentConfig LoadExperiment(const std::string& path,
-                                const std::vector<std::string>& overrides = {});
+                                const std::vector<std::string>& overrides = {},
+                                ExperimentChecks checks = {});
 
 // Same from text already in memory (tests); `path` names it in messages.
 ExperimentConfig ParseExperiment(const std::string& text, const std::string& path,
-                                 const std::vector<std::string>& overrides = {});
+                                 const std::vector<std::string>& overrides = {},
+                                 ExperimentChecks checks = {});
 
 }  // namespace mjf::runner
 
