@@ -171,7 +171,7 @@ void AddCommands(CLI::App& app, CliCommands* c) {
   c->run->add_option(
       "--set", c->overrides,
       "override a value: section.key=value (TOML value), e.g. formation.rho=0.1, or replace a "
-      "section: 'attitude={plugin=\"pointmass_direct\"}'");
+      "section's keys, keeping its sub-tables: 'attitude={plugin=\"pointmass_direct\"}'");
   c->run->add_option("--plugin-path", c->plugin_path, "extra folder to search for plugins");
   c->run->add_flag("--overwrite", c->overwrite, "replace an existing run directory");
   c->run->add_flag(

@@ -196,9 +196,19 @@ void ApplyOverrides(toml::table& root, const std::vector<std::string>& overrides
       throw ConfigError("override '" + item +
                         "': expected section.key=value, or section={...} to replace a section");
     }
-    // section={ plugin = "x" } replaces the whole section (its old keys may not suit x).
+    // section={ plugin = "x" } replaces the section's plain keys (the old ones may not suit x)
+    // but keeps its sub-tables that the new value does not give ([formation.shape],
+    // [[network.link]]): they describe the experiment, not the plugin.
+    toml::node& replacement = *parsed.get("v");
+    if (toml::table* old = table->get_as<toml::table>(key); old && replacement.is_table()) {
+      toml::table& fresh = *replacement.as_table();
+      for (auto&& [name, node] : *old) {
+        if ((node.is_table() || node.is_array_of_tables()) && !fresh.contains(name.str()))
+          fresh.insert(name.str(), std::move(node));
+      }
+    }
     // Moved, not copied: a copy of a toml++ node drops its source (the --set origin).
-    table->insert_or_assign(key, std::move(*parsed.get("v")));
+    table->insert_or_assign(key, std::move(replacement));
   }
 }
 

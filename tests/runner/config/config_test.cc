@@ -95,6 +95,30 @@ TEST(ConfigTest, OverridesApplyAndAreChecked) {
   EXPECT_THAT(ErrorOf([&] { LoadExperiment(path, {"run.duration=fast"}); }), HasSubstr("not TOML"));
 }
 
+// Issue 20: section={...} replaces the section's plain keys but keeps its sub-tables, so the
+// README's `--set 'formation={plugin="consensus_linear"}'` keeps exp2's [formation.shape].
+TEST(ConfigTest, ReplacingASectionKeepsItsSubTables) {
+  const std::string dir = mjf::testing::TempDir("ovr_sub");
+  std::string text =
+      HoverExperiment() + "[formation.shape]\ntype = \"circle\"\nradius = 4.0\nomega = 0.5\n";
+  const std::string formation = "[formation]\nplugin = \"hover\"\n";
+  text.replace(text.find(formation), formation.size(), formation + "kp = 3.0\n");
+  const std::string path = mjf::testing::WriteFile(dir + "/e.toml", text);
+  const ExperimentConfig before = LoadExperiment(path);
+  ASSERT_DOUBLE_EQ(before.shape.radius, 4.0);
+  ASSERT_FALSE(before.formation.attributes.empty());
+  const ExperimentConfig c = LoadExperiment(path, {"formation={plugin=\"consensus_linear\"}"});
+  EXPECT_EQ(c.formation.plugin, "consensus_linear");
+  EXPECT_TRUE(c.formation.attributes.empty());  // the old plugin's keys are gone
+  EXPECT_DOUBLE_EQ(c.shape.radius, 4.0);        // the sub-table stays
+  EXPECT_DOUBLE_EQ(c.shape.omega, 0.5);
+  // A sub-table given in the new value replaces the old one.
+  const ExperimentConfig d = LoadExperiment(
+      path, {"formation={plugin=\"consensus_linear\", shape={type=\"circle\", radius=2.0}}"});
+  EXPECT_DOUBLE_EQ(d.shape.radius, 2.0);
+  EXPECT_NE(d.shape.omega, 0.5);
+}
+
 TEST(ConfigTest, MissingModelFile) {
   EXPECT_THAT(ErrorOf([] { Parse("[vehicles]\nmodel = \"nothere.xml\"\n"); }),
               AllOf(HasSubstr("nothere.xml"), HasSubstr("not found")));
