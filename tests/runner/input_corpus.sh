@@ -185,6 +185,10 @@ case="a folder given as the model file"
 refused 1 "is a folder" -- run e.toml -o out -q --set "vehicles.model=\"$work/afolder\""
 case="formation.k = [\"3\", \"1\"]"
 refused 1 '--set formation.k=["3","1"]: [formation] k: an array attribute holds numbers or booleans' -- run e.toml -o out -q --set 'formation.k=["3","1"]'
+case="a self-including MJCF names the including line and the cycle"
+printf '<mujoco>\n  <worldbody/>\n  <include file="self.xml"/>\n</mujoco>\n' > self.xml
+refused 1 'self.xml:3: <include file="self.xml"> is an include cycle' -- run e.toml -o out -q --no-render \
+  --set 'vehicles.model="self.xml"' --set 'vehicles.body="b"' --set 'vehicles.rotors=["a","b","c","d"]'
 case="[vehicles] followers = 4294967297"
 refused 1 "[vehicles] followers: must be in [1, 100000]" -- run e.toml -o out -q --set vehicles.followers=4294967297
 case="[run] stop_on with an unknown kind"

@@ -1,8 +1,13 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 #include "mjcf_document.hpp"
 
+#include <algorithm>
 #include <cstring>
+#include <filesystem>
 #include <map>
+#include <string>
+#include <system_error>
+#include <vector>
 
 #include "mjcf_util.hpp"
 #include "mjformation/scene/scene.hpp"
@@ -14,33 +19,46 @@ using tinyxml2::XMLDocument;
 using tinyxml2::XMLElement;
 
 // <include file="..."/>: replaced by the children of the included file's <mujoco>, the file
-// found relative to the model's folder (as MuJoCo does).
+// found relative to the model's folder (as MuJoCo does). An included file's own includes are
+// resolved in that file before its elements are copied, so every message names the file and line
+// it comes from (a copied element has no line). `chain` holds the files being included, outermost
+// first: a file that reappears in it is an include cycle.
 void InlineIncludes(const std::string& path, const std::string& dir, XMLDocument* doc,
-                    XMLElement* parent, int* count) {
+                    XMLElement* parent, std::vector<std::string>* chain, int* count) {
   for (XMLElement* e = parent->FirstChildElement(); e;) {
     if (std::strcmp(e->Name(), "include") != 0) {
-      InlineIncludes(path, dir, doc, e, count);
+      InlineIncludes(path, dir, doc, e, chain, count);
       e = e->NextSiblingElement();
       continue;
     }
-    if (++*count > 100) throw SceneError(At(path, e) + ": more than 100 <include>s (a cycle?)");
+    if (++*count > 100) throw SceneError(At(path, e) + ": more than 100 <include>s");
     const char* file = e->Attribute("file");
     if (!file) throw SceneError(At(path, e) + ": <include> without file");
     const std::string included = Join(dir, file);
+    std::error_code ec;
+    const std::string key = std::filesystem::weakly_canonical(included, ec).string();
+    if (std::find(chain->begin(), chain->end(), key) != chain->end()) {
+      std::string cycle;
+      for (const std::string& f : *chain) cycle += f + " -> ";
+      throw SceneError(At(path, e) + ": <include file=\"" + file + "\"> is an include cycle (" +
+                       cycle + key + ")");
+    }
     XMLDocument inc;
     if (inc.LoadFile(included.c_str()) != tinyxml2::XML_SUCCESS || !inc.RootElement()) {
       throw SceneError(At(path, e) + ": <include file=\"" + file + "\">: cannot read " + included);
     }
+    chain->push_back(key);
+    InlineIncludes(included, dir, &inc, inc.RootElement(), chain, count);
+    chain->pop_back();
     tinyxml2::XMLNode* after = e;
-    XMLElement* first = nullptr;
     for (const XMLElement* c = inc.RootElement()->FirstChildElement(); c;
          c = c->NextSiblingElement()) {
       after = parent->InsertAfterChild(after, c->DeepClone(doc));
-      if (!first) first = after->ToElement();
     }
-    XMLElement* next = first ? first : e->NextSiblingElement();
+    XMLElement* next = after->ToElement() ? after->ToElement()->NextSiblingElement() : nullptr;
+    if (after == e) next = e->NextSiblingElement();
     parent->DeleteChild(e);
-    e = next;  // the included elements are scanned too (nested includes)
+    e = next;  // the copied elements are resolved already
   }
 }
 
@@ -78,7 +96,9 @@ XMLElement* ReadModelDocument(const std::string& path, const std::string& dir,
     throw SceneError(path + ": not MJCF (no <mujoco> root)");
   }
   int includes = 0;
-  InlineIncludes(path, dir, doc, root, &includes);
+  std::error_code ec;
+  std::vector<std::string> chain = {std::filesystem::weakly_canonical(path, ec).string()};
+  InlineIncludes(path, dir, doc, root, &chain, &includes);
   MergeRepeatedSections(root);
   return root;
 }
