@@ -85,6 +85,14 @@ for sig in INT TERM; do
   fi
 done
 
+case="SIGINT delivered twice at once (timeout -s INT: to the process and to its group)"
+experiment test_fail_message 1e9 600 > e.toml
+# timeout runs the runner in its own process group and signals the runner, then the group: two
+# SIGINTs in the same instant. The duplicate must not cost the summary (--preserve-status: the
+# runner's own exit code, not 124).
+timeout --preserve-status -s INT 2 "$bin" run e.toml --out r_dup --plugin-path "$plugins" -q 2>/dev/null; code=$?
+expect_incomplete r_dup $code 130 "interrupted by SIGINT" && ok
+
 case="SIGINT mid-sweep, then --resume"
 experiment test_fail_message 1e9 40 > e.toml
 "$bin" sweep e.toml --vary run.seed=1,2,3,4,5,6 --out sw --no-render --plugin-path "$plugins" \

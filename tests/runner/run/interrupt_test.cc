@@ -6,7 +6,9 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <csignal>
+#include <thread>
 
 namespace mjf::runner {
 namespace {
@@ -61,17 +63,36 @@ TEST_F(InterruptTest, OversizedFileSignalIsIgnoredOnceInstalled) {
   EXPECT_EQ(now.sa_handler, SIG_IGN);
 }
 
-TEST_F(InterruptTest, SecondCtrlCEndsTheProcessWith130) {
+TEST_F(InterruptTest, SecondCtrlCAfterTheFirstWasSeenEndsTheProcessWith130) {
   GTEST_FLAG_SET(death_test_style, "threadsafe");
   EXPECT_EXIT(
       {
         ClearInterrupt();
         InstallInterruptHandlers();
-        std::raise(SIGINT);  // first: the flag
-        std::raise(SIGINT);  // second: out now
+        std::raise(SIGINT);                        // first: the flag
+        if (!InterruptRequested()) std::_Exit(2);  // the loop sees it
+        std::this_thread::sleep_for(std::chrono::milliseconds(80));
+        std::raise(SIGINT);  // second, later: out now
         std::_Exit(0);       // not reached
       },
       ::testing::ExitedWithCode(130), "");
+}
+
+// `timeout -s INT` signals the process and then its group: two SIGINTs in the same instant. The
+// duplicate must not end the process before the clean stop writes the summary.
+TEST_F(InterruptTest, DuplicateSigintInTheSameInstantKeepsTheCleanStop) {
+  GTEST_FLAG_SET(death_test_style, "threadsafe");
+  EXPECT_EXIT(
+      {
+        ClearInterrupt();
+        InstallInterruptHandlers();
+        std::raise(SIGINT);
+        std::raise(SIGINT);  // before the first was seen: a duplicate
+        if (!InterruptRequested()) std::_Exit(2);
+        std::raise(SIGINT);  // seen, but within the same instant: still a duplicate
+        std::_Exit(InterruptSignal() == SIGINT ? 7 : 3);
+      },
+      ::testing::ExitedWithCode(7), "");
 }
 
 }  // namespace

@@ -3,7 +3,10 @@
 // SIGINT / SIGTERM as a polled flag. The handler only stores the signal number in a lock-free
 // atomic (async-signal-safe); long loops (a run's steps, a sweep's queue) poll
 // InterruptRequested() and end cleanly: summary.json / sweep.csv written, marked incomplete.
-// A second SIGINT while the first is being handled ends the process at once (exit 130).
+// A second SIGINT while the first is being handled ends the process at once (exit 130), but only
+// once the first was seen (InterruptRequested returned true) and 50 ms or more after it: a
+// duplicate delivered in the same instant (`timeout -s INT` signals the process and its group)
+// keeps the clean stop and its summary.
 #ifndef MJFORMATION_RUN_INTERRUPT_HPP_
 #define MJFORMATION_RUN_INTERRUPT_HPP_
 
@@ -12,7 +15,8 @@ namespace mjf::runner {
 // Installs the handlers for SIGINT and SIGTERM (idempotent). Called by the CLI, not by tests
 // that do not want it.
 void InstallInterruptHandlers();
-// True once SIGINT or SIGTERM arrived (or RequestInterrupt was called).
+// True once SIGINT or SIGTERM arrived (or RequestInterrupt was called). Returning true marks the
+// signal as seen: from then on a second SIGINT ends the process at once.
 bool InterruptRequested();
 // The signal that arrived (SIGINT or SIGTERM), 0 if none.
 int InterruptSignal();
