@@ -79,6 +79,13 @@ rm sw/seed=1/mine.txt
 [ $c1 = 0 ] && [ $c2 = 0 ] && [ -f sw/.mjformation-sweep ] && grep -qF "2 of 2 runs done" err.txt &&
   ok || fail "exit $c1/$c2: $(cat err.txt)"
 
+case="sweep prints a short summary (the table in the file) and an ETA"
+"$bin" sweep e.toml --vary vehicles.altitude=2.0,3.0 --seeds 2 -o sum_sw --no-render >out.txt 2>err.txt; code=$?
+[ $code = 0 ] && [ "$(wc -l < out.txt)" = 2 ] && ! grep -qF "_ci95_low" out.txt &&
+  grep -qF "vehicles.altitude=3.0: sigma_f_mean" out.txt && grep -qF "ETA" err.txt &&
+  [ -d "sum_sw/altitude=3.0,seed=2" ] && ok "$(head -1 out.txt)" ||
+  fail "exit $code: $(cat out.txt err.txt | head -c 600)"
+
 # ---- bounded inputs: [network] (per-agent execution) ----
 net() { echo "--set execution={mode=\"per_agent\"} --set network={rate=1000.0,$1}"; }
 # shellcheck disable=SC2046

@@ -33,9 +33,10 @@ int SweepCommand(const CliCommands& c) {
     failures += o.state == RunOutcome::kFinished && !o.complete();
     not_run += o.state == RunOutcome::kNotRun;
   }
-  std::printf("%s", ReadText(plan.out + "/sweep.csv").c_str());
+  std::printf("%s", SummaryText(plan, outcomes).c_str());
   std::fprintf(
-      stderr, "sweep: table in %s/sweep.csv%s%s\n", plan.out.c_str(),
+      stderr, "sweep: tables in %s/sweep.csv and sweep.json%s%s%s\n", plan.out.c_str(),
+      plan.seeds ? " (per cell; per run: sweep_runs.csv)" : "",
       failures ? fmt::format(" ({} runs failed or stopped early)", failures).c_str() : "",
       not_run ? fmt::format("; interrupted: {} runs not run, finish with --resume", not_run).c_str()
               : "");

@@ -52,7 +52,11 @@ struct RunOutcome {
 // Every run's configuration, parsed and checked before anything runs.
 SweepPlan PlanSweep(const CliCommands& c);
 
-// A CSV field: as is, or quoted (RFC 4180) when it holds a comma, quote or newline.
+// A --vary value as a reader wants it in a table: a plain TOML string ("none") without its
+// quotes (none); numbers, arrays and tables as written.
+std::string DisplayValue(const std::string& toml);
+
+// A CSV field: as is, or quoted (RFC 4180) when it holds a comma, quote, CR or LF.
 std::string CsvField(const std::string& v);
 
 // The file's bytes; empty when it cannot be read.
@@ -65,6 +69,11 @@ std::vector<size_t> PrepareOutput(const SweepPlan& plan, const CliCommands& c,
 
 // sweep.csv, sweep.json (and sweep_runs.csv with --seeds). `complete`: every run finished.
 void WriteTables(const SweepPlan& plan, const std::vector<RunOutcome>& outcomes);
+
+// The short summary a sweep prints on stdout: per cell (with --seeds) or per run, sigma_f_mean
+// with its 95 % interval (none for a constant), incomplete runs and safety events; at most 20
+// lines, the full table being in sweep.csv.
+std::string SummaryText(const SweepPlan& plan, const std::vector<RunOutcome>& outcomes);
 
 // Keeps the tables current while runs finish, at most once a second, so a sweep that dies
 // leaves tables marked incomplete rather than none (the final write comes after all runs).
@@ -79,7 +88,8 @@ class Progress {
   std::vector<RunOutcome>* outcomes_;
   size_t todo_, done_ = 0;
   std::mutex mutex_;
-  std::chrono::steady_clock::time_point last_write_ = std::chrono::steady_clock::now();
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+  std::chrono::steady_clock::time_point last_write_ = start_;
 };
 
 // The runs of `todo` on c.sweep_jobs threads.

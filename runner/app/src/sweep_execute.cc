@@ -4,9 +4,12 @@
 // --resume: a run is done again only when it is missing or incomplete, recognised by the
 // config hash in its summary.json.
 #include <dlfcn.h>
+#include <fmt/format.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -226,13 +229,31 @@ std::vector<size_t> PrepareOutput(const SweepPlan& plan, const CliCommands& c,
   return todo;
 }
 
+namespace {
+// "42 s", "3 min 05 s", "2 h 07 min": the progress line's times.
+std::string Duration(double seconds) {
+  const auto s = static_cast<int64_t>(std::llround(std::max(0.0, seconds)));
+  if (s < 60) return fmt::format("{} s", s);
+  if (s < 3600) return fmt::format("{} min {:02d} s", s / 60, s % 60);
+  return fmt::format("{} h {:02d} min", s / 3600, (s % 3600) / 60);
+}
+}  // namespace
+
 void Progress::Done(size_t i, RunOutcome outcome) {
   std::lock_guard<std::mutex> lock(mutex_);
   (*outcomes_)[i] = std::move(outcome);
   const RunOutcome& o = (*outcomes_)[i];
-  std::fprintf(stderr, "  [%zu/%zu] %s%s\n", ++done_, todo_, plan_.runs[i].name.c_str(),
-               o.complete() ? "" : (": " + o.error).c_str());
   const auto now = std::chrono::steady_clock::now();
+  ++done_;
+  // ETA from the mean wall time per finished run so far (runs of a sweep cost about the same;
+  // with -j K they finish K at a time, which the mean over elapsed time already reflects).
+  const double elapsed = std::chrono::duration<double>(now - start_).count();
+  const double eta = elapsed / static_cast<double>(done_) * static_cast<double>(todo_ - done_);
+  std::fprintf(stderr, "  [%zu/%zu] %s%s%s\n", done_, todo_, plan_.runs[i].name.c_str(),
+               o.complete() ? "" : (": " + o.error).c_str(),
+               done_ < todo_
+                   ? fmt::format(" (elapsed {}, ETA {})", Duration(elapsed), Duration(eta)).c_str()
+                   : fmt::format(" (done in {})", Duration(elapsed)).c_str());
   if (now - last_write_ > std::chrono::seconds(1)) {
     WriteTables(plan_, *outcomes_);
     last_write_ = now;

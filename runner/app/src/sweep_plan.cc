@@ -46,18 +46,33 @@ Axis ParseAxis(const std::string& text) {
   return axis;
 }
 
-// A name for a point's run directory: key values joined, safe for a file name.
+// A run folder name's piece: letters, digits and . _ + - kept, every other byte as %XX (like a
+// URL), so no value can add a separator, a path component or a byte a shell would mangle.
+std::string EscapeForName(const std::string& text) {
+  std::string out;
+  for (const char ch : text) {
+    const auto byte = static_cast<unsigned char>(ch);
+    if (std::isalnum(byte) || ch == '.' || ch == '_' || ch == '+' || ch == '-') {
+      out += ch;
+    } else {
+      out += fmt::format("%{:02X}", byte);
+    }
+  }
+  return out;
+}
+
+// A name for a point's run directory: "key=value" pairs joined by ','. The value is shown plain
+// (DisplayValue; quotes and spaces of tables and arrays dropped: the run's config.toml holds the
+// exact value), then escaped: altitude=3.0,turbulence=none,seed=2.
 std::string PointName(const std::vector<Axis>& axes, const std::vector<size_t>& index) {
   std::string name;
   for (size_t a = 0; a < axes.size(); ++a) {
-    std::string key = axes[a].key.substr(axes[a].key.rfind('.') + 1);
-    name += (a ? "_" : "") + key + "=" + axes[a].values[index[a]];
-  }
-  for (char& c : name) {
-    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '=' || c == '.' || c == '-' ||
-          c == '_')) {
-      c = '_';
+    const std::string key = axes[a].key.substr(axes[a].key.rfind('.') + 1);
+    std::string value;
+    for (const char ch : DisplayValue(axes[a].values[index[a]])) {
+      if (ch != '"' && ch != ' ') value += ch;
     }
+    name += (a ? "," : "") + EscapeForName(key) + "=" + EscapeForName(value);
   }
   return name;
 }
@@ -110,9 +125,19 @@ void WarnPinnedSeeds(const ExperimentConfig& config) {
 
 }  // namespace
 
-// A CSV field: as is, or quoted (RFC 4180) when it holds a comma, quote or newline.
+std::string DisplayValue(const std::string& toml) {
+  // A basic TOML string without escapes: its text. Anything else (numbers, booleans, arrays,
+  // inline tables, strings with escapes) as written.
+  if (toml.size() >= 2 && toml.front() == '"' && toml.back() == '"' &&
+      toml.find_first_of("\\\"", 1) == toml.size() - 1) {
+    return toml.substr(1, toml.size() - 2);
+  }
+  return toml;
+}
+
+// A CSV field: as is, or quoted (RFC 4180) when it holds a comma, quote, CR or LF.
 std::string CsvField(const std::string& v) {
-  if (v.find_first_of(",\"\n") == std::string::npos) return v;
+  if (v.find_first_of(",\"\r\n") == std::string::npos) return v;
   std::string out = "\"";
   for (char ch : v) out += ch == '"' ? std::string("\"\"") : std::string(1, ch);
   return out + "\"";
@@ -161,7 +186,7 @@ SweepPlan PlanSweep(const CliCommands& c) {
         seeded.push_back("run.seed=" + std::to_string(run.seed));
         run.config =
             LoadExperiment(c.experiment, seeded, ExperimentChecks::Rendering(!c.no_render));
-        run.name = (point.empty() ? "" : point + "_") + "seed=" + std::to_string(run.seed);
+        run.name = (point.empty() ? "" : point + ",") + "seed=" + std::to_string(run.seed);
       }
       for (const auto& path : c.plugin_path) run.config.plugin_path.push_back(path);
       plan.runs.push_back(std::move(run));
@@ -172,7 +197,7 @@ SweepPlan PlanSweep(const CliCommands& c) {
   for (const RunSpec& run : plan.runs) {
     if (!names.insert(run.name).second) {
       throw ConfigError("sweep: two runs would share the directory '" + run.name +
-                        "' (values that differ only in punctuation); write them apart");
+                        "' (values that differ only in quotes or spaces); write them apart");
     }
   }
   plan.out = c.out.empty() ? "runs/" + plan.runs.front().config.name + "_sweep" : c.out;

@@ -70,12 +70,12 @@ std::string RunsCsv(const SweepPlan& plan, const std::vector<RunOutcome>& outcom
   for (size_t i = 0; i < plan.runs.size(); ++i) {
     const RunSpec& run = plan.runs[i];
     for (size_t a = 0; a < plan.axes.size(); ++a) {
-      csv += CsvField(plan.axes[a].values[plan.cells[run.cell][a]]) + ",";
+      csv += CsvField(DisplayValue(plan.axes[a].values[plan.cells[run.cell][a]])) + ",";
     }
     if (plan.seeds) csv += std::to_string(run.seed) + ",";
     csv += outcomes[i].complete() ? "true" : "false";
     for (const char* m : kMainMetrics) csv += "," + MetricText(outcomes[i].summary, m);
-    csv += "," + run.name + "," + (outcomes[i].complete() ? "" : RunStatus(outcomes[i]));
+    csv += "," + CsvField(run.name) + "," + (outcomes[i].complete() ? "" : RunStatus(outcomes[i]));
     if (events) {
       csv += fmt::format(",{},{}", EventCount(outcomes[i].summary),
                          CsvSafe(FirstEvent(outcomes[i].summary)));
@@ -193,7 +193,7 @@ Json CellsTable(const SweepPlan& plan, const std::vector<RunOutcome>& outcomes, 
     Json entry;
     std::string values;
     for (size_t a = 0; a < plan.axes.size(); ++a) {
-      values += CsvField(plan.axes[a].values[plan.cells[cell][a]]) + ",";
+      values += CsvField(DisplayValue(plan.axes[a].values[plan.cells[cell][a]])) + ",";
       entry[plan.axes[a].key] = plan.axes[a].values[plan.cells[cell][a]];
     }
     entry["seeds"] = plan.seeds;
@@ -219,7 +219,66 @@ Json CellsTable(const SweepPlan& plan, const std::vector<RunOutcome>& outcomes, 
   return cells;
 }
 
+// A metric's value for the short summary: the mean and its 95 % interval, or the value alone
+// when every run gave the same (an interval of zero width says nothing a reader needs).
+std::string MeanText(const SampleStats& s) {
+  if (s.n == 0 || !std::isfinite(s.mean)) return "n/a";
+  if (s.n < 2) return fmt::format("{:.4g} (1 run)", s.mean);
+  if (s.std == 0) return fmt::format("{:.4g} (the same in all {} runs)", s.mean, s.n);
+  return fmt::format("{:.4g}, 95 % CI [{:.4g}, {:.4g}] over {} runs", s.mean, s.ci95_low,
+                     s.ci95_high, s.n);
+}
+
+// The varied values of a cell as "key=value, key=value" (the table's plain values).
+std::string CellLabel(const SweepPlan& plan, size_t cell) {
+  std::string label;
+  for (size_t a = 0; a < plan.axes.size(); ++a) {
+    label += (a ? ", " : "") + plan.axes[a].key + "=" +
+             DisplayValue(plan.axes[a].values[plan.cells[cell][a]]);
+  }
+  return label.empty() ? "all runs" : label;
+}
+
 }  // namespace
+
+std::string SummaryText(const SweepPlan& plan, const std::vector<RunOutcome>& outcomes) {
+  constexpr size_t kMaxLines = 20;  // the rest is in the table
+  const char* const kMetric = "sigma_f_mean";
+  std::string text;
+  size_t lines = 0;
+  if (plan.seeds) {
+    const std::vector<std::string> keys = {kMetric};
+    std::vector<int> completed, event_free;
+    const auto stats = CellStats(plan, outcomes, keys, &completed, false);
+    const auto free_stats = CellStats(plan, outcomes, keys, &event_free, true);
+    const std::vector<int> with_events = RunsWithEvents(plan, outcomes);
+    for (size_t cell = 0; cell < plan.cells.size() && lines < kMaxLines; ++cell, ++lines) {
+      text += fmt::format("  {}: {} {}", CellLabel(plan, cell), kMetric, MeanText(stats[cell][0]));
+      if (completed[cell] < plan.seeds) {
+        text += fmt::format("; {} of {} runs incomplete", plan.seeds - completed[cell], plan.seeds);
+      }
+      if (with_events[cell] > 0) {
+        text += fmt::format("; {} runs with safety events (without them: {})", with_events[cell],
+                            MeanText(free_stats[cell][0]));
+      }
+      text += "\n";
+    }
+  } else {
+    for (size_t i = 0; i < plan.runs.size() && lines < kMaxLines; ++i, ++lines) {
+      const RunOutcome& o = outcomes[i];
+      const std::string value = MetricText(o.summary, kMetric);
+      text +=
+          fmt::format("  {}: {}", CellLabel(plan, plan.runs[i].cell),
+                      o.complete() ? fmt::format("{} {}", kMetric, value.empty() ? "n/a" : value)
+                                   : "incomplete: " + RunStatus(o));
+      if (EventCount(o.summary) > 0) text += "; safety event: " + FirstEvent(o.summary);
+      text += "\n";
+    }
+  }
+  const size_t rows = plan.seeds ? plan.cells.size() : plan.runs.size();
+  if (rows > lines) text += fmt::format("  ... and {} more in sweep.csv\n", rows - lines);
+  return text;
+}
 
 void WriteTables(const SweepPlan& plan, const std::vector<RunOutcome>& outcomes) {
   bool complete = true;

@@ -49,7 +49,7 @@ TEST(CliTest, SweepRunsEveryPointAndWritesTheTable) {
   ASSERT_EQ(table.size(), 4u);
   EXPECT_EQ(table[3]["vehicles.altitude"], "3.0");
   EXPECT_EQ(table[3]["run.seed"], "2");
-  const auto summary = nlohmann::json::parse(ReadFile(dir + "/s/altitude=3.0_seed=2/summary.json"));
+  const auto summary = nlohmann::json::parse(ReadFile(dir + "/s/altitude=3.0,seed=2/summary.json"));
   EXPECT_TRUE(summary["complete"].get<bool>());
   EXPECT_EQ(summary["seed"], 2);
   // A bad value is refused before anything runs.

@@ -67,13 +67,13 @@ TEST(SweepSeeds, PerCellStatisticsOverSeeds) {
   // Seeds are the config's seed (1) + 0, 1, 2, recorded in each run.
   for (int k = 0; k < 3; ++k) {
     const auto summary = nlohmann::json::parse(
-        ReadFile(dir + "/s/altitude=3.0_seed=" + std::to_string(1 + k) + "/summary.json"));
+        ReadFile(dir + "/s/altitude=3.0,seed=" + std::to_string(1 + k) + "/summary.json"));
     EXPECT_EQ(summary["seed"], 1 + k);
   }
   // The cell's statistics, recomputed here from the runs' own summaries.
   std::vector<double> v;
   for (int k = 1; k <= 3; ++k) {
-    v.push_back(nlohmann::json::parse(ReadFile(dir + "/s/altitude=2.0_seed=" + std::to_string(k) +
+    v.push_back(nlohmann::json::parse(ReadFile(dir + "/s/altitude=2.0,seed=" + std::to_string(k) +
                                                "/summary.json"))["metrics"]["min_separation_m"]
                     .get<double>());
   }
@@ -108,11 +108,35 @@ TEST(SweepSeeds, TableAndArrayValuesOnAnAxis) {
   const std::string csv = ReadFile(dir + "/s/sweep.csv");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 4);
   EXPECT_THAT(csv, HasSubstr("\n\"[2.0,0.0,0.0]\",\"{preset=\"\"typical\"\", scale=3.0}\",2,2,"));
-  const auto summary = nlohmann::json::parse(ReadFile(
-      dir + "/s/mean=_2.0_0.0_0.0__sensors=_preset=_typical___scale=3.0__seed=2/summary.json"));
+  const auto summary =
+      nlohmann::json::parse(ReadFile(
+          dir + "/s/mean=%5B2.0%2C0.0%2C0.0%5D,sensors=%7Bpreset%3Dtypical%2Cscale%3D3.0%7D,seed=2/"
+                "summary.json"));
   EXPECT_EQ(summary["sensors"]["scale"], 3.0);
   EXPECT_EQ(summary["wind"]["mean"][0], 2.0);
   EXPECT_EQ(Cli({"sweep", exp, "--vary", "wind.mean=[1.0,0.0", "--out", dir + "/bad"}), 1);
+}
+
+// Readable run folders (key=value,seed=N), plain values in the tables (none, not """none"""),
+// the run column quoted as RFC 4180 wants when the name holds a comma.
+TEST(SweepSeeds, ReadableNamesAndPlainValues) {
+  const std::string dir = TempDir("names");
+  const std::string exp = Experiment(dir);
+  ASSERT_EQ(Cli({"sweep", exp, "--vary", "wind.turbulence=\"none\",\"light\"", "--set",
+                 "wind.altitude=10.0", "--seeds", "2", "--out", dir + "/s", "--no-render"}),
+            0);
+  EXPECT_EQ(
+      nlohmann::json::parse(ReadFile(dir + "/s/turbulence=light,seed=2/summary.json"))["seed"], 2);
+  const std::string cells = ReadFile(dir + "/s/sweep.csv");
+  EXPECT_THAT(cells, HasSubstr("\nnone,2,2,"));
+  EXPECT_THAT(cells, HasSubstr("\nlight,2,2,"));
+  EXPECT_THAT(cells, ::testing::Not(HasSubstr("\"")));
+  const std::string runs = ReadFile(dir + "/s/sweep_runs.csv");
+  EXPECT_THAT(runs, HasSubstr(",\"turbulence=none,seed=1\","));
+  // sweep.json keeps the exact TOML text of the value (what config.toml holds).
+  const auto json = nlohmann::json::parse(ReadFile(dir + "/s/sweep.json"));
+  EXPECT_EQ(json["runs"][0]["wind.turbulence"], "\"none\"");
+  EXPECT_EQ(json["runs"][0]["run"], "turbulence=none,seed=1");
 }
 
 // An interrupted sweep marks what did not run, tables complete = false; --resume finishes it
