@@ -79,6 +79,12 @@ rm sw/seed=1/mine.txt
 [ $c1 = 0 ] && [ $c2 = 0 ] && [ -f sw/.mjformation-sweep ] && grep -qF "2 of 2 runs done" err.txt &&
   ok || fail "exit $c1/$c2: $(cat err.txt)"
 
+case="sweep --vary: a value valid alone but not with another axis's"
+refused 1 '--vary sensors={preset="ideal"} with estimator={plugin="kf_ins"}: ' -- sweep e.toml --vary 'sensors={preset="ideal"},{preset="consumer_gnss"}' --vary 'estimator={plugin="kf_ins"}' -o out --no-render
+case="sweep --vary: every combination valid though one value alone is not"
+"$bin" check e.toml --set 'estimator={plugin="kf_ins"}' >/dev/null 2>&1 && fail "kf_ins alone was accepted"
+"$bin" sweep e.toml --vary 'sensors={preset="rtk"},{preset="consumer_gnss"}' --vary 'estimator={plugin="passthrough"},{plugin="kf_ins"}' -o combo --no-render >/dev/null 2>err.txt; code=$?
+[ $code = 0 ] && [ "$(ls -d combo/*seed* combo/*=* 2>/dev/null | wc -l)" -ge 4 ] && ok "exit 0" || fail "exit $code: $(head -c 400 err.txt)"
 case="sweep prints a short summary (the table in the file) and an ETA"
 "$bin" sweep e.toml --vary vehicles.altitude=2.0,3.0 --seeds 2 -o sum_sw --no-render >out.txt 2>err.txt; code=$?
 [ $code = 0 ] && [ "$(wc -l < out.txt)" = 2 ] && ! grep -qF "_ci95_low" out.txt &&
