@@ -46,13 +46,15 @@ Axis ParseAxis(const std::string& text) {
   return axis;
 }
 
-// A run folder name's piece: letters, digits and . _ + - kept, every other byte as %XX (like a
-// URL), so no value can add a separator, a path component or a byte a shell would mangle.
+// A run folder name's piece: letters, digits and . _ + - = { } kept, every other byte as %XX (like
+// a URL), so no value can add a separator (','), a path component, a glob ('[' '*' '?') or a byte
+// a shell would mangle; a table reads {preset=typical}.
 std::string EscapeForName(const std::string& text) {
   std::string out;
   for (const char ch : text) {
     const auto byte = static_cast<unsigned char>(ch);
-    if (std::isalnum(byte) || ch == '.' || ch == '_' || ch == '+' || ch == '-') {
+    if (std::isalnum(byte) || ch == '.' || ch == '_' || ch == '+' || ch == '-' || ch == '=' ||
+        ch == '{' || ch == '}') {
       out += ch;
     } else {
       out += fmt::format("%{:02X}", byte);

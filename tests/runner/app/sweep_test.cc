@@ -110,7 +110,7 @@ TEST(SweepSeeds, TableAndArrayValuesOnAnAxis) {
   EXPECT_THAT(csv, HasSubstr("\n\"[2.0,0.0,0.0]\",\"{preset=\"\"typical\"\", scale=3.0}\",2,2,"));
   const auto summary =
       nlohmann::json::parse(ReadFile(
-          dir + "/s/mean=%5B2.0%2C0.0%2C0.0%5D,sensors=%7Bpreset%3Dtypical%2Cscale%3D3.0%7D,seed=2/"
+          dir + "/s/mean=%5B2.0%2C0.0%2C0.0%5D,sensors={preset=typical%2Cscale=3.0},seed=2/"
                 "summary.json"));
   EXPECT_EQ(summary["sensors"]["scale"], 3.0);
   EXPECT_EQ(summary["wind"]["mean"][0], 2.0);
