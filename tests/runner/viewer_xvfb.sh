@@ -75,7 +75,7 @@ viewer=$!
 for _ in $(seq 300); do [ -s "$shot.json" ] && break; sleep 0.2; done
 [ -s "$shot.json" ] || { cat "$work/view.log"; false; }
 # The key goes to the window through the X server, as a user's would.
-win=$(xdotool search --sync --name "mjformation: exp2" | head -1)
+win=$(xdotool search --sync --name "mjformation-view: exp2" | head -1)
 # Keys act: pause, two single steps of 1 ms, double speed, reset to t = 0, then quit.
 for key in space Right Right plus BackSpace; do
   xdotool key --window "$win" $key
@@ -111,7 +111,7 @@ PY
 # `mjformation replay RUN_DIR` opens the window (mjformation-view --replay) and closes on Escape.
 "$bin" replay "$work/run" > "$work/replay_cli.log" 2>&1 &
 replay=$!
-win=$(xdotool search --sync --name "mjformation: exp2" | head -1)
+win=$(xdotool search --sync --name "mjformation-view: exp2" | head -1)
 xdotool key --window "$win" Escape
 for _ in $(seq 100); do kill -0 $replay 2>/dev/null || break; sleep 0.1; done
 if kill -0 $replay 2>/dev/null; then kill $replay; echo "replay did not close on Escape"; false; fi
@@ -123,7 +123,7 @@ rshot="$work/replay.png"
 replay=$!
 for _ in $(seq 300); do [ -s "$rshot.json" ] && break; sleep 0.2; done
 [ -s "$rshot.json" ] || { cat "$work/replay.log"; false; }
-win=$(xdotool search --sync --name "mjformation: exp2" | head -1)
+win=$(xdotool search --sync --name "mjformation-view: exp2" | head -1)
 xdotool key --window "$win" Escape
 for _ in $(seq 100); do kill -0 $replay 2>/dev/null || break; sleep 0.1; done
 if kill -0 $replay 2>/dev/null; then kill $replay; echo "replay did not close on Escape"; false; fi
