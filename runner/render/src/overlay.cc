@@ -198,7 +198,7 @@ int AddOverlayGeoms(mjvScene* scene, const Overlay& o, double cam_distance, int 
     mjvGeom* g = r.NewGeom(kEventColour.data());
     if (!g) continue;
     for (int k = 0; k < 3; ++k) {
-      g->size[k] = static_cast<float>(1.3 * sphere);
+      g->size[k] = static_cast<float>(2.0 * sphere);  // larger than a slot: seen first
       g->pos[k] = static_cast<float>(e.pos[k]);
     }
     g->emission = 0.6f;

