@@ -15,7 +15,7 @@ namespace {
 constexpr float kPalette[][3] = {
     {1.00f, 0.78f, 0.05f},  // leader: gold
     {0.12f, 0.47f, 0.95f},  // blue
-    {1.00f, 0.50f, 0.05f},  // orange
+    {1.00f, 0.45f, 0.00f},  // orange
     {0.17f, 0.70f, 0.17f},  // green
     {0.62f, 0.35f, 0.85f},  // purple
     {0.10f, 0.85f, 0.90f},  // cyan
@@ -113,11 +113,11 @@ std::array<float, 4> VehicleColour(int vehicle) {
     return {c[0], c[1], c[2], 1.0f};
   }
   // Golden-angle hues never repeat; saturation and value alternate over three levels so that
-  // neighbours in index differ in more than hue. Hue 0 (red) is kept away from: it is the
-  // events' colour. Distinct from the fixed list up to float rounding; exactness is not needed
-  // beyond "told apart" for swarms this large.
+  // neighbours in index differ in more than hue. Hues below 0.09 and above 0.88 (red) are not
+  // used: red is the events' colour. Distinct from each other up to float rounding (tested to
+  // 1000 followers); at that size "told apart" is all a colour can do.
   const int k = std::max(0, vehicle - kPaletteSize);
-  const double h = 0.04 + 0.92 * std::fmod(0.1 + k * 0.618033988749895, 1.0);
+  const double h = 0.09 + 0.79 * std::fmod(0.1 + k * 0.618033988749895, 1.0);
   return Hue(h, 0.55 + 0.2 * (k % 3), 0.95 - 0.15 * ((k / 3) % 3));
 }
 
