@@ -300,7 +300,14 @@ void ReplayScene::Pose(int frame) {
 std::array<int, 2> ParseVideoSize(const std::string& text) {
   const size_t x = text.find('x');
   auto number = [&](const std::string& part, const char* what, int max) {
-    // Digits only: std::stoi would take "+5", " 5" and "5abc".
+    // Digits only: std::stoi would take "+5", " 5" and "5abc". A negative number is a number,
+    // out of range.
+    const bool negative = part.size() > 1 && part[0] == '-' &&
+                          part.find_first_not_of("0123456789", 1) == std::string::npos;
+    if (negative) {
+      throw std::invalid_argument(fmt::format("'{}': the {} must be in [1, {}] (at most {}x{})",
+                                              text, what, max, kMaxVideoWidth, kMaxVideoHeight));
+    }
     if (part.empty() || part.size() > 6 ||
         part.find_first_not_of("0123456789") != std::string::npos) {
       throw std::invalid_argument("'" + text + "': the " + what +
