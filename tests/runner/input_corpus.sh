@@ -157,7 +157,7 @@ done
 # replay --video-size WxH: usage errors (exit 2) naming the option and what is wrong.
 for spec in "0x720:the width must be in [1, 7680]" "-5x720:the width must be in [1, 7680]" \
             "1280x0:the height must be in [1, 4320]" "abcx720:the width is not a number" \
-            "1280x7e2:the height is not a number" "7681x4320:at most 7680x4320" \
+            "1280x7e2:the height is not a number" "7681x4320:the width must be in [1, 7680] (at most 7680x4320)" \
             "1280x4321:the height must be in [1, 4320]" "1280:expected WIDTHxHEIGHT"; do
   size=${spec%%:*} message=${spec#*:}
   case="replay --video-size $size"
