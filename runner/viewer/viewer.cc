@@ -27,6 +27,8 @@
 #include "mjformation/config/config.hpp"
 #include "mjformation/record/frame_view.hpp"
 #include "mjformation/record/metrics.hpp"
+#include "mjformation/record/recorders.hpp"
+#include "mjformation/record/safety_events.hpp"
 #include "mjformation/render.hpp"
 #include "mjformation/sim/simulation.hpp"
 
@@ -92,6 +94,8 @@ class LiveSource : public Source {
     sim_.reset();  // plugins and model of the old run go before the new ones are made
     sim_ = std::make_unique<Simulation>(config_);
     metrics_ = std::make_unique<OnlineMetrics>(*sim_);
+    safety_ = std::make_unique<SafetyMonitor>(config_.safety, VehicleRadii(*sim_));
+    marks_.clear();
     trails_ = TrailBuffer(sim_->n_vehicles(), config_.render.trail_seconds, kTrailPeriod);
     slot_buffer_.assign(2 * static_cast<size_t>(sim_->n_vehicles()), 0.0);
     done_ = false;
@@ -109,6 +113,7 @@ class LiveSource : public Source {
   }
   const std::string& name() const override { return config_.name; }
   std::string error() const override { return error_; }
+  std::vector<render::EventMark> events() const override { return marks_; }
 
  private:
   // Sensors and plugins for the current state (the controls the next Integrate applies), then
@@ -124,6 +129,18 @@ class LiveSource : public Source {
       positions_[i] = {p[0], p[1], p[2]};
       slots_[i] = {i == 0 ? NAN : slot_buffer_[2 * i], i == 0 ? NAN : slot_buffer_[2 * i + 1]};
     }
+    // Safety events as `run` sees them (recorders.cc), marked where they happened.
+    const size_t fresh = safety_->Check(sim_->time(), sim_->states());
+    const auto& events = safety_->events();
+    for (size_t k = events.size() - fresh; k < events.size(); ++k) {
+      const SafetyEvent& e = events[k];
+      if (marks_.size() >= kMaxEventMarks || !MarkedEventKind(e.kind)) continue;
+      Vec3 at = {0, 0, 0};
+      for (int v : e.vehicles) {
+        for (int a = 0; a < 3; ++a) at[a] += positions_[v][a] / e.vehicles.size();
+      }
+      marks_.push_back(MakeEventMark(e.kind, e.time_s, e.vehicles, at));
+    }
     const int64_t trail_every = std::max<int64_t>(1, std::llround(kTrailPeriod / config_.timestep));
     if (sim_->step_index() % trail_every == 0) trails_.Add(positions_);
   }
@@ -131,6 +148,8 @@ class LiveSource : public Source {
   ExperimentConfig config_;
   std::unique_ptr<Simulation> sim_;
   std::unique_ptr<OnlineMetrics> metrics_;
+  std::unique_ptr<SafetyMonitor> safety_;
+  std::vector<render::EventMark> marks_;
   TrailBuffer trails_{0, 1, 1};
   std::vector<double> slot_buffer_;
   std::vector<Vec3> positions_;

@@ -184,37 +184,6 @@ class VideoRecorder final : public Recorder {
   int64_t every_;
 };
 
-// Each vehicle's radius about its body's origin that holds every geom of its subtree
-// (bounding spheres, geom_rbound), from the model's rest frames. One pass: bodies are in
-// depth-first order, so a parent's frame (relative to its vehicle) is known before its
-// children's.
-std::vector<double> VehicleRadii(const Simulation& sim) {
-  const mjModel* m = sim.model();
-  std::vector<int> owner(m->nbody, -1);
-  std::vector<std::array<mjtNum, 3>> pos(m->nbody, {0, 0, 0});
-  std::vector<std::array<mjtNum, 4>> quat(m->nbody, {1, 0, 0, 0});
-  for (int v = 0; v < sim.n_vehicles(); ++v) owner[sim.binding(v).body] = v;
-  for (int k = 1; k < m->nbody; ++k) {
-    const int parent = m->body_parentid[k];
-    if (owner[k] >= 0 || owner[parent] < 0) continue;  // a vehicle's own body, or not in one
-    owner[k] = owner[parent];
-    mjtNum offset[3];
-    mju_rotVecQuat(offset, m->body_pos + 3 * k, quat[parent].data());
-    for (int a = 0; a < 3; ++a) pos[k][a] = pos[parent][a] + offset[a];
-    mju_mulQuat(quat[k].data(), quat[parent].data(), m->body_quat + 4 * k);
-  }
-  std::vector<double> radii(sim.n_vehicles(), 0.0);
-  for (int g = 0; g < m->ngeom; ++g) {
-    const int k = m->geom_bodyid[g];
-    if (owner[k] < 0) continue;
-    mjtNum p[3];
-    mju_rotVecQuat(p, m->geom_pos + 3 * g, quat[k].data());
-    for (int a = 0; a < 3; ++a) p[a] += pos[k][a];
-    radii[owner[k]] = std::max(radii[owner[k]], mju_norm3(p) + m->geom_rbound[g]);
-  }
-  return radii;
-}
-
 // Safety events (safety_events.hpp), checked every step; with [run] stop_on, an event of a
 // listed kind ends the run (the exception becomes the run's error: exit 3).
 class SafetyRecorder final : public Recorder {
@@ -257,6 +226,37 @@ class SafetyRecorder final : public Recorder {
 };
 
 }  // namespace
+
+// Each vehicle's radius about its body's origin that holds every geom of its subtree
+// (bounding spheres, geom_rbound), from the model's rest frames. One pass: bodies are in
+// depth-first order, so a parent's frame (relative to its vehicle) is known before its
+// children's.
+std::vector<double> VehicleRadii(const Simulation& sim) {
+  const mjModel* m = sim.model();
+  std::vector<int> owner(m->nbody, -1);
+  std::vector<std::array<mjtNum, 3>> pos(m->nbody, {0, 0, 0});
+  std::vector<std::array<mjtNum, 4>> quat(m->nbody, {1, 0, 0, 0});
+  for (int v = 0; v < sim.n_vehicles(); ++v) owner[sim.binding(v).body] = v;
+  for (int k = 1; k < m->nbody; ++k) {
+    const int parent = m->body_parentid[k];
+    if (owner[k] >= 0 || owner[parent] < 0) continue;  // a vehicle's own body, or not in one
+    owner[k] = owner[parent];
+    mjtNum offset[3];
+    mju_rotVecQuat(offset, m->body_pos + 3 * k, quat[parent].data());
+    for (int a = 0; a < 3; ++a) pos[k][a] = pos[parent][a] + offset[a];
+    mju_mulQuat(quat[k].data(), quat[parent].data(), m->body_quat + 4 * k);
+  }
+  std::vector<double> radii(sim.n_vehicles(), 0.0);
+  for (int g = 0; g < m->ngeom; ++g) {
+    const int k = m->geom_bodyid[g];
+    if (owner[k] < 0) continue;
+    mjtNum p[3];
+    mju_rotVecQuat(p, m->geom_pos + 3 * g, quat[k].data());
+    for (int a = 0; a < 3; ++a) p[a] += pos[k][a];
+    radii[owner[k]] = std::max(radii[owner[k]], mju_norm3(p) + m->geom_rbound[g]);
+  }
+  return radii;
+}
 
 std::vector<std::unique_ptr<Recorder>> MakeRecorders(const Simulation& sim, const RunDirectory* dir,
                                                      const RecorderOptions& options) {
