@@ -143,6 +143,50 @@ TEST_F(ReplayTest, MarksSafetyEventsFromTheSummary) {
   std::printf("red pixels: before %d, after %d, without the event %d\n", before, after, without);
 }
 
+// Red pixels of the safety-event marks (nothing else in the picture is that red).
+int EventRed(const std::string& path) {
+  int w = 0, h = 0;
+  const auto rgb = ReadPng(path, &w, &h);
+  int n = 0;
+  for (size_t p = 0; p + 2 < rgb.size(); p += 3) {
+    n += rgb[p] > 180 && rgb[p + 1] < 60 && rgb[p + 2] < 60;
+  }
+  return n;
+}
+
+// `run` marks its own safety events in its snapshots: a region the followers leave at once
+// (left_region) puts red marks into the 2 s snapshot; the same run without the region has none.
+// Replay, reading the events from summary.json, marks them too.
+TEST(RunSnapshotEventsTest, SnapshotsAfterAnEventMarkIt) {
+  const std::string root = mjf::testing::TempDir("snap_events");
+  auto run = [&](const std::string& name, std::vector<std::string> sets) {
+    sets.insert(sets.end(),
+                {"vehicles.model=\"pointmass\"", "attitude={plugin=\"pointmass_direct\"}",
+                 "run.duration=2.0", "run.metric_window=[1.0, 2.0]", "render.snapshots=[2.0]",
+                 "render.width=640", "render.height=360"});
+    const ExperimentConfig c =
+        LoadExperiment(std::string(MJF_SOURCE_DIR) + "/experiments/exp2.toml", sets);
+    RunOptions o;
+    o.out_dir = root + "/" + name;
+    const RunResult r = RunExperiment(c, o);
+    EXPECT_TRUE(r.complete) << r.error;
+    return o.out_dir;
+  };
+  const std::string plain = run("plain", {});
+  const std::string left = run("left", {"safety.region=[[15.0, 25.0], [-5.0, 5.0], [0.0, 50.0]]"});
+  const Recording rec = LoadRecording(left);
+  ASSERT_FALSE(rec.events.empty()) << "the region did not produce an event";
+  EXPECT_EQ(rec.events[0].kind, "left_region");
+  const int without = EventRed(plain + "/snapshots/t002.00.png");
+  const int with = EventRed(left + "/snapshots/t002.00.png");
+  std::printf("event red pixels: %d without, %d with %zu events\n", without, with,
+              rec.events.size());
+  EXPECT_LT(without, 5);
+  EXPECT_GT(with, 30);
+  RenderReplay(rec, {2.0}, left + "/replay", {});
+  EXPECT_GT(EventRed(left + "/replay/replay_t002.00.png"), 30);
+}
+
 TEST(ParseVideoSizeTest, AcceptsWxHWithinBoundsAndRefusesTheRest) {
   EXPECT_EQ(ParseVideoSize("1920x1080"), (std::array<int, 2>{1920, 1080}));
   EXPECT_EQ(ParseVideoSize("7680x4320"), (std::array<int, 2>{7680, 4320}));
