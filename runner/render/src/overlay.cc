@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "mjformation/render.hpp"
 
@@ -105,6 +107,41 @@ class GeomAppender {
   int skipped_ = 0;
 };
 
+// Safety events: a red sphere where each happened, with its label beside it (MuJoCo draws the
+// label of any scene geom that has one). Marks closer than eight radii (the radius grows with
+// the camera distance: about a label's height on screen, a third of its width) to an earlier
+// labelled one keep their sphere but not their label, which would be drawn over the other:
+// that label says "(+K here)" instead.
+void AddEventMarks(GeomAppender* r, const std::vector<EventMark>& events, double radius) {
+  std::vector<std::pair<mjvGeom*, int>> labelled;  // geom, marks merged into it
+  for (const EventMark& e : events) {
+    mjvGeom* g = r->NewGeom(kEventColour.data());
+    if (!g) continue;
+    for (int k = 0; k < 3; ++k) {
+      g->size[k] = static_cast<float>(radius);
+      g->pos[k] = static_cast<float>(e.pos[k]);
+    }
+    g->emission = 0.6f;
+    auto near = std::find_if(labelled.begin(), labelled.end(), [&](const auto& l) {
+      double d2 = 0;
+      for (int k = 0; k < 3; ++k)
+        d2 += (l.first->pos[k] - g->pos[k]) * (l.first->pos[k] - g->pos[k]);
+      return d2 < 64 * radius * radius;
+    });
+    if (near != labelled.end()) {
+      ++near->second;
+      continue;
+    }
+    std::snprintf(g->label, sizeof(g->label), "%s", e.label.c_str());
+    labelled.push_back({g, 0});
+  }
+  for (const auto& [g, more] : labelled) {
+    if (more == 0) continue;
+    const std::string text = std::string(g->label) + " (+" + std::to_string(more) + " here)";
+    std::snprintf(g->label, sizeof(g->label), "%s", text.c_str());
+  }
+}
+
 }  // namespace
 
 std::array<float, 4> VehicleColour(int vehicle) {
@@ -192,18 +229,7 @@ int AddOverlayGeoms(mjvScene* scene, const Overlay& o, double cam_distance, int 
       g->pos[2] -= halo ? 0.17f : 0.15f;  // just under the rotors, the halo under the disc
     }
   }
-  // Safety events: a red sphere where it happened, its label beside it (MuJoCo draws the label
-  // of any scene geom that has one).
-  for (const EventMark& e : o.events) {
-    mjvGeom* g = r.NewGeom(kEventColour.data());
-    if (!g) continue;
-    for (int k = 0; k < 3; ++k) {
-      g->size[k] = static_cast<float>(2.0 * sphere);  // larger than a slot: seen first
-      g->pos[k] = static_cast<float>(e.pos[k]);
-    }
-    g->emission = 0.6f;
-    std::snprintf(g->label, sizeof(g->label), "%s", e.label.c_str());
-  }
+  AddEventMarks(&r, o.events, 2.0 * sphere);  // larger than a slot: seen first
   const float ring_rgba[4] = {1.0f, 1.0f, 1.0f, 0.7f};
   for (size_t k = 1; k < o.ring_points.size(); ++k) {
     r.Line(o.ring_points[k - 1], o.ring_points[k], std::max(1.0, 0.75 * line_px), ring_rgba);
