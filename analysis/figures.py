@@ -27,6 +27,10 @@ def main(argv=None) -> int:
         return 1
     if not run.complete:
         print(f"figures.py: warning: {run.name} is {run.status}: {run.error}", file=sys.stderr)
+    marked = plots.marked_events(run)
+    if run.event_count:
+        print(f"figures.py: {run.name}: {run.event_count} safety events; {len(marked)} marked "
+              "in red in the figures (flips, impacts, collisions, region exits)", file=sys.stderr)
     out = args.out or args.run_dir / "figures"
     for key, path in plots.run_figures(run, out).items():
         print(f"{key}: {path}")

@@ -187,6 +187,18 @@ class Run:
         return sorted(found)
 
     @property
+    def events(self) -> list[dict]:
+        """summary.json events.list (safety events: kind, time_s, vehicles, value, what), in
+        the order recorded; [] for an event-free run."""
+        ev = (self.summary or {}).get("events") or {}
+        return [e for e in (ev.get("list") or []) if isinstance(e, dict)]
+
+    @property
+    def event_count(self) -> int:
+        ev = (self.summary or {}).get("events") or {}
+        return int(ev.get("count", len(self.events)) or 0)
+
+    @property
     def video(self) -> Path | None:
         p = self.path / "video.mp4"
         return p if p.is_file() else None
@@ -328,3 +340,26 @@ def window_label(window: tuple[float, float] | None) -> str:
     if window is None:
         return "the metric window"
     return f"[{window[0]:g}, {window[1]:g}] s"
+
+
+def vehicle_name(v: int) -> str:
+    return "leader" if v == 0 else f"follower {v}"
+
+
+def short_event(e: dict) -> str:
+    """'F6 flip 34.19 s': the label of an event mark (as the snapshots write it)."""
+    who = "-".join("L" if v == 0 else f"F{v}" for v in e.get("vehicles") or [])
+    return f"{who} {e.get('kind', '?')} {float(e.get('time_s', float('nan'))):.2f} s"
+
+
+def describe_event(e: dict) -> str:
+    """'follower 6 flipped at 34.19 s (tilt 95.2 deg)': the runner's own words (summary.json
+    'what'), else composed from kind, vehicles and time."""
+    if e.get("what"):
+        return str(e["what"])
+    who = " and ".join(vehicle_name(v) for v in e.get("vehicles") or [])
+    return f"{who}: {e.get('kind', '?')} at {float(e.get('time_s', float('nan'))):.2f} s"
+
+
+# Kinds marked in figures and snapshots: all but near misses (many, and no damage).
+MARKED_EVENT_KINDS = ("flip", "ground_impact", "collision", "left_region")

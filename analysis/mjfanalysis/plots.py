@@ -18,7 +18,7 @@ import numpy as np  # noqa: E402
 from matplotlib.patches import Circle  # noqa: E402
 
 from . import metrics as M  # noqa: E402
-from .io import Run  # noqa: E402
+from .io import MARKED_EVENT_KINDS, Run, short_event  # noqa: E402
 
 DPI = 110
 STYLE = {
@@ -45,6 +45,54 @@ def follower_color(i: int):
     return plt.get_cmap("tab10")((i - 1) % 10)
 
 
+# Safety events: pure red, used for nothing else in the figures (tests look for it).
+EVENT_COLOR = (1.0, 0.0, 0.0)
+MAX_EVENT_MARKS = 10  # the first ones; more would hide the curves
+
+
+def marked_events(run: Run) -> list[dict]:
+    """The safety events drawn in the figures: flips, impacts, collisions, region exits."""
+    out = [e for e in run.events if e.get("kind") in MARKED_EVENT_KINDS
+           and isinstance(e.get("time_s"), (int, float))]
+    return out[:MAX_EVENT_MARKS]
+
+
+def _mark_events_in_time(ax, run: Run, legend=True) -> int:
+    """A labelled vertical red line at each marked event's time; returns how many."""
+    events = marked_events(run)
+    for k, e in enumerate(events):
+        t = float(e["time_s"])
+        ax.axvline(t, color=EVENT_COLOR, lw=1.3, ls="-", zorder=5,
+                   label="safety event" if legend and k == 0 else None)
+        ax.annotate(short_event(e), (t, 1.0), xycoords=("data", "axes fraction"),
+                    xytext=(2, -2 - 10 * (k % 4)), textcoords="offset points", ha="left",
+                    va="top", fontsize=7, color=EVENT_COLOR, zorder=6,
+                    bbox={"facecolor": "white", "alpha": 0.8, "lw": 0, "pad": 0.5})
+    return len(events)
+
+
+def _mark_events_in_plane(ax, run: Run) -> int:
+    """A red cross where each marked event happened (the vehicles' recorded positions at the
+    row nearest its time), labelled; returns how many."""
+    ts = run.timeseries
+    events = marked_events(run)
+    if ts is None:
+        return 0
+    t = ts["t"]
+    for k, e in enumerate(events):
+        row = int(np.argmin(np.abs(t - float(e["time_s"]))))
+        vs = [v for v in e.get("vehicles") or [] if f"uav{v}_px" in ts]
+        if not vs:
+            continue
+        x = float(np.mean([ts[f"uav{v}_px"][row] for v in vs]))
+        y = float(np.mean([ts[f"uav{v}_py"][row] for v in vs]))
+        ax.plot(x, y, "X", ms=11, color=EVENT_COLOR, mec="white", mew=0.8, zorder=6,
+                label="safety event" if k == 0 else None)
+        ax.annotate(short_event(e), (x, y), textcoords="offset points", xytext=(6, 6),
+                    fontsize=7, color=EVENT_COLOR, zorder=6)
+    return len(events)
+
+
 def _save(fig, out_path) -> Path:
     out_path = Path(out_path)
     out_path.parent.mkdir(parents=True, exist_ok=True)
@@ -60,6 +108,9 @@ def _title(run: Run, what: str, fig_index: int) -> str:
     if exp:
         head = f"Exp. {exp}, {head}"
     tail = "" if run.complete else f"  — {run.status.upper()}"
+    if run.event_count:
+        n = run.event_count
+        tail += f"  — {n} SAFETY EVENT{'S' if n > 1 else ''}"
     return f"{head}{tail}\n{what}{ref}"
 
 
@@ -103,6 +154,7 @@ def fig_trajectories(run: Run, out_path) -> Path:
                     label="leader" if leader else f"follower {i}", zorder=3 if leader else 2)
             ax.plot(x[0], y[0], "o", ms=7, mfc="white", mec=c, mew=1.5, zorder=4)
             ax.plot(x[-1], y[-1], "s", ms=7, color=c, zorder=4)
+        _mark_events_in_plane(ax, run)
         ax.plot([], [], "o", mfc="white", mec="gray", label=f"start, t = {t[0]:g} s")
         ax.plot([], [], "s", color="gray", label=f"end, t = {t[-1]:g} s")
         ax.set_aspect("equal", adjustable="datalim")
@@ -185,6 +237,7 @@ def fig_pitch_roll(run: Run, out_path, follower: int = 1) -> Path:
         fig, ax = _new()
         ax.plot(t, _angles_deg(ts, follower, "pitch"), lw=1.0, label="pitch θ")
         ax.plot(t, _angles_deg(ts, follower, "roll"), lw=1.0, label="roll φ")
+        _mark_events_in_time(ax, run)
         ax.set_xlabel("t (s)")
         ax.set_ylabel("angle (deg)")
         ax.set_title(_title(run, what, 2), fontsize=9)
@@ -202,6 +255,7 @@ def fig_yaw(run: Run, out_path, follower: int = 1) -> Path:
     with plt.rc_context(STYLE):
         fig, ax = _new()
         ax.plot(t, _angles_deg(ts, follower, "yaw"), lw=1.0, color="C2", label="yaw ψ")
+        _mark_events_in_time(ax, run)
         ax.set_xlabel("t (s)")
         ax.set_ylabel("angle (deg)")
         ax.set_title(_title(run, what, 3), fontsize=9)
@@ -236,6 +290,7 @@ def fig_sliding(run: Run, out_path, follower: int = 1) -> Path:
             ax.axhspan(-delta, delta, color="gray", alpha=0.2,
                        label=f"quasi-sliding band ±Δ, Δ = {delta:.3g}")
         ax.axhline(0.0, color="black", lw=0.6)
+        _mark_events_in_time(ax, run)
         ax.set_xlabel("t (s)")
         # s = K e = k1 e_p + k2 e_v: with k1 in 1/s it has the units of a velocity.
         ax.set_ylabel("s (m/s)")
@@ -284,6 +339,7 @@ def fig_sigma_f(run: Run, out_path) -> Path:
             if math.isfinite(paper):
                 a.hlines(paper, w[0], w[1], colors="gray", lw=1.2, ls="--",
                          label=f"paper, Table 1: {paper:.4f}" if k == 0 else None)
+        _mark_events_in_time(ax, run)
         top = np.nanmax(np.append(s[np.isfinite(s)], paper if math.isfinite(paper) else 0.0))
         ax.set_ylim(0, 1.12 * top if top > 0 else 1.0)
         if zoom:

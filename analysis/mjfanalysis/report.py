@@ -16,7 +16,7 @@ from . import leaders
 from . import metrics as M
 from . import network
 from . import plots
-from .io import Run, find_runs
+from .io import MARKED_EVENT_KINDS, Run, describe_event, find_runs
 
 # The runs scripts/reproduce.sh writes for the paper's three experiments (quadrotor model).
 EXPECTED_RUNS = ("exp1_printed", "exp1_switching", "exp1_exponential", "exp2", "exp3")
@@ -50,8 +50,15 @@ class Row:
         return M.PAPER_SIGMA_F.get(self.exp, float("nan"))
 
     @property
+    def crashed(self) -> bool:
+        """A vehicle flipped, hit the ground, collided or left the region (summary.json
+        events): the run's σ_f is not the protocol's result."""
+        return any(e.get("kind") in MARKED_EVENT_KINDS for e in self.run.events)
+
+    @property
     def ratio(self) -> float:
-        if not self.run.complete or not math.isfinite(self.sigma) or not math.isfinite(self.paper):
+        if (not self.run.complete or self.crashed or not math.isfinite(self.sigma)
+                or not math.isfinite(self.paper)):
             return float("nan")
         return self.sigma / self.paper
 
@@ -189,7 +196,8 @@ def _by_model(rows):
 
 def discussion(rows: list[Row]) -> list[str]:
     lines = []
-    done = [r for r in rows if r.run.complete]
+    # A run in which a vehicle crashed is no evidence for or against the protocol.
+    done = [r for r in rows if r.run.complete and not r.crashed]
     achieved = [r for r in done if r.formation_achieved]
     missed = [r for r in done if not r.formation_achieved]
     not_done = [r for r in rows if not r.run.complete]
@@ -319,6 +327,29 @@ def transient_lines(rows: list[Row]) -> list[str]:
     return L
 
 
+EVENT_MARK = "†"
+
+
+def event_notes(rows: list[Row]) -> list[str]:
+    """Footnotes of Table 1: per run with safety events, how many, of which kinds, the first
+    severe one in the runner's words, and whether its σ_f may be read as a result."""
+    lines = []
+    for k, r in enumerate(rows, 1):
+        events = r.run.events
+        severe = [e for e in events if e.get("kind") in MARKED_EVENT_KINDS]
+        first = (severe or events or [None])[0]
+        by_kind = ((r.run.summary or {}).get("events") or {}).get("by_kind") or {}
+        kinds = ", ".join(f"{kind} {n}" for kind, n in by_kind.items()) or "?"
+        n = r.run.event_count
+        verdict = ("its σ_f is not a result (in parentheses, no ratio)" if r.crashed
+                   else "near misses only: σ_f stands, read it with care")
+        lines.append(f"{EVENT_MARK}{k} `{r.run.name}`: {n} safety event{'s' if n != 1 else ''} "
+                     f"({kinds})" + (f"; {_esc(describe_event(first))}" if first else "")
+                     + f"; {verdict}.")
+        lines.append("")
+    return lines
+
+
 def _copy(src: Path, dst: Path) -> Path:
     dst.parent.mkdir(parents=True, exist_ok=True)
     shutil.copyfile(src, dst)
@@ -386,12 +417,18 @@ def write_report(results_dir, out_dir) -> Path:
     L.append("| Run | Paper exp. | Vehicle model | Protocol | Ours: mean σ_f | Paper | "
              "Ours / paper | Δ | Error bound | Max final slot error (m) | Complete |")
     L.append("|---|---|---|---|---|---|---|---|---|---|---|")
+    notes = []  # footnotes of the runs with safety events
     for r in rows:
         ours = fmt(r.sigma)
         if not r.run.complete:
             ours = f"({ours}) {r.run.status}" if ours != "—" else f"— ({r.run.status})"
+        elif r.crashed:
+            ours = f"({ours})"
         elif not r.window_covered:
             ours += " (window not covered)"
+        if r.run.event_count:
+            notes.append(r)
+            ours += f" {EVENT_MARK}{len(notes)}"
         L.append("| " + " | ".join([
             f"`{r.run.name}`",
             str(r.exp) if r.exp else "—",
@@ -407,6 +444,7 @@ def write_report(results_dir, out_dir) -> Path:
             _status_cell(r.run),
         ]) + " |")
     L.append("")
+    L.extend(event_notes(notes))
     L.append("Paper protocols: " + "; ".join(f"Exp. {k}: {v}" for k, v in
                                               sorted(M.PAPER_PROTOCOL.items())) + ".")
     L.append("")
@@ -496,6 +534,14 @@ def write_report(results_dir, out_dir) -> Path:
         if not run.complete:
             L.append(f"> **{run.status.upper()}** — not a result. {_esc(run.error or '')} "
                      f"(recorded up to t = {fmt(r.t_end, 2)} s)")
+            L.append("")
+        if run.event_count:
+            shown = run.events[:5]
+            more = run.event_count - len(shown)
+            L.append(f"> **{run.event_count} SAFETY EVENT{'S' if run.event_count > 1 else ''}**"
+                     + (" — σ_f is not a result" if r.crashed else "") + ": "
+                     + "; ".join(_esc(describe_event(e)) for e in shown)
+                     + (f"; {more} more in summary.json" if more > 0 else "") + ".")
             L.append("")
         L.append(f"- experiment: {_esc(run.label)}; paper experiment: {r.exp or '—'}; "
                  f"vehicle model: {_esc(run.vehicle_model)}")

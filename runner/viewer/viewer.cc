@@ -27,6 +27,8 @@
 #include "mjformation/config/config.hpp"
 #include "mjformation/record/frame_view.hpp"
 #include "mjformation/record/metrics.hpp"
+#include "mjformation/record/recorders.hpp"
+#include "mjformation/record/safety_events.hpp"
 #include "mjformation/render.hpp"
 #include "mjformation/sim/simulation.hpp"
 
@@ -56,6 +58,8 @@ class Source {
   virtual double ring_radius() const = 0;
   virtual const std::string& name() const = 0;
   virtual std::string error() const { return ""; }
+  // Safety events to mark (a replay's, from summary.json; the live view has none).
+  virtual std::vector<render::EventMark> events() const { return {}; }
 };
 
 // A live simulation: ComputeControls() / Integrate(), exactly the loop of `run`.
@@ -90,6 +94,8 @@ class LiveSource : public Source {
     sim_.reset();  // plugins and model of the old run go before the new ones are made
     sim_ = std::make_unique<Simulation>(config_);
     metrics_ = std::make_unique<OnlineMetrics>(*sim_);
+    safety_ = std::make_unique<SafetyMonitor>(config_.safety, VehicleRadii(*sim_));
+    marks_.clear();
     trails_ = TrailBuffer(sim_->n_vehicles(), config_.render.trail_seconds, kTrailPeriod);
     slot_buffer_.assign(2 * static_cast<size_t>(sim_->n_vehicles()), 0.0);
     done_ = false;
@@ -107,6 +113,7 @@ class LiveSource : public Source {
   }
   const std::string& name() const override { return config_.name; }
   std::string error() const override { return error_; }
+  std::vector<render::EventMark> events() const override { return marks_; }
 
  private:
   // Sensors and plugins for the current state (the controls the next Integrate applies), then
@@ -122,6 +129,18 @@ class LiveSource : public Source {
       positions_[i] = {p[0], p[1], p[2]};
       slots_[i] = {i == 0 ? NAN : slot_buffer_[2 * i], i == 0 ? NAN : slot_buffer_[2 * i + 1]};
     }
+    // Safety events as `run` sees them (recorders.cc), marked where they happened.
+    const size_t fresh = safety_->Check(sim_->time(), sim_->states());
+    const auto& events = safety_->events();
+    for (size_t k = events.size() - fresh; k < events.size(); ++k) {
+      const SafetyEvent& e = events[k];
+      if (marks_.size() >= kMaxEventMarks || !MarkedEventKind(e.kind)) continue;
+      Vec3 at = {0, 0, 0};
+      for (int v : e.vehicles) {
+        for (int a = 0; a < 3; ++a) at[a] += positions_[v][a] / e.vehicles.size();
+      }
+      marks_.push_back(MakeEventMark(e.kind, e.time_s, e.vehicles, at));
+    }
     const int64_t trail_every = std::max<int64_t>(1, std::llround(kTrailPeriod / config_.timestep));
     if (sim_->step_index() % trail_every == 0) trails_.Add(positions_);
   }
@@ -129,6 +148,8 @@ class LiveSource : public Source {
   ExperimentConfig config_;
   std::unique_ptr<Simulation> sim_;
   std::unique_ptr<OnlineMetrics> metrics_;
+  std::unique_ptr<SafetyMonitor> safety_;
+  std::vector<render::EventMark> marks_;
   TrailBuffer trails_{0, 1, 1};
   std::vector<double> slot_buffer_;
   std::vector<Vec3> positions_;
@@ -167,6 +188,9 @@ class ReplaySource : public Source {
   double altitude() const override { return rec_.altitude; }
   double ring_radius() const override { return rec_.ring_radius; }
   const std::string& name() const override { return rec_.name; }
+  std::vector<render::EventMark> events() const override {
+    return ReplayOverlay(rec_, scene_.model(), trails_, frame_).events;
+  }
 
  private:
   void Show(int frame) {
@@ -192,8 +216,9 @@ struct Options {
 class Viewer {
  public:
   Viewer(Source* source, const Options& options) : src_(source), opt_(options) {
-    window_ = glfwCreateWindow(opt_.width, opt_.height, ("mjformation: " + src_->name()).c_str(),
-                               nullptr, nullptr);
+    // The README's name for the window, so that a user (and xdotool) finds it by that name.
+    window_ = glfwCreateWindow(opt_.width, opt_.height,
+                               ("mjformation-view: " + src_->name()).c_str(), nullptr, nullptr);
     if (!window_) throw std::runtime_error("cannot create a window (GLFW/OpenGL)");
     glfwMakeContextCurrent(window_);
     glfwSwapInterval(1);
@@ -279,9 +304,17 @@ class Viewer {
       for (int k = 0; k < 3; ++k) cam_.lookat[k] = target[k];
     }
     mjv_updateScene(src_->model(), src_->data(), &vopt_, &pert_, &cam_, mjCAT_ALL, &scn_);
-    const render::Overlay overlay =
+    render::Overlay overlay =
         FrameOverlay(src_->trails(), src_->positions(), src_->slots(), src_->altitude(),
                      src_->ring_radius(), FrameLabel(src_->name(), src_->time()));
+    // A reset makes a new model: the vehicles' bodies are looked up again then only.
+    if (bodies_model_ != src_->model()) {
+      bodies_model_ = src_->model();
+      bodies_ = VehicleBodies(src_->model(), static_cast<int>(src_->positions().size()));
+    }
+    overlay.vehicle_bodies = bodies_;
+    overlay.events = src_->events();
+    render::TintVehicleGeoms(src_->model(), &scn_, overlay.vehicle_bodies);
     render::AddOverlayGeoms(&scn_, overlay, cam_.distance, h);
     scn_.flags[mjRND_SHADOW] = src_->render().shadows ? 1 : 0;
     mjr_render(viewport, &scn_, &con_);
@@ -295,6 +328,7 @@ class Viewer {
         std::isnan(src_->sigma_f()) ? std::string("n/a") : fmt::format("{:.4f} m", src_->sigma_f()),
         follow_ ? "following (c: free)" : "free (c: follow)");
     mjr_overlay(mjFONT_NORMAL, mjGRID_TOPLEFT, viewport, title.c_str(), values.c_str(), &con_);
+    render::DrawLegend(viewport, overlay.legend_vehicles, &con_);
     mjr_overlay(mjFONT_NORMAL, mjGRID_BOTTOMLEFT, viewport,
                 "space\nright\n+ / -\nbackspace\nc\nesc",
                 "pause / run\none step (paused)\nspeed\nreset\ncamera\nquit", &con_);
@@ -425,6 +459,8 @@ class Viewer {
   mjvPerturb pert_;
   mjvScene scn_;
   mjrContext con_;
+  const mjModel* bodies_model_ = nullptr;  // the model bodies_ was looked up in
+  std::vector<int> bodies_;                // each vehicle's root body, for its colour
   bool paused_ = false, follow_ = true, shot_taken_ = false;
   bool left_ = false, right_ = false;
   double x_ = 0, y_ = 0;

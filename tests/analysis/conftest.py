@@ -69,7 +69,8 @@ phase_step = 1.0471975511965976
 
 def make_run(root, name, *, exp=1, a=0.0, tau=5.0, c=0.1, complete=True, t_end=40.0,
              rate=20.0, sliding=True, snapshots=True, video=False, summary=True,
-             model="quadrotor", plugin=None, delta=None, error_bound=None, network=None):
+             model="quadrotor", plugin=None, delta=None, error_bound=None, network=None,
+             events=None):
     """Writes a run directory root/name; returns (path, t, sigma_f(t))."""
     d = Path(root) / name
     (d / "snapshots").mkdir(parents=True)
@@ -151,6 +152,14 @@ def make_run(root, name, *, exp=1, a=0.0, tau=5.0, c=0.1, complete=True, t_end=4
         }
         if network is not None:
             s["network"] = network
+        if events:  # [(kind, time_s, vehicles)]: summary.json "events" as the runner writes it
+            by_kind = {}
+            for kind, _, _ in events:
+                by_kind[kind] = by_kind.get(kind, 0) + 1
+            s["events"] = {"count": len(events), "by_kind": by_kind, "list": [
+                {"kind": kind, "time_s": ts_, "vehicles": list(vs), "value": 95.0,
+                 "what": f"follower {vs[0]} {kind} at {ts_:.2f} s (test)"}
+                for kind, ts_, vs in events]}
         (d / "summary.json").write_text(json.dumps(s, indent=2))
     return d, t, sigma
 

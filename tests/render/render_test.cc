@@ -7,6 +7,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -232,6 +234,222 @@ TEST(OffscreenRenderer, OverlaysChangePixels) {
   // Rendering without the overlay again gives the plain image back (no state left behind).
   const auto& again = renderer.Render(d.get(), FollowCamera(), {}, kBoxA);
   EXPECT_EQ(again, plain);
+}
+
+// Four vehicles as the runner composes them: a root body with geoms and a child body (a rotor)
+// of its own, plus an invisible collision hull (alpha 0) on vehicle 1; all dark grey like the
+// stock quadrotor, so that nothing tells them apart before the render-time colouring.
+constexpr char kVehiclesXml[] = R"(
+<mujoco model="vehicles">
+  <visual><global offwidth="640" offheight="480"/></visual>
+  <worldbody>
+    <light pos="0 0 10" dir="0 0 -1" directional="true"/>
+    <geom name="floor" type="plane" size="20 20 0.1" rgba="0.5 0.5 0.5 1"/>
+    <body name="uav0_vehicle" pos="0 0 1"><freejoint/>
+      <geom type="box" size="0.3 0.3 0.05" rgba="0.15 0.15 0.17 1"/>
+      <body name="uav0_rotor" pos="0.3 0 0.05"><geom type="cylinder" size="0.1 0.01" rgba="0.9 0.15 0.1 0.75"/></body>
+    </body>
+    <body name="uav1_vehicle" pos="2 0 1"><freejoint/>
+      <geom type="box" size="0.3 0.3 0.05" rgba="0.15 0.15 0.17 1"/>
+      <geom type="box" size="0.3 0.3 0.05" rgba="0 0 0 0"/>
+      <body name="uav1_rotor" pos="0.3 0 0.05"><geom type="cylinder" size="0.1 0.01" rgba="0.9 0.15 0.1 0.75"/></body>
+    </body>
+    <body name="uav2_vehicle" pos="-2 0 1"><freejoint/>
+      <geom type="box" size="0.3 0.3 0.05" rgba="0.15 0.15 0.17 1"/>
+    </body>
+    <body name="uav3_vehicle" pos="0 2 1"><freejoint/>
+      <geom type="box" size="0.3 0.3 0.05" rgba="0.15 0.15 0.17 1"/>
+    </body>
+  </worldbody>
+</mujoco>
+)";
+
+std::vector<int> VehicleBodyIds(const mjModel* m) {
+  std::vector<int> ids;
+  for (int i = 0; i < 4; ++i) {
+    ids.push_back(mj_name2id(m, mjOBJ_BODY, ("uav" + std::to_string(i) + "_vehicle").c_str()));
+  }
+  return ids;
+}
+
+// The vehicle (index into bodies) owning scene geom g, or -1.
+int OwnerOf(const mjModel* m, const mjvGeom& g, const std::vector<int>& bodies) {
+  if (g.objtype != mjOBJ_GEOM) return -1;
+  for (int b = m->geom_bodyid[g.objid]; b > 0; b = m->body_parentid[b]) {
+    for (size_t v = 0; v < bodies.size(); ++v) {
+      if (bodies[v] == b) return static_cast<int>(v);
+    }
+  }
+  return -1;
+}
+
+TEST(VehicleColours, EveryVehicleItsOwnColourInTheSceneGeomsLeaderDistinct) {
+  auto m = LoadModel(kVehiclesXml);
+  auto d = MakeData(m.get());
+  mjvScene scn;
+  mjvOption opt;
+  mjvCamera cam;
+  mjvPerturb pert;
+  mjv_defaultScene(&scn);
+  mjv_defaultOption(&opt);
+  mjv_defaultCamera(&cam);
+  mjv_defaultPerturb(&pert);
+  mjv_makeScene(m.get(), &scn, 1000);
+  mjv_updateScene(m.get(), d.get(), &opt, &pert, &cam, mjCAT_ALL, &scn);
+  const std::vector<int> bodies = VehicleBodyIds(m.get());
+  // Before: all vehicles' hulls share one colour (the control: the test can fail).
+  std::vector<std::array<float, 3>> before;
+  for (int k = 0; k < scn.ngeom; ++k) {
+    if (OwnerOf(m.get(), scn.geoms[k], bodies) >= 0 && scn.geoms[k].rgba[3] == 1.0f) {
+      before.push_back({scn.geoms[k].rgba[0], scn.geoms[k].rgba[1], scn.geoms[k].rgba[2]});
+    }
+  }
+  ASSERT_EQ(before.size(), 4u);
+  EXPECT_EQ(before[0], before[1]);
+
+  const int tinted = TintVehicleGeoms(m.get(), &scn, bodies);
+  // Per vehicle, the one colour all its visible geoms (rotors in child bodies included) got.
+  std::vector<std::vector<std::array<float, 3>>> seen(4);
+  int floor_geoms = 0, invisible = 0;
+  for (int k = 0; k < scn.ngeom; ++k) {
+    const mjvGeom& g = scn.geoms[k];
+    const int v = OwnerOf(m.get(), g, bodies);
+    if (v < 0) {
+      floor_geoms += g.objtype == mjOBJ_GEOM;
+      EXPECT_FLOAT_EQ(g.rgba[0], 0.5f) << "a geom outside the vehicles was recoloured";
+      continue;
+    }
+    if (g.rgba[3] == 0.0f) {
+      ++invisible;  // the collision hull stays invisible
+      continue;
+    }
+    seen[v].push_back({g.rgba[0], g.rgba[1], g.rgba[2]});
+  }
+  EXPECT_EQ(floor_geoms, 1);
+  // MuJoCo leaves alpha-0 geoms out of the scene; any that is there stayed invisible above.
+  EXPECT_LE(invisible, 1);
+  EXPECT_EQ(tinted, 6);  // 4 hulls + 2 rotors
+  for (int v = 0; v < 4; ++v) {
+    ASSERT_FALSE(seen[v].empty()) << v;
+    for (const auto& c : seen[v]) EXPECT_EQ(c, seen[v][0]) << "vehicle " << v << " has two colours";
+  }
+  for (int a = 0; a < 4; ++a) {
+    for (int b = a + 1; b < 4; ++b) {
+      float diff = 0;
+      for (int k = 0; k < 3; ++k) diff = std::max(diff, std::fabs(seen[a][0][k] - seen[b][0][k]));
+      EXPECT_GT(diff, 0.1f) << "vehicles " << a << " and " << b << " look alike";
+    }
+  }
+  // The leader stands out: farther from every follower than the followers need to be from
+  // each other, and drawn brighter (emission).
+  for (int v = 1; v < 4; ++v) {
+    float diff = 0;
+    for (int k = 0; k < 3; ++k) diff += std::fabs(seen[0][0][k] - seen[v][0][k]);
+    EXPECT_GT(diff, 0.18f) << "the leader looks like follower " << v;
+  }
+  float leader_emission = -1, follower_emission = -1;
+  for (int k = 0; k < scn.ngeom; ++k) {
+    const int v = OwnerOf(m.get(), scn.geoms[k], bodies);
+    if (v == 0) leader_emission = scn.geoms[k].emission;
+    if (v > 0) follower_emission = std::max(follower_emission, scn.geoms[k].emission);
+  }
+  EXPECT_GT(leader_emission, follower_emission);
+  // Same hue as the palette (the geoms get a fixed fraction of it, for the scene's lights).
+  for (int v = 0; v < 4; ++v) {
+    const auto c = VehicleColour(v);
+    const float s = seen[v][0][0] / c[0];
+    for (int k = 1; k < 3; ++k) EXPECT_NEAR(seen[v][0][k], s * c[k], 1e-4) << v;
+  }
+  mjv_freeScene(&scn);
+}
+
+TEST(VehicleColours, PaletteDistinctForLargeSwarmsAndNeverTheEventRed) {
+  std::vector<std::array<float, 4>> colours;
+  for (int i = 0; i < 1001; ++i) colours.push_back(VehicleColour(i));
+  for (size_t a = 0; a < colours.size(); ++a) {
+    // Not the events' red (a red-dominant colour with little green and blue).
+    const auto& c = colours[a];
+    EXPECT_FALSE(c[0] > 0.8f && c[1] < 0.3f && c[2] < 0.3f) << "vehicle " << a << " is red";
+    for (size_t b = a + 1; b < colours.size(); ++b) {
+      EXPECT_NE(colours[a], colours[b]) << a << " and " << b;
+    }
+  }
+  // The fixed part (leader + 11 followers) is well separated, not only different.
+  for (int a = 0; a < 12; ++a) {
+    for (int b = a + 1; b < 12; ++b) {
+      float diff = 0;
+      for (int k = 0; k < 3; ++k) diff += std::fabs(colours[a][k] - colours[b][k]);
+      EXPECT_GT(diff, 0.3f) << a << " and " << b;
+    }
+  }
+  EXPECT_EQ(VehicleName(0), "leader");
+  EXPECT_EQ(VehicleName(3), "follower 3");
+}
+
+// The legend: in the top-right corner, a swatch of each vehicle's exact palette colour; without
+// it (legend_vehicles = 0) the corner shows none of them.
+TEST(VehicleColours, LegendSwatchesInTheTopRightCorner) {
+  auto m = LoadModel();
+  auto d = MakeData(m.get());
+  const int w = 1280, h = 720;
+  OffscreenRenderer renderer(m.get(), w, h, false);
+  Overlay o;
+  const std::vector<unsigned char> plain = renderer.Render(d.get(), FollowCamera(), o, kBoxA);
+  o.legend_vehicles = 7;
+  const std::vector<unsigned char> legend = renderer.Render(d.get(), FollowCamera(), o, kBoxA);
+  WritePng("/tmp/mjf_render_legend.png", legend.data(), w, h);
+  auto swatch_pixels = [&](const std::vector<unsigned char>& rgb, int vehicle) {
+    const auto c = VehicleColour(vehicle);
+    int n = 0;
+    for (int y = 0; y < h / 2; ++y) {
+      for (int x = w - 400; x < w; ++x) {
+        const unsigned char* p = &rgb[3 * (static_cast<size_t>(y) * w + x)];
+        bool match = true;
+        for (int k = 0; k < 3; ++k) match = match && std::abs(p[k] - std::lround(255 * c[k])) <= 2;
+        n += match;
+      }
+    }
+    return n;
+  };
+  for (int v = 0; v < 7; ++v) {
+    EXPECT_GT(swatch_pixels(legend, v), 100) << "no swatch for " << VehicleName(v);
+    EXPECT_LT(swatch_pixels(plain, v), 10) << VehicleName(v);
+  }
+  // The rest of the picture is as before: the legend is only in its corner.
+  int outside = 0;
+  for (int y = h / 2; y < h; ++y) {
+    for (int x = 0; x < w - 400; ++x) {
+      const size_t i = 3 * (static_cast<size_t>(y) * w + x);
+      outside += plain[i] != legend[i] || plain[i + 1] != legend[i + 1];
+    }
+  }
+  EXPECT_EQ(outside, 0);
+  // A large swarm: at most kLegendRows rows and a "... and K more" line, still in the corner.
+  o.legend_vehicles = 1001;
+  renderer.Render(d.get(), FollowCamera(), o, kBoxA);
+}
+
+// A safety event mark is red where the event happened; without marks, that place is not red.
+TEST(VehicleColours, EventMarkIsRedAtItsPlace) {
+  auto m = LoadModel();
+  auto d = MakeData(m.get());
+  const int w = 640, h = 480;
+  OffscreenRenderer renderer(m.get(), w, h, false);
+  CameraSpec top;
+  top.mode = "model";
+  top.model_camera = "top";
+  Overlay o;
+  const double x = -4, y = -3;  // beside the boxes, on the floor
+  const auto plain = renderer.Render(d.get(), top, o, nullptr);
+  o.events.push_back({{x, y, 0.3}, "F2 flip 3.00 s"});
+  const auto marked = renderer.Render(d.get(), top, o, nullptr);
+  auto pure_red = [&](const std::vector<unsigned char>& rgb) {
+    int n = 0;
+    for (size_t i = 0; i + 2 < rgb.size(); i += 3)
+      n += rgb[i] > 180 && rgb[i + 1] < 60 && rgb[i + 2] < 60;
+    return n;
+  };
+  EXPECT_GT(pure_red(marked), pure_red(plain) + 30);
 }
 
 TEST(OffscreenRenderer, OverlayBeyondCapacityIsSkippedNotACrash) {

@@ -167,6 +167,17 @@ for t in -5 1e9; do
   case="replay --snapshots $t"
   refused 1 "outside the recorded run [0, 1] s" -- replay rec --snapshots "$t" -o out
 done
+# replay --video-size WxH: usage errors (exit 2) naming the option and what is wrong.
+for spec in "0x720:the width must be in [1, 7680]" "-5x720:the width must be in [1, 7680]" \
+            "1280x0:the height must be in [1, 4320]" "abcx720:the width is not a number" \
+            "1280x7e2:the height is not a number" "7681x4320:the width must be in [1, 7680] (at most 7680x4320)" \
+            "1280x4321:the height must be in [1, 4320]" "1280:expected WIDTHxHEIGHT"; do
+  size=${spec%%:*} message=${spec#*:}
+  case="replay --video-size $size"
+  refused 2 "--video-size: '$size': $message" -- replay rec --video out/v.mp4 --video-size "$size"
+done
+case="replay --video-size without --video"
+refused 2 "--video-size requires --video" -- replay rec --video-size 640x360
 for args in "--size -100" "--bogus-flag" "--set" "--speed nan"; do
   case="view $args"
   # shellcheck disable=SC2086

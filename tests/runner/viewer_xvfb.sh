@@ -60,6 +60,13 @@ control = [vehicle_like(*pixel(np.array(p) + 3 * r)) for p in meta["positions"]]
 print("control, 3 m to the side:", control)
 assert sum(n >= 8 for n in control) <= 2, control
 print(f"screenshot t = {meta['time']:.2f} s: {len(found)} vehicles found where projected")
+# The legend, top right: a flat swatch per vehicle (leader, follower 1..N), each its own colour.
+corner = img[: h // 2, w - 320:].reshape(-1, 3)
+flat = corner[(corner.max(axis=1) - corner.min(axis=1)) > 100]
+colours, counts = np.unique(flat, axis=0, return_counts=True)
+swatches = colours[counts >= 150]
+print("legend swatches:", len(swatches), swatches.tolist())
+assert len(swatches) >= len(meta["positions"]), f"legend: {len(swatches)} swatches"
 PY
 
 # 2. With a display (a private Xvfb; -displayfd picks a free number).
@@ -75,7 +82,10 @@ viewer=$!
 for _ in $(seq 300); do [ -s "$shot.json" ] && break; sleep 0.2; done
 [ -s "$shot.json" ] || { cat "$work/view.log"; false; }
 # The key goes to the window through the X server, as a user's would.
-win=$(xdotool search --sync --name "mjformation: exp2" | head -1)
+win=$(xdotool search --sync --name "mjformation-view: exp2" | head -1)
+# The title the README gives: "mjformation-view: NAME".
+title=$(xdotool getwindowname "$win")
+[ "$title" = "mjformation-view: exp2" ] || { echo "window title '$title'"; false; }
 # Keys act: pause, two single steps of 1 ms, double speed, reset to t = 0, then quit.
 for key in space Right Right plus BackSpace; do
   xdotool key --window "$win" $key
@@ -111,7 +121,7 @@ PY
 # `mjformation replay RUN_DIR` opens the window (mjformation-view --replay) and closes on Escape.
 "$bin" replay "$work/run" > "$work/replay_cli.log" 2>&1 &
 replay=$!
-win=$(xdotool search --sync --name "mjformation: exp2" | head -1)
+win=$(xdotool search --sync --name "mjformation-view: exp2" | head -1)
 xdotool key --window "$win" Escape
 for _ in $(seq 100); do kill -0 $replay 2>/dev/null || break; sleep 0.1; done
 if kill -0 $replay 2>/dev/null; then kill $replay; echo "replay did not close on Escape"; false; fi
@@ -123,7 +133,7 @@ rshot="$work/replay.png"
 replay=$!
 for _ in $(seq 300); do [ -s "$rshot.json" ] && break; sleep 0.2; done
 [ -s "$rshot.json" ] || { cat "$work/replay.log"; false; }
-win=$(xdotool search --sync --name "mjformation: exp2" | head -1)
+win=$(xdotool search --sync --name "mjformation-view: exp2" | head -1)
 xdotool key --window "$win" Escape
 for _ in $(seq 100); do kill -0 $replay 2>/dev/null || break; sleep 0.1; done
 if kill -0 $replay 2>/dev/null; then kill $replay; echo "replay did not close on Escape"; false; fi

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -101,6 +102,24 @@ std::string RecordedName(const std::string& run_dir) {
   return run_dir.substr(run_dir.find_last_of('/') + 1);
 }
 
+// summary.json's safety events (none when absent or unreadable: the pictures then just lack
+// the marks; the numbers are read from timeseries.csv alone).
+std::vector<Recording::Event> RecordedEvents(const std::string& run_dir) {
+  std::vector<Recording::Event> out;
+  std::ifstream in(run_dir + "/summary.json");
+  const nlohmann::json s = nlohmann::json::parse(in, nullptr, false);
+  if (s.is_discarded() || !s.contains("events") || !s["events"].contains("list")) return out;
+  for (const auto& e : s["events"]["list"]) {
+    try {
+      out.push_back({e.at("kind").get<std::string>(), e.at("time_s").get<double>(),
+                     e.at("vehicles").get<std::vector<int>>()});
+    } catch (const nlohmann::json::exception&) {
+      continue;  // a malformed entry is not drawn
+    }
+  }
+  return out;
+}
+
 int ColumnOf(const std::vector<std::string>& header, const std::string& name) {
   for (size_t k = 0; k < header.size(); ++k) {
     if (header[k] == name) return static_cast<int>(k);
@@ -167,6 +186,7 @@ Recording LoadRecording(const std::string& run_dir) {
   r.dir = run_dir;
   ReadConfig(run_dir + "/config.toml", &r);
   r.name = RecordedName(run_dir);
+  r.events = RecordedEvents(run_dir);
 
   const std::string csv_path = run_dir + "/timeseries.csv";
   std::istringstream csv(ReadText(csv_path, "recorded states"));
@@ -277,6 +297,41 @@ void ReplayScene::Pose(int frame) {
   mj_camlight(model_, data_);
 }
 
+std::array<int, 2> ParseVideoSize(const std::string& text) {
+  const size_t x = text.find('x');
+  auto number = [&](const std::string& part, const char* what, int max) {
+    // Digits only: std::stoi would take "+5", " 5" and "5abc". A negative number is a number,
+    // out of range.
+    const bool negative = part.size() > 1 && part[0] == '-' &&
+                          part.find_first_not_of("0123456789", 1) == std::string::npos;
+    if (negative) {
+      throw std::invalid_argument(fmt::format("'{}': the {} must be in [1, {}] (at most {}x{})",
+                                              text, what, max, kMaxVideoWidth, kMaxVideoHeight));
+    }
+    if (part.empty() || part.size() > 6 ||
+        part.find_first_not_of("0123456789") != std::string::npos) {
+      throw std::invalid_argument("'" + text + "': the " + what +
+                                  " is not a number (expected WIDTHxHEIGHT, e.g. 1920x1080)");
+    }
+    const int v = std::stoi(part);
+    if (v <= 0 || v > max) {
+      throw std::invalid_argument(fmt::format("'{}': the {} must be in [1, {}] (at most {}x{})",
+                                              text, what, max, kMaxVideoWidth, kMaxVideoHeight));
+    }
+    return v;
+  };
+  if (x == std::string::npos) {
+    throw std::invalid_argument("'" + text + "': expected WIDTHxHEIGHT, e.g. 1920x1080");
+  }
+  return {number(text.substr(0, x), "width", kMaxVideoWidth),
+          number(text.substr(x + 1), "height", kMaxVideoHeight)};
+}
+
+void ReplayScene::AllowOffscreen(int width, int height) {
+  model_->vis.global.offwidth = std::max(model_->vis.global.offwidth, width);
+  model_->vis.global.offheight = std::max(model_->vis.global.offheight, height);
+}
+
 TrailBuffer TrailsAt(const Recording& rec, int frame) {
   TrailBuffer trails(rec.n_vehicles, rec.render.trail_seconds, kTrailPeriod);
   const double from = rec.t[frame] - rec.render.trail_seconds - kTrailPeriod;
@@ -289,6 +344,29 @@ TrailBuffer TrailsAt(const Recording& rec, int frame) {
     if (on_grid || sparse) trails.Add(rec.pos[k]);
   }
   return trails;
+}
+
+render::Overlay ReplayOverlay(const Recording& rec, const mjModel* model, const TrailBuffer& trails,
+                              int frame) {
+  render::Overlay o = FrameOverlay(trails, rec.pos[frame], rec.slot[frame], rec.altitude,
+                                   rec.ring_radius, FrameLabel(rec.name, rec.t[frame]));
+  o.vehicle_bodies = VehicleBodies(model, rec.n_vehicles);
+  for (const auto& e : rec.events) {
+    if (o.events.size() >= kMaxEventMarks) break;
+    if (e.time_s > rec.t[frame] + 1e-9 || !MarkedEventKind(e.kind)) continue;
+    const int at = rec.Frame(e.time_s);
+    Vec3 pos = {0, 0, 0};
+    bool known = !e.vehicles.empty();
+    for (int v : e.vehicles) {
+      if (v < 0 || v >= rec.n_vehicles) {
+        known = false;
+        break;
+      }
+      for (int k = 0; k < 3; ++k) pos[k] += rec.pos[at][v][k] / e.vehicles.size();
+    }
+    if (known) o.events.push_back(MakeEventMark(e.kind, e.time_s, e.vehicles, pos));
+  }
+  return o;
 }
 
 }  // namespace mjf::runner

@@ -7,6 +7,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -43,14 +45,49 @@ constexpr double kTrailPeriod = 0.1;  // s, as run.cc and TrailsAt
 
 }  // namespace
 
+namespace {
+
+// "replay: video 120/600 frames (20 %), ETA 35 s" on stderr: rewritten in place on a terminal,
+// else a line every 10 %, so a log is not flooded.
+class VideoProgress {
+ public:
+  VideoProgress(int64_t total, bool enabled)
+      : total_(std::max<int64_t>(1, total)),
+        enabled_(enabled),
+        tty_(isatty(2) != 0),
+        start_(std::chrono::steady_clock::now()) {}
+  void Done(int64_t frames) {
+    if (!enabled_) return;
+    const int percent = static_cast<int>(100 * frames / total_);
+    if (percent == last_percent_ ||
+        (!tty_ && percent / 10 == last_percent_ / 10 && frames < total_))
+      return;
+    last_percent_ = percent;
+    const double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    const double eta = frames > 0 ? elapsed * static_cast<double>(total_ - frames) / frames : 0;
+    std::fprintf(stderr, "%sreplay: video %lld/%lld frames (%d %%), ETA %.0f s%s", tty_ ? "\r" : "",
+                 static_cast<long long>(frames), static_cast<long long>(total_), percent, eta,
+                 tty_ && frames < total_ ? "" : "\n");
+    std::fflush(stderr);
+  }
+
+ private:
+  int64_t total_;
+  bool enabled_, tty_;
+  std::chrono::steady_clock::time_point start_;
+  int last_percent_ = -1;
+};
+
+}  // namespace
+
 // Offscreen (OSMesa), so here and not in replay.cc, which the window executable links.
 std::vector<std::string> RenderReplay(const Recording& rec, const std::vector<double>& times,
-                                      const std::string& out_dir, const std::string& video_path) {
+                                      const std::string& out_dir, const ReplayVideo& v) {
   ReplayScene scene(rec);
   std::vector<std::string> written;
   auto overlay = [&](const TrailBuffer& trails, int frame) {
-    return FrameOverlay(trails, rec.pos[frame], rec.slot[frame], rec.altitude, rec.ring_radius,
-                        FrameLabel(rec.name, rec.t[frame]));
+    return ReplayOverlay(rec, scene.model(), trails, frame);
   };
   if (!times.empty()) {
     render::OffscreenRenderer renderer(scene.model(), rec.render.width, rec.render.height,
@@ -68,11 +105,16 @@ std::vector<std::string> RenderReplay(const Recording& rec, const std::vector<do
       written.push_back(path);
     }
   }
-  if (!video_path.empty()) {
-    render::OffscreenRenderer renderer(scene.model(), rec.render.video_width,
-                                       rec.render.video_height, rec.render.video_shadows);
-    render::VideoWriter video(video_path, rec.render.video_width, rec.render.video_height,
-                              rec.render.video_fps);
+  if (!v.path.empty()) {
+    // The snapshots' size by default: a video frame then shows what a snapshot shows.
+    const int width = v.width > 0 ? v.width : rec.render.width;
+    const int height = v.height > 0 ? v.height : rec.render.height;
+    scene.AllowOffscreen(width, height);
+    render::OffscreenRenderer renderer(scene.model(), width, height, rec.render.video_shadows);
+    render::VideoWriter video(v.path, width, height, rec.render.video_fps);
+    const int64_t total =
+        static_cast<int64_t>(std::floor(rec.t.back() * rec.render.video_fps + 1e-9)) + 1;
+    VideoProgress progress(total, v.progress);
     TrailBuffer trails(rec.n_vehicles, rec.render.trail_seconds, kTrailPeriod);
     double next_trail = 0;
     int last = -1;
@@ -93,9 +135,10 @@ std::vector<std::string> RenderReplay(const Recording& rec, const std::vector<do
                          .Render(scene.data(), FollowingCamera(rec.render, rec.pos[frame], target),
                                  overlay(trails, frame), target.data())
                          .data());
+      progress.Done(k + 1);
     }
     video.Close();
-    written.push_back(video_path);
+    written.push_back(v.path);
   }
   return written;
 }
@@ -107,9 +150,24 @@ void AddReplayCommand(CLI::App& app, CliCommands* c) {
       "offscreen into a video or PNGs");
   c->replay->add_option("run_dir", c->replay_dir, "run directory written by `mjformation run`")
       ->required();
-  c->replay->add_option("--video", c->replay_video,
-                        "render to this MP4 (at [render] video_fps and video size) instead of a "
-                        "window");
+  CLI::Option* video = c->replay->add_option(
+      "--video", c->replay_video,
+      "render to this MP4 (at [render] video_fps and the snapshots' size) instead of a window");
+  c->replay
+      ->add_option("--video-size", c->replay_video_size,
+                   "WIDTHxHEIGHT of the --video frames (default: [render] width x height of the "
+                   "run; at most 7680x4320)")
+      ->needs(video)
+      ->check(CLI::Validator(
+          [](std::string& text) {
+            try {
+              ParseVideoSize(text);
+            } catch (const std::invalid_argument& e) {
+              return std::string(e.what());
+            }
+            return std::string();
+          },
+          "WxH", "video size"));
   c->replay
       ->add_option("--snapshots", c->replay_snapshots,
                    "render PNGs at these times (s) instead of a window, e.g. 10 20")
@@ -145,7 +203,14 @@ int ReplayCommand(const CliCommands& c) {
   CheckSnapshotTimes(c.replay_dir, c.replay_snapshots);
   const Recording rec = LoadRecording(c.replay_dir);
   const std::string out = c.replay_out.empty() ? c.replay_dir + "/replay" : c.replay_out;
-  for (const auto& path : RenderReplay(rec, c.replay_snapshots, out, c.replay_video)) {
+  ReplayVideo video;
+  video.path = c.replay_video;
+  if (!c.replay_video_size.empty()) {
+    const auto size = ParseVideoSize(c.replay_video_size);  // checked by the parser already
+    video.width = size[0];
+    video.height = size[1];
+  }
+  for (const auto& path : RenderReplay(rec, c.replay_snapshots, out, video)) {
     std::printf("%s\n", path.c_str());
   }
   return 0;

@@ -69,11 +69,31 @@ render::Overlay FrameOverlay(const TrailBuffer& trails, const std::vector<Vec3>&
     }
   }
   o.label = label;
+  o.legend_vehicles = static_cast<int>(positions.size());
   return o;
 }
 
 std::string FrameLabel(const std::string& name, double t) {
   return fmt::format("{}   t = {:.1f} s", name, t);
+}
+
+std::vector<int> VehicleBodies(const mjModel* m, int n_vehicles) {
+  std::vector<int> bodies;
+  for (int i = 0; i < n_vehicles; ++i) {
+    bodies.push_back(mj_name2id(m, mjOBJ_BODY, (VehiclePrefix(i) + "vehicle").c_str()));
+  }
+  return bodies;
+}
+
+bool MarkedEventKind(const std::string& kind) { return kind != "near_miss"; }
+
+render::EventMark MakeEventMark(const std::string& kind, double time,
+                                const std::vector<int>& vehicles, const Vec3& pos) {
+  std::string who;
+  for (int v : vehicles) {
+    who += (who.empty() ? "" : "-") + (v == 0 ? std::string("L") : "F" + std::to_string(v));
+  }
+  return {pos, fmt::format("{} {} {:.2f} s", who, kind, time)};
 }
 
 }  // namespace mjf::runner

@@ -70,14 +70,20 @@ std::vector<Vec3> Positions(const Simulation& sim) {
   return out;
 }
 
-// The vehicles' recent paths, the desired slots and circle: what snapshots and video draw, by
-// the rules replay and the live viewer share (frame_view.hpp).
+// The marks of the safety events seen so far (frame_view.hpp): written by the SafetyRecorder
+// when an event is first seen, with the vehicles' positions of that step; read by the pictures.
+using EventMarks = std::vector<render::EventMark>;
+
+// The vehicles' recent paths, the desired slots and circle, the safety events: what snapshots
+// and video draw, by the rules replay and the live viewer share (frame_view.hpp).
 class Scenery {
  public:
-  explicit Scenery(const Simulation& sim)
+  Scenery(const Simulation& sim, std::shared_ptr<const EventMarks> events)
       : every_(StepsPer(0.1, sim.config().timestep)),
         trails_(sim.n_vehicles(), sim.config().render.trail_seconds,
-                every_ * sim.config().timestep) {}
+                every_ * sim.config().timestep),
+        bodies_(VehicleBodies(sim.model(), sim.n_vehicles())),
+        events_(std::move(events)) {}
   // Called every step by the recorders that draw; keeps a point every 0.1 s.
   void Update(const Simulation& sim) {
     if (sim.step_index() % every_ != 0 || sim.step_index() == last_step_) return;
@@ -91,13 +97,18 @@ class Scenery {
       vehicle_slots.push_back({slots[2 * i], slots[2 * i + 1]});
     const ExperimentConfig& c = sim.config();
     const double ring = sim.shape() && c.shape.type == ShapeType::kCircle ? c.shape.radius : 0.0;
-    return FrameOverlay(trails_, Positions(sim), vehicle_slots, c.altitude, ring,
-                        FrameLabel(c.name, sim.time()));
+    render::Overlay o = FrameOverlay(trails_, Positions(sim), vehicle_slots, c.altitude, ring,
+                                     FrameLabel(c.name, sim.time()));
+    o.vehicle_bodies = bodies_;
+    if (events_) o.events = *events_;
+    return o;
   }
 
  private:
   int64_t every_;
   TrailBuffer trails_;
+  std::vector<int> bodies_;
+  std::shared_ptr<const EventMarks> events_;
   int64_t last_step_ = -1;
 };
 
@@ -173,6 +184,49 @@ class VideoRecorder final : public Recorder {
   int64_t every_;
 };
 
+// Safety events (safety_events.hpp), checked every step; with [run] stop_on, an event of a
+// listed kind ends the run (the exception becomes the run's error: exit 3).
+class SafetyRecorder final : public Recorder {
+ public:
+  SafetyRecorder(const Simulation& sim, std::shared_ptr<EventMarks> marks)
+      : monitor_(sim.config().safety, VehicleRadii(sim)), marks_(std::move(marks)) {}
+  void OnStep(const Simulation& sim) override {
+    const size_t fresh = monitor_.Check(sim.time(), sim.states());
+    const auto& stop_on = sim.config().safety.stop_on;
+    const auto& events = monitor_.events();
+    for (size_t k = events.size() - fresh; k < events.size(); ++k) Mark(sim, events[k]);
+    for (size_t k = events.size() - fresh; k < events.size(); ++k) {
+      if (std::find(stop_on.begin(), stop_on.end(), events[k].kind) != stop_on.end()) {
+        throw std::runtime_error("stopped at a safety event ([run] stop_on): " +
+                                 DescribeEvent(events[k]));
+      }
+    }
+  }
+  bool Wants(int64_t) const override { return false; }
+  void Record(const Frame&) override {}
+  // Only a run with an event gains "events", so event-free runs keep their summary as it was.
+  void Summarize(nlohmann::ordered_json* summary) const override {
+    if (!monitor_.events().empty()) (*summary)["events"] = monitor_.Summary();
+  }
+
+ private:
+  // The event's mark for the pictures, at the vehicles' positions (their midpoint for a pair)
+  // of this step.
+  void Mark(const Simulation& sim, const SafetyEvent& e) {
+    if (!marks_ || marks_->size() >= kMaxEventMarks || !MarkedEventKind(e.kind)) return;
+    Vec3 at = {0, 0, 0};
+    for (int v : e.vehicles) {
+      for (int k = 0; k < 3; ++k) at[k] += sim.states()[v].pos[k] / e.vehicles.size();
+    }
+    marks_->push_back(MakeEventMark(e.kind, e.time_s, e.vehicles, at));
+  }
+
+  SafetyMonitor monitor_;
+  std::shared_ptr<EventMarks> marks_;
+};
+
+}  // namespace
+
 // Each vehicle's radius about its body's origin that holds every geom of its subtree
 // (bounding spheres, geom_rbound), from the model's rest frames. One pass: bodies are in
 // depth-first order, so a parent's frame (relative to its vehicle) is known before its
@@ -204,36 +258,6 @@ std::vector<double> VehicleRadii(const Simulation& sim) {
   return radii;
 }
 
-// Safety events (safety_events.hpp), checked every step; with [run] stop_on, an event of a
-// listed kind ends the run (the exception becomes the run's error: exit 3).
-class SafetyRecorder final : public Recorder {
- public:
-  explicit SafetyRecorder(const Simulation& sim)
-      : monitor_(sim.config().safety, VehicleRadii(sim)) {}
-  void OnStep(const Simulation& sim) override {
-    const size_t fresh = monitor_.Check(sim.time(), sim.states());
-    const auto& stop_on = sim.config().safety.stop_on;
-    const auto& events = monitor_.events();
-    for (size_t k = events.size() - fresh; k < events.size(); ++k) {
-      if (std::find(stop_on.begin(), stop_on.end(), events[k].kind) != stop_on.end()) {
-        throw std::runtime_error("stopped at a safety event ([run] stop_on): " +
-                                 DescribeEvent(events[k]));
-      }
-    }
-  }
-  bool Wants(int64_t) const override { return false; }
-  void Record(const Frame&) override {}
-  // Only a run with an event gains "events", so event-free runs keep their summary as it was.
-  void Summarize(nlohmann::ordered_json* summary) const override {
-    if (!monitor_.events().empty()) (*summary)["events"] = monitor_.Summary();
-  }
-
- private:
-  SafetyMonitor monitor_;
-};
-
-}  // namespace
-
 std::vector<std::unique_ptr<Recorder>> MakeRecorders(const Simulation& sim, const RunDirectory* dir,
                                                      const RecorderOptions& options) {
   std::vector<std::unique_ptr<Recorder>> out;
@@ -242,12 +266,13 @@ std::vector<std::unique_ptr<Recorder>> MakeRecorders(const Simulation& sim, cons
   const LeaderAccelerationRecorder* leader_columns =
       sim.config().record_leader_acceleration ? leader.get() : nullptr;
   out.push_back(std::move(leader));  // first: its OnStep runs before the CSV row is written
-  out.push_back(std::make_unique<SafetyRecorder>(sim));
+  auto marks = std::make_shared<EventMarks>();
+  out.push_back(std::make_unique<SafetyRecorder>(sim, marks));
   if (options.record) {
     out.push_back(std::make_unique<TimeseriesRecorder>(sim, *dir, leader_columns));
   }
   const RenderConfig& r = sim.config().render;
-  auto scenery = std::make_shared<Scenery>(sim);
+  auto scenery = std::make_shared<Scenery>(sim, marks);
   if (options.render && !r.snapshots.empty()) {
     out.push_back(std::make_unique<SnapshotRecorder>(sim, *dir, scenery));
   }

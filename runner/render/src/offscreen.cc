@@ -170,14 +170,13 @@ const std::vector<unsigned char>& OffscreenRenderer::Render(const mjData* d,
     }
     cam_distance = std::sqrt(cam_distance);
   }
+  TintVehicleGeoms(m, &r.scn, overlay.vehicle_bodies);
   r.skipped = AddOverlayGeoms(&r.scn, overlay, cam_distance, r.height);
   r.scn.flags[mjRND_SHADOW] = r.shadows ? 1 : 0;
 
   const mjrRect viewport = {0, 0, r.width, r.height};
   mjr_render(viewport, &r.scn, &r.con);
-  if (!overlay.label.empty()) {
-    mjr_overlay(mjFONT_NORMAL, mjGRID_TOPLEFT, viewport, overlay.label.c_str(), nullptr, &r.con);
-  }
+  DrawOverlayText(viewport, overlay, &r.con);
   mjr_readPixels(r.bottom_up.data(), nullptr, viewport, &r.con);
   const size_t row = static_cast<size_t>(r.width) * 3;
   for (int y = 0; y < r.height; ++y) {

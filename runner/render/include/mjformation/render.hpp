@@ -31,6 +31,22 @@ struct CameraSpec {
   std::string model_camera;  // for mode "model"
 };
 
+// The one palette of the pictures: vehicle i's colour (0 = the leader, gold; followers 1..N each
+// their own hue, never red, which marks safety events). Trails, vehicle markers, the vehicles'
+// bodies (TintVehicleGeoms) and the legend all take it from here. Distinct for every i: a fixed
+// list of well separated colours, then hues spread by the golden angle.
+std::array<float, 4> VehicleColour(int vehicle);
+// "leader", "follower 3": the legend's names.
+std::string VehicleName(int vehicle);
+// The colour of safety-event marks (and nothing else).
+constexpr std::array<float, 4> kEventColour = {0.95f, 0.05f, 0.05f, 0.8f};
+
+// A safety event drawn into a picture: a red sphere at `pos` with a short label beside it.
+struct EventMark {
+  std::array<double, 3> pos;
+  std::string label;  // e.g. "F6 flip 34.19 s"
+};
+
 // Drawn into the scene after mjv_updateScene, as extra decor geoms. Geoms beyond the scene's
 // capacity are skipped (trails first, then slots, then the ring get a place).
 struct Overlay {
@@ -42,7 +58,28 @@ struct Overlay {
   // camera distance, so vehicles half a metre wide stay visible in a 60 m wide view.
   std::vector<std::array<double, 3>> markers;
   std::string label;  // optional text in the top-left corner (e.g. "t = 10.0 s")
+  // Each vehicle's root body in the model (-1: unknown): its geoms are recoloured in the
+  // vehicle's palette colour at render time (the model is not changed). Empty: model colours.
+  std::vector<int> vehicle_bodies;
+  int legend_vehicles = 0;        // > 0: a legend (leader, follower 1..N) in the top-right corner
+  std::vector<EventMark> events;  // safety events seen so far
 };
+
+// Recolours, in a scene filled by mjv_updateScene, every geom of each vehicle's body subtree
+// (overlay.vehicle_bodies) to the vehicle's palette colour, keeping each geom's transparency;
+// invisible geoms (alpha 0, e.g. collision hulls) stay invisible. The leader is drawn a little
+// brighter (emission). Returns how many scene geoms were recoloured. Needs no GL context.
+int TintVehicleGeoms(const mjModel* m, mjvScene* scene, const std::vector<int>& vehicle_bodies);
+
+// Draws the legend of `n_vehicles` (a swatch in each vehicle's colour and its name; beyond
+// kLegendRows, "... and K more") in the top-right corner of `viewport`, after mjr_render, in
+// the current GL context of `con`. Returns the legend's rectangle (pixels, origin bottom-left).
+mjrRect DrawLegend(const mjrRect& viewport, int n_vehicles, const mjrContext* con);
+constexpr int kLegendRows = 16;
+
+// Everything of `overlay` that is drawn after mjr_render (the legend, then the label top-left),
+// shared by the offscreen renderer and the live viewer.
+void DrawOverlayText(const mjrRect& viewport, const Overlay& overlay, const mjrContext* con);
 
 // Appends the overlay to a scene already filled by mjv_updateScene, as decor geoms (lines a few
 // pixels wide for an image `viewport_height` pixels high, slot spheres and vehicle discs sized

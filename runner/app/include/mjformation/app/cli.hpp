@@ -38,6 +38,7 @@ struct CliCommands {
   CLI::App* replay = nullptr;
   CLI::App* view = nullptr;
   std::string replay_dir, replay_video, replay_out;
+  std::string replay_video_size;  // --video-size WxH; empty: the run's snapshot size
   std::vector<double> replay_snapshots;
   int sweep_seeds = 0;        // --seeds N: N seeds per grid cell; 0: the config's seed
   bool sweep_resume = false;  // --resume: rerun only runs missing or incomplete

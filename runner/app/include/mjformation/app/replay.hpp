@@ -35,6 +35,13 @@ struct Recording {
   std::vector<std::vector<Vec3>> pos, rpy;  // [frame][vehicle]: m; roll, pitch, yaw (rad, ZYX)
   std::vector<std::vector<std::array<double, 2>>> slot;  // [frame][vehicle], NaN: none
   int Frame(double time) const;                          // the row nearest to `time`
+  // summary.json "events" "list" (safety events), in the order recorded.
+  struct Event {
+    std::string kind;
+    double time_s = 0;
+    std::vector<int> vehicles;
+  };
+  std::vector<Event> events;
 };
 
 // Reads RUN_DIR/timeseries.csv, config.toml and summary.json. Throws ReplayError naming the file
@@ -52,6 +59,9 @@ class ReplayScene {
   ReplayScene(const ReplayScene&) = delete;
   ReplayScene& operator=(const ReplayScene&) = delete;
   void Pose(int frame);  // qpos from the record, then kinematics (all rendering needs)
+  // Raises <visual><global offwidth offheight> of the replayed model (render only: the model
+  // is never simulated) so that an offscreen renderer of width x height fits.
+  void AllowOffscreen(int width, int height);
   const mjModel* model() const { return model_; }
   mjData* data() { return data_; }
 
@@ -72,13 +82,33 @@ class ReplayScene {
   std::vector<Vec3> imu_offset_;  // imu site in its body's frame
 };
 
+// What is drawn at `frame`, as `run` drew it: FrameOverlay with the vehicles' colours (bodies
+// of `model`) and the marks of the safety events seen by then, at the vehicles' recorded
+// positions nearest the event's time.
+render::Overlay ReplayOverlay(const Recording& recording, const mjModel* model,
+                              const TrailBuffer& trails, int frame);
+
 // The trails as `run` had drawn them at `frame`: samples every 0.1 s over trail_seconds.
 TrailBuffer TrailsAt(const Recording& recording, int frame);
+
+// The largest --video-size (8K UHD): beyond it, a typo rather than a wish, and several GB of
+// frame buffers.
+constexpr int kMaxVideoWidth = 7680, kMaxVideoHeight = 4320;
+// "1920x1080" -> {1920, 1080}; an empty string: the run's snapshot size ([render] width x
+// height). Throws std::invalid_argument with the reason for anything else (non-numeric, not
+// positive, beyond kMaxVideoWidth x kMaxVideoHeight).
+std::array<int, 2> ParseVideoSize(const std::string& text);
+
+struct ReplayVideo {
+  std::string path;           // empty: no video
+  int width = 0, height = 0;  // 0: the run's snapshot size ([render] width, height)
+  bool progress = true;       // a progress line on stderr while encoding
+};
 
 // `mjformation replay` without a window: PNGs at `times` into out_dir (replay_t<sss.ss>.png)
 // and/or a video; returns the paths written.
 std::vector<std::string> RenderReplay(const Recording& recording, const std::vector<double>& times,
-                                      const std::string& out_dir, const std::string& video_path);
+                                      const std::string& out_dir, const ReplayVideo& video);
 
 }  // namespace mjf::runner
 

@@ -14,6 +14,7 @@
 
 #include "mjformation/config/config.hpp"
 #include "mjformation/render.hpp"
+#include "mjformation/scene/scene.hpp"
 
 namespace mjf::runner {
 
@@ -49,6 +50,19 @@ render::Overlay FrameOverlay(const TrailBuffer& trails, const std::vector<Vec3>&
 
 // "<name>   t = 12.3 s", as in the snapshots.
 std::string FrameLabel(const std::string& name, double t);
+
+// Each vehicle's root body (uav<i>_vehicle) in a composed scene, -1 where absent: the bodies
+// recoloured in the vehicle's palette colour at render time (render::TintVehicleGeoms).
+std::vector<int> VehicleBodies(const mjModel* m, int n_vehicles);
+
+// Whether a safety event of `kind` is marked in pictures: all but near misses, which can be
+// many and are not damage.
+bool MarkedEventKind(const std::string& kind);
+// The mark of an event of `kind` at `time` involving `vehicles` (0 = leader): at `pos` (the
+// vehicle's position when it happened; for a pair the midpoint), labelled "F6 flip 34.19 s".
+render::EventMark MakeEventMark(const std::string& kind, double time,
+                                const std::vector<int>& vehicles, const Vec3& pos);
+constexpr size_t kMaxEventMarks = 20;  // the first ones; more would hide the picture
 
 }  // namespace mjf::runner
 

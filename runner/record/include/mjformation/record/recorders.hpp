@@ -52,6 +52,10 @@ struct RecorderOptions {
 std::vector<std::unique_ptr<Recorder>> MakeRecorders(const Simulation& sim, const RunDirectory* dir,
                                                      const RecorderOptions& options);
 
+// Each vehicle's bounding radius about its body origin (the safety monitor's collision radii),
+// from the model's geometry.
+std::vector<double> VehicleRadii(const Simulation& sim);
+
 // Step indices at which something happens every `period` seconds.
 int64_t StepsPer(double period, double timestep);
 
