@@ -196,8 +196,7 @@ int AddOverlayGeoms(mjvScene* scene, const Overlay& o, double cam_distance, int 
   const double line_px = std::max(2.0, height / 280.0);
   const double sphere = std::max(0.1, 0.006 * cam_distance);
   for (size_t i = 0; i < o.trails.size(); ++i) {
-    const std::array<float, 4> colour =
-        Lit(i < o.trail_rgba.size() ? o.trail_rgba[i] : VehicleColour(static_cast<int>(i)), 1.0f);
+    const std::array<float, 4> colour = Lit(VehicleColour(static_cast<int>(i)), 1.0f);
     const float* rgba = colour.data();
     const auto& t = o.trails[i];
     for (size_t k = 1; k < t.size(); ++k) r.Line(t[k - 1], t[k], line_px, rgba);
@@ -213,8 +212,7 @@ int AddOverlayGeoms(mjvScene* scene, const Overlay& o, double cam_distance, int 
   }
   const double disc = std::max(0.3, 0.012 * cam_distance);
   for (size_t i = 0; i < o.markers.size(); ++i) {
-    const std::array<float, 4> base =
-        Lit(i < o.trail_rgba.size() ? o.trail_rgba[i] : VehicleColour(static_cast<int>(i)), 0.6f);
+    const std::array<float, 4> base = Lit(VehicleColour(static_cast<int>(i)), 0.6f);
     const float* rgba = base.data();
     // The leader's disc is larger and ringed by a white halo, so it is found at a glance.
     const double radius = i == 0 ? 1.7 * disc : disc;

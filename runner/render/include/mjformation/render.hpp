@@ -48,10 +48,11 @@ struct EventMark {
 };
 
 // Drawn into the scene after mjv_updateScene, as extra decor geoms. Geoms beyond the scene's
-// capacity are skipped (trails first, then slots, then the ring get a place).
+// capacity are skipped (trails first, then slots, then the ring get a place). Trail i, disc i
+// and vehicle i take VehicleColour(i): there are no per-overlay colours, so that they always
+// agree with the legend.
 struct Overlay {
   std::vector<std::vector<std::array<double, 3>>> trails;  // per vehicle polyline (m)
-  std::vector<std::array<float, 4>> trail_rgba;            // per trail colour; default palette
   std::vector<std::array<double, 3>> slots;                // desired slots: translucent spheres
   std::vector<std::array<double, 3>> ring_points;          // optional polyline (e.g. 10 m circle)
   // Vehicle positions: a translucent disc under each one in its trail's colour, sized with the
