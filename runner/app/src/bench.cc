@@ -374,6 +374,40 @@ Json BenchMemory(const ExperimentConfig& base, int n, const std::string& scratch
           {"ratio", rb / ra}};
 }
 
+// The estimator's cost (issue 18): the same run with the configured estimator and with
+// passthrough (the same sensor suite, so only the estimator differs), each the best of up to
+// kRepeats, alternating; ratio = steps/s with the estimator / steps/s with passthrough, so the
+// estimator's share of the run is 1 - ratio.
+Json BenchEstimator(const ExperimentConfig& base, int n, const std::string& scratch) {
+  const ExperimentConfig with = Resized(base, n);
+  ExperimentConfig without = with;
+  without.estimator.plugin = "passthrough";  // it declares no attributes
+  without.estimator.attributes.clear();
+  without.estimator.derived.clear();
+  nlohmann::json a = InChild([&] { return Pipeline(with, scratch); });
+  nlohmann::json b = InChild([&] { return Pipeline(without, scratch); });
+  for (int k = 1; k < kRepeats && a["wall_s"].get<double>() < kRepeatBelowS; ++k) {
+    const nlohmann::json a2 = InChild([&] { return Pipeline(with, scratch); });
+    const nlohmann::json b2 = InChild([&] { return Pipeline(without, scratch); });
+    if (a2["wall_s"].get<double>() < a["wall_s"].get<double>()) a = a2;
+    if (b2["wall_s"].get<double>() < b["wall_s"].get<double>()) b = b2;
+  }
+  const double steps = a["steps"].get<double>();
+  const double rate_with = steps / a["wall_s"].get<double>();
+  const double rate_without = steps / b["wall_s"].get<double>();
+  const double ratio = rate_with / rate_without;
+  const std::string& name = with.estimator.plugin;
+  std::printf(
+      "estimator: %d followers, %s %.0f steps/s, passthrough %.0f steps/s, ratio %s/passthrough "
+      "%.3f (the estimator's share of the run %.1f %%; target <= 10 %%)\n",
+      n, name.c_str(), rate_with, rate_without, name.c_str(), ratio, 100.0 * (1.0 - ratio));
+  return {{"followers", n},
+          {"estimator", name},
+          {"steps_per_s_estimator", rate_with},
+          {"steps_per_s_passthrough", rate_without},
+          {"ratio_estimator_over_passthrough", ratio}};
+}
+
 Json BenchRender(const ExperimentConfig& config) {
   const nlohmann::json r = InChild([&] { return RenderCost(config); });
   std::printf(
@@ -443,6 +477,9 @@ int BenchCommand(const CliCommands& c) {
         last["followers"].get<int>() / first["followers"].get<int>());
     report["per_follower_cost_growth"] = growth;
   }
+  // With an estimator configured, what it costs against passthrough on the first size.
+  if (base.estimator.plugin != "passthrough")
+    report["estimator"] = BenchEstimator(base, sizes.front(), scratch);
   if (c.bench_memory) report["memory"] = BenchMemory(base, sizes.front(), scratch);
   if (c.bench_render) report["render"] = BenchRender(Resized(base, sizes.front()));
   if (!c.bench_json.empty()) WriteJson(c.bench_json, report);
