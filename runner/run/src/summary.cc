@@ -96,6 +96,9 @@ Json BuildSummary(const Simulation& sim, const RunResult& result, const Json& re
                  {"real_time_factor", wall > 0 ? result.sim_time_s / wall : 0.0},
                  {"steps_per_second", wall > 0 ? result.steps / wall : 0.0}};
   if (sim.threads() > 1) s["timing"]["threads"] = sim.threads();  // partitioned physics
+  // The sensor stage with its estimator plugins (issue 18; only with an estimator, so other
+  // runs' timing keys stay as they were).
+  if (sim.estimation()) s["timing"]["estimator_wall_s"] = sim.estimation()->wall_seconds();
   return s;
 }
 

@@ -73,6 +73,9 @@ TEST(BenchTest, EstimatorCostLine) {
   EXPECT_DOUBLE_EQ(j["estimator"]["ratio_estimator_over_passthrough"].get<double>(),
                    j["estimator"]["steps_per_s_estimator"].get<double>() /
                        j["estimator"]["steps_per_s_passthrough"].get<double>());
+  const double share = j["estimator"]["estimator_stage_share_of_run"].get<double>();
+  EXPECT_GT(share, 0.0);
+  EXPECT_LT(share, 1.0);
 }
 
 // Without an estimator the line is absent (the default bench prints what it printed before).
