@@ -237,6 +237,33 @@ TimeseriesWriter::~TimeseriesWriter() {
   std::fclose(file_);
 }
 
+namespace {
+
+// ",v" as "%.9g", or "," alone (an empty cell) for a non-finite v.
+char* Cell(char* p, char* end, double v) {
+  *p++ = ',';
+  return std::isfinite(v) ? FormatG9(p, end, v) : p;
+}
+
+// The _est, _std and _nees cells of every vehicle (13 per vehicle).
+char* EstimateCells(const Simulation& sim, char* p, char* end) {
+  for (int i = 0; i < sim.n_vehicles(); ++i) {
+    const mjfEstimate& e = sim.estimation()->estimates()[i];
+    for (double v : e.state.pos) p = Cell(p, end, v);
+    for (double v : e.state.vel) p = Cell(p, end, v);
+    // sqrt of P's diagonal (an unknown covariance, NaN, gives empty cells)
+    for (int k = 0; k < 6; ++k) p = Cell(p, end, std::sqrt(e.covariance[7 * k]));
+    const mjfVehicleState& truth = sim.states()[i];
+    const double error[6] = {e.state.pos[0] - truth.pos[0], e.state.pos[1] - truth.pos[1],
+                             e.state.pos[2] - truth.pos[2], e.state.vel[0] - truth.vel[0],
+                             e.state.vel[1] - truth.vel[1], e.state.vel[2] - truth.vel[2]};
+    p = Cell(p, end, Nees6(error, e.covariance));  // the full covariance, not its diagonal
+  }
+  return p;
+}
+
+}  // namespace
+
 void TimeseriesWriter::Write(const Simulation& sim, double sigma_f,
                              const std::vector<double>& slots, const double* extra) {
   // Numbers as "%.9g" (FormatG9: the bytes fmt's "{:.9g}" gave, at an eighth of its cost); a
@@ -277,19 +304,7 @@ void TimeseriesWriter::Write(const Simulation& sim, double sigma_f,
     for (double v : m.vel) number(v);
     for (double v : EulerZYX(m.quat)) number(v);
   }
-  const EstimatedSensors* estimation = estimated_ ? sim.estimation() : nullptr;
-  for (int i = 0; estimation && i < sim.n_vehicles(); ++i) {  // the _est and _std columns
-    const mjfEstimate& e = estimation->estimates()[i];
-    for (double v : e.state.pos) number(v);
-    for (double v : e.state.vel) number(v);
-    // sqrt of P's diagonal (an unknown covariance, NaN, gives empty cells)
-    for (int k = 0; k < 6; ++k) number(std::sqrt(e.covariance[7 * k]));
-    const mjfVehicleState& truth = sim.states()[i];
-    const double error[6] = {e.state.pos[0] - truth.pos[0], e.state.pos[1] - truth.pos[1],
-                             e.state.pos[2] - truth.pos[2], e.state.vel[0] - truth.vel[0],
-                             e.state.vel[1] - truth.vel[1], e.state.vel[2] - truth.vel[2]};
-    number(Nees6(error, e.covariance));  // with the full covariance, not only its diagonal
-  }
+  if (estimated_ && sim.estimation()) p = EstimateCells(sim, p, end);
   for (int i = 0; wind_ && i < sim.n_vehicles(); ++i) {
     for (double v : sim.wind()[i]) number(v);
   }
