@@ -141,6 +141,11 @@ EstimationMetrics::EstimationMetrics(int n_vehicles)
 
 void EstimationMetrics::Add(const std::vector<mjfEstimate>& estimates,
                             const std::vector<mjfVehicleState>& truth) {
+  // A formation acts on positions relative to the leader and its neighbours: an error common
+  // to all vehicles (e.g. the GNSS wander's common part) cancels there, so the error of
+  // p_i - p_0 is recorded beside the absolute one.
+  double leader_error[3];
+  for (int k = 0; k < 3; ++k) leader_error[k] = estimates[0].state.pos[k] - truth[0].pos[k];
   for (size_t i = 0; i < sums_.size(); ++i) {
     const mjfVehicleState& e = estimates[i].state;
     double error[kDim];
@@ -151,6 +156,7 @@ void EstimationMetrics::Add(const std::vector<mjfEstimate>& estimates,
     Sums& s = sums_[i];
     s.position_sq += error[0] * error[0] + error[1] * error[1] + error[2] * error[2];
     s.velocity_sq += error[3] * error[3] + error[4] * error[4] + error[5] * error[5];
+    for (int k = 0; k < 3; ++k) s.relative_sq += std::pow(error[k] - leader_error[k], 2);
     ++s.samples;
     const double nees = Nees6(error, estimates[i].covariance);
     if (std::isfinite(nees)) {
@@ -183,6 +189,10 @@ nlohmann::ordered_json EstimationMetrics::Summary(
     v["samples"] = s.samples;
     v["position_rms_m"] = JsonNumber(std::sqrt(Ratio(s.position_sq, s.samples)));
     v["velocity_rms_m_s"] = JsonNumber(std::sqrt(Ratio(s.velocity_sq, s.samples)));
+    if (i > 0) {
+      v["position_rms_relative_to_leader_m"] =
+          JsonNumber(std::sqrt(Ratio(s.relative_sq, s.samples)));
+    }
     v["nees_mean"] = JsonNumber(Ratio(s.nees, s.nees_samples));
     v["nees_samples"] = s.nees_samples;
     v["nees_band_95"] = Band(MeanNeesBand95(s.nees_samples, kDim));
@@ -197,6 +207,7 @@ nlohmann::ordered_json EstimationMetrics::Summary(
     if (i == 0) continue;
     followers.position_sq += s.position_sq;
     followers.velocity_sq += s.velocity_sq;
+    followers.relative_sq += s.relative_sq;
     followers.nees += s.nees;
     followers.samples += s.samples;
     followers.nees_samples += s.nees_samples;
@@ -209,6 +220,8 @@ nlohmann::ordered_json EstimationMetrics::Summary(
   f["samples"] = followers.samples;
   f["position_rms_m"] = JsonNumber(std::sqrt(Ratio(followers.position_sq, followers.samples)));
   f["velocity_rms_m_s"] = JsonNumber(std::sqrt(Ratio(followers.velocity_sq, followers.samples)));
+  f["position_rms_relative_to_leader_m"] =
+      JsonNumber(std::sqrt(Ratio(followers.relative_sq, followers.samples)));
   f["nees_mean"] = JsonNumber(Ratio(followers.nees, followers.nees_samples));
   f["nees_samples"] = followers.nees_samples;
   f["nees_band_95"] = Band(MeanNeesBand95(followers.nees_samples, kDim));

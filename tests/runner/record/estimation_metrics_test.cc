@@ -64,6 +64,22 @@ TEST(NeesTest, KnownErrorAndCovariance) {
   EXPECT_TRUE(std::isnan(Nees6(e, singular)));
 }
 
+// An error common to every vehicle cancels in the position relative to the leader.
+TEST(EstimationMetricsTest, ACommonErrorCancelsRelativeToTheLeader) {
+  EstimationMetrics m(3);
+  std::vector<mjfVehicleState> truth(3);
+  std::vector<mjfEstimate> est(3);
+  for (auto& e : est) e.state.pos[1] = 2.5;
+  est[2].state.pos[0] = 0.3;
+  m.Add(est, truth);
+  const auto s = m.Summary({});
+  EXPECT_NEAR(s["vehicles"][1]["position_rms_m"].get<double>(), 2.5, 1e-12);
+  EXPECT_NEAR(s["vehicles"][1]["position_rms_relative_to_leader_m"].get<double>(), 0.0, 1e-12);
+  EXPECT_NEAR(s["vehicles"][2]["position_rms_relative_to_leader_m"].get<double>(), 0.3, 1e-12);
+  EXPECT_NEAR(s["followers"]["position_rms_relative_to_leader_m"].get<double>(),
+              std::sqrt(0.09 / 2), 1e-12);
+}
+
 TEST(EstimationMetricsTest, SummaryOfTwoVehicles) {
   EstimationMetrics m(2);
   std::vector<mjfVehicleState> truth(2);
@@ -83,6 +99,9 @@ TEST(EstimationMetricsTest, SummaryOfTwoVehicles) {
   EXPECT_EQ(v1["samples"], 2);
   EXPECT_NEAR(v1["position_rms_m"].get<double>(), std::sqrt(12.5), 1e-12);
   EXPECT_NEAR(v1["velocity_rms_m_s"].get<double>(), 1.0, 1e-12);
+  // The leader's estimate is exact here: relative and absolute errors agree.
+  EXPECT_NEAR(v1["position_rms_relative_to_leader_m"].get<double>(), std::sqrt(12.5), 1e-12);
+  EXPECT_FALSE(s["vehicles"][0].contains("position_rms_relative_to_leader_m"));
   EXPECT_NEAR(v1["nees_mean"].get<double>(), (10.0 + 17.0) / 2, 1e-12);
   EXPECT_EQ(v1["fused"], 20);
   EXPECT_TRUE(v1["too_old"].is_null());

@@ -45,6 +45,7 @@ class EstimationMetrics {
  private:
   struct Sums {
     double position_sq = 0, velocity_sq = 0, nees = 0;
+    double relative_sq = 0;  // |e_i - e_0|^2: the error of the position relative to the leader
     long samples = 0, nees_samples = 0, nees_in_band = 0;
   };
   std::vector<Sums> sums_;
