@@ -74,7 +74,8 @@ def _error_panel(ax, ts: dict, t, i: int, summary: dict | None) -> None:
     stats = _vehicle_stats(summary, i)
     note = ""
     if stats:
-        note = (f"RMS |p̂ - p| {_fmt(stats.get('position_rms_m'), ' m')}, "
+        note = (f"RMS |p̂ - p| {_fmt(stats.get('position_rms_m'), ' m')} "
+                f"(relative to the leader {_fmt(stats.get('position_rms_relative_to_leader_m'), ' m')}), "
                 f"|v̂ - v| {_fmt(stats.get('velocity_rms_m_s'), ' m/s')}, "
                 f"mean NEES {_fmt(stats.get('nees_mean'))}; gated {_fmt(stats.get('gated'))}")
     ax.set_ylabel(f"follower {i}\n(m)")
@@ -126,10 +127,10 @@ def figure(run: Run, out_path) -> Path | None:
                                  gridspec_kw={"height_ratios": [1.0] * n + [1.8]})
         for ax, i in zip(axes[:-1], followers):
             _error_panel(ax, ts, t, i, run.summary)
-        axes[0].legend(loc="upper right", ncol=2, fontsize=7)
         plugin = ((run.summary or {}).get("estimation") or {}).get("plugin", "estimator")
-        axes[0].set_title(f"{run.name}: {plugin} estimate against the truth "
-                          "(shaded: the filter's ±2σ)", fontsize=10)
+        # The colours are named in the title: a legend would cover the per-follower note.
+        axes[0].set_title(f"{run.name}: {plugin} estimate − truth, x (blue) and y (orange); "
+                          "shaded: the filter's ±2σ", fontsize=9)
         _nees_panel(axes[-1], ts, t, followers, run.summary)
         fig.tight_layout()
         out_path = Path(out_path)
