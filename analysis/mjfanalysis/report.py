@@ -560,6 +560,11 @@ def write_report(results_dir, out_dir) -> Path:
         if net_fig is not None:
             L.append(f"![{run.name} network]({_rel(net_fig, out_dir)})")
             L.append("")
+        from . import estimation_figure as EF  # issue 18's hook, kept in one place
+        est_fig = EF.figure(run, fig_dir / run.name / EF.FIGURE_NAME)
+        if est_fig is not None:  # an [estimator] other than passthrough
+            L.append(f"![{run.name} estimate against truth]({_rel(est_fig, out_dir)})")
+            L.append("")
         if run.timeseries is not None:
             figs = plots.run_figures(run, fig_dir / run.name)
             for key, path in figs.items():

@@ -197,9 +197,12 @@ nlohmann::json Pipeline(const ExperimentConfig& config, const std::string& scrat
   options.render = false;
   const RunResult r = RunExperiment(config, options);
   if (!r.complete) throw std::runtime_error("bench run stopped early: " + r.error);
-  return {{"steps", r.steps},
-          {"wall_s", r.wall_time_s},
-          {"sigma_f_mean", r.summary["metrics"]["sigma_f_mean"]}};
+  nlohmann::json out = {{"steps", r.steps},
+                        {"wall_s", r.wall_time_s},
+                        {"sigma_f_mean", r.summary["metrics"]["sigma_f_mean"]}};
+  const auto& timing = r.summary["timing"];
+  if (timing.contains("estimator_wall_s")) out["estimator_wall_s"] = timing["estimator_wall_s"];
+  return out;
 }
 
 nlohmann::json RenderCost(const ExperimentConfig& config) {
@@ -374,6 +377,45 @@ Json BenchMemory(const ExperimentConfig& base, int n, const std::string& scratch
           {"ratio", rb / ra}};
 }
 
+// The estimator's cost (issue 18), two ways. (1) The same run with the configured estimator and
+// with passthrough (the same sensor suite), each the best of up to kRepeats, alternating: ratio
+// = steps/s with the estimator / steps/s with passthrough. The two fly different trajectories
+// (passthrough hands the controllers the raw samples), so the ratio also holds what the flights
+// cost MuJoCo and the controllers differently. (2) Within the estimator's own run, the wall
+// time of its sensor stage (sensor models and estimator plugins) over the run's: its share of
+// that very flight.
+Json BenchEstimator(const ExperimentConfig& base, int n, const std::string& scratch) {
+  const ExperimentConfig with = Resized(base, n);
+  ExperimentConfig without = with;
+  without.estimator.plugin = "passthrough";  // it declares no attributes
+  without.estimator.attributes.clear();
+  without.estimator.derived.clear();
+  nlohmann::json a = InChild([&] { return Pipeline(with, scratch); });
+  nlohmann::json b = InChild([&] { return Pipeline(without, scratch); });
+  for (int k = 1; k < kRepeats && a["wall_s"].get<double>() < kRepeatBelowS; ++k) {
+    const nlohmann::json a2 = InChild([&] { return Pipeline(with, scratch); });
+    const nlohmann::json b2 = InChild([&] { return Pipeline(without, scratch); });
+    if (a2["wall_s"].get<double>() < a["wall_s"].get<double>()) a = a2;
+    if (b2["wall_s"].get<double>() < b["wall_s"].get<double>()) b = b2;
+  }
+  const double rate_with = a["steps"].get<double>() / a["wall_s"].get<double>();
+  const double rate_without = b["steps"].get<double>() / b["wall_s"].get<double>();
+  const double ratio = rate_with / rate_without;
+  const double share = a.value("estimator_wall_s", 0.0) / a["wall_s"].get<double>();
+  const std::string& name = with.estimator.plugin;
+  std::printf(
+      "estimator: %d followers, %s %.0f steps/s, passthrough %.0f steps/s, ratio "
+      "%s/passthrough %.3f; in the %s run its sensor stage took %.1f %% of the wall time "
+      "(target <= 10 %%)\n",
+      n, name.c_str(), rate_with, rate_without, name.c_str(), ratio, name.c_str(), 100.0 * share);
+  return {{"followers", n},
+          {"estimator", name},
+          {"steps_per_s_estimator", rate_with},
+          {"steps_per_s_passthrough", rate_without},
+          {"ratio_estimator_over_passthrough", ratio},
+          {"estimator_stage_share_of_run", share}};
+}
+
 Json BenchRender(const ExperimentConfig& config) {
   const nlohmann::json r = InChild([&] { return RenderCost(config); });
   std::printf(
@@ -443,6 +485,9 @@ int BenchCommand(const CliCommands& c) {
         last["followers"].get<int>() / first["followers"].get<int>());
     report["per_follower_cost_growth"] = growth;
   }
+  // With an estimator configured, what it costs against passthrough on the first size.
+  if (base.estimator.plugin != "passthrough")
+    report["estimator"] = BenchEstimator(base, sizes.front(), scratch);
   if (c.bench_memory) report["memory"] = BenchMemory(base, sizes.front(), scratch);
   if (c.bench_render) report["render"] = BenchRender(Resized(base, sizes.front()));
   if (!c.bench_json.empty()) WriteJson(c.bench_json, report);

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 #include "mjformation/config/config.hpp"
@@ -57,10 +58,13 @@ EstimatedSensors::EstimatedSensors(const ExperimentConfig& c, int n_vehicles, do
 
 void EstimatedSensors::Measure(int64_t step, double time, const std::vector<mjfVehicleState>& truth,
                                std::vector<mjfVehicleState>* measured) {
+  // Two clock reads per step (~50 ns against a step of tens of microseconds).
+  const auto start = std::chrono::steady_clock::now();
   for (size_t i = 0; i < models_.size(); ++i) {
     EstimateOne(static_cast<int>(i), step, time, truth[i]);
     (*measured)[i] = estimates_[i].state;
   }
+  wall_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 void EstimatedSensors::EstimateOne(int vehicle, int64_t step, double time,

@@ -13,6 +13,7 @@
 #include <cstring>
 #include <filesystem>
 
+#include "mjformation/record/estimation_metrics.hpp"
 #include "mjformation/sim/simulation.hpp"
 
 namespace mjf::runner {
@@ -187,8 +188,13 @@ void RunDirectory::WriteText(const std::string& name, const std::string& text) c
 }
 
 TimeseriesWriter::TimeseriesWriter(const std::string& path, int n_vehicles, bool measured,
-                                   bool wind, const std::vector<std::string>& extra_columns)
-    : path_(path), n_extra_(extra_columns.size()), measured_(measured), wind_(wind) {
+                                   bool wind, const std::vector<std::string>& extra_columns,
+                                   bool estimated)
+    : path_(path),
+      n_extra_(extra_columns.size()),
+      measured_(measured),
+      wind_(wind),
+      estimated_(estimated) {
   file_ = std::fopen(path.c_str(), "wb");
   if (!file_) throw OutputError(path + ": cannot write: " + std::strerror(errno));
   static const char* const kColumns[] = {"px",     "py",   "pz",    "vx",     "vy",
@@ -206,6 +212,16 @@ TimeseriesWriter::TimeseriesWriter(const std::string& path, int n_vehicles, bool
       fmt::format_to(std::back_inserter(buffer_), ",uav{}_{}_meas", i, c);
     }
   }
+  // Issue 18: the estimate and its 1-sigma per axis, next to what the controllers saw.
+  static const char* const kEstimated[] = {"px", "py", "pz", "vx", "vy", "vz"};
+  for (int i = 0; estimated_ && i < n_vehicles; ++i) {
+    for (const char* suffix : {"est", "std"}) {
+      for (const char* c : kEstimated) {
+        fmt::format_to(std::back_inserter(buffer_), ",uav{}_{}_{}", i, c, suffix);
+      }
+    }
+    fmt::format_to(std::back_inserter(buffer_), ",uav{}_nees", i);
+  }
   for (int i = 0; wind_ && i < n_vehicles; ++i) {
     fmt::format_to(std::back_inserter(buffer_), ",uav{0}_wind_x,uav{0}_wind_y,uav{0}_wind_z", i);
   }
@@ -221,13 +237,42 @@ TimeseriesWriter::~TimeseriesWriter() {
   std::fclose(file_);
 }
 
+namespace {
+
+// ",v" as "%.9g", or "," alone (an empty cell) for a non-finite v.
+char* Cell(char* p, char* end, double v) {
+  *p++ = ',';
+  return std::isfinite(v) ? FormatG9(p, end, v) : p;
+}
+
+// The _est, _std and _nees cells of every vehicle (13 per vehicle).
+char* EstimateCells(const Simulation& sim, char* p, char* end) {
+  for (int i = 0; i < sim.n_vehicles(); ++i) {
+    const mjfEstimate& e = sim.estimation()->estimates()[i];
+    for (double v : e.state.pos) p = Cell(p, end, v);
+    for (double v : e.state.vel) p = Cell(p, end, v);
+    // sqrt of P's diagonal (an unknown covariance, NaN, gives empty cells)
+    for (int k = 0; k < 6; ++k) p = Cell(p, end, std::sqrt(e.covariance[7 * k]));
+    const mjfVehicleState& truth = sim.states()[i];
+    const double error[6] = {e.state.pos[0] - truth.pos[0], e.state.pos[1] - truth.pos[1],
+                             e.state.pos[2] - truth.pos[2], e.state.vel[0] - truth.vel[0],
+                             e.state.vel[1] - truth.vel[1], e.state.vel[2] - truth.vel[2]};
+    p = Cell(p, end, Nees6(error, e.covariance));  // the full covariance, not its diagonal
+  }
+  return p;
+}
+
+}  // namespace
+
 void TimeseriesWriter::Write(const Simulation& sim, double sigma_f,
                              const std::vector<double>& slots, const double* extra) {
   // Numbers as "%.9g" (FormatG9: the bytes fmt's "{:.9g}" gave, at an eighth of its cost); a
   // row is written into the buffer's spare room directly, with no per-character appends.
   constexpr size_t kMaxNumber = 32;  // ",-1.23456789e-308" is 17 characters
   const size_t numbers =
-      2 + (15 + 9 * measured_ + 3 * wind_) * static_cast<size_t>(sim.n_vehicles()) + n_extra_;
+      2 +
+      (15 + 9 * measured_ + 13 * estimated_ + 3 * wind_) * static_cast<size_t>(sim.n_vehicles()) +
+      n_extra_;
   const size_t used = buffer_.size();
   buffer_.resize(used + kMaxNumber * numbers + 1);
   char* p = buffer_.data() + used;
@@ -259,6 +304,7 @@ void TimeseriesWriter::Write(const Simulation& sim, double sigma_f,
     for (double v : m.vel) number(v);
     for (double v : EulerZYX(m.quat)) number(v);
   }
+  if (estimated_ && sim.estimation()) p = EstimateCells(sim, p, end);
   for (int i = 0; wind_ && i < sim.n_vehicles(); ++i) {
     for (double v : sim.wind()[i]) number(v);
   }

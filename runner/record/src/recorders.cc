@@ -6,7 +6,9 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
+#include <limits>
 
+#include "mjformation/record/estimation_metrics.hpp"
 #include "mjformation/record/frame_view.hpp"
 #include "mjformation/record/leader_acceleration.hpp"
 #include "mjformation/record/output.hpp"
@@ -48,7 +50,8 @@ class TimeseriesRecorder final : public Recorder {
         writer_(dir.Path("timeseries.csv"), sim.n_vehicles(), sim.config().sensors.enabled(),
                 sim.config().wind.enabled(),
                 leader ? std::vector<std::string>{"leader_ax", "leader_ay"}
-                       : std::vector<std::string>{}),
+                       : std::vector<std::string>{},
+                sim.estimation() != nullptr),
         every_(StepsPer(1.0 / sim.config().record_rate, sim.config().timestep)),
         last_(sim.total_steps()) {}
   bool Wants(int64_t step) const override { return step % every_ == 0 || step == last_; }
@@ -258,6 +261,61 @@ std::vector<double> VehicleRadii(const Simulation& sim) {
   return radii;
 }
 
+namespace {
+
+// summary.json "estimation" (issue 18), with an [estimator] other than passthrough: the
+// estimate against the truth on the record ticks of the metric window (the rows of
+// timeseries.csv there), and the estimator plugin's fused / gated / too-old counts.
+class EstimationRecorder final : public Recorder {
+ public:
+  explicit EstimationRecorder(const Simulation& sim)
+      : sim_(sim),
+        metrics_(sim.n_vehicles()),
+        window_(sim.config().metric_window),
+        every_(StepsPer(1.0 / sim.config().record_rate, sim.config().timestep)),
+        last_(sim.total_steps()) {}
+  void OnStep(const Simulation& sim) override {
+    const int64_t step = sim.step_index();
+    const double t = sim.time();
+    if ((step % every_ != 0 && step != last_) || t < window_[0] - 1e-9 || t > window_[1] + 1e-9)
+      return;
+    metrics_.Add(sim.estimation()->estimates(), sim.states());
+  }
+  bool Wants(int64_t) const override { return false; }
+  void Record(const Frame&) override {}
+  void Summarize(nlohmann::ordered_json* summary) const override {
+    std::vector<std::array<double, 3>> counts;  // as the run ended
+    for (const auto& plugin : sim_.estimation()->estimators()) counts.push_back(Counts(*plugin));
+    nlohmann::ordered_json e;
+    e["plugin"] = sim_.config().estimator.plugin;
+    e["window_s"] = window_;
+    const nlohmann::ordered_json block = metrics_.Summary(counts);
+    for (const auto& [k, v] : block.items()) e[k] = v;
+    (*summary)["estimation"] = e;
+  }
+
+ private:
+  // {fused, gated, too_old} from the plugin's report(); NaN for a count it does not report.
+  static std::array<double, 3> Counts(const PluginInstance& plugin) {
+    std::array<double, 3> c;
+    c.fill(std::numeric_limits<double>::quiet_NaN());
+    static const char* const kKeys[] = {"fused", "gated", "too_old"};
+    for (const auto& [k, v] : plugin.Report()) {
+      for (int n = 0; n < 3; ++n) {
+        if (k == kKeys[n]) c[n] = v;
+      }
+    }
+    return c;
+  }
+
+  const Simulation& sim_;
+  EstimationMetrics metrics_;
+  std::array<double, 2> window_;
+  int64_t every_, last_;
+};
+
+}  // namespace
+
 std::vector<std::unique_ptr<Recorder>> MakeRecorders(const Simulation& sim, const RunDirectory* dir,
                                                      const RecorderOptions& options) {
   std::vector<std::unique_ptr<Recorder>> out;
@@ -268,6 +326,7 @@ std::vector<std::unique_ptr<Recorder>> MakeRecorders(const Simulation& sim, cons
   out.push_back(std::move(leader));  // first: its OnStep runs before the CSV row is written
   auto marks = std::make_shared<EventMarks>();
   out.push_back(std::make_unique<SafetyRecorder>(sim, marks));
+  if (sim.estimation()) out.push_back(std::make_unique<EstimationRecorder>(sim));
   if (options.record) {
     out.push_back(std::make_unique<TimeseriesRecorder>(sim, *dir, leader_columns));
   }

@@ -184,6 +184,10 @@ void Simulation::SyncWholeData() const {
   whole_data_stale_ = false;
 }
 
+const EstimatedSensors* Simulation::estimation() const {
+  return dynamic_cast<const EstimatedSensors*>(&tick_->sensors());
+}
+
 const std::vector<std::array<double, 3>>& Simulation::wind() const {
   static const std::vector<std::array<double, 3>> kCalm;
   for (const auto& stage : force_stages_) {

@@ -4,6 +4,8 @@
 // counts and the arithmetic of its ratios; bad input is exit code 1 before anything runs.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
@@ -46,6 +48,45 @@ TEST(BenchTest, ReportOfTwoSizes) {
   EXPECT_DOUBLE_EQ(j["per_follower_cost_growth"].get<double>(),
                    j["points"][1]["pipeline_us_per_follower_step"].get<double>() /
                        j["points"][0]["pipeline_us_per_follower_step"].get<double>());
+}
+
+// Issue 18: with an estimator configured, one line compares it with passthrough on the same
+// suite; its ratio is a positive finite number (no timing threshold: the machine is shared).
+TEST(BenchTest, EstimatorCostLine) {
+  const std::string dir = TempDir("bench_est");
+  const std::string exp =
+      WriteFile(dir + "/e.toml",
+                HoverExperiment(1, 0.2) +  // longer than the 0.11 s GNSS latency
+                    "[sensors]\npreset = \"consumer_gnss\"\n[estimator]\nplugin = \"kf_ins\"\n");
+  ::testing::internal::CaptureStdout();
+  const int code = Cli({"bench", exp, "--json", dir + "/b.json"});
+  const std::string out = ::testing::internal::GetCapturedStdout();
+  ASSERT_EQ(code, 0);
+  const size_t at = out.find("ratio kf_ins/passthrough ");
+  ASSERT_NE(at, std::string::npos) << out;
+  EXPECT_EQ(out.rfind("estimator: 1 followers, kf_ins ", at), out.rfind('\n', at) + 1) << out;
+  const double ratio = std::stod(out.substr(at + std::strlen("ratio kf_ins/passthrough ")));
+  EXPECT_TRUE(std::isfinite(ratio));
+  EXPECT_GT(ratio, 0.0);
+  const auto j = nlohmann::json::parse(ReadFile(dir + "/b.json"));
+  EXPECT_EQ(j["estimator"]["estimator"], "kf_ins");
+  EXPECT_DOUBLE_EQ(j["estimator"]["ratio_estimator_over_passthrough"].get<double>(),
+                   j["estimator"]["steps_per_s_estimator"].get<double>() /
+                       j["estimator"]["steps_per_s_passthrough"].get<double>());
+  const double share = j["estimator"]["estimator_stage_share_of_run"].get<double>();
+  EXPECT_GT(share, 0.0);
+  EXPECT_LT(share, 1.0);
+}
+
+// Without an estimator the line is absent (the default bench prints what it printed before).
+TEST(BenchTest, NoEstimatorLineWithPassthrough) {
+  const std::string dir = TempDir("bench_noest");
+  const std::string exp = WriteFile(dir + "/e.toml", HoverExperiment(1, 0.02));
+  ::testing::internal::CaptureStdout();
+  const int code = Cli({"bench", exp});
+  const std::string out = ::testing::internal::GetCapturedStdout();
+  ASSERT_EQ(code, 0);
+  EXPECT_EQ(out.find("estimator:"), std::string::npos) << out;
 }
 
 TEST(BenchTest, BadInputIsExitCodeOne) {

@@ -246,6 +246,21 @@ TEST(OutputTest, TimeseriesHeaderColumns) {
   EXPECT_EQ(std::count(all.begin(), all.end(), ','), 1 + 2 * (15 + 9 + 3) + 2);
 }
 
+// Issue 18: the estimate columns come after every _meas column and before the wind.
+TEST(OutputTest, TimeseriesHeaderWithEstimateColumns) {
+  const std::string dir = TempDir("out_header_est");
+  {
+    TimeseriesWriter w(dir + "/est.csv", 2, true, true, {}, true);
+    w.Close();
+  }
+  const std::string all = ReadFile(dir + "/est.csv");
+  EXPECT_THAT(all, HasSubstr(",uav1_yaw_meas,uav0_px_est,uav0_py_est,uav0_pz_est,uav0_vx_est,"
+                             "uav0_vy_est,uav0_vz_est,uav0_px_std,uav0_py_std,uav0_pz_std,"
+                             "uav0_vx_std,uav0_vy_std,uav0_vz_std,uav0_nees,uav1_px_est"));
+  EXPECT_THAT(all, HasSubstr(",uav1_vz_std,uav1_nees,uav0_wind_x"));
+  EXPECT_EQ(std::count(all.begin(), all.end(), ','), 1 + 2 * (15 + 9 + 13 + 3));
+}
+
 TEST(OutputTest, TimeseriesWriterErrors) {
   EXPECT_THAT(OutputErrorOf([] { TimeseriesWriter w("/nonexistent_dir_mjf/t.csv", 1); }),
               HasSubstr("/nonexistent_dir_mjf/t.csv: cannot write: No such file or directory"));

@@ -4,7 +4,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <nlohmann/json.hpp>
 
 #include "mjformation/config/config.hpp"
 #include "mjformation/run/run.hpp"
@@ -81,6 +83,65 @@ TEST(RealismRun, ControllersSeeTheMeasurementAndBothAreRecorded) {
   const std::string csv = ReadFile(dir + "/timeseries.csv");
   EXPECT_THAT(csv.substr(0, csv.find('\n')), HasSubstr(",uav2_yaw_meas"));
   EXPECT_THAT(ReadFile(dir + "/summary.json"), HasSubstr("\"preset\": \"typical\""));
+}
+
+// Issue 18: an estimator other than passthrough adds the estimate and its 1-sigma beside the
+// _meas columns and summary.json "estimation"; passthrough with the same suite adds neither.
+TEST(RealismRun, AnEstimatorRecordsItsEstimateAndItsAccuracy) {
+  const std::string suite = "[sensors]\npreset = \"consumer_gnss\"\n";
+  const std::string root = TempDir("realism_est");
+  RunOptions options;
+  options.render = false;
+  options.out_dir = root + "/kf";
+  ASSERT_TRUE(
+      RunExperiment(Parse(HoverExperiment(2, 1.0) + suite + "[estimator]\nplugin = \"kf_ins\"\n"),
+                    options)
+          .complete);
+  const std::string csv = ReadFile(root + "/kf/timeseries.csv");
+  const std::string header = csv.substr(0, csv.find('\n'));
+  EXPECT_THAT(header, HasSubstr(",uav2_yaw_meas,uav0_px_est,uav0_py_est,uav0_pz_est,uav0_vx_est,"
+                                "uav0_vy_est,uav0_vz_est,uav0_px_std,uav0_py_std,uav0_pz_std,"
+                                "uav0_vx_std,uav0_vy_std,uav0_vz_std,uav0_nees,uav1_px_est"));
+  EXPECT_EQ(header.substr(header.rfind(',')), ",uav2_nees");
+  // Every row has as many cells as the header, and the standard deviations are filled in.
+  const std::string row = csv.substr(csv.rfind('\n', csv.size() - 2) + 1);
+  EXPECT_EQ(std::count(row.begin(), row.end(), ','), std::count(header.begin(), header.end(), ','));
+  // (sigma_f is empty: this hover has no formation shape)
+  const size_t first_est =
+      std::count(header.begin(), header.begin() + header.find(",uav0_px_est"), ',');
+  size_t cell = 0, empty_est = 0;
+  for (size_t at = 0, next; at < row.size(); at = next + 1, ++cell) {
+    next = std::min(row.find_first_of(",\n", at), row.size());
+    if (cell > first_est && next == at) ++empty_est;
+  }
+  EXPECT_EQ(empty_est, 0u);
+  const auto summary = nlohmann::json::parse(ReadFile(root + "/kf/summary.json"));
+  ASSERT_TRUE(summary.contains("estimation"));
+  const auto& e = summary["estimation"];
+  EXPECT_EQ(e["plugin"], "kf_ins");
+  EXPECT_EQ(e["state_dim"], 6);
+  ASSERT_EQ(e["vehicles"].size(), 3u);
+  for (const auto& v : e["vehicles"]) {
+    EXPECT_GT(v["samples"].get<int>(), 10);
+    EXPECT_GT(v["position_rms_m"].get<double>(), 0.0);
+    EXPECT_LT(v["position_rms_m"].get<double>(), 10.0);  // the suite's 2.12 m wander per axis
+    EXPECT_GT(v["nees_mean"].get<double>(), 0.0);
+    EXPECT_GT(v["fused"].get<double>(), 5.0);  // 10 Hz GNSS for 1 s
+    EXPECT_GE(v["gated"].get<double>(), 0.0);
+    EXPECT_GE(v["too_old"].get<double>(), 0.0);
+    EXPECT_LT(v["nees_band_95"][0].get<double>(), 6.0);
+    EXPECT_GT(v["nees_band_95"][1].get<double>(), 6.0);
+  }
+  // The followers' figures are also metrics (so a sweep's tables carry them).
+  EXPECT_EQ(summary["metrics"]["estimation_nees_mean"], e["followers"]["nees_mean"]);
+  EXPECT_EQ(summary["metrics"]["estimation_position_rms_m"], e["followers"]["position_rms_m"]);
+  options.out_dir = root + "/passthrough";
+  ASSERT_TRUE(RunExperiment(Parse(HoverExperiment(2, 1.0) + suite), options).complete);
+  const std::string plain = ReadFile(root + "/passthrough/timeseries.csv");
+  EXPECT_EQ(plain.substr(0, plain.find('\n')).find("_est"), std::string::npos);
+  const auto plain_summary = nlohmann::json::parse(ReadFile(root + "/passthrough/summary.json"));
+  EXPECT_FALSE(plain_summary.contains("estimation"));
+  EXPECT_FALSE(plain_summary["metrics"].contains("estimation_nees_mean"));
 }
 
 // A hovering vehicle in a steady wind leans into it until its thrust's horizontal part balances

@@ -42,6 +42,9 @@ class EstimatedSensors final : public SensorStage {
   const std::vector<mjfEstimate>& estimates() const { return estimates_; }
   const std::vector<mjfVehicleState>& held() const { return held_; }
   const std::vector<std::unique_ptr<PluginInstance>>& estimators() const { return estimators_; }
+  // Wall time spent in Measure so far (the sensor models and the estimator plugins), s: what
+  // `mjformation bench` reports as the estimator's cost, measured on the flight itself.
+  double wall_seconds() const { return wall_seconds_; }
 
  private:
   void EstimateOne(int vehicle, int64_t step, double time, const mjfVehicleState& truth);
@@ -54,6 +57,7 @@ class EstimatedSensors final : public SensorStage {
   std::vector<mjfEstimate> estimates_;
   std::vector<mjfMeasurement> arrived_;  // scratch, reused every step
   std::array<char, 512> error_{};
+  double wall_seconds_ = 0;
 };
 
 }  // namespace mjf::runner

@@ -50,9 +50,13 @@ class TimeseriesWriter {
   // measured / wind: append per vehicle what the controllers measured
   // (uav<i>_px_meas .. _yaw_meas) / the wind it felt (uav<i>_wind_x, _y, _z); extra_columns:
   // further names (e.g. leader_ax, leader_ay), all after the usual columns and only when
-  // switched on, so existing runs keep their bytes.
+  // switched on, so existing runs keep their bytes. estimated: after the _meas columns, each
+  // vehicle's estimate (uav<i>_{px..vz}_est) and its standard deviation from the covariance's
+  // diagonal (uav<i>_{px..vz}_std) and the NEES of (p, v) against the truth (uav<i>_nees), for
+  // an [estimator] other than passthrough.
   TimeseriesWriter(const std::string& path, int n_vehicles, bool measured = false,
-                   bool wind = false, const std::vector<std::string>& extra_columns = {});
+                   bool wind = false, const std::vector<std::string>& extra_columns = {},
+                   bool estimated = false);
   ~TimeseriesWriter();
   // extra: one value per extra column (NaN: an empty cell), or nullptr when there are none.
   void Write(const Simulation& sim, double sigma_f, const std::vector<double>& slots,
@@ -66,6 +70,7 @@ class TimeseriesWriter {
   std::string buffer_;
   size_t n_extra_ = 0;
   bool measured_ = false, wind_ = false;  // the [sensors] / [wind] columns
+  bool estimated_ = false;                // the [estimator] columns
 };
 
 // Writes finite v as std::to_chars(general, precision 9) would (printf's "%.9g") at p and

@@ -20,6 +20,7 @@
 #include "mjformation/control/control_tick.hpp"
 #include "mjformation/control/control_wiring.hpp"
 #include "mjformation/control/errors.hpp"
+#include "mjformation/control/estimated_sensors.hpp"
 #include "mjformation/control/plugin_host.hpp"
 #include "mjformation/control/stages.hpp"
 #include "mjformation/scene/vehicle_binding.hpp"
@@ -73,6 +74,9 @@ class Simulation {
   const std::vector<mjfVehicleState>& measured_states() const { return measured(); }
   // The wind at each vehicle this step (m/s, world); empty when [wind] is calm.
   const std::vector<std::array<double, 3>>& wind() const;
+  // The estimator stage (issue 18: [estimator] plugin other than "passthrough"): each vehicle's
+  // estimate and covariance of the last ComputeControls, its plugin instances; else nullptr.
+  const EstimatedSensors* estimation() const;
   const std::vector<mjfSetpoint>& setpoints() const { return tick_->setpoints(); }
   const std::vector<double>& controls() const { return tick_->controls(); }
   int actuators_per_vehicle() const { return bindings_.actuators_per_vehicle; }
