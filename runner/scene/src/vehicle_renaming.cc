@@ -14,7 +14,7 @@ namespace {
 using mjcf::Str;
 using tinyxml2::XMLElement;
 
-const char* const kContractSensors[] = {"pos", "vel", "quat", "gyro", "accel"};
+const char* const kContractSensors[] = {"pos", "vel", "quat", "gyro"};
 
 // What names an element of one kind: the tags that carry such a name, the attributes that refer
 // to it, and the objtype/reftype values that mean it.

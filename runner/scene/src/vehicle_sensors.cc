@@ -59,10 +59,7 @@ void AddImuAndSensors(tinyxml2::XMLDocument* doc, XMLElement* root, XMLElement* 
   XMLElement* gyro = sensor->InsertNewChildElement("gyro");
   gyro->SetAttribute("name", "gyro");
   gyro->SetAttribute("site", "imu");
-  XMLElement* accel = sensor->InsertNewChildElement("accelerometer");  // issue 18's contract
-  accel->SetAttribute("name", "accel");
-  accel->SetAttribute("site", "imu");
-  notes->push_back("added sensors pos, vel, quat, gyro, accel at site 'imu'");
+  notes->push_back("added sensors pos, vel, quat, gyro at site 'imu'");
 }
 
 }  // namespace mjf::runner

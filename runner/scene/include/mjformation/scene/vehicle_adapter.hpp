@@ -5,7 +5,7 @@
 // project's vehicle contract (docs/ARCHITECTURE.md, "Vehicle model contract"):
 //   - the mapped body becomes the top-level body `vehicle`, alone in <worldbody>;
 //   - the mapped rotor actuators are renamed to the names the attitude plugin drives;
-//   - a site `imu` at the body's centre of mass and the sensors pos, vel, quat, gyro, accel on it are
+//   - a site `imu` at the body's centre of mass and the sensors pos, vel, quat, gyro on it are
 //     added;
 //   - asset files are resolved as MuJoCo does (model file folder + meshdir/texturedir/assetdir)
 //     and written as absolute paths, so the text compiles from anywhere;
