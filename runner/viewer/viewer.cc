@@ -502,9 +502,13 @@ int Main(int argc, char** argv) {
     return code == 0 ? 0 : 2;
   }
   o.height = o.width * 9 / 16;
-  // NaN passes CLI::Range.
-  if (!std::isfinite(o.speed) || !std::isfinite(o.screenshot_at) ||
-      o.experiment.empty() == o.replay_dir.empty()) {
+  // NaN passes CLI::Range (every comparison with it is false): said apart.
+  if (!std::isfinite(o.speed) || !std::isfinite(o.screenshot_at)) {
+    std::fprintf(stderr, "mjformation view: %s must be a finite number\n",
+                 std::isfinite(o.speed) ? "--screenshot-at" : "--speed");
+    return 2;
+  }
+  if (o.experiment.empty() == o.replay_dir.empty()) {
     std::fprintf(stderr, "mjformation view: give an experiment file, or --replay RUN_DIR\n");
     return 2;
   }

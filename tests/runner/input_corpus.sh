@@ -178,10 +178,13 @@ for spec in "0x720:the width must be in [1, 7680]" "-5x720:the width must be in 
 done
 case="replay --video-size without --video"
 refused 2 "--video-size requires --video" -- replay rec --video-size 640x360
-for args in "--size -100" "--bogus-flag" "--set" "--speed nan"; do
+for spec in "--size -100|--size: Value -100 not in range" "--bogus-flag|--bogus-flag" \
+  "--set|--set: 1 required" "--speed nan|--speed must be a finite number" \
+  "--speed -1|--speed: Value -1 not in range"; do
+  args=${spec%%|*}
   case="view $args"
   # shellcheck disable=SC2086
-  DISPLAY= refused 2 "" -- view e.toml $args
+  DISPLAY= refused 2 "${spec#*|}" -- view e.toml $args
 done
 
 # ---- bounded inputs: [sensors], [wind], [leader], [formation], files ----
