@@ -481,6 +481,17 @@ std::unique_ptr<Source> MakeSource(const Options& o) {
   }
 }
 
+// What is wrong with a parsed command line that CLI11 cannot see; empty when nothing is.
+std::string UsageProblem(const Options& o) {
+  // NaN passes CLI::Range (every comparison with it is false): said apart.
+  if (!std::isfinite(o.speed)) return "--speed must be a finite number";
+  if (!std::isfinite(o.screenshot_at)) return "--screenshot-at must be a finite number";
+  if (o.experiment.empty() == o.replay_dir.empty()) {
+    return "give an experiment file, or --replay RUN_DIR";
+  }
+  return "";
+}
+
 int Main(int argc, char** argv) {
   CLI::App app("mjformation-view: fly an experiment live, or replay a run, in a window");
   Options o;
@@ -502,14 +513,8 @@ int Main(int argc, char** argv) {
     return code == 0 ? 0 : 2;
   }
   o.height = o.width * 9 / 16;
-  // NaN passes CLI::Range (every comparison with it is false): said apart.
-  if (!std::isfinite(o.speed) || !std::isfinite(o.screenshot_at)) {
-    std::fprintf(stderr, "mjformation view: %s must be a finite number\n",
-                 std::isfinite(o.speed) ? "--screenshot-at" : "--speed");
-    return 2;
-  }
-  if (o.experiment.empty() == o.replay_dir.empty()) {
-    std::fprintf(stderr, "mjformation view: give an experiment file, or --replay RUN_DIR\n");
+  if (const std::string bad = UsageProblem(o); !bad.empty()) {
+    std::fprintf(stderr, "mjformation view: %s\n", bad.c_str());
     return 2;
   }
   if (!o.screenshot.empty() && o.screenshot_at < 0) o.screenshot_at = 0;
