@@ -177,57 +177,54 @@ double Ratio(double sum, long count) { return count > 0 ? sum / count : kNaN; }
 
 }  // namespace
 
+EstimationMetrics::Sums& EstimationMetrics::Sums::operator+=(const Sums& o) {
+  position_sq += o.position_sq;
+  velocity_sq += o.velocity_sq;
+  relative_sq += o.relative_sq;
+  nees += o.nees;
+  samples += o.samples;
+  nees_samples += o.nees_samples;
+  nees_in_band += o.nees_in_band;
+  return *this;
+}
+
+nlohmann::ordered_json EstimationMetrics::SumsJson(const Sums& s, bool relative_to_leader) {
+  nlohmann::ordered_json v;
+  v["samples"] = s.samples;
+  v["position_rms_m"] = JsonNumber(std::sqrt(Ratio(s.position_sq, s.samples)));
+  v["velocity_rms_m_s"] = JsonNumber(std::sqrt(Ratio(s.velocity_sq, s.samples)));
+  if (relative_to_leader) {
+    v["position_rms_relative_to_leader_m"] = JsonNumber(std::sqrt(Ratio(s.relative_sq, s.samples)));
+  }
+  v["nees_mean"] = JsonNumber(Ratio(s.nees, s.nees_samples));
+  v["nees_samples"] = s.nees_samples;
+  v["nees_band_95"] = Band(MeanNeesBand95(s.nees_samples, kDim));
+  v["nees_fraction_in_single_band"] =
+      JsonNumber(Ratio(static_cast<double>(s.nees_in_band), s.nees_samples));
+  return v;
+}
+
 nlohmann::ordered_json EstimationMetrics::Summary(
     const std::vector<std::array<double, 3>>& counts) const {
   using Json = nlohmann::ordered_json;
   Json vehicles = Json::array();
   Sums followers;  // pooled over vehicles 1..N: the formation's view
   for (size_t i = 0; i < sums_.size(); ++i) {
-    const Sums& s = sums_[i];
     Json v;
     v["vehicle"] = i;
-    v["samples"] = s.samples;
-    v["position_rms_m"] = JsonNumber(std::sqrt(Ratio(s.position_sq, s.samples)));
-    v["velocity_rms_m_s"] = JsonNumber(std::sqrt(Ratio(s.velocity_sq, s.samples)));
-    if (i > 0) {
-      v["position_rms_relative_to_leader_m"] =
-          JsonNumber(std::sqrt(Ratio(s.relative_sq, s.samples)));
-    }
-    v["nees_mean"] = JsonNumber(Ratio(s.nees, s.nees_samples));
-    v["nees_samples"] = s.nees_samples;
-    v["nees_band_95"] = Band(MeanNeesBand95(s.nees_samples, kDim));
-    v["nees_fraction_in_single_band"] =
-        JsonNumber(Ratio(static_cast<double>(s.nees_in_band), s.nees_samples));
+    v.update(SumsJson(sums_[i], i > 0));
     if (i < counts.size()) {
       v["fused"] = JsonNumber(counts[i][0]);
       v["gated"] = JsonNumber(counts[i][1]);
       v["too_old"] = JsonNumber(counts[i][2]);
     }
     vehicles.push_back(v);
-    if (i == 0) continue;
-    followers.position_sq += s.position_sq;
-    followers.velocity_sq += s.velocity_sq;
-    followers.relative_sq += s.relative_sq;
-    followers.nees += s.nees;
-    followers.samples += s.samples;
-    followers.nees_samples += s.nees_samples;
-    followers.nees_in_band += s.nees_in_band;
+    if (i > 0) followers += sums_[i];
   }
   Json out;
   out["state_dim"] = kDim;
   out["nees_band_95_single"] = Band(single_band_);
-  Json f;
-  f["samples"] = followers.samples;
-  f["position_rms_m"] = JsonNumber(std::sqrt(Ratio(followers.position_sq, followers.samples)));
-  f["velocity_rms_m_s"] = JsonNumber(std::sqrt(Ratio(followers.velocity_sq, followers.samples)));
-  f["position_rms_relative_to_leader_m"] =
-      JsonNumber(std::sqrt(Ratio(followers.relative_sq, followers.samples)));
-  f["nees_mean"] = JsonNumber(Ratio(followers.nees, followers.nees_samples));
-  f["nees_samples"] = followers.nees_samples;
-  f["nees_band_95"] = Band(MeanNeesBand95(followers.nees_samples, kDim));
-  f["nees_fraction_in_single_band"] =
-      JsonNumber(Ratio(static_cast<double>(followers.nees_in_band), followers.nees_samples));
-  out["followers"] = f;
+  out["followers"] = SumsJson(followers, true);
   out["vehicles"] = vehicles;
   return out;
 }

@@ -47,7 +47,11 @@ class EstimationMetrics {
     double position_sq = 0, velocity_sq = 0, nees = 0;
     double relative_sq = 0;  // |e_i - e_0|^2: the error of the position relative to the leader
     long samples = 0, nees_samples = 0, nees_in_band = 0;
+    Sums& operator+=(const Sums& o);
   };
+  // One vehicle's (or the pooled followers') accuracy as summary.json writes it; the
+  // relative-to-leader RMS only where it means something (not for the leader itself).
+  static nlohmann::ordered_json SumsJson(const Sums& s, bool relative_to_leader);
   std::vector<Sums> sums_;
   std::array<double, 2> single_band_;  // chi2(6) 95 % band of one NEES sample
 };
