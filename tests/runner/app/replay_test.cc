@@ -117,32 +117,6 @@ TEST_F(ReplayTest, VideoSizeOverridesTheSnapshotSize) {
   EXPECT_EQ(VideoSize(v.path), "322x182");
 }
 
-// A safety event in summary.json is marked (red) in the replayed picture at and after its time,
-// not before it; the same picture without the event has no such red.
-TEST_F(ReplayTest, MarksSafetyEventsFromTheSummary) {
-  Recording rec = LoadRecording(*run_dir_);
-  ASSERT_TRUE(rec.events.empty());
-  const std::string out = *run_dir_ + "/replay_events";  // RenderReplay makes one level
-  RenderReplay(rec, {4.0}, out + "_none", {});
-  rec.events.push_back({"flip", 3.0, {2}});
-  RenderReplay(rec, {2.0, 4.0}, out + "_flip", {});
-  auto red = [](const std::string& path) {
-    int w = 0, h = 0;
-    const auto rgb = ReadPng(path, &w, &h);
-    int n = 0;
-    for (size_t p = 0; p + 2 < rgb.size(); p += 3) {
-      n += rgb[p] > 180 && rgb[p + 1] < 60 && rgb[p + 2] < 60;
-    }
-    return n;
-  };
-  const int before = red(out + "_flip/replay_t002.00.png");
-  const int after = red(out + "_flip/replay_t004.00.png");
-  const int without = red(out + "_none/replay_t004.00.png");
-  EXPECT_GT(after, without + 30) << "no red event mark at 4 s";  // measured: 0 without, 60+ with
-  EXPECT_LT(before, without + 20) << "the mark appeared before the event";
-  std::printf("red pixels: before %d, after %d, without the event %d\n", before, after, without);
-}
-
 // Red pixels of the safety-event marks (nothing else in the picture is that red).
 int EventRed(const std::string& path) {
   int w = 0, h = 0;
@@ -152,6 +126,23 @@ int EventRed(const std::string& path) {
     n += rgb[p] > 180 && rgb[p + 1] < 60 && rgb[p + 2] < 60;
   }
   return n;
+}
+
+// A safety event in summary.json is marked (red) in the replayed picture at and after its time,
+// not before it; the same picture without the event has no such red.
+TEST_F(ReplayTest, MarksSafetyEventsFromTheSummary) {
+  Recording rec = LoadRecording(*run_dir_);
+  ASSERT_TRUE(rec.events.empty());
+  const std::string out = *run_dir_ + "/replay_events";  // RenderReplay makes one level
+  RenderReplay(rec, {4.0}, out + "_none", {});
+  rec.events.push_back({"flip", 3.0, {2}});
+  RenderReplay(rec, {2.0, 4.0}, out + "_flip", {});
+  const int before = EventRed(out + "_flip/replay_t002.00.png");
+  const int after = EventRed(out + "_flip/replay_t004.00.png");
+  const int without = EventRed(out + "_none/replay_t004.00.png");
+  EXPECT_GT(after, without + 30) << "no red event mark at 4 s";  // measured: 0 without, 60+ with
+  EXPECT_LT(before, without + 20) << "the mark appeared before the event";
+  std::printf("red pixels: before %d, after %d, without the event %d\n", before, after, without);
 }
 
 // `run` marks its own safety events in its snapshots: a region the followers leave at once
