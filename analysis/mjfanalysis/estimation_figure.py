@@ -21,7 +21,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from .io import Run  # noqa: E402
-from .plots import DPI, STYLE, follower_color  # noqa: E402
+from .plots import STYLE, follower_color, save_figure  # noqa: E402
 
 FIGURE_NAME = "estimation.png"
 STATE_DIM = 6
@@ -133,8 +133,4 @@ def figure(run: Run, out_path) -> Path | None:
                           "shaded: the filter's ±2σ", fontsize=9)
         _nees_panel(axes[-1], ts, t, followers, run.summary)
         fig.tight_layout()
-        out_path = Path(out_path)
-        out_path.parent.mkdir(parents=True, exist_ok=True)
-        fig.savefig(out_path, dpi=DPI, metadata={"Software": None})
-        plt.close(fig)
-    return out_path
+        return save_figure(fig, out_path)

@@ -228,7 +228,7 @@ def fig_sigma_by_protocol(cells: dict, leader: str, vehicle: str, out_path: Path
         ax.set_ylabel("σ_f (eq. (68))")
         ax.set_title(f"σ_f(t) against the {leader} leader [{vehicle}]", fontsize=9)
         ax.legend(loc="upper right")
-        return plots._save(fig, out_path)
+        return plots.save_figure(fig, out_path)
 
 
 def fig_sliding_window(run: Run, out_path: Path, follower: int = 1) -> Path:
@@ -256,7 +256,7 @@ def fig_sliding_window(run: Run, out_path: Path, follower: int = 1) -> Path:
         ax.set_ylabel("s (m/s)")
         ax.set_title(f"{run.name} [{run.vehicle_model}]: s_{follower} on [20, 40] s", fontsize=9)
         ax.legend(loc="upper right", fontsize=7)
-        return plots._save(fig, out_path)
+        return plots.save_figure(fig, out_path)
 
 
 # --- sigma_f against T ------------------------------------------------------------------------
@@ -331,7 +331,7 @@ def fig_period(sweeps: dict, out_path: Path) -> Path:
             ax.set_ylabel("mean σ_f on [25, 40] s")
             ax.set_title(f"σ_f against T, smc_discrete [{vehicle}]", fontsize=9)
             ax.legend(loc="upper left", fontsize=7)
-        return plots._save(fig, out_path)
+        return plots.save_figure(fig, out_path)
 
 
 def period_table(sweeps: dict) -> list[str]:
@@ -383,7 +383,7 @@ def fig_theory_curves(curves: dict, out_path: Path) -> Path:
             ax.set_ylabel("max |s_1| / Δ after reaching")
             ax.set_title(f"bang_bang {titles[n][0]}: model (40), 12 seeds", fontsize=9)
             ax.legend(fontsize=7)
-        return plots._save(fig, out_path)
+        return plots.save_figure(fig, out_path)
 
 
 # --- the section ------------------------------------------------------------------------------

@@ -14,7 +14,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 from .io import Run  # noqa: E402
-from .plots import DPI, STYLE  # noqa: E402
+from .plots import STYLE, save_figure  # noqa: E402
 
 FIGURE_NAME = "network.png"
 
@@ -103,8 +103,4 @@ def figure(run: Run, out_path) -> Path | None:
         ax.set_ylabel("age of information (ms)")
         ax.legend()
         fig.tight_layout()
-        out_path = Path(out_path)
-        out_path.parent.mkdir(parents=True, exist_ok=True)
-        fig.savefig(out_path, dpi=DPI, metadata={"Software": None})
-        plt.close(fig)
-    return out_path
+        return save_figure(fig, out_path)

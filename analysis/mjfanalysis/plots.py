@@ -93,7 +93,8 @@ def _mark_events_in_plane(ax, run: Run) -> int:
     return len(events)
 
 
-def _save(fig, out_path) -> Path:
+def save_figure(fig, out_path) -> Path:
+    """Writes the figure (its folder made, no Software tag so the bytes repeat) and closes it."""
     out_path = Path(out_path)
     out_path.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(out_path, dpi=DPI, metadata={"Software": None})
@@ -126,7 +127,7 @@ def _no_data(run: Run, out_path, what: str, fig_index: int, why: str) -> Path:
         ax.set_title(_title(run, what, fig_index), fontsize=9)
         ax.text(0.5, 0.5, why, ha="center", va="center", transform=ax.transAxes)
         ax.set_axis_off()
-        return _save(fig, out_path)
+        return save_figure(fig, out_path)
 
 
 def _rows(run: Run):
@@ -162,7 +163,7 @@ def fig_trajectories(run: Run, out_path) -> Path:
         ax.set_ylabel("Y (m)")
         ax.set_title(_title(run, f"{what}, t = {t[0]:g}..{t[-1]:g} s", 0), fontsize=9)
         ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0))
-        return _save(fig, out_path)
+        return save_figure(fig, out_path)
 
 
 def formation_radius(run: Run) -> float:
@@ -219,7 +220,7 @@ def fig_final_positions(run: Run, out_path) -> Path:
         ax.set_ylabel("Y (m)")
         ax.set_title(_title(run, f"{what} t = {t_end:g} s", 1), fontsize=9)
         ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0))
-        return _save(fig, out_path)
+        return save_figure(fig, out_path)
 
 
 def _angles_deg(ts, i, name):
@@ -242,7 +243,7 @@ def fig_pitch_roll(run: Run, out_path, follower: int = 1) -> Path:
         ax.set_ylabel("angle (deg)")
         ax.set_title(_title(run, what, 2), fontsize=9)
         ax.legend(loc="best")
-        return _save(fig, out_path)
+        return save_figure(fig, out_path)
 
 
 def fig_yaw(run: Run, out_path, follower: int = 1) -> Path:
@@ -260,7 +261,7 @@ def fig_yaw(run: Run, out_path, follower: int = 1) -> Path:
         ax.set_ylabel("angle (deg)")
         ax.set_title(_title(run, what, 3), fontsize=9)
         ax.legend(loc="best")
-        return _save(fig, out_path)
+        return save_figure(fig, out_path)
 
 
 def _is_discrete(run: Run) -> bool:
@@ -296,7 +297,7 @@ def fig_sliding(run: Run, out_path, follower: int = 1) -> Path:
         ax.set_ylabel("s (m/s)")
         ax.set_title(_title(run, what, 4), fontsize=9)
         ax.legend(loc="best")
-        return _save(fig, out_path)
+        return save_figure(fig, out_path)
 
 
 def sigma_f_series(run: Run):
@@ -362,7 +363,7 @@ def fig_sigma_f(run: Run, out_path) -> Path:
         ax.set_ylabel("σ_f (m, m/s: eq. (68))")
         ax.set_title(_title(run, what, 5), fontsize=9)
         ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0))
-        return _save(fig, out_path)
+        return save_figure(fig, out_path)
 
 
 FIGURES = (
@@ -408,4 +409,4 @@ def fig_sigma_comparison(runs: list[Run], out_path, window=M.DEFAULT_WINDOW) -> 
         ax.set_title("Formation tracking error σ_f(t), all runs", fontsize=10)
         if n:
             ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0))
-        return _save(fig, out_path)
+        return save_figure(fig, out_path)
