@@ -98,22 +98,21 @@ void CheckPlanSize(const SweepPlan& plan) {
 // more than kMaxCheckedCells cells is checked on the cells where at most one axis leaves its first
 // value: every value once, combinations beyond that fail their runs (exit 3), as said there.
 constexpr size_t kMaxCheckedCells = 256;
-void CheckCells(const CliCommands& c, const SweepPlan& plan) {
+void CheckCells(const SweepPlan& plan) {
   const bool all = plan.cells.size() <= kMaxCheckedCells;
-  for (const std::vector<size_t>& cell : plan.cells) {
+  // Each cell's first run: its configuration, already parsed by PlanSweep (seeds do not change
+  // what is checked here).
+  for (size_t r = 0; r < plan.runs.size(); ++r) {
+    if (r > 0 && plan.runs[r].cell == plan.runs[r - 1].cell) continue;
+    const std::vector<size_t>& cell = plan.cells[plan.runs[r].cell];
     const auto moved = std::count_if(cell.begin(), cell.end(), [](size_t k) { return k != 0; });
     if (!all && moved > 1) continue;
-    std::vector<std::string> overrides = c.overrides;
     std::string values;
     for (size_t a = 0; a < plan.axes.size(); ++a) {
-      overrides.push_back(plan.axes[a].key + "=" + plan.axes[a].values[cell[a]]);
-      values += (a ? " with " : "") + overrides.back();
+      values += (a ? " with " : "") + plan.axes[a].key + "=" + plan.axes[a].values[cell[a]];
     }
-    ExperimentConfig config =
-        LoadExperiment(c.experiment, overrides, ExperimentChecks::Rendering(!c.no_render));
-    for (const auto& path : c.plugin_path) config.plugin_path.push_back(path);
     try {
-      Simulation check(config);
+      Simulation check(plan.runs[r].config);
     } catch (const std::exception& e) {
       throw ConfigError(
           "--vary " + values + ": " + e.what() +
@@ -211,7 +210,7 @@ SweepPlan PlanSweep(const CliCommands& c) {
       plan.runs.push_back(std::move(run));
     }
   }
-  CheckCells(c, plan);
+  CheckCells(plan);
   std::set<std::string> names;
   for (const RunSpec& run : plan.runs) {
     if (!names.insert(run.name).second) {
