@@ -237,6 +237,10 @@ typedef struct mjfSensorInfo_ {
   double accel_bias_walk;     /* m/s^3/sqrt(Hz), bias random-walk intensity */
   unsigned position_sources;  /* MJF_MEASURES_* bits provided by some aiding sensor */
   double max_latency;         /* s, the largest latency of any aiding sensor */
+  /* The position source's first-order Gauss-Markov wander per axis (stationary 1 sigma and
+     correlation time; 0: none). A measurement's pos_std is sqrt(white^2 + wander^2). */
+  double position_wander_std; /* m */
+  double position_wander_tau; /* s */
 } mjfSensorInfo;
 
 typedef struct mjfCreateContext_ {

@@ -7,6 +7,8 @@
 #include "mjformation/estimator/kf_ins.hpp"
 
 #include <mjformation/plugin_util.hpp>
+#include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "adapter.hpp"
@@ -24,6 +26,10 @@ const mjfAttribute kKfInsAttributes[] = {
     {"initial_position_std", "1", "m: initial position uncertainty (about the start position)"},
     {"initial_velocity_std", "0.5", "m/s: initial velocity uncertainty (about rest)"},
     {"initial_bias_std", "0.2", "m/s^2: initial accelerometer bias uncertainty"},
+    {"position_wander", "",
+     "m: the position source's Gauss-Markov wander, estimated as a state (empty: the suite's; "
+     "0: none, every sample's stated accuracy fused as white noise)"},
+    {"position_wander_tau", "", "s: the wander's correlation time (empty: the suite's)"},
 };
 
 // v rotated from body to world by the unit quaternion q (w x y z): v + 2 w (u x v) + 2 u x (u x v).
@@ -63,28 +69,54 @@ KfInsConfig ReadConfig(const mjfCreateContext* ctx) {
   c.initial_position_std = a.Number("initial_position_std");
   c.initial_velocity_std = a.Number("initial_velocity_std");
   c.initial_bias_std = a.Number("initial_bias_std");
+  c.position_wander_std = OrSuite(a, "position_wander", s->position_wander_std);
+  c.position_wander_tau = OrSuite(a, "position_wander_tau", s->position_wander_tau);
+  if (!(c.position_wander_std >= 0) || !std::isfinite(c.position_wander_std)) {
+    throw ConfigError("attribute 'position_wander': must be a finite number >= 0 m");
+  }
+  if (c.position_wander_std == 0) {
+    c.position_wander_tau = 100.0;  // unused without a wander (a suite without one may say 0)
+  } else if (!(c.position_wander_tau > 0) || !std::isfinite(c.position_wander_tau)) {
+    throw ConfigError("attribute 'position_wander_tau': must be a finite number > 0 s");
+  }
   return c;
 }
 
 struct KfInsInstance {
   explicit KfInsInstance(const mjfCreateContext* ctx)
-      : filter(ReadConfig(ctx)), accel_in_world(ctx->sensors->accel_in_world != 0) {}
+      : filter(ReadConfig(ctx)),
+        accel_in_world(ctx->sensors->accel_in_world != 0),
+        suite_wander_variance(ctx->sensors->position_wander_std *
+                              ctx->sensors->position_wander_std),
+        wander_is_a_state(filter.config().position_wander_std > 0) {}
   KfIns filter;
   bool accel_in_world;
+  // A measurement states sqrt(white^2 + wander^2); with the wander a state, only the white part
+  // is measurement noise.
+  double suite_wander_variance;
+  bool wander_is_a_state;
 };
 
 void* KfInsCreate(const mjfCreateContext* ctx) {
   return mjf::plugin::CreateOrExplain(ctx, [ctx]() -> void* { return new KfInsInstance(ctx); });
 }
 
-AidingSample ToSample(const mjfMeasurement& m) {
+// The white part of a stated position accuracy (the wander taken out when the filter estimates
+// it); a sensor is never exact (KfIns floors it at 1 um).
+double WhitePart(double stated, double wander_variance) {
+  return std::sqrt(std::max(stated * stated - wander_variance, 0.0));
+}
+
+AidingSample ToSample(const mjfMeasurement& m, const KfInsInstance& self) {
   AidingSample s;
   s.time_taken = m.time_taken;
   s.has_position = (m.fields & MJF_MEASURES_POSITION) != 0;
   s.has_velocity = (m.fields & MJF_MEASURES_VELOCITY) != 0;
   s.position = Vec3(m.pos[0], m.pos[1], m.pos[2]);
   s.velocity = Vec3(m.vel[0], m.vel[1], m.vel[2]);
-  s.position_std = Vec3(m.pos_std[0], m.pos_std[1], m.pos_std[2]);
+  const double wander = self.wander_is_a_state ? self.suite_wander_variance : 0.0;
+  s.position_std = Vec3(WhitePart(m.pos_std[0], wander), WhitePart(m.pos_std[1], wander),
+                        WhitePart(m.pos_std[2], wander));
   s.velocity_std = Vec3(m.vel_std[0], m.vel_std[1], m.vel_std[2]);
   return s;
 }
@@ -115,7 +147,7 @@ int KfInsCompute(void* instance, const mjfStepContext* ctx) {
                                           : Rotate(in.imu.quat, in.imu.accel);
       self->filter.Propagate(ctx->step, f);
     }
-    for (int k = 0; k < in.n_measurements; ++k) self->filter.Fuse(ToSample(in.measurements[k]));
+    for (int k = 0; k < in.n_measurements; ++k) self->filter.Fuse(ToSample(in.measurements[k], *self));
     WriteEstimate(self->filter, *in.held, ctx->estimate);
     return 0;
   });
@@ -136,7 +168,8 @@ const mjfPlugin kKfIns = {
     MJF_ABI_VERSION,
     "kf_ins",
     MJF_KIND_ESTIMATOR,
-    "world-frame Kalman filter (p, v, accel bias), IMU input, delayed fusion, 5-sigma gate",
+    "world-frame Kalman filter (p, v, accel bias, GNSS wander), IMU input, delayed fusion, 5-sigma "
+    "gate",
     static_cast<int>(sizeof(kKfInsAttributes) / sizeof(kKfInsAttributes[0])),
     kKfInsAttributes,
     0,

@@ -35,6 +35,8 @@ mjfSensorInfo SuiteInfo(const realism::SensorParams& p, double gravity) {
   s.accel_bias_walk = std::hypot(p.accel.bias_walk, gravity * att.bias_walk);
   s.position_sources = MJF_MEASURES_POSITION | MJF_MEASURES_VELOCITY;
   s.max_latency = std::max(p[Channel::kPosition].latency_s, p[Channel::kVelocity].latency_s);
+  s.position_wander_std = p[Channel::kPosition].wander_sigma;
+  s.position_wander_tau = p[Channel::kPosition].wander_tau;
   return s;
 }
 

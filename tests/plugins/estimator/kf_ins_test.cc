@@ -38,6 +38,8 @@ struct Truth {
 // The noise the sensors add (white accelerometer noise, GNSS-like p and v jitter).
 struct Noise {
   double accel_density = 0.0, pos_std = 0.0, vel_std = 0.0;
+  // The position source's Gauss-Markov wander (the sensor model's): stationary sigma, tau.
+  double wander_sigma = 0.0, wander_tau = 100.0;
 };
 
 struct Scenario {
@@ -45,6 +47,9 @@ struct Scenario {
   double latency = 0.11;
   Noise noise;
   double duration = 10.0;
+  // Start the filter off the truth by a draw from its own prior (p, v, b; the wander starts
+  // stationary in both), as consistency requires; false: at the truth.
+  bool start_from_prior = false;
 };
 
 KfInsConfig FilterFor(const Scenario& s) {
@@ -54,6 +59,8 @@ KfInsConfig FilterFor(const Scenario& s) {
   c.history = s.latency + 2 * kDt;
   c.initial_position = Truth{}.p;
   c.gravity = kG;
+  c.position_wander_std = s.noise.wander_sigma;
+  c.position_wander_tau = s.noise.wander_tau;
   return c;
 }
 
@@ -64,12 +71,30 @@ struct Flight {
 
 // Flies the scenario: each step the accelerometer of the step just ended propagates, and the
 // samples taken `latency` ago (every 1/rate s) are fused at their own time.
-Flight Fly(const Scenario& s, uint64_t seed) {
+// `model` is what the filter is told of the noise (its wander state, the stated white std of a
+// position sample); the sensors follow s.noise.
+Flight FlyWithFilterModel(const Scenario& s, const Noise& model, uint64_t seed) {
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> normal;
   Truth truth;
-  KfIns filter(FilterFor(s));
+  KfInsConfig config = FilterFor(s);
+  config.position_wander_std = model.wander_sigma;
+  config.position_wander_tau = model.wander_tau;
+  Vec3 bias = Vec3::Zero();  // the true accelerometer bias (world frame), constant
+  if (s.start_from_prior) {
+    for (int k = 0; k < 3; ++k) {
+      truth.p[k] += config.initial_position_std * normal(rng);
+      truth.v[k] += config.initial_velocity_std * normal(rng);
+      bias[k] = config.initial_bias_std * normal(rng);
+    }
+  }
+  KfIns filter(config);
   const int64_t period = std::llround(1.0 / (s.rate_hz * kDt));
+  // The wander per sample: w+ = phi w + sigma sqrt(1 - phi^2) n, stationary from the first.
+  const double phi = std::exp(-period * kDt / s.noise.wander_tau);
+  Vec3 wander;
+  for (int k = 0; k < 3; ++k) wander[k] = s.noise.wander_sigma * normal(rng);
+  bool first_sample = true;
   const int64_t lag = std::llround(s.latency / kDt);
   std::vector<AidingSample> taken;  // by the step they were taken
   Flight run;
@@ -78,7 +103,7 @@ Flight Fly(const Scenario& s, uint64_t seed) {
     if (n > 0) {
       const Vec3 a = TrueAccel(n - 1);
       truth.Step(a);
-      Vec3 f = a - Vec3(0, 0, -kG);
+      Vec3 f = a - Vec3(0, 0, -kG) + bias;
       for (int k = 0; k < 3; ++k) f[k] += s.noise.accel_density / std::sqrt(kDt) * normal(rng);
       filter.Propagate(n, f);
     }
@@ -86,10 +111,17 @@ Flight Fly(const Scenario& s, uint64_t seed) {
       AidingSample m;
       m.time_taken = n * kDt;
       m.has_position = m.has_velocity = true;
-      m.position_std = Vec3::Constant(s.noise.pos_std);
-      m.velocity_std = Vec3::Constant(s.noise.vel_std);
+      m.position_std = Vec3::Constant(model.pos_std);
+      m.velocity_std = Vec3::Constant(model.vel_std);
+      if (!first_sample) {
+        for (int k = 0; k < 3; ++k) {
+          wander[k] = phi * wander[k] +
+                      s.noise.wander_sigma * std::sqrt(1.0 - phi * phi) * normal(rng);
+        }
+      }
+      first_sample = false;
       for (int k = 0; k < 3; ++k) {
-        m.position[k] = truth.p[k] + s.noise.pos_std * normal(rng);
+        m.position[k] = truth.p[k] + wander[k] + s.noise.pos_std * normal(rng);
         m.velocity[k] = truth.v[k] + s.noise.vel_std * normal(rng);
       }
       taken.push_back(m);
@@ -109,6 +141,8 @@ Flight Fly(const Scenario& s, uint64_t seed) {
   }
   return run;
 }
+
+Flight Fly(const Scenario& s, uint64_t seed) { return FlyWithFilterModel(s, s.noise, seed); }
 
 TEST(KfIns, NoiseFreeSensorsWithLatencyGiveTheTruth) {
   Scenario s;  // 10 Hz, 110 ms late, exact sensors
@@ -191,6 +225,37 @@ TEST(KfIns, MeanNeesIsInsideTheChiSquareBandOverSeeds) {
   const double mean = sum / kSeeds, dof = 6.0 * kSeeds;
   EXPECT_GT(mean, ChiSquareQuantile(0.025, dof) / kSeeds);
   EXPECT_LT(mean, ChiSquareQuantile(0.975, dof) / kSeeds);
+}
+
+// The consumer-GNSS case: most of the position error is a Gauss-Markov wander (2.12 m, 100 s),
+// 0.3 m of white jitter on top. With the wander a state, the filter is consistent; fusing the
+// same samples as white noise of their whole stated accuracy (the wander taken as white, the
+// filter before issue 18's fix) is grossly overconfident.
+TEST(KfIns, MeanNeesWithGnssWanderIsInsideTheBandOnlyWithTheWanderAState) {
+  Scenario s;
+  s.noise = {0.05, 0.3, 0.05, 2.5 / 1.1774, 100.0};
+  s.duration = 6.0;
+  s.start_from_prior = true;
+  constexpr int kSeeds = 30;
+  double sum = 0;
+  for (int seed = 0; seed < kSeeds; ++seed) sum += Fly(s, 2000 + seed).nees_at_end;
+  const double mean = sum / kSeeds, dof = 6.0 * kSeeds;
+  std::printf("wander as a state: mean NEES %.3f (band [%.3f, %.3f])\n", mean,
+              ChiSquareQuantile(0.025, dof) / kSeeds, ChiSquareQuantile(0.975, dof) / kSeeds);
+  EXPECT_GT(mean, ChiSquareQuantile(0.025, dof) / kSeeds);
+  EXPECT_LT(mean, ChiSquareQuantile(0.975, dof) / kSeeds);
+
+  // The same flights (the truth still wanders) through a filter told nothing of the wander,
+  // fusing the whole stated accuracy sqrt(white^2 + wander^2) as white noise.
+  Noise white = s.noise;
+  white.pos_std = std::hypot(s.noise.pos_std, s.noise.wander_sigma);
+  white.wander_sigma = 0.0;
+  double white_sum = 0;
+  for (int seed = 0; seed < kSeeds; ++seed) {
+    white_sum += FlyWithFilterModel(s, white, 2000 + seed).nees_at_end;
+  }
+  std::printf("wander taken as white: mean NEES %.3f\n", white_sum / kSeeds);
+  EXPECT_GT(white_sum / kSeeds, 3.0 * ChiSquareQuantile(0.975, dof) / kSeeds);
 }
 
 // Steady hover, white-noise part (issue 18's figures): the steady-state Riccati solution per axis

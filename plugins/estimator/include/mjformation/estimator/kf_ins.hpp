@@ -1,9 +1,12 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
-// KfIns: a linear Kalman filter per vehicle in the world frame, state x = (p, v, b) with b the
+// KfIns: a linear Kalman filter per vehicle in the world frame, state x = (p, v, b, w) with b the
 // accelerometer bias expressed in the world frame (it also absorbs the slowly varying tilt error
-// of the attitude channel, g x delta-theta, which is a world-frame horizontal bias). The input
-// is the specific force rotated into the world frame by the attitude channel: a = R f + g - b.
+// of the attitude channel, g x delta-theta, which is a world-frame horizontal bias) and w the
+// position source's Gauss-Markov wander (GNSS: satellite geometry, atmosphere), so that a
+// position sample is z = p + w + white noise. Without wander (position_wander_std = 0) w stays
+// exactly zero with zero variance and the filter is the (p, v, b) one. The input is the specific
+// force rotated into the world frame by the attitude channel: a = R f + g - b.
 // Measurements of p and/or v are fused at the time they were TAKEN: the filter keeps, for every
 // step of a history window at least as long as the largest latency, the posterior and the input
 // of that step; a late measurement rewinds to its own step, is fused there, and the window is
@@ -21,8 +24,9 @@ namespace mjf::estimator {
 
 using Vec3 = Eigen::Vector3d;
 using Mat3 = Eigen::Matrix3d;
-using Vec9 = Eigen::Matrix<double, 9, 1>;
-using Mat9 = Eigen::Matrix<double, 9, 9>;
+constexpr int kStates = 12;  // p, v, b, w: three axes each
+using StateVec = Eigen::Matrix<double, kStates, 1>;
+using StateMat = Eigen::Matrix<double, kStates, kStates>;
 
 struct KfInsConfig {
   double timestep = 0.001;  // s, one propagation per step
@@ -37,9 +41,14 @@ struct KfInsConfig {
   double initial_position_std = 1.0;  // m
   double initial_velocity_std = 0.5;  // m/s
   double initial_bias_std = 0.2;      // m/s^2
+  // The position source's first-order Gauss-Markov wander per axis: stationary 1 sigma and
+  // correlation time (the sensor model's wander_sigma, wander_tau). 0: no wander state.
+  double position_wander_std = 0.0;  // m
+  double position_wander_tau = 100.0;  // s
 };
 
 // One aiding sample: which of p, v it carries, their values and 1-sigma noise per axis.
+// position_std is the white part only: the wander is the filter's state w.
 struct AidingSample {
   double time_taken = 0.0;
   bool has_position = false, has_velocity = false;
@@ -58,36 +67,40 @@ class KfIns {
   // gated out (counted in rejected()) or older than the history (counted in too_old()).
   bool Fuse(const AidingSample& sample);
 
+  const KfInsConfig& config() const { return config_; }
   int64_t step() const { return step_; }
-  const Vec9& state() const { return x_; }
-  const Mat9& covariance() const { return P_; }
+  const StateVec& state() const { return x_; }
+  const StateMat& covariance() const { return P_; }
   Vec3 position() const { return x_.segment<3>(0); }
   Vec3 velocity() const { return x_.segment<3>(3); }
   Vec3 bias() const { return x_.segment<3>(6); }
+  Vec3 wander() const { return x_.segment<3>(9); }
   int64_t fused() const { return fused_; }
   int64_t rejected() const { return rejected_; }
   int64_t too_old() const { return too_old_; }
 
   // One step of the linear model (for tests and for the steady-state Riccati derivation).
-  const Mat9& transition() const { return F_; }
-  const Mat9& process_noise() const { return Q_; }
+  const StateMat& transition() const { return F_; }
+  const StateMat& process_noise() const { return Q_; }
 
  private:
   struct Slot {  // the posterior at `step` and the input that propagates it to step + 1
     int64_t step;
-    Vec9 x;
-    Mat9 P;
+    StateVec x;
+    StateMat P;
     Vec3 input;
   };
   void PropagateOnce(const Vec3& specific_force_world);
   bool Update(const AidingSample& sample);
-  bool UpdateBlock(int offset, const Vec3& z, const Vec3& std);
+  // Fuses one 3-axis sample, z = p + w + white (position) or z = v + white (velocity).
+  bool UpdateBlock(bool position, const Vec3& z, const Vec3& std);
 
   KfInsConfig config_;
-  Mat9 F_, Q_;
+  StateMat F_, Q_;
   Vec3 g_;
-  Vec9 x_;
-  Mat9 P_;
+  double wander_keep_;  // exp(-dt / tau): w+ = wander_keep w + drive
+  StateVec x_;
+  StateMat P_;
   int64_t step_ = 0;
   int64_t window_steps_;
   std::deque<Slot> history_;  // oldest first; back() is the slot of step_ - 1
