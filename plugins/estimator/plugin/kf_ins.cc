@@ -6,9 +6,9 @@
 // are the attitude and body-rate channels: this filter does not estimate them).
 #include "mjformation/estimator/kf_ins.hpp"
 
-#include <mjformation/plugin_util.hpp>
 #include <algorithm>
 #include <cmath>
+#include <mjformation/plugin_util.hpp>
 #include <string>
 
 #include "adapter.hpp"
@@ -147,7 +147,8 @@ int KfInsCompute(void* instance, const mjfStepContext* ctx) {
                                           : Rotate(in.imu.quat, in.imu.accel);
       self->filter.Propagate(ctx->step, f);
     }
-    for (int k = 0; k < in.n_measurements; ++k) self->filter.Fuse(ToSample(in.measurements[k], *self));
+    for (int k = 0; k < in.n_measurements; ++k)
+      self->filter.Fuse(ToSample(in.measurements[k], *self));
     WriteEstimate(self->filter, *in.held, ctx->estimate);
     return 0;
   });

@@ -46,7 +46,9 @@ EstimatedSensors::EstimatedSensors(const ExperimentConfig& c, int n_vehicles, do
       gravity_(gravity),
       suite_(SuiteInfo(c.sensors.params, gravity)),
       held_(n_vehicles),
-      estimates_(n_vehicles) {
+      estimates_(n_vehicles),
+      inputs_(n_vehicles),
+      arrived_(n_vehicles) {
   models_.reserve(n_vehicles);
   for (int i = 0; i < n_vehicles; ++i) {
     // Stream 1 as MeasuredSensors (same white noise and bias for the same seed); 2: this
@@ -60,43 +62,56 @@ EstimatedSensors::EstimatedSensors(const ExperimentConfig& c, int n_vehicles, do
 
 void EstimatedSensors::Measure(int64_t step, double time, const std::vector<mjfVehicleState>& truth,
                                std::vector<mjfVehicleState>* measured) {
-  // Two clock reads per step (~50 ns against a step of tens of microseconds).
+  // The sensor models of every vehicle, then every estimator plugin: four clock reads per step
+  // (~100 ns against a step of tens of microseconds) time the two apart.
   const auto start = std::chrono::steady_clock::now();
+  for (size_t i = 0; i < models_.size(); ++i) MeasureOne(static_cast<int>(i), step, time, truth[i]);
+  const auto measured_at = std::chrono::steady_clock::now();
   for (size_t i = 0; i < models_.size(); ++i) {
-    EstimateOne(static_cast<int>(i), step, time, truth[i]);
+    EstimateOne(static_cast<int>(i), step, time);
     (*measured)[i] = estimates_[i].state;
   }
-  wall_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const auto end = std::chrono::steady_clock::now();
+  sensor_model_seconds_ += std::chrono::duration<double>(measured_at - start).count();
+  estimator_seconds_ += std::chrono::duration<double>(end - measured_at).count();
 }
 
-void EstimatedSensors::EstimateOne(int vehicle, int64_t step, double time,
-                                   const mjfVehicleState& truth) {
+// What the sensors give this step: the held samples, the accelerometer over the step just
+// ended, and the aiding samples that arrived (stamped with when they were taken), as the
+// vehicle's estimator input.
+void EstimatedSensors::MeasureOne(int vehicle, int64_t step, double time,
+                                  const mjfVehicleState& truth) {
   realism::SensorModel& model = models_[vehicle];
   model.Measure(step, truth, &held_[vehicle]);
-  mjfEstimatorInput in{};
+  mjfEstimatorInput& in = inputs_[vehicle];
+  in = mjfEstimatorInput{};
   in.vehicle = vehicle;
   in.imu.time = time;
   in.imu.has_accel = suite_.has_accel;
   model.Accelerometer(step, truth, held_[vehicle], gravity_, in.imu.accel, in.imu.quat);
   std::copy(held_[vehicle].gyro, held_[vehicle].gyro + 3, in.imu.gyro);
   // Position and velocity samples taken at the same step travel as one measurement.
-  arrived_.clear();
+  std::vector<mjfMeasurement>& arrived = arrived_[vehicle];
+  arrived.clear();
   for (const auto& f : model.fresh()) {
-    if (arrived_.empty() || std::llround(arrived_.back().time_taken / timestep_) != f.taken_step) {
-      arrived_.push_back(mjfMeasurement{});
-      arrived_.back().time_taken = static_cast<double>(f.taken_step) * timestep_;
+    if (arrived.empty() || std::llround(arrived.back().time_taken / timestep_) != f.taken_step) {
+      arrived.push_back(mjfMeasurement{});
+      arrived.back().time_taken = static_cast<double>(f.taken_step) * timestep_;
     }
-    mjfMeasurement& m = arrived_.back();
+    mjfMeasurement& m = arrived.back();
     const bool pos = f.channel == Channel::kPosition;
     m.fields |= pos ? MJF_MEASURES_POSITION : MJF_MEASURES_VELOCITY;
     std::copy(f.value.begin(), f.value.end(), pos ? m.pos : m.vel);
     std::fill_n(pos ? m.pos_std : m.vel_std, 3, f.stated_std);
   }
-  std::sort(arrived_.begin(), arrived_.end(),
+  std::sort(arrived.begin(), arrived.end(),
             [](const auto& a, const auto& b) { return a.time_taken < b.time_taken; });
-  in.n_measurements = static_cast<int>(arrived_.size());
-  in.measurements = arrived_.data();
+  in.n_measurements = static_cast<int>(arrived.size());
+  in.measurements = arrived.data();
   in.held = &held_[vehicle];
+}
+
+void EstimatedSensors::EstimateOne(int vehicle, int64_t step, double time) {
   mjfStepContext ctx{};
   ctx.time = time;
   ctx.step = step;
@@ -104,7 +119,7 @@ void EstimatedSensors::EstimateOne(int vehicle, int64_t step, double time,
   ctx.n_vehicles = static_cast<int>(models_.size());
   ctx.error = error_.data();
   ctx.error_size = error_.size();
-  ctx.estimator = &in;
+  ctx.estimator = &inputs_[vehicle];
   ctx.estimate = &estimates_[vehicle];
   error_[0] = '\0';
   PluginInstance& plugin = *estimators_[vehicle];

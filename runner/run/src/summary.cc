@@ -110,7 +110,11 @@ Json BuildSummary(const Simulation& sim, const RunResult& result, const Json& re
   if (sim.threads() > 1) s["timing"]["threads"] = sim.threads();  // partitioned physics
   // The sensor stage with its estimator plugins (issue 18; only with an estimator, so other
   // runs' timing keys stay as they were).
-  if (sim.estimation()) s["timing"]["estimator_wall_s"] = sim.estimation()->wall_seconds();
+  if (const auto* e = sim.estimation()) {
+    s["timing"]["estimator_wall_s"] = e->wall_seconds();  // both below
+    s["timing"]["sensor_models_wall_s"] = e->sensor_model_seconds();
+    s["timing"]["estimator_plugins_wall_s"] = e->estimator_seconds();
+  }
   return s;
 }
 

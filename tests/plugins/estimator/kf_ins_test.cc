@@ -115,8 +115,8 @@ Flight FlyWithFilterModel(const Scenario& s, const Noise& model, uint64_t seed) 
       m.velocity_std = Vec3::Constant(model.vel_std);
       if (!first_sample) {
         for (int k = 0; k < 3; ++k) {
-          wander[k] = phi * wander[k] +
-                      s.noise.wander_sigma * std::sqrt(1.0 - phi * phi) * normal(rng);
+          wander[k] =
+              phi * wander[k] + s.noise.wander_sigma * std::sqrt(1.0 - phi * phi) * normal(rng);
         }
       }
       first_sample = false;

@@ -73,9 +73,12 @@ TEST(BenchTest, EstimatorCostLine) {
   EXPECT_DOUBLE_EQ(j["estimator"]["ratio_estimator_over_passthrough"].get<double>(),
                    j["estimator"]["steps_per_s_estimator"].get<double>() /
                        j["estimator"]["steps_per_s_passthrough"].get<double>());
-  const double share = j["estimator"]["estimator_stage_share_of_run"].get<double>();
+  const double share = j["estimator"]["estimator_share_of_run"].get<double>();
+  const double models = j["estimator"]["sensor_models_share_of_run"].get<double>();
   EXPECT_GT(share, 0.0);
-  EXPECT_LT(share, 1.0);
+  EXPECT_GT(models, 0.0);
+  EXPECT_LT(share + models, 1.0);  // two parts of one run's wall time
+  EXPECT_NE(out.find("the estimator plugins took "), std::string::npos) << out;
 }
 
 // Without an estimator the line is absent (the default bench prints what it printed before).

@@ -43,7 +43,7 @@ struct KfInsConfig {
   double initial_bias_std = 0.2;      // m/s^2
   // The position source's first-order Gauss-Markov wander per axis: stationary 1 sigma and
   // correlation time (the sensor model's wander_sigma, wander_tau). 0: no wander state.
-  double position_wander_std = 0.0;  // m
+  double position_wander_std = 0.0;    // m
   double position_wander_tau = 100.0;  // s
 };
 
