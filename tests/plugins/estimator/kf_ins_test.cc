@@ -180,6 +180,51 @@ TEST(KfIns, ALateMeasurementFusedAtItsTimeEqualsTheOnTimeOnePropagated) {
   EXPECT_LT((on_time.covariance() - late.covariance()).cwiseAbs().maxCoeff(), 1e-12);
 }
 
+// Two late samples whose windows overlap: the second is taken at a step whose stored posterior
+// the first fusion left stale (it was stored before the first arrived). Both fused late, each at
+// its own time, equal both fused on time, propagated.
+TEST(KfIns, OverlappingLateMeasurementsEqualTheOnTimeOnesPropagated) {
+  KfInsConfig c;
+  c.timestep = kDt;
+  c.accel_noise_density = 0.05;
+  c.accel_bias_walk = 1e-3;
+  c.position_wander_std = 2.0;
+  c.position_wander_tau = 100.0;
+  c.history = 0.2;
+  KfIns on_time(c), late(c);
+  AidingSample first, second;
+  first.has_position = first.has_velocity = true;
+  first.position = Vec3(0.3, -0.2, 0.1);
+  first.velocity = Vec3(0.05, 0.02, -0.01);
+  first.position_std = Vec3::Constant(0.3);
+  first.velocity_std = Vec3::Constant(0.05);
+  second.has_velocity = true;  // velocity only, 20 steps later
+  second.velocity = Vec3(-0.04, 0.03, 0.02);
+  second.velocity_std = Vec3::Constant(0.05);
+  const int64_t taken_first = 40, taken_second = 60, lag = 55;
+  first.time_taken = taken_first * kDt;
+  second.time_taken = taken_second * kDt;
+  for (int64_t n = 1; n <= taken_second + lag; ++n) {
+    const Vec3 f = TrueAccel(n) + Vec3(0, 0, kG);
+    on_time.Propagate(n, f);
+    late.Propagate(n, f);
+    if (n == taken_first) {
+      EXPECT_TRUE(on_time.Fuse(first));
+    }
+    if (n == taken_second) {
+      EXPECT_TRUE(on_time.Fuse(second));
+    }
+    if (n == taken_first + lag) {
+      EXPECT_TRUE(late.Fuse(first));
+    }
+  }
+  EXPECT_GT((on_time.state() - late.state()).norm(), 1e-4);  // the second sample matters
+  EXPECT_TRUE(late.Fuse(second));
+  EXPECT_LT((on_time.state() - late.state()).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_LT((on_time.covariance() - late.covariance()).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_EQ(late.fused(), 2);
+}
+
 TEST(KfIns, OutliersAreGatedAndCountedAndTooOldOnesRefused) {
   KfInsConfig c;
   c.timestep = kDt;

@@ -8,9 +8,11 @@
 // exactly zero with zero variance and the filter is the (p, v, b) one. The input is the specific
 // force rotated into the world frame by the attitude channel: a = R f + g - b.
 // Measurements of p and/or v are fused at the time they were TAKEN: the filter keeps, for every
-// step of a history window at least as long as the largest latency, the posterior and the input
-// of that step; a late measurement rewinds to its own step, is fused there, and the window is
-// re-propagated to now (exact: the same estimate as fusing it on time and propagating). Each
+// step of a history window at least as long as the largest latency, the posterior of that step;
+// a late measurement is fused at its own step, and the correction it makes there is carried to
+// now in one go, x += F^n dx, P += F^n dP F^n' (n steps; exact: the state recursion is linear and
+// the covariance recursion affine, so fusing on time and propagating gives the same). The stored
+// posteriors it leaves stale are read corrected the same way by a later late measurement. Each
 // fused quantity passes a 5-sigma innovation gate per axis or is counted as rejected.
 // Pure C++17 + Eigen: no MuJoCo, no plugin ABI.
 #ifndef MJFORMATION_ESTIMATOR_KF_INS_HPP_
@@ -18,7 +20,7 @@
 
 #include <Eigen/Dense>
 #include <cstdint>
-#include <deque>
+#include <vector>
 
 namespace mjf::estimator {
 
@@ -84,13 +86,23 @@ class KfIns {
   const StateMat& process_noise() const { return Q_; }
 
  private:
-  struct Slot {  // the posterior at `step` and the input that propagates it to step + 1
-    int64_t step;
+  struct Slot {  // the posterior at `step` as it was stored
+    int64_t step = -1;
     StateVec x;
     StateMat P;
-    Vec3 input;
+  };
+  // A fusion at the past step `step`, made when the slots up to `last` were stored: slot j in
+  // [step, last] is read as x_j + F^(j - step) dx, P_j + F^(j - step) dP F^(j - step)'.
+  struct Correction {
+    int64_t step, last;
+    StateVec dx;
+    StateMat dP;
   };
   void PropagateOnce(const Vec3& specific_force_world);
+  // x <- F^m x and P <- F^m P F^m' without the input (F^m in closed form: m steps of the
+  // semi-implicit Euler give p + m dt v - dt^2 m (m + 1) / 2 b, v - m dt b, phi^m w).
+  void TransitionPower(int64_t m, StateVec* x) const;
+  void TransitionPower(int64_t m, StateMat* P) const;
   bool Update(const AidingSample& sample);
   // Fuses one 3-axis sample, z = p + w + white (position) or z = v + white (velocity).
   bool UpdateBlock(bool position, const Vec3& z, const Vec3& std);
@@ -103,7 +115,8 @@ class KfIns {
   StateMat P_;
   int64_t step_ = 0;
   int64_t window_steps_;
-  std::deque<Slot> history_;  // oldest first; back() is the slot of step_ - 1
+  std::vector<Slot> history_;  // a ring: step s in slot s % window_steps_, steps >= step_ - window
+  std::vector<Correction> corrections_;  // those still reaching a stored slot
   int64_t fused_ = 0, rejected_ = 0, too_old_ = 0;
 };
 
