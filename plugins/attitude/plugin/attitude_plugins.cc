@@ -87,8 +87,10 @@ constexpr const char* kAllocation = "allocation";
 // Defaults equal PdCascade::Gains{} (checked by tests/plugins/attitude/plugin_test.cc).
 const mjfAttribute kCascadeAttributes[] = {
     {kTiltMax, "0.35", "rad: limit on the tilt (norm of roll, pitch references)"},
-    {kKpAtt, "150", "1/s^2: roll/pitch proportional gain (angular acceleration per rad)"},
-    {kKdAtt, "22", "1/s: roll/pitch derivative gain on the body rate"},
+    {kKpAtt, "0",
+     "1/s^2: roll/pitch proportional gain (angular acceleration per rad; 0: 150, lowered to the "
+     "vehicle's torque authority)"},
+    {kKdAtt, "0", "1/s: roll/pitch derivative gain on the body rate (0: 22, lowered with kp_att)"},
     {kKpYaw, "9", "1/s^2: yaw proportional gain"},
     {kKdYaw, "6", "1/s: yaw derivative gain on the body z rate"},
     {kKpZ, "6", "1/s^2: altitude proportional gain"},
@@ -158,7 +160,7 @@ void* CascadeCreate(const mjfCreateContext* ctx) {
       const char* key;
       double* value;
       bool may_be_zero;
-    } scalars[] = {{kKpAtt, &gains.kp_att, false}, {kKdAtt, &gains.kd_att, false},
+    } scalars[] = {{kKpAtt, &gains.kp_att, true},  {kKdAtt, &gains.kd_att, true},
                    {kKpYaw, &gains.kp_yaw, false}, {kKdYaw, &gains.kd_yaw, false},
                    {kKpZ, &gains.kp_z, false},     {kKiZ, &gains.ki_z, true},
                    {kKdZ, &gains.kd_z, false},     {kImaxZ, &gains.imax_z, true}};
@@ -179,6 +181,20 @@ void* CascadeCreate(const mjfCreateContext* ctx) {
   });
 }
 
+// The attitude gains actually used (after the torque-authority derivation) and the loop's
+// attitude gain kp / kd as `att_bw` with `tilt_max`: summary.json attitude_report, and the
+// runner's torque-authority check compares att_bw^2 tilt_max with the vehicle's authority
+// (docs/VEHICLES.md).
+void CascadeReport(void* instance, mjfReportFn emit, void* user) {
+  const PdCascade& c = static_cast<RotorInstance<PdCascade>*>(instance)->controller;
+  const PdCascade::Gains& g = c.gains();
+  emit(user, "kp_att", g.kp_att);
+  emit(user, "kd_att", g.kd_att);
+  emit(user, "att_bw", g.kp_att / g.kd_att);
+  emit(user, "att_bw_unlimited", c.unlimited_att_bw());
+  emit(user, "tilt_max", g.tilt_max);
+}
+
 const mjfPlugin kPdCascade = {
     MJF_ABI_VERSION,
     "pd_cascade",
@@ -192,7 +208,7 @@ const mjfPlugin kPdCascade = {
     RotorCompute<PdCascade>,
     RotorReset<PdCascade>,
     RotorDestroy<PdCascade>,
-    nullptr};
+    CascadeReport};
 
 // ---------------------------------------------------------------------------------------------
 // geometric
@@ -208,7 +224,9 @@ constexpr const char* kThrustMargin = "thrust_margin";
 // from the vehicle info (motor lag, inertia, mass, rotor limits).
 const mjfAttribute kGeometricAttributes[] = {
     {kTiltMax, "0.78", "rad: limit on the angle of the thrust vector from the vertical"},
-    {kRateBw, "0", "rad/s: body-rate loop crossover (0: 0.9 / (motor lag + 2 timesteps))"},
+    {kRateBw, "0",
+     "rad/s: body-rate loop crossover (0: 0.9 / (motor lag + 2 timesteps), at most 4 sqrt(torque "
+     "authority / tilt_max))"},
     {kAttBw, "0", "rad/s: roll/pitch attitude loop bandwidth (0: rate_bw / 4)"},
     {kYawBw, "0", "rad/s: yaw attitude loop bandwidth (0: att_bw / 2)"},
     {kZBw, "0", "rad/s: altitude loop natural frequency (0: att_bw / 2.5)"},
@@ -253,13 +271,17 @@ void* GeometricCreate(const mjfCreateContext* ctx) {
 }
 
 // The bandwidths actually used (rad/s), after the derivation from the vehicle and the torque cap
-// (summary.json attitude_report), so that a run on a small vehicle shows what it flew with.
+// (summary.json attitude_report), so that a run on a small vehicle shows what it flew with; with
+// tilt_max, what the runner's torque-authority check reads (docs/VEHICLES.md).
 void GeometricReport(void* instance, mjfReportFn emit, void* user) {
-  const Geometric::Gains& g = static_cast<RotorInstance<Geometric>*>(instance)->controller.gains();
+  const Geometric& c = static_cast<RotorInstance<Geometric>*>(instance)->controller;
+  const Geometric::Gains& g = c.gains();
   emit(user, "rate_bw", g.rate_bw);
   emit(user, "att_bw", g.att_bw);
+  emit(user, "att_bw_unlimited", c.unlimited_att_bw());
   emit(user, "yaw_bw", g.yaw_bw);
   emit(user, "z_bw", g.z_bw);
+  emit(user, "tilt_max", g.tilt_max);
 }
 
 const mjfPlugin kGeometric = {

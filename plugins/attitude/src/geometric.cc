@@ -12,8 +12,6 @@ namespace {
 
 // Rate loop crossover when the vehicle reports no motor lag: the sampling alone limits it.
 constexpr double kRateBwPerSampleRate = 0.05;  // rad/s per Hz of control rate
-// The tilt error the default cascade must answer without saturating the torque (see Resolve).
-constexpr double kLinearTiltError = 0.1;  // rad
 
 }  // namespace
 
@@ -28,17 +26,17 @@ Geometric::Gains Geometric::Resolve(const Gains& gains, const Vehicle& vehicle,
   if (g.rate_bw == 0) {
     g.rate_bw = vehicle.motor_lag > 0 ? 0.9 / (vehicle.motor_lag + 2 * vehicle.timestep)
                                       : kRateBwPerSampleRate / vehicle.timestep;
-    // Torque authority: a tilt error e at att_bw = rate_bw / 4 asks the rate loop for a rate
-    // att_bw e, which it answers with about rate_bw^2 e / 4 of angular acceleration. Kept within
-    // the weaker tilt axis' authority alpha (torque at hover / inertia) for e = 0.1 rad, the
-    // cascade stays linear for the tilt errors of formation flight: rate_bw <= sqrt(4 alpha / e).
-    // The lag bound decides for rotor vehicles of 1-4 kg (the Iris: 33 rad/s, cap 49); the cap
-    // for weak-torque vehicles such as Menagerie's Crazyflie (1e-5 N m on 2.4e-5 kg m^2: 4 rad/s
-    // instead of 25), which flip when every rate error saturates the torque. Yaw is left out:
-    // its loop runs at att_bw / 2 and the mixer gives yaw up first.
+    // Torque authority (AuthorityAttitudeBandwidth, types.hpp): the attitude loop att_bw =
+    // rate_bw / 4 must find the angular acceleration att_bw^2 tilt_max to follow its own
+    // response from a tilt error of tilt_max on the weaker tilt axis (alpha: torque at hover /
+    // inertia), so rate_bw <= 4 sqrt(alpha / tilt_max). The lag bound decides for rotor
+    // vehicles of 1-4 kg (the Iris: 33.3 rad/s, cap 35.2 at tilt_max 0.78), the cap for
+    // weak-torque vehicles such as Menagerie's Crazyflie (1e-5 N m on 2.4e-5 kg m^2: 2.9 rad/s
+    // instead of 50), which flip when every correction saturates the torque. A lower tilt_max
+    // raises the cap: smaller tilts can be followed faster. Yaw is left out: its loop runs at
+    // att_bw / 2, its setpoint does not jump by a tilt limit, and the mixer gives yaw up first.
     const double alpha = std::min(angular_authority[0], angular_authority[1]);
-    // No authority at hover thrust: the vehicle cannot hover, which Derive() reports.
-    if (alpha > 0) g.rate_bw = std::min(g.rate_bw, std::sqrt(4 * alpha / kLinearTiltError));
+    g.rate_bw = std::min(g.rate_bw, 4 * AuthorityAttitudeBandwidth(alpha, g.tilt_max));
   }
   // Cascade separation: the attitude loop a factor 4 below the rate loop, yaw and altitude a
   // further 2 and 2.5 below.
@@ -218,6 +216,7 @@ Geometric::Geometric(const Gains& gains, const Vehicle& vehicle,
     authority[i] = mixer_.TorqueAuthority(i, vehicle.mass * vehicle.gravity) / vehicle.inertia[i];
   }
   gains_ = Resolve(gains, vehicle, authority);
+  unlimited_att_bw_ = Resolve(gains, vehicle).att_bw;
   CheckResolved(gains_, vehicle);
   derived_ = Derive(gains_, vehicle, mixer_, rotors);
 }

@@ -8,6 +8,28 @@
 
 namespace mjf::attitude {
 
+PdCascade::Gains PdCascade::Resolve(const Gains& gains, double alpha) {
+  Gains g = gains;
+  const double limit = AuthorityAttitudeBandwidth(alpha, g.tilt_max);
+  // The PD torque I (kp e - kd w) = I kd ((kp / kd) e - w) is a rate loop of gain kd under an
+  // attitude loop of gain kp / kd (1/s): the criterion bounds the latter.
+  const double c = std::min(1.0, limit / (kNominalKpAtt / kNominalKdAtt));
+  if (g.kp_att == 0) g.kp_att = c < 1 ? kNominalKpAtt * c * c : kNominalKpAtt;
+  if (g.kd_att == 0) g.kd_att = c < 1 ? kNominalKdAtt * c : kNominalKdAtt;
+  return g;
+}
+
+namespace {
+
+// The weaker tilt axis' angular authority at hover (rad/s^2).
+double TiltAuthority(const Mixer& mixer, const PdCascade::Vehicle& vehicle) {
+  const double hover = vehicle.mass * vehicle.gravity;
+  return std::min(mixer.TorqueAuthority(0, hover) / vehicle.inertia[0],
+                  mixer.TorqueAuthority(1, hover) / vehicle.inertia[1]);
+}
+
+}  // namespace
+
 PdCascade::PdCascade(const Gains& gains, const Vehicle& vehicle,
                      const std::array<RotorGeometry, Mixer::kRotors>& rotors)
     : gains_(gains), vehicle_(vehicle), mixer_(rotors) {
@@ -28,8 +50,11 @@ PdCascade::PdCascade(const Gains& gains, const Vehicle& vehicle,
         "flips at 0.70 rad and above; docs/DISCUSSION.md). Set damping = \"euler_rates\" and "
         "allocation = \"roll_pitch_first\", or use the geometric plugin");
   }
-  RequirePositive(gains.kp_att, "kp_att");
-  RequirePositive(gains.kd_att, "kd_att");
+  RequireNonNegative(gains.kp_att, "kp_att");
+  RequireNonNegative(gains.kd_att, "kd_att");
+  gains_ = Resolve(gains, TiltAuthority(mixer_, vehicle));
+  const Gains unlimited = Resolve(gains, INFINITY);
+  unlimited_att_bw_ = unlimited.kp_att / unlimited.kd_att;
   RequirePositive(gains.kp_yaw, "kp_yaw");
   RequirePositive(gains.kd_yaw, "kd_yaw");
   RequirePositive(gains.kp_z, "kp_z");

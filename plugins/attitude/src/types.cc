@@ -22,6 +22,11 @@ double WrapPi(double angle) {
   return a - M_PI;
 }
 
+double AuthorityAttitudeBandwidth(double alpha, double tilt_max) {
+  if (!(alpha > 0) || !std::isfinite(alpha) || !(tilt_max > 0)) return INFINITY;
+  return std::sqrt(alpha / tilt_max);
+}
+
 void RequirePositive(double value, const char* what) {
   if (!(value > 0) || !std::isfinite(value)) {
     throw std::invalid_argument(std::string(what) + " must be positive and finite (got " +

@@ -61,6 +61,7 @@ int RunCommand(const CliCommands& c) {
   options.overwrite = c.overwrite;
   options.progress = !c.quiet;
   options.render = !c.no_render;
+  options.warnings = true;
   const RunResult r = RunExperiment(config, options);
   const auto& m = r.summary["metrics"];
   const std::string sigma = m.is_object() && m["sigma_f_mean"].is_number()
@@ -104,6 +105,15 @@ int CheckCommand(const CliCommands& c) {
       config.leader.plugin.c_str(), config.formation.plugin.c_str(),
       config.attitude.plugin.c_str());
   for (const auto& note : sim.vehicle_notes()) std::printf("  vehicle model: %s\n", note.c_str());
+  std::printf("  %s\n", AuthorityText(sim.torque_authority()).c_str());
+  const AttitudeDemand& d = sim.attitude_demand();
+  if (d.att_bw > 0 && d.tilt_max > 0) {
+    std::printf(
+        "  attitude loop: att_bw %.3g rad/s (unlimited %.3g), tilt_max %.3g rad: asks for %.3g "
+        "rad/s^2 (att_bw^2 x tilt_max, of the unlimited loop)\n",
+        d.att_bw, d.Reference(), d.tilt_max, DemandedTiltAcceleration(d.Reference(), d.tilt_max));
+  }
+  for (const auto& w : sim.warnings()) std::printf("  warning: %s\n", w.c_str());
   return 0;
 }
 

@@ -138,6 +138,10 @@ std::string VersionString() {
 RunResult RunExperiment(const ExperimentConfig& config, const RunOptions& options) {
   // Everything that can be wrong with the input fails here, before a file is written.
   Simulation sim(config);
+  if (options.warnings) {
+    for (const auto& w : sim.warnings())
+      std::fprintf(stderr, "mjformation: warning: %s\n", w.c_str());
+  }
   std::unique_ptr<RunDirectory> dir;
   if (!options.out_dir.empty()) {
     dir = std::make_unique<RunDirectory>(options.out_dir, options.overwrite);

@@ -97,6 +97,8 @@ Json BuildSummary(const Simulation& sim, const RunResult& result, const Json& re
   // for plugins that report, so other runs' summaries stay as they were.
   const auto attitude_report = sim.AttitudeReport();
   if (!attitude_report.empty()) s["attitude_report"] = ReportJson(attitude_report);
+  // The setup's warnings (torque authority, docs/VEHICLES.md); only when there are any.
+  if (!sim.warnings().empty()) s["warnings"] = sim.warnings();
   s["snapshots"] = recorded.contains("snapshots") ? recorded["snapshots"] : Json::array();
   if (sim.channel()) AddNetworkSummary(sim, s);  // per-agent execution only
   for (const auto& [k, v] : recorded.items()) {

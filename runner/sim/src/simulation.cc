@@ -76,6 +76,25 @@ Simulation::Simulation(const ExperimentConfig& config) : config_(config) {
   force_stages_ = MakeForceStages(config_);
   external_force_.assign(3 * truth_.size(), 0.0);
   MakePartitions(*attitude.descriptor);
+  CheckTorqueAuthority();
+}
+
+// Every vehicle is a copy of one model, so the first follower's info (the leader's when there
+// is none) stands for all. The demand is what the attitude plugin reports of its loop; a plugin
+// that reports no att_bw and tilt_max gets the authority listed and nothing judged.
+void Simulation::CheckTorqueAuthority() {
+  const int vehicle = n_vehicles() > 1 ? 1 : 0;
+  authority_ = ComputeTorqueAuthority(bindings_.vehicles[vehicle].info);
+  AttitudeDemand demand;
+  for (const auto& [key, value] : AttitudeReport()) {
+    if (key == "att_bw") demand.att_bw = value;
+    if (key == "att_bw_unlimited") demand.att_bw_unlimited = value;
+    if (key == "tilt_max") demand.tilt_max = value;
+  }
+  demand_ = demand;
+  std::string name = "vehicle model " + config_.model_path;
+  if (!config_.vehicle_body.empty()) name += " (body '" + config_.vehicle_body + "')";
+  warnings_ = AuthorityWarnings(authority_, demand_, name);
 }
 
 // [run] threads > 1: the same scene request, split by vehicle ranges (partitioned_physics.hpp).

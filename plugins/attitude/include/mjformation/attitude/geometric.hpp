@@ -88,6 +88,9 @@ class Geometric {
   const Mixer& mixer() const { return mixer_; }
   const Gains& gains() const { return gains_; }
   const Derived& derived() const { return derived_; }
+  // att_bw as it would be without the torque-authority cap (= gains().att_bw when the cap did
+  // not bind or att_bw was given): the loop the outer loops were tuned against.
+  double unlimited_att_bw() const { return unlimited_att_bw_; }
   double altitude_integral() const { return integral_z_; }  // m/s^2
 
   // The resolved bandwidths (rad/s) for given gains and vehicle: 0 entries replaced.
@@ -99,6 +102,7 @@ class Geometric {
   Vehicle vehicle_;
   Mixer mixer_;
   Derived derived_;
+  double unlimited_att_bw_ = 0;                              // rad/s
   double integral_z_ = 0;                                    // m/s^2
   Eigen::Vector3d integral_rate_ = Eigen::Vector3d::Zero();  // rad/s^2
 };

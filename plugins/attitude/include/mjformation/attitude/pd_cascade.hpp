@@ -20,14 +20,16 @@ class PdCascade {
  public:
   struct Gains {
     double tilt_max = 0.35;  // rad, limit on the norm of (roll, pitch) references
-    double kp_att = 150;     // 1/s^2, roll/pitch: angular acceleration per rad of error
-    double kd_att = 22;      // 1/s, roll/pitch: angular acceleration per rad/s of body rate
-    double kp_yaw = 9;       // 1/s^2
-    double kd_yaw = 6;       // 1/s
-    double kp_z = 6;         // 1/s^2, altitude
-    double ki_z = 2;         // 1/s^3
-    double kd_z = 5;         // 1/s
-    double imax_z = 2;       // m/s^2, bound on the altitude integrator's acceleration
+    // Roll/pitch PD, per unit inertia; 0 = derived (Resolve): kNominalKpAtt and kNominalKdAtt,
+    // lowered together when the vehicle's torque authority cannot follow them.
+    double kp_att = 0;  // 1/s^2, roll/pitch: angular acceleration per rad of error
+    double kd_att = 0;  // 1/s, roll/pitch: angular acceleration per rad/s of body rate
+    double kp_yaw = 9;  // 1/s^2
+    double kd_yaw = 6;  // 1/s
+    double kp_z = 6;    // 1/s^2, altitude
+    double ki_z = 2;    // 1/s^3
+    double kd_z = 5;    // 1/s
+    double imax_z = 2;  // m/s^2, bound on the altitude integrator's acceleration
     // The two large-tilt fixes (docs/DISCUSSION.md, "Why pd_cascade flips"); off by default so
     // the experiments' results stay as published. Both are needed above kMaxTiltUnfixed.
     bool euler_rate_damping = false;  // damp the Euler-angle rates, not the body rates p, q
@@ -36,6 +38,10 @@ class PdCascade {
   // Largest tilt_max accepted without both fixes: Exp 2 flips a follower at 0.70 rad and above
   // with body-rate damping and thrust-first allocation (measured, docs/DISCUSSION.md).
   static constexpr double kMaxTiltUnfixed = 0.65;
+  // The roll/pitch PD of the paper's experiments (torque = I (kp e - kd w)), used as they are on
+  // any vehicle whose torque authority can follow them (every vehicle of 1-4 kg flown so far).
+  static constexpr double kNominalKpAtt = 150;  // 1/s^2
+  static constexpr double kNominalKdAtt = 22;   // 1/s
   struct Vehicle {
     double mass = 0;     // kg
     double gravity = 0;  // m/s^2, magnitude
@@ -58,18 +64,31 @@ class PdCascade {
   // One control step of dt seconds (integrator update). No allocation.
   Output Update(const VehicleState& state, const Setpoint& setpoint, double dt);
 
+  // The gains with kp_att and kd_att resolved: a 0 (derived) is the nominal value, scaled so
+  // that the loop's attitude gain kp / kd stays within AuthorityAttitudeBandwidth(alpha,
+  // tilt_max) (types.hpp) for the weaker tilt axis' angular authority alpha (rad/s^2, torque at
+  // hover over inertia): kp by c^2, kd by c, c = min(1, that bandwidth / (150 / 22)), which
+  // keeps the damping ratio. An explicit (non-zero) gain is kept as given. The Iris (alpha 60
+  // rad/s^2) keeps 150 / 22 up to tilt_max 1.3 rad; Menagerie's Crazyflie (0.42 rad/s^2) at
+  // 0.35 rad gets kp 3.8, kd 3.5.
+  static Gains Resolve(const Gains& gains, double alpha);
+
   // Clears the altitude integrator.
   void Reset() { integral_z_ = 0; }
 
   const Mixer& mixer() const { return mixer_; }
   const Gains& gains() const { return gains_; }
+  // The attitude gain kp / kd (1/s) without the torque-authority limit (the nominal or given
+  // gains): the loop the outer loops were tuned against.
+  double unlimited_att_bw() const { return unlimited_att_bw_; }
   double altitude_integral() const { return integral_z_; }  // m/s^2
 
  private:
   Gains gains_;
   Vehicle vehicle_;
   Mixer mixer_;
-  double integral_z_ = 0;  // m/s^2, ki_z * integral of the altitude error
+  double unlimited_att_bw_ = 0;  // 1/s
+  double integral_z_ = 0;        // m/s^2, ki_z * integral of the altitude error
 };
 
 }  // namespace mjf::attitude

@@ -39,6 +39,22 @@ double WrapPi(double angle);
 void RequirePositive(double value, const char* what);
 void RequireNonNegative(double value, const char* what);
 
+// The fastest attitude loop (rad/s) whose response the torque authority can follow from a tilt
+// error of tilt_max (rad), for an angular authority alpha (rad/s^2, torque over inertia):
+// sqrt(alpha / tilt_max); infinity when alpha is infinite or not positive (nothing to cap).
+//
+// Why: an attitude loop of gain k (rate reference k e per rad of tilt error e, 1/s) returns the
+// error along e(t) = e0 exp(-k t) once its faster rate loop follows; that motion needs the
+// angular acceleration k^2 e(t), largest at the start, k^2 e0. The largest error the loop is
+// asked to take out is about the tilt limit (a setpoint swung from level to tilt_max), so a
+// vehicle with alpha >= k^2 tilt_max follows its own loop on every command; below it the
+// deceleration the loop asks for is not there, the tilt overshoots, and the loop becomes a
+// bang-bang one that rocks or flips. The rate loop's first instant asks more (k_rate k e0), but
+// only for a fraction of its own time constant: saturating it delays the rate by about
+// k e0 / alpha, which the criterion keeps below 1 / k. The runner warns with the same
+// inequality (runner/control/src/torque_authority.cc, docs/VEHICLES.md).
+double AuthorityAttitudeBandwidth(double alpha, double tilt_max);
+
 }  // namespace mjf::attitude
 
 #endif  // MJFORMATION_ATTITUDE_TYPES_HPP_

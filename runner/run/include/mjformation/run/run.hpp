@@ -17,6 +17,7 @@ struct RunOptions {
   bool progress = false;   // progress line on stderr
   bool render = true;      // snapshots and video as configured
   bool record = true;      // timeseries.csv
+  bool warnings = false;   // the setup's warnings (torque authority) on stderr before the run
 };
 
 struct RunResult {

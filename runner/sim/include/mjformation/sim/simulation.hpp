@@ -23,6 +23,7 @@
 #include "mjformation/control/estimated_sensors.hpp"
 #include "mjformation/control/plugin_host.hpp"
 #include "mjformation/control/stages.hpp"
+#include "mjformation/control/torque_authority.hpp"
 #include "mjformation/scene/vehicle_binding.hpp"
 #include "mjformation/sim/actuation.hpp"
 #include "mjformation/sim/partitioned_physics.hpp"
@@ -99,9 +100,19 @@ class Simulation {
   // Bring your own quadrotor: what adapting the model dropped, renamed and added (empty for a
   // model that follows the vehicle contract).
   const std::vector<std::string>& vehicle_notes() const { return vehicle_notes_; }
+  // The follower's torque authority at hover per body axis (runner/control torque_authority.hpp)
+  // and its one-line text, for `check`.
+  const TorqueAuthority& torque_authority() const { return authority_; }
+  // What the attitude plugin reported of its loop (zeros when it reports nothing).
+  const AttitudeDemand& attitude_demand() const { return demand_; }
+  // What the torque-authority check found wrong (empty: nothing): the attitude loop, as its
+  // plugin reports it (att_bw, att_bw_unlimited, tilt_max), asks for more angular acceleration
+  // than the vehicle has. Warnings, not refusals (docs/VEHICLES.md).
+  const std::vector<std::string>& warnings() const { return warnings_; }
 
  private:
   void AdaptForeignVehicle(const mjfPlugin& attitude);
+  void CheckTorqueAuthority();
   void ComputeForces();
   void ApplyForces();
   void MakePartitions(const mjfPlugin& attitude);
@@ -120,6 +131,9 @@ class Simulation {
   std::string scene_xml_;
   std::string vehicle_xml_;  // adapted foreign model ([vehicles] body/rotors), else empty
   std::vector<std::string> vehicle_notes_;
+  TorqueAuthority authority_;
+  AttitudeDemand demand_;
+  std::vector<std::string> warnings_;
   // Freed in reverse order: the tick (plugins may hold pointers into the model) goes first.
   std::unique_ptr<mjModel, ModelDeleter> model_;
   std::unique_ptr<mjData, DataDeleter> data_;

@@ -1,0 +1,124 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+#include "mjformation/control/torque_authority.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+
+namespace mjf::runner {
+namespace {
+
+constexpr int kActuators = 4;
+const char* const kAxisNames[] = {"roll", "pitch", "yaw"};
+
+// Largest s >= 0 with base + s * d and base - s * d inside [lo, hi] (infinite without limits).
+double LargestSymmetricStep(const Eigen::Vector4d& base, const Eigen::Vector4d& d,
+                            const Eigen::Vector4d& lo, const Eigen::Vector4d& hi) {
+  double s = INFINITY;
+  for (int k = 0; k < kActuators; ++k) {
+    const double a = std::abs(d[k]);
+    if (a == 0) continue;
+    // +-s d[k] must fit on both sides of base[k].
+    s = std::min(s, std::min(hi[k] - base[k], base[k] - lo[k]) / a);
+  }
+  return std::max(s, 0.0);
+}
+
+}  // namespace
+
+TorqueAuthority ComputeTorqueAuthority(const mjfVehicleInfo& info) {
+  TorqueAuthority out;
+  if (info.n_actuators != kActuators || !info.actuators) {
+    out.why = fmt::format("{} actuators, not four rotors or a thrust and three moments",
+                          info.n_actuators);
+    return out;
+  }
+  Eigen::Matrix4d b;
+  Eigen::Vector4d lo, hi;
+  for (int k = 0; k < kActuators; ++k) {
+    const mjfActuatorInfo& a = info.actuators[k];
+    const Eigen::Vector3d pos(a.site_pos[0], a.site_pos[1], a.site_pos[2]);
+    const Eigen::Vector3d force(a.gear[0], a.gear[1], a.gear[2]);
+    const Eigen::Vector3d torque =
+        pos.cross(force) + Eigen::Vector3d(a.gear[3], a.gear[4], a.gear[5]);
+    b.col(k) << force.z(), torque;
+    lo[k] = a.ctrl_min;
+    hi[k] = a.ctrl_max;
+  }
+  const Eigen::FullPivLU<Eigen::Matrix4d> lu(b);
+  if (!lu.isInvertible()) {
+    out.why = "the actuators' allocation (thrust, torques) is singular";
+    return out;
+  }
+  const Eigen::Matrix4d inv = lu.inverse();
+  const Eigen::Vector4d hover = inv.col(0) * (info.mass * info.gravity);
+  out.known = true;
+  for (int axis = 0; axis < 3; ++axis) {
+    out.inertia[axis] = info.inertia[axis];
+    out.torque[axis] = LargestSymmetricStep(hover, inv.col(1 + axis), lo, hi);
+    out.accel[axis] = info.inertia[axis] > 0 ? out.torque[axis] / info.inertia[axis] : 0.0;
+  }
+  return out;
+}
+
+double DemandedTiltAcceleration(double att_bw, double tilt_max) {
+  return att_bw * att_bw * tilt_max;
+}
+
+std::string AuthorityText(const TorqueAuthority& a) {
+  if (!a.known) return "torque authority: not computed (" + a.why + ")";
+  std::string text = "torque authority at hover:";
+  for (int axis = 0; axis < 3; ++axis) {
+    text += fmt::format("{} {} {:.3g} rad/s^2 ({:.3g} N m / {:.3g} kg m^2)", axis ? "," : "",
+                        kAxisNames[axis], a.accel[axis], a.torque[axis], a.inertia[axis]);
+  }
+  return text;
+}
+
+std::vector<std::string> AuthorityWarnings(const TorqueAuthority& a, const AttitudeDemand& d,
+                                           const std::string& vehicle) {
+  std::vector<std::string> out;
+  const double bw = d.Reference();
+  const double demand = DemandedTiltAcceleration(bw, d.tilt_max);
+  if (!a.known || !std::isfinite(demand) || !(demand > 0)) return out;
+  const bool lowered = d.att_bw_unlimited > d.att_bw;
+  std::vector<int> short_axes;
+  for (int axis = 0; axis < 2; ++axis) {
+    if (a.accel[axis] < demand) short_axes.push_back(axis);
+  }
+  // Roll and pitch alike (a symmetric vehicle, e.g. a thrust-and-moment one): one warning.
+  const bool alike = short_axes.size() == 2 && a.accel[0] == a.accel[1] &&
+                     a.torque[0] == a.torque[1] && a.inertia[0] == a.inertia[1];
+  if (alike) short_axes.pop_back();
+  for (const int axis : short_axes) {
+    const double alpha = a.accel[axis];
+    // The two ways out besides a wider range: the tilt limit this authority follows at this
+    // bandwidth, and the bandwidth it follows at this tilt limit.
+    std::string text = fmt::format(
+        "{}: {} torque authority {:.3g} rad/s^2 ({:.3g} N m / {:.3g} kg m^2) is below the {:.3g} "
+        "rad/s^2 the attitude loop asks for (att_bw^2 x tilt_max = {:.3g}^2 x {:.3g}): the "
+        "vehicle cannot follow the demanded tilt",
+        vehicle, alike ? "roll and pitch" : kAxisNames[axis], alpha, a.torque[axis],
+        a.inertia[axis], demand, bw, d.tilt_max);
+    if (lowered) {
+      text += fmt::format(
+          "; the attitude plugin lowered its default att_bw to {:.3g} rad/s to stay within it, "
+          "and the formation and guidance loops above, tuned for {:.3g} rad/s, may outrun it",
+          d.att_bw, bw);
+    }
+    text += fmt::format(
+        ". Expect rocking or flips: raise the moment ctrlrange (or the rotors' range and arms) "
+        "{:.3g}x, or lower tilt_max to {:.3g} rad",
+        demand / alpha, alpha / (bw * bw));
+    if (!lowered) {
+      text += fmt::format(", or the attitude gains to att_bw {:.3g} rad/s",
+                          std::sqrt(alpha / d.tilt_max));
+    }
+    out.push_back(text);
+  }
+  return out;
+}
+
+}  // namespace mjf::runner
