@@ -334,6 +334,8 @@ nlohmann::json AgentChannel::RoundsSummary() const {
     total.complete += st.complete;
     total.timed_out += st.timed_out;
     total.incomplete += st.incomplete;
+    total.completion_sum += st.completion_sum;
+    total.completion_max = std::max(total.completion_max, st.completion_max);
     for (size_t k = 0; k < st.rounds_run.size(); ++k) total.rounds_run[k] += st.rounds_run[k];
     in_progress += open ? 1 : 0;
   }
@@ -389,6 +391,7 @@ nlohmann::json AgentChannel::RoundsSummary() const {
           {"in_progress_at_end", in_progress},
           {"rounds_run", total.rounds_run},
           {"completion_mean_s", finished > 0 ? total.completion_sum / finished : 0.0},
+          {"completion_max_s", total.completion_max},
           {"followers", followers},
           {"links", links},
           {"solver", solver}};
