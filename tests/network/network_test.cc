@@ -44,6 +44,70 @@ TEST(LinkTest, DeliversExactlyTheConfiguredLatency) {
   }
 }
 
+// Exchange rounds over the links (issue 19): a round message handed to a follower link arrives
+// exactly its latency later, measured on the steps' timestamps, tagged with its sample; it never
+// travels on the leader link (rounds are between followers) and is not held like a state.
+TEST(LinkTest, RoundOverALinkArrivesItsLatencyLater) {
+  for (double latency : {0.0, 0.001, 0.005, 0.02, 0.049}) {
+    LinkSpec follower_link{1, 2, {}};
+    follower_link.params.latency = latency;
+    LinkSpec leader_link{0, 1, {}};
+    leader_link.params.latency = latency;
+    Network net(2, {leader_link, follower_link}, kDt, 7);
+    const int64_t sent_at = 13;
+    mjfMessage round = MessageAt(1, sent_at);
+    round.round = 2;
+    round.n_payload = 2;
+    round.payload[0] = 0.25;
+    std::vector<RoundLetter> letters;
+    double arrival_time = -1.0;
+    for (int64_t step = 0; step < 100; ++step) {
+      if (step == sent_at) {
+        net.SendRound(step, 1, 10, round);
+        net.SendRound(step, 0, 10, round);  // the leader has no follower link: nothing sent
+      }
+      const size_t before = letters.size();
+      net.CollectRounds(step, &letters);
+      if (letters.size() > before) arrival_time = static_cast<double>(step) * kDt;
+    }
+    ASSERT_EQ(letters.size(), 1u) << latency;
+    EXPECT_NEAR(arrival_time - static_cast<double>(sent_at) * kDt, latency, 1e-12) << latency;
+    EXPECT_EQ(letters[0].link, 1);
+    EXPECT_EQ(letters[0].sample_step, 10);
+    EXPECT_EQ(letters[0].message.round, 2);
+    EXPECT_EQ(letters[0].message.payload[0], 0.25);
+    const LinkStats& st = net.link(1).stats();
+    EXPECT_EQ(st.rounds_sent, 1);
+    EXPECT_EQ(st.rounds_delivered, 1);
+    EXPECT_NEAR(st.round_latency_max, latency, 1e-12);
+    EXPECT_EQ(st.sent, 0);  // not counted as a state message
+    EXPECT_EQ(net.link(0).stats().rounds_sent, 0);
+  }
+}
+
+// A lost round message never arrives; the draws are the state messages' (one loss uniform,
+// then one for the jitter), so loss p drops a fraction p and jitter stays within [0, jitter].
+TEST(LinkTest, RoundOverALinkIsLostAndJitteredLikeAState) {
+  LinkParams params;
+  params.latency = 0.002;
+  params.jitter = 0.003;
+  params.loss = 0.3;
+  Link link(params, kDt, LinkSeed(9, 4));
+  const int n = 20000;
+  int delivered = 0;
+  for (int k = 0; k < n; ++k) {
+    if (auto arrival = link.TransmitRoundDelayed(1000)) {
+      ++delivered;
+      EXPECT_GE(*arrival - 1000, 2);
+      EXPECT_LE(*arrival - 1000, 5);
+    }
+  }
+  const double p = 1.0 - static_cast<double>(delivered) / n;
+  EXPECT_NEAR(p, 0.3, 4.0 * std::sqrt(0.3 * 0.7 / n));
+  EXPECT_EQ(link.stats().rounds_sent, n);
+  EXPECT_EQ(link.stats().rounds_lost, n - delivered);
+}
+
 TEST(LinkTest, BernoulliLossWithinBinomialInterval) {
   const int n = 100000;
   for (double p : {0.0, 0.05, 0.2, 0.5, 1.0}) {

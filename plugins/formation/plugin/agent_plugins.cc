@@ -55,10 +55,15 @@ struct Agent {
   double horizon;
   bool has_sample = false;
   // Sample k is due when the step the follower's clock reads enters a new period (step / steps
-  // per sample changes; the host hands the clock's step, issue 19): decided in round 0, and the
-  // later rounds of that tick sample again.
+  // per sample changes; the host hands the clock's step, issue 19): decided in round 0; the
+  // later rounds of that sample take it again (last_round below).
   int64_t due_index = -1;
   bool sample_due = false;
+  // The last exchange round computed for the current sample (-1: none, the sample was not
+  // taken). A round r > 0 continues the sample when it is the next one and its step is still
+  // in the sample's period: rounds carried over links run at later ticks, with the sample's
+  // time and step handed back by the host (docs/NETWORK.md); between samples round r > 0 holds.
+  int last_round = -1;
   double leader_pv[4] = {0, 0, 0, 0};
   bool knows_leader = false;
   // f_i(t) and f_i(t + horizon) of this follower, and the same for each neighbour: evaluated
@@ -199,16 +204,22 @@ int Compute(void* instance, const mjfStepContext* ctx) {
     const bool ready = Gather(a, in);
     if (!ready && !a.has_sample) return 0;  // nothing heard yet: hold the initial setpoint
     a.shape.EvaluateOne(ctx->time, a.follower, a.own_f_now);
+    const int64_t index = ctx->step / a.steps_per_sample;
     if (in.round == 0) {
-      const int64_t index = ctx->step / a.steps_per_sample;
       a.sample_due = !a.has_sample || index != a.due_index;
       a.due_index = index;
+    } else {
+      // Instantaneous rounds run in the tick of round 0, so this is true exactly when round 0
+      // sampled in this tick; rounds over links may come ticks later.
+      a.sample_due = a.last_round == in.round - 1 && index == a.due_index;
     }
     const bool sample_step = a.sample_due;
     // A sample needs a message from every neighbour (and the leader when a_i0 > 0): until
     // each has been heard once, the initial setpoint holds.
     const bool sampled = ready && sample_step;
     if (sampled) Sample(a, *ctx);
+    if (in.round == 0 && sample_step) a.last_round = sampled ? 0 : -1;
+    if (in.round > 0 && sampled) a.last_round = in.round;
     mjfSetpoint& sp = *ctx->setpoints;
     for (int axis = 0; axis < 2; ++axis) {
       // The reference slot x_0 + f_i (a diagnostic: attitude plugins use acc and pos[2]); the
@@ -234,6 +245,7 @@ int Compute(void* instance, const mjfStepContext* ctx) {
 template <typename Law>
 void Reset(void* instance) {
   static_cast<Agent<Law>*>(instance)->has_sample = false;
+  static_cast<Agent<Law>*>(instance)->last_round = -1;
 }
 
 template <typename Law>

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "mjformation/config/source_location.hpp"
 #include "network_config.hpp"
 #include "section_reader.hpp"
 
@@ -64,6 +65,52 @@ void ParseExecutionTiming(SectionReader& keys, const ExperimentConfig& c, Networ
                                          : "clock_drift_ppm",
               "needs mode = \"per_agent\" (central mode sees every state at once)");
   }
+}
+
+const char* ToString(ExchangeRounds value) {
+  return value == ExchangeRounds::kOverLinks ? "over_links" : "instantaneous";
+}
+
+void ParseExchangeRounds(SectionReader& keys, ExperimentConfig& c) {
+  NetworkConfig& n = c.network;
+  n.rounds = keys.Enum("rounds", ExchangeRounds::kInstantaneous,
+                       {{"instantaneous", ExchangeRounds::kInstantaneous},
+                        {"over_links", ExchangeRounds::kOverLinks}});
+  n.round_timeout = keys.Number("round_timeout", 0.0);
+  if (!(n.round_timeout >= 0.0 && n.round_timeout <= c.duration)) {
+    keys.Fail("round_timeout",
+              "must be in [0, duration] s (0: no timeout, a round waits until the next sample)");
+  }
+  if (keys.Has("round_timeout") && n.rounds != ExchangeRounds::kOverLinks) {
+    keys.Fail("round_timeout", "needs rounds = \"over_links\" (instantaneous rounds take no time)");
+  }
+  if (n.rounds != ExchangeRounds::kOverLinks || n.coupling == Coupling::kLastInput) return;
+  // Not even one round fits a sample: a Jacobi round takes one hop (a follower link's fixed
+  // latency), the central solve's round two (R_i up to the solver on the leader's star, W_i
+  // back); jitter is left out, since some draws could still be short. Such a run would never
+  // use a round's result, so it is refused, at the line that set the latency.
+  const double period = SamplePeriod(c);
+  const bool central = n.coupling == Coupling::kCentralSolve;
+  double worst = keys.Has("latency") ? n.defaults.latency : 0.0;
+  const NetworkConfig::LinkOverride* worst_link = nullptr;
+  for (const auto& link : n.links) {
+    // Jacobi rounds travel on follower links; the central solve's on the leader's links' star.
+    if ((link.from == 0) != central || !(link.params.latency > worst)) continue;
+    worst = link.params.latency;
+    worst_link = &link;
+  }
+  const double round_time = central ? 2.0 * worst : worst;
+  if (round_time < period) return;
+  std::ostringstream out;
+  out << "with rounds = \"over_links\" and coupling = \"" << ToString(n.coupling)
+      << "\", one exchange round takes at least " << round_time << " s ("
+      << (central ? "R_i up to the solver and W_i back, twice the latency"
+                  : "one hop over a follower link")
+      << "), not less than the sample period T = " << period
+      << " s ([formation] period): not one round fits a sample";
+  if (!worst_link) keys.Fail("latency", out.str());
+  SourceLocation{c.source_path, worst_link->line, SectionKey("network.link", "latency")}.Fail(
+      out.str());
 }
 
 // The network delivers at physics steps: a latency that is not a whole number of steps would

@@ -206,11 +206,12 @@ void ParseNetworkSections(const toml::table& root, ExperimentConfig& c) {
                 "reference: one instance that sees every state)");
   }
   std::set<std::string> known(std::begin(kLinkKeys), std::end(kLinkKeys));
-  known.insert("link");
+  known.insert({"link", "rounds", "round_timeout"});
   Know(keys, known);
   keys.RejectUnknown();
   c.network.defaults = ReadLinkParams(keys, network::LinkParams{}, c.timestep, c.duration);
   if (const toml::node* links = keys.Node("link")) ParseLinkOverrides(c.source_path, links, c);
+  ParseExchangeRounds(keys, c);
 }
 
 }  // namespace mjf::runner

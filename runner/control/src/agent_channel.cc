@@ -97,6 +97,7 @@ AgentChannel::AgentChannel(const core::Graph& graph, const NetworkConfig& config
   if (config.coupling == Coupling::kCentralSolve) {
     central_ = std::make_unique<CentralSolver>(graph);
   }
+  SetUpRoundsOverLinks(seed);
 }
 
 AgentChannel::~AgentChannel() = default;
@@ -105,6 +106,7 @@ void AgentChannel::BeginTick(int64_t step, double time, const std::vector<mjfVeh
                              const std::vector<mjfVehicleState>& measured,
                              const std::vector<mjfSetpoint>& setpoints) {
   time_ = time;
+  step_ = step;
   positions_.resize(truth.size());  // allocates on the first tick only
   for (size_t v = 0; v < truth.size(); ++v) {
     positions_[v] = {truth[v].pos[0], truth[v].pos[1], truth[v].pos[2]};
@@ -127,6 +129,7 @@ void AgentChannel::BeginTick(int64_t step, double time, const std::vector<mjfVeh
   network_.Deliver(step);
   for (int i = 0; i < n_followers_; ++i) self_[i] = measured[i + 1];
   have_solution_ = false;
+  if (over_links_) CollectRounds();
 }
 
 const mjfAgentInput& AgentChannel::Input(int follower, int round) {
@@ -238,6 +241,18 @@ void AgentChannel::CentralSolve() {
   have_solution_ = true;
 }
 
+void AgentChannel::SolveGathered() {
+  for (int i = 0; i < n_followers_; ++i) {
+    central_->rhs(i, 0) = solver_rows_[2 * i];
+    central_->rhs(i, 1) = solver_rows_[2 * i + 1];
+  }
+  central_->solver.SolveInPlace(central_->rhs);
+  for (int i = 0; i < n_followers_; ++i) {
+    solved_[2 * i] = central_->rhs(i, 0);
+    solved_[2 * i + 1] = central_->rhs(i, 1);
+  }
+}
+
 nlohmann::json AgentChannel::Summary() const {
   using Json = nlohmann::json;
   Json links = Json::array();
@@ -273,23 +288,26 @@ nlohmann::json AgentChannel::Summary() const {
     if (events.size() >= 1000) break;  // the count below is complete
     events.push_back({{"time_s", e.time}, {"from", e.from}, {"to", e.to}, {"up", e.up}});
   }
-  return {{"execution", ToString(config_.execution)},
-          {"coupling", ToString(config_.coupling)},
-          {"rounds_per_step", n_rounds_},
-          {"central_solve_skipped_samples", central_skipped_samples_},
-          {"jacobi_spectral_radius", spectral_radius_},
-          {"links", links},
-          {"age_of_information", age},
-          {"topology_switches", network_.events().size()},
-          {"topology_events", events},
-          {"time_without_spanning_tree_s", network_.time_without_spanning_tree()},
-          {"predict", ToString(config_.predict)},
-          // Exchange rounds take no time (Jacobi: loss only; the central solve: at once, over
-          // every follower): the central solve is the ideal reference, not a protocol.
-          {"exchange_rounds", "instantaneous"},
-          {"oracle", config_.coupling == Coupling::kCentralSolve},
-          {"age_of_information_at_samples", sample_age},
-          {"clocks", ClocksSummary()}};
+  Json summary = {{"execution", ToString(config_.execution)},
+                  {"coupling", ToString(config_.coupling)},
+                  {"rounds_per_step", n_rounds_},
+                  {"central_solve_skipped_samples", central_skipped_samples_},
+                  {"jacobi_spectral_radius", spectral_radius_},
+                  {"links", links},
+                  {"age_of_information", age},
+                  {"topology_switches", network_.events().size()},
+                  {"topology_events", events},
+                  {"time_without_spanning_tree_s", network_.time_without_spanning_tree()},
+                  {"predict", ToString(config_.predict)},
+                  // Instantaneous exchange rounds take no time (Jacobi: loss only; the central
+                  // solve: at once, over every follower): that central solve is the ideal
+                  // reference, not a protocol. Over the links they take their latency.
+                  {"exchange_rounds", ToString(config_.rounds)},
+                  {"oracle", config_.coupling == Coupling::kCentralSolve && !over_links_},
+                  {"age_of_information_at_samples", sample_age},
+                  {"clocks", ClocksSummary()}};
+  if (over_links_) summary["rounds_over_links"] = RoundsSummary();
+  return summary;
 }
 
 // The clocks as drawn (in phase: offsets and drifts all 0) and the exchange-round policy.

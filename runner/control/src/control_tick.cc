@@ -101,6 +101,10 @@ void ControlTick::RunAgents(const mjfStepContext& ctx, const std::vector<mjfVehi
   agent_ctx.model = nullptr;
   agent_ctx.data = nullptr;
   const AgentClocks& clocks = channel_->clocks();
+  if (channel_->rounds_over_links()) {
+    RunAgentsOverLinks(agent_ctx, ctx);
+    return;
+  }
   for (int round = 0; round < channel_->n_rounds(); ++round) {
     for (size_t i = 0; i < plugins_.formation_agents.size(); ++i) {
       if (clocks.active()) {
@@ -114,6 +118,40 @@ void ControlTick::RunAgents(const mjfStepContext& ctx, const std::vector<mjfVehi
     }
     channel_->EndRound(round, setpoints_);
   }
+}
+
+// Exchange rounds over the links (docs/NETWORK.md): the rounds of earlier samples whose inputs
+// arrived run first, each with its sample's frozen input, time and step; then every follower's
+// round 0 at this tick (which may take a new sample and drop the rounds still missing), then
+// the rounds whose inputs arrived in this very step (all of them with latency 0). The last call
+// of the tick is round 0 at this tick's time, so the slot diagnostics are this tick's.
+void ControlTick::RunAgentsOverLinks(mjfStepContext& agent_ctx, const mjfStepContext& ctx) {
+  const AgentClocks& clocks = channel_->clocks();
+  auto continue_rounds = [&] {
+    int round = 0;
+    double local_time = 0.0;
+    int64_t local_step = 0;
+    for (int i; (i = channel_->NextContinuedRound(&round, &local_time, &local_step)) >= 0;) {
+      agent_ctx.time = local_time;
+      agent_ctx.step = local_step;
+      agent_ctx.setpoints = &setpoints_[i + 1];
+      agent_ctx.agent = &channel_->ContinuedInput(i, round);
+      Call(*plugins_.formation_agents[i], agent_ctx, i + 1);
+      channel_->EndContinuedRound(i, round, setpoints_);
+    }
+  };
+  continue_rounds();
+  for (size_t i = 0; i < plugins_.formation_agents.size(); ++i) {
+    const int follower = static_cast<int>(i);
+    agent_ctx.time = clocks.active() ? clocks.Local(follower + 1, ctx.time) : ctx.time;
+    agent_ctx.step = clocks.active() ? clocks.LocalStep(follower, ctx.time) : ctx.step;
+    agent_ctx.setpoints = &setpoints_[i + 1];
+    channel_->SetCallContext(follower, agent_ctx.time, agent_ctx.step);
+    agent_ctx.agent = &channel_->Input(follower, 0);
+    Call(*plugins_.formation_agents[i], agent_ctx, follower + 1);
+  }
+  channel_->EndSampleRound(setpoints_);
+  continue_rounds();
 }
 
 // The host's part of the bus contract (plugin.h): followers hold the altitude, level, yaw 0;

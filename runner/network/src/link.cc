@@ -57,6 +57,10 @@ std::optional<int64_t> Link::Transmit(int64_t send_step) {
     ++stats_.lost;
     return std::nullopt;
   }
+  return ArrivalStep(send_step);
+}
+
+int64_t Link::ArrivalStep(int64_t send_step) {
   double delay = params_.latency;
   if (params_.jitter > 0.0) delay += params_.jitter * random_.Uniform();
   // First step at or after send time + delay; the 1e-9 guards a delay that is an exact
@@ -72,6 +76,22 @@ bool Link::TransmitRound() {
     return false;
   }
   return true;
+}
+
+std::optional<int64_t> Link::TransmitRoundDelayed(int64_t send_step) {
+  ++stats_.rounds_sent;
+  if (DrawLoss()) {
+    ++stats_.rounds_lost;
+    return std::nullopt;
+  }
+  return ArrivalStep(send_step);
+}
+
+void Link::RecordRoundDelivery(int64_t send_step, int64_t arrival_step) {
+  ++stats_.rounds_delivered;
+  const double latency = static_cast<double>(arrival_step - send_step) * timestep_;
+  stats_.round_latency_sum += latency;
+  stats_.round_latency_max = std::max(stats_.round_latency_max, latency);
 }
 
 void Link::RecordDelivery(int64_t send_step, int64_t arrival_step, bool stale) {

@@ -148,6 +148,17 @@ void Network::ExchangeRound(int sender, const mjfMessage& message) {
   }
 }
 
+void Network::SendRound(int64_t step, int sender, int64_t sample_step, const mjfMessage& message) {
+  for (int l : out_links_[sender]) {
+    if (!up_[l] || specs_[l].from == 0) continue;
+    rounds_in_flight_.Post(links_[l], l, step, sample_step, message);
+  }
+}
+
+void Network::CollectRounds(int64_t step, std::vector<RoundLetter>* out) {
+  rounds_in_flight_.Collect(step, links_, out);
+}
+
 void Network::ClearRounds() { std::fill(has_round_.begin(), has_round_.end(), false); }
 
 }  // namespace mjf::network

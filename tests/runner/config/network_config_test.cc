@@ -122,5 +122,47 @@ TEST(NetworkConfigTest, ExecutionKeysAreChecked) {
       AllOf(HasSubstr("net.toml:20: [execution] jacobi_rounds"), HasSubstr("[1, 64]")));
 }
 
+// [network] rounds (issue 19): the default is today's instantaneous rounds; an unknown value, a
+// timeout without rounds over links, and a latency with which not one round fits a sample (the
+// test file's law samples every step: T = the 1 ms timestep) are refused at the key's line.
+TEST(NetworkConfigTest, ExchangeRoundsAreChecked) {
+  const std::string jacobi = "[execution]\nmode = \"per_agent\"\ncoupling = \"jacobi\"\n";
+  const std::string central = "[execution]\nmode = \"per_agent\"\ncoupling = \"central_solve\"\n";
+  EXPECT_EQ(mjf::testing::Parse(Experiment(jacobi, ""), "net.toml").network.rounds,
+            ExchangeRounds::kInstantaneous);
+  const ExperimentConfig over = mjf::testing::Parse(
+      Experiment(jacobi, "[network]\nrounds = \"over_links\"\nround_timeout = 0.5\n"), "net.toml");
+  EXPECT_EQ(over.network.rounds, ExchangeRounds::kOverLinks);
+  EXPECT_EQ(over.network.round_timeout, 0.5);
+  // Experiment() has 16 lines; [execution] 3 more; [network] is line 20.
+  EXPECT_THAT(ErrorOf(Experiment(jacobi, "[network]\nrounds = \"radio\"\n")),
+              AllOf(HasSubstr("net.toml:21: [network] rounds"), HasSubstr("over_links"),
+                    HasSubstr("(got \"radio\")")));
+  EXPECT_THAT(ErrorOf(Experiment(jacobi, "[network]\nround_timeout = 0.01\n")),
+              AllOf(HasSubstr("net.toml:21: [network] round_timeout"), HasSubstr("over_links")));
+  EXPECT_THAT(
+      ErrorOf(Experiment(jacobi, "[network]\nrounds = \"over_links\"\nround_timeout = -1.0\n")),
+      AllOf(HasSubstr("net.toml:22: [network] round_timeout"), HasSubstr("[0, ")));
+  EXPECT_THAT(ErrorOf(Experiment(jacobi, "[network]\nrounds = \"over_links\"\nlatency = 0.001\n")),
+              AllOf(HasSubstr("net.toml:22: [network] latency"), HasSubstr("one hop"),
+                    HasSubstr("not one round fits a sample")));
+  // The same latency instantaneously, or without rounds (last_input), is fine.
+  EXPECT_EQ(ErrorOf(Experiment(jacobi, "[network]\nlatency = 0.001\n")), "");
+  EXPECT_EQ(ErrorOf(Experiment(kPerAgent, "[network]\nrounds = \"over_links\"\nlatency = 0.001\n")),
+            "");
+  // The central solve's round is two hops of the leader links' star: an override counts, and is
+  // named by its [[network.link]] line.
+  EXPECT_THAT(ErrorOf(Experiment(central,
+                                 "[network]\nrounds = \"over_links\"\n"
+                                 "[[network.link]]\nfrom = 0\nto = 1\nlatency = 0.001\n")),
+              AllOf(HasSubstr("net.toml:22: [network.link] latency"), HasSubstr("twice"),
+                    HasSubstr("not one round fits a sample")));
+  // A follower link's latency does not delay the central solve's rounds.
+  EXPECT_EQ(ErrorOf(Experiment(central,
+                               "[network]\nrounds = \"over_links\"\n"
+                               "[[network.link]]\nfrom = 1\nto = 2\nlatency = 0.001\n")),
+            "");
+}
+
 }  // namespace
 }  // namespace mjf::runner

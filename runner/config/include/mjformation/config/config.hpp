@@ -52,6 +52,12 @@ const char* ToString(Coupling value);
 // thrust (vehicles whose attitude loop lags the command).
 enum class Predict { kNone, kInput, kAttitude };
 const char* ToString(Predict value);
+// [network] rounds (issue 19): how the exchange rounds inside one sample (Jacobi iterates w_j,
+// the central solve's R_i and W_i) travel. kInstantaneous: they take no time (loss only; the
+// central solve at once: an oracle, the default); kOverLinks: over the links with their latency,
+// jitter and loss, a round starting only when the previous one has arrived (docs/NETWORK.md).
+enum class ExchangeRounds { kInstantaneous, kOverLinks };
+const char* ToString(ExchangeRounds value);
 
 struct NetworkConfig {
   Execution execution = Execution::kCentral;
@@ -73,6 +79,11 @@ struct NetworkConfig {
   Predict predict = Predict::kNone;
   double clock_offset = 0.0;     // s, the largest offset; < the sample period
   double clock_drift_ppm = 0.0;  // ppm, the largest |drift|; <= 1e4
+  // Issue 19 ([network] rounds, round_timeout): exchange rounds carried over the links.
+  ExchangeRounds rounds = ExchangeRounds::kInstantaneous;
+  // s, over_links: a follower waiting longer than this for a round's messages runs the next
+  // round with what it has (0: no timeout, it waits until its next sample).
+  double round_timeout = 0.0;
 };
 
 // One plugin attribute as written in the experiment file.

@@ -23,6 +23,7 @@
 #include "mjformation/config/config.hpp"
 #include "mjformation/control/agent_clock.hpp"
 #include "mjformation/network/network.hpp"
+#include "mjformation/network/round_courier.hpp"
 
 namespace mjf::core {
 class Graph;
@@ -48,6 +49,21 @@ class AgentChannel {
   // After every follower ran round `round`; setpoints: the bus (inputs of the next broadcast).
   void EndRound(int round, const std::vector<mjfSetpoint>& setpoints);
 
+  // Exchange rounds over the links ([network] rounds = "over_links" with coupling = "jacobi" or
+  // "central_solve", docs/NETWORK.md; agent_channel_rounds.cc). The control tick then runs:
+  // BeginTick; ContinueRounds (earlier samples' rounds whose inputs have arrived); round 0 of
+  // every follower (SetCallContext, Input(i, 0), the plugin); EndSampleRound (a follower that
+  // sampled posts round 0, or R_i to the solver); ContinueRounds again (what arrived in this
+  // very step). A continued round is handed its sample's input, time and step, frozen at round 0.
+  bool rounds_over_links() const { return over_links_; }
+  void SetCallContext(int follower, double local_time, int64_t local_step);
+  void EndSampleRound(const std::vector<mjfSetpoint>& setpoints);
+  // The first follower whose next round can run now (its inputs arrived, or the round timeout
+  // passed), or -1; *round, *local_time, *local_step: that round and its sample's clock reading.
+  int NextContinuedRound(int* round, double* local_time, int64_t* local_step);
+  const mjfAgentInput& ContinuedInput(int follower, int round);
+  void EndContinuedRound(int follower, int round, const std::vector<mjfSetpoint>& setpoints);
+
   const network::Network& network() const { return network_; }
   // summary.json "network": coupling, Jacobi spectral radius, per-link counts and measured
   // latency, age of information per follower, topology switches, time without a spanning tree.
@@ -62,6 +78,45 @@ class AgentChannel {
   void CentralSolve();
   void PredictInbox(int follower, const mjfMessage* leader);
   void RecordSampleAge();
+  // Rounds over links (agent_channel_rounds.cc).
+  // One follower's exchange of one sample: its round-0 input, frozen, and what has arrived.
+  struct Exchange {
+    bool waiting = false;      // rounds of this sample still to run
+    int64_t sample_step = -1;  // the physics step the sample was taken at
+    double local_time = 0.0;   // the follower's clock then (handed back to the plugin)
+    int64_t local_step = 0;
+    int next_round = 1;            // the round it runs when its inputs are there
+    int64_t round_start_step = 0;  // when it ran round next_round - 1 (for the timeout)
+    bool timed_out = false;        // some round ran on the timeout with inputs missing
+    mjfVehicleState self{};
+    std::vector<mjfMessage> inbox;  // as handed in round 0 (predicted, when predict is on)
+    mjfMessage leader{};
+    bool has_leader = false;
+    std::vector<char> got;            // [round * degree + m]: neighbour m's round message arrived
+    std::vector<mjfMessage> letters;  // [round * degree + m]
+    bool has_solved = false;          // central solve: W_i of this sample arrived
+    double solved[2] = {0.0, 0.0};
+  };
+  struct RoundStats {
+    int64_t samples = 0;              // exchanges started (samples taken)
+    int64_t complete = 0;             // every round ran with all its inputs
+    int64_t timed_out = 0;            // every round ran, some on the timeout with inputs missing
+    int64_t incomplete = 0;           // ended before the last round (the next sample came first)
+    std::vector<int64_t> rounds_run;  // [k]: ended samples in which k rounds after round 0 ran
+    double completion_sum = 0.0;      // s, sample to last round (complete or timed out)
+    double completion_max = 0.0;
+  };
+  void SetUpRoundsOverLinks(uint64_t seed);
+  void CollectRounds();
+  void TakeJacobiLetter(const network::RoundLetter& letter);
+  void TakeSolverLetter(const network::RoundLetter& letter);
+  void TakeSolutionLetter(const network::RoundLetter& letter);
+  // L_H W = R for the rows in solver_rows_ (R_i x, y per follower), into solved_.
+  void SolveGathered();
+  void FillOutgoing(int follower, const std::vector<mjfSetpoint>& setpoints);
+  void EndExchange(int follower, bool finished);
+  bool RoundInputsArrived(int follower) const;
+  nlohmann::json RoundsSummary() const;
   nlohmann::json ClocksSummary() const;
   static std::vector<network::LinkSpec> Links(const core::Graph& graph, const NetworkConfig& c);
 
@@ -88,6 +143,26 @@ class AgentChannel {
   std::vector<mjfMessage> leader_held_;        // [follower] the leader's message as predicted
   std::vector<network::AgeStats> sample_age_;  // [follower] age at the samples the law takes
   double coupling_radius_;                     // rho(L_H^-1 A), for the delay margin
+  // Rounds over links.
+  bool over_links_ = false;
+  int64_t step_ = 0;
+  int64_t timeout_steps_ = 0;      // round_timeout in steps (0: none)
+  std::vector<double> call_time_;  // [follower] clock reading of this tick's round 0
+  std::vector<int64_t> call_step_;
+  std::vector<Exchange> exchanges_;      // [follower] its current sample's rounds
+  std::vector<RoundStats> round_stats_;  // [follower]
+  std::vector<network::RoundLetter> letters_;
+  std::vector<int64_t> late_, unmatched_;  // [link] round messages nobody waited for any more
+  // The central solve over links: the solver is vehicle 0 (the leader); follower i's R_i goes up
+  // and W_i comes down on a pair of links with its leader link's parameters (docs/NETWORK.md).
+  std::vector<network::Link> solver_up_, solver_down_;  // [follower]
+  network::RoundCourier up_in_flight_, down_in_flight_;
+  int64_t solver_sample_ = -1;       // the sample whose R_i the solver is gathering
+  std::vector<char> solver_has_;     // [follower] R_i of solver_sample_ arrived
+  std::vector<double> solver_rows_;  // [2 follower + axis] R_i as it arrived
+  int solver_count_ = 0;
+  int64_t solver_solves_ = 0;
+  std::vector<int64_t> up_late_, down_late_;  // [follower]
 };
 
 }  // namespace mjf::runner

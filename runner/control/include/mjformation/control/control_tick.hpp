@@ -72,6 +72,7 @@ class ControlTick {
   void RunGuidanceAndFormation(mjfStepContext& ctx, const std::vector<mjfVehicleState>& truth);
   // The channel stage: each follower's instance, handed only its own state and messages.
   void RunAgents(const mjfStepContext& ctx, const std::vector<mjfVehicleState>& truth);
+  void RunAgentsOverLinks(mjfStepContext& agent_ctx, const mjfStepContext& ctx);
   void ResetFollowerSetpoints();
   void RequireFiniteSetpoints(double time) const;
   // Calls the plugin and turns a failure code or a C++ exception into a SimulationError.

@@ -51,8 +51,12 @@ struct LinkStats {
   int64_t out_of_range = 0;  // broadcasts while the link did not exist (range limit)
   double latency_sum = 0.0;  // s, over delivered messages (arrival time - send time)
   double latency_max = 0.0;
-  int64_t rounds_sent = 0;  // Jacobi round messages (loss only)
+  int64_t rounds_sent = 0;  // exchange-round messages (Jacobi iterates; over links: also R_i, W_i)
   int64_t rounds_lost = 0;
+  // Rounds carried over the link ([network] rounds = "over_links"): delivered, and their delay.
+  int64_t rounds_delivered = 0;
+  double round_latency_sum = 0.0;  // s
+  double round_latency_max = 0.0;
 };
 
 class Link {
@@ -71,6 +75,11 @@ class Link {
   std::optional<int64_t> Transmit(int64_t send_step);
   // Loss only (a Jacobi round inside one sample: see docs/NETWORK.md); true when delivered.
   bool TransmitRound();
+  // An exchange-round message carried like a state message (rounds = "over_links"): the step
+  // it arrives at, or nothing when lost. The same draws as Transmit (loss, then jitter), counted
+  // as a round message.
+  std::optional<int64_t> TransmitRoundDelayed(int64_t send_step);
+  void RecordRoundDelivery(int64_t send_step, int64_t arrival_step);
   // Records a delivery at `arrival_step` of a message sent at `send_step` (stale: dropped).
   void RecordDelivery(int64_t send_step, int64_t arrival_step, bool stale);
   void RecordOutOfRange() { ++stats_.out_of_range; }
@@ -80,6 +89,8 @@ class Link {
 
  private:
   bool DrawLoss();
+  // The arrival step of a message sent at send_step and not lost (draws the jitter).
+  int64_t ArrivalStep(int64_t send_step);
 
   LinkParams params_;
   double timestep_;

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "mjformation/network/link.hpp"
+#include "mjformation/network/round_courier.hpp"
 
 namespace mjf::network {
 
@@ -66,8 +67,15 @@ class Network {
   // A Jacobi round message from `sender` (loss only: see docs/NETWORK.md).
   void ExchangeRound(int sender, const mjfMessage& message);
   void ClearRounds();
+  // Rounds over the links (rounds = "over_links"): `sender`'s round message of the sample taken
+  // at sample_step, handed to each of its follower out-links that exists now (latency, jitter,
+  // loss as a state message); CollectRounds appends those arriving at or before `step`
+  // (letter.link: the link index, spec(link).to the receiver).
+  void SendRound(int64_t step, int sender, int64_t sample_step, const mjfMessage& message);
+  void CollectRounds(int64_t step, std::vector<RoundLetter>* out);
 
   int n_links() const { return static_cast<int>(links_.size()); }
+  double timestep() const { return timestep_; }
   const LinkSpec& spec(int link) const { return specs_[link]; }
   const Link& link(int link) const { return links_[link]; }
   bool link_up(int link) const { return up_[link]; }
@@ -98,6 +106,7 @@ class Network {
   std::vector<bool> has_held_;
   std::vector<mjfMessage> round_;  // [link] the last round message that got through
   std::vector<bool> has_round_;
+  RoundCourier rounds_in_flight_;
   std::vector<TopologyEvent> events_;
   bool spanning_ = true;
   bool topology_known_ = false;
