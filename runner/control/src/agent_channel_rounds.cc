@@ -311,6 +311,34 @@ void AgentChannel::EndContinuedRound(int follower, int round,
   CollectRounds();
 }
 
+// The central solve's star of links to the solver (vehicle 0) and back.
+nlohmann::json AgentChannel::SolverStarSummary() const {
+  using Json = nlohmann::json;
+  Json star = Json::array();
+  auto one = [](const network::Link& link, int64_t late) {
+    const network::LinkStats& st = link.stats();
+    return Json{{"sent", st.rounds_sent},
+                {"lost", st.rounds_lost},
+                {"delivered", st.rounds_delivered},
+                {"latency_mean_s",
+                 st.rounds_delivered > 0 ? st.round_latency_sum / st.rounds_delivered : 0.0},
+                {"latency_max_s", st.round_latency_max},
+                {"late", late}};
+  };
+  for (int i = 0; i < n_followers_; ++i) {
+    star.push_back({{"follower", i + 1},
+                    {"up_r", one(solver_up_[i], up_late_[i])},
+                    {"down_w", one(solver_down_[i], down_late_[i])}});
+  }
+  return {{"node", 0},
+          {"what",
+           "vehicle 0 (the leader) solves L_H W = R when it holds every R_i of one "
+           "sample; R_i up and W_i down on a star of links with each follower's "
+           "leader-link parameters"},
+          {"solves", solver_solves_},
+          {"links", star}};
+}
+
 nlohmann::json AgentChannel::RoundsSummary() const {
   using Json = nlohmann::json;
   Json followers = Json::array();
@@ -352,32 +380,7 @@ nlohmann::json AgentChannel::RoundsSummary() const {
                      {"round_messages_late", late_[l]},
                      {"round_messages_unmatched", unmatched_[l]}});
   }
-  Json solver = nullptr;
-  if (central_) {
-    Json star = Json::array();
-    auto one = [](const network::Link& link, int64_t late) {
-      const network::LinkStats& st = link.stats();
-      return Json{{"sent", st.rounds_sent},
-                  {"lost", st.rounds_lost},
-                  {"delivered", st.rounds_delivered},
-                  {"latency_mean_s",
-                   st.rounds_delivered > 0 ? st.round_latency_sum / st.rounds_delivered : 0.0},
-                  {"latency_max_s", st.round_latency_max},
-                  {"late", late}};
-    };
-    for (int i = 0; i < n_followers_; ++i) {
-      star.push_back({{"follower", i + 1},
-                      {"up_r", one(solver_up_[i], up_late_[i])},
-                      {"down_w", one(solver_down_[i], down_late_[i])}});
-    }
-    solver = {{"node", 0},
-              {"what",
-               "vehicle 0 (the leader) solves L_H W = R when it holds every R_i of one "
-               "sample; R_i up and W_i down on a star of links with each follower's "
-               "leader-link parameters"},
-              {"solves", solver_solves_},
-              {"links", star}};
-  }
+  const Json solver = central_ ? SolverStarSummary() : Json(nullptr);
   const int64_t finished = total.complete + total.timed_out;
   return {{"round_timeout_s", config_.round_timeout},
           {"policy",

@@ -117,6 +117,7 @@ class AgentChannel {
   void EndExchange(int follower, bool finished);
   bool RoundInputsArrived(int follower) const;
   nlohmann::json RoundsSummary() const;
+  nlohmann::json SolverStarSummary() const;
   nlohmann::json ClocksSummary() const;
   static std::vector<network::LinkSpec> Links(const core::Graph& graph, const NetworkConfig& c);
 
