@@ -2,9 +2,10 @@
 # Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 """Table of the timing study (scripts/study_timing.sh, issue 19).
 
-Reads <study>/<exp>/{central,per_agent}/sweep.json and, per experiment, writes the mean sigma_f
+Reads <study>/<vehicle>/<exp>/{central,in_phase,off_phase}/sweep.json and, per vehicle,
+experiment and part, writes the mean sigma_f
 (95 % CI, Student t over the completed runs, as the sweep computes it) per coupling x predict x
-latency, and the largest latency of the grid up to which the formation holds (every run
+loss x latency, and the largest latency of the grid up to which the formation holds (every run
 completes and the mean sigma_f stays within 1.5x central mode's at this and every smaller
 latency) beside the delay margin summary.json predicts (network.delay_margin).
 Usage: timing_study.py <study folder> [--table out.md]
@@ -16,6 +17,11 @@ from pathlib import Path
 from mjfanalysis import load_sweep
 
 EXPERIMENTS = ["exp2", "exp3"]
+VEHICLES = ["pointmass", "quadrotor"]
+PARTS = {
+    "in_phase": "a message every step, clocks in phase, no loss",
+    "off_phase": "a 50 Hz broadcast, follower clocks offset by U[0, T/2]",
+}
 
 
 def label(value):
@@ -43,41 +49,63 @@ def margin(sweep):
     return {}
 
 
+def largest_holding(by_lat, lats, ref):
+    """The largest latency up to which every cell completes within 1.5x central (None: not 0)."""
+    holds = None
+    for lat in lats:
+        s = by_lat.get(lat)
+        if s is None or s[0] > 1.5 * ref:
+            break
+        holds = lat
+    return holds
+
+
+def part_table(grid, ref, dm, lines):
+    rows = {}
+    for cell in grid.cells:
+        coupling, predict = label(cell["execution"])
+        loss = float(cell.get("network.loss", 0.0))
+        rows.setdefault((coupling, predict, loss), []).append(
+            (float(cell["network.latency"]), sigma(cell)))
+    lats = sorted({lat for r in rows.values() for lat, _ in r})
+    lines.append("| coupling | predict | loss | largest latency within 1.5x central | predicted margin | "
+                 + " | ".join(f"{1e3 * l:g} ms" for l in lats) + " |")
+    lines.append("|---|---|---|---|---|" + "---|" * len(lats))
+    for (coupling, predict, loss), cells in sorted(rows.items()):
+        by_lat = dict(cells)
+        holds = largest_holding(by_lat, lats, ref)
+        held = "fails at 0 ms" if holds is None else f"{1e3 * holds:g} ms"
+        pm = dm.get("with_prediction_s" if predict != "none" else "without_prediction_s")
+        pm_text = (f"< {1e3 * pm:.3g} ms" if pm is not None and coupling == "central_solve"
+                   else "n/a")
+        vals = ["diverged" if by_lat.get(lat) is None
+                else f"{by_lat[lat][0]:.3g} ± {by_lat[lat][1]:.1g}" for lat in lats]
+        lines.append(f"| {coupling} | {predict} | {100 * loss:g} % | {held} | {pm_text} | "
+                     + " | ".join(vals) + " |")
+
+
 def tables(study):
     lines = []
-    for exp in EXPERIMENTS:
-        central = load_sweep(study / exp / "central").cells[0]
-        ref = sigma(central)
-        grid = load_sweep(study / exp / "per_agent")
-        dm = margin(grid)
-        rows = {}
-        for cell in grid.cells:
-            key = label(cell["execution"])
-            rows.setdefault(key, []).append((float(cell["network.latency"]), sigma(cell)))
-        lats = sorted({lat for r in rows.values() for lat, _ in r})
-        lines.append(f"\n### {exp} (point mass), central mode sigma_f = {ref[0]:.4g} ± {ref[1]:.2g} m")
-        lines.append(f"\nPredicted margin: {1e3 * dm.get('without_prediction_s', float('nan')):.3g} ms "
-                     f"without prediction, {1e3 * dm.get('with_prediction_s', float('nan')):.3g} ms with "
-                     f"(rho(L_H^-1 A) = {dm.get('coupling_spectral_radius', float('nan')):.3g}).\n")
-        lines.append("| coupling | predict | largest latency within 1.5x central | predicted margin | "
-                     + " | ".join(f"{1e3 * l:g} ms" for l in lats) + " |")
-        lines.append("|---|---|---|---|" + "---|" * len(lats))
-        for (coupling, predict), cells in sorted(rows.items()):
-            by_lat = dict(cells)
-            holds = None
-            for lat in lats:
-                s = by_lat.get(lat)
-                if s is None or s[0] > 1.5 * ref[0]:
-                    break
-                holds = lat
-            held = "fails at 0 ms" if holds is None else f"{1e3 * holds:g} ms"
-            pm = dm.get("with_prediction_s" if predict != "none" else "without_prediction_s")
-            pm_text = f"< {1e3 * pm:.3g} ms" if pm is not None and coupling == "central_solve" else "n/a (Jacobi)"
-            vals = []
-            for lat in lats:
-                s = by_lat.get(lat)
-                vals.append("diverged" if s is None else f"{s[0]:.3g} ± {s[1]:.1g}")
-            lines.append(f"| {coupling} | {predict} | {held} | {pm_text} | " + " | ".join(vals) + " |")
+    for vehicle in VEHICLES:
+        for exp in EXPERIMENTS:
+            folder = study / vehicle / exp
+            if not (folder / "central" / "sweep.json").exists():
+                continue
+            ref = sigma(load_sweep(folder / "central").cells[0])
+            lines.append(f"\n## {exp}, {vehicle}: central mode sigma_f = {ref[0]:.4g} ± {ref[1]:.2g} m")
+            for part, what in PARTS.items():
+                if not (folder / part / "sweep.json").exists():
+                    continue
+                grid = load_sweep(folder / part)
+                dm = margin(grid)
+                lines.append(f"\n### {part}: {what}\n")
+                if dm:
+                    lines.append(
+                        f"Predicted margin (central solve, in phase): "
+                        f"{1e3 * dm.get('without_prediction_s', float('nan')):.3g} ms without "
+                        f"prediction, {1e3 * dm.get('with_prediction_s', float('nan')):.3g} ms with "
+                        f"(rho(L_H^-1 A) = {dm.get('coupling_spectral_radius', float('nan')):.3g}).\n")
+                part_table(grid, ref[0], dm, lines)
     return "\n".join(lines) + "\n"
 
 
@@ -86,7 +114,8 @@ def main():
     parser.add_argument("study", type=Path)
     parser.add_argument("--table", type=Path, default=Path("docs/timing_study_table.md"))
     args = parser.parse_args()
-    text = ("# Timing study (issue 19): latency x prediction x coupling, point mass\n\n"
+    text = ("# Timing study (issue 19): latency x prediction x coupling x clocks, point mass "
+            "and quadrotor\n\n"
             "Regenerate: `bash scripts/study_timing.sh [seeds]` (this table: see the seeds per "
             "cell in the sweep). Mean sigma_f over the metric window, ± half the 95 % CI; "
             "'diverged': some run of the cell stopped early.\n" + tables(args.study))

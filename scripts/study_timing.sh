@@ -1,27 +1,33 @@
 #!/usr/bin/env bash
 # Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 #
-# The timing study (issue 19, reduced grid): Exp 2 (T = 0.05 s) and Exp 3 (T = 0.2 s) on the
-# point mass, per-agent smc_discrete_agent with the central solve and Jacobi m = 3, receiver-side
-# prediction {none, input} x link latency (9 values from 0 to just under T, a message every step,
-# in-phase clocks, no loss), against central mode. N seeds per cell, start positions jittered by
-# 0.5 m per seed. Then analysis/timing_study.py writes the table (largest latency within 1.5x
-# central sigma_f beside the predicted margin). Restartable (--resume).
-# Usage: scripts/study_timing.sh [seeds (3)] [out (runs/study_timing)] [jobs (2)]
+# The timing study (issue 19; a reduced grid, docs/RESULTS.md "Timing" says what is left out):
+# Exp 2 (T = 0.05 s) and Exp 3 (T = 0.2 s), point mass and quadrotor (the files' pd_cascade),
+# per-agent smc_discrete_agent against central mode, link latency from 0 to just under T
+# (9 values), start positions jittered by 0.5 m per seed, N seeds per cell.
+#   in_phase:  a message every step, clocks in phase, no loss; coupling {central_solve, Jacobi
+#              m = 3} x predict {none, input, attitude (quadrotor only)};
+#   off_phase: a 50 Hz broadcast, follower clocks offset by U[0, T/2], loss {0, 20 %};
+#              coupling {last_input, Jacobi m = 1, Jacobi m = 3} (the central solve needs every
+#              row at one instant: out of phase it skips every sample) x predict {none, the
+#              vehicle's: input on the point mass, attitude on the quadrotor}.
+# Then analysis/timing_study.py writes the table (largest latency within 1.5x central sigma_f
+# beside the predicted margin). Restartable (--resume).
+# Usage: scripts/study_timing.sh [seeds (2)] [out (runs/study_timing)] [jobs (2)]
+#   STUDY_VEHICLES="pointmass quadrotor" STUDY_PARTS="in_phase off_phase" (the defaults)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-seeds=${1:-3}
+seeds=${1:-2}
 out=${2:-runs/study_timing}
 jobs=${3:-2}
 exe=${MJFORMATION:-build/runner/mjformation}
 export PYTHONPATH="$PWD/analysis${PYTHONPATH:+:$PYTHONPATH}"
-exec_grid='execution={mode="per_agent",coupling="central_solve",predict="none"}'
-exec_grid+=',{mode="per_agent",coupling="central_solve",predict="input"}'
-exec_grid+=',{mode="per_agent",coupling="jacobi",jacobi_rounds=3,predict="none"}'
-exec_grid+=',{mode="per_agent",coupling="jacobi",jacobi_rounds=3,predict="input"}'
 declare -A latencies=(
   [exp2]="0,0.002,0.004,0.01,0.02,0.03,0.04,0.045,0.049"
   [exp3]="0,0.01,0.02,0.05,0.08,0.1,0.15,0.18,0.199")
+declare -A half_period=([exp2]=0.025 [exp3]=0.1)
+declare -A predicts=([pointmass]="none input" [quadrotor]="none input attitude")
+declare -A own_predict=([pointmass]=input [quadrotor]=attitude)
 sweep() {
   local rc=0
   "$exe" sweep "$@" --seeds "$seeds" --no-render -j "$jobs" --resume > /dev/null || rc=$?
@@ -30,13 +36,41 @@ sweep() {
     exit "$rc"
   fi
 }
-sets=(--set vehicles.start_jitter=0.5 --set 'vehicles.model="pointmass"'
-      --set 'attitude={plugin="pointmass_direct"}')
-for exp in exp2 exp3; do
-  echo "study_timing: $exp: central mode" >&2
-  sweep "experiments/$exp.toml" "${sets[@]}" -o "$out/$exp/central"
-  echo "study_timing: $exp: per-agent grid" >&2
-  sweep "experiments/$exp.toml" "${sets[@]}" --vary "$exec_grid" \
-    --vary "network.latency=${latencies[$exp]}" -o "$out/$exp/per_agent"
+# One --vary value list: [execution] tables for each coupling x predict ($2: extra keys).
+exec_grid() {
+  local predicts=$1 extra=$2 grid="execution=" sep=""
+  for coupling in "${@:3}"; do
+    for p in $predicts; do
+      grid+="$sep{mode=\"per_agent\",$coupling,predict=\"$p\"$extra}"
+      sep=","
+    done
+  done
+  echo "$grid"
+}
+for vehicle in ${STUDY_VEHICLES:-pointmass quadrotor}; do
+  sets=(--set vehicles.start_jitter=0.5)
+  [ "$vehicle" = pointmass ] &&
+    sets+=(--set 'vehicles.model="pointmass"' --set 'attitude={plugin="pointmass_direct"}')
+  for exp in exp2 exp3; do
+    dir="$out/$vehicle/$exp"
+    echo "study_timing: $vehicle $exp: central mode" >&2
+    sweep "experiments/$exp.toml" "${sets[@]}" -o "$dir/central"
+    for part in ${STUDY_PARTS:-in_phase off_phase}; do
+      echo "study_timing: $vehicle $exp: $part" >&2
+      if [ "$part" = in_phase ]; then
+        grid=$(exec_grid "${predicts[$vehicle]}" "" 'coupling="central_solve"' \
+          'coupling="jacobi",jacobi_rounds=3')
+        sweep "experiments/$exp.toml" "${sets[@]}" --vary "$grid" \
+          --vary "network.latency=${latencies[$exp]}" -o "$dir/in_phase"
+      else
+        grid=$(exec_grid "none ${own_predict[$vehicle]}" ",clock_offset=${half_period[$exp]}" \
+          'coupling="last_input"' 'coupling="jacobi",jacobi_rounds=1' \
+          'coupling="jacobi",jacobi_rounds=3')
+        sweep "experiments/$exp.toml" "${sets[@]}" --set network.rate=50.0 --vary "$grid" \
+          --vary "network.loss=0.0,0.2" --vary "network.latency=${latencies[$exp]}" \
+          -o "$dir/off_phase"
+      fi
+    done
+  done
 done
 /usr/bin/python3 analysis/timing_study.py "$out" --table "${STUDY_TABLE:-docs/timing_study_table.md}"

@@ -423,6 +423,41 @@ Json BenchEstimator(const ExperimentConfig& base, int n, const std::string& scra
           {"sensor_models_share_of_run", models_share}};
 }
 
+// Per-agent execution's cost (issue 19): the same run with the configured per-agent execution
+// (its coupling, prediction, clocks and network) and in central mode (one formation plugin that
+// sees every state, no network), each the best of up to kRepeats, alternating: ratio = wall
+// time per step per-agent / central. The two fly slightly different trajectories unless the
+// network is ideal, so the ratio also holds what the flights cost MuJoCo differently.
+Json BenchExecution(const ExperimentConfig& base, int n, const std::string& scratch) {
+  const ExperimentConfig per_agent = Resized(base, n);
+  ExperimentConfig central = per_agent;
+  central.network = NetworkConfig{};  // mode "central", no [network]: the reference
+  nlohmann::json a = InChild([&] { return Pipeline(per_agent, scratch); });
+  nlohmann::json b = InChild([&] { return Pipeline(central, scratch); });
+  for (int k = 1; k < kRepeats && a["wall_s"].get<double>() < kRepeatBelowS; ++k) {
+    const nlohmann::json a2 = InChild([&] { return Pipeline(per_agent, scratch); });
+    const nlohmann::json b2 = InChild([&] { return Pipeline(central, scratch); });
+    if (a2["wall_s"].get<double>() < a["wall_s"].get<double>()) a = a2;
+    if (b2["wall_s"].get<double>() < b["wall_s"].get<double>()) b = b2;
+  }
+  const double rate_agent = a["steps"].get<double>() / a["wall_s"].get<double>();
+  const double rate_central = b["steps"].get<double>() / b["wall_s"].get<double>();
+  const double ratio = rate_central / rate_agent;  // cost per step, per-agent over central
+  const NetworkConfig& net = per_agent.network;
+  std::printf(
+      "execution: %d followers, per_agent (coupling %s, predict %s) %.0f steps/s, central %.0f "
+      "steps/s; cost per step per_agent/central %.3f (target <= 1.3)\n",
+      n, ToString(net.coupling), ToString(net.predict), rate_agent, rate_central, ratio);
+  return {{"followers", n},
+          {"coupling", ToString(net.coupling)},
+          {"predict", ToString(net.predict)},
+          {"steps_per_s_per_agent", rate_agent},
+          {"steps_per_s_central", rate_central},
+          {"cost_ratio_per_agent_over_central", ratio},
+          {"sigma_f_mean_per_agent", a["sigma_f_mean"]},
+          {"sigma_f_mean_central", b["sigma_f_mean"]}};
+}
+
 Json BenchRender(const ExperimentConfig& config) {
   const nlohmann::json r = InChild([&] { return RenderCost(config); });
   std::printf(
@@ -495,6 +530,9 @@ int BenchCommand(const CliCommands& c) {
   // With an estimator configured, what it costs against passthrough on the first size.
   if (base.estimator.plugin != "passthrough")
     report["estimator"] = BenchEstimator(base, sizes.front(), scratch);
+  // Per-agent execution configured: what it costs against central mode on the first size.
+  if (base.network.execution == Execution::kPerAgent)
+    report["execution"] = BenchExecution(base, sizes.front(), scratch);
   if (c.bench_memory) report["memory"] = BenchMemory(base, sizes.front(), scratch);
   if (c.bench_render) report["render"] = BenchRender(Resized(base, sizes.front()));
   if (!c.bench_json.empty()) WriteJson(c.bench_json, report);

@@ -92,6 +92,53 @@ TEST(BenchTest, NoEstimatorLineWithPassthrough) {
   EXPECT_EQ(out.find("estimator:"), std::string::npos) << out;
 }
 
+// Issue 19: with per-agent execution configured, one line compares its cost per step with
+// central mode's on the same experiment (no timing threshold: the machine is shared; the target
+// is printed beside the ratio), and both runs' sigma_f are kept.
+TEST(BenchTest, PerAgentExecutionCostLine) {
+  const std::string dir = TempDir("bench_exec");
+  const std::string exp = std::string(MJF_SOURCE_DIR) + "/experiments/exp2.toml";
+  ::testing::internal::CaptureStdout();
+  const int code =
+      Cli({"bench", exp, "--duration", "0.3", "--set", "vehicles.model=\"pointmass\"", "--set",
+           "attitude={plugin=\"pointmass_direct\"}", "--set",
+           "execution={mode=\"per_agent\",coupling=\"central_solve\",predict=\"input\"}", "--json",
+           dir + "/b.json"});
+  const std::string out = ::testing::internal::GetCapturedStdout();
+  ASSERT_EQ(code, 0);
+  const std::string key = "cost per step per_agent/central ";
+  const size_t at = out.find(key);
+  ASSERT_NE(at, std::string::npos) << out;
+  EXPECT_EQ(
+      out.rfind("execution: 6 followers, per_agent (coupling central_solve, predict input) ", at),
+      out.rfind('\n', at) + 1)
+      << out;
+  EXPECT_NE(out.find("(target <= 1.3)", at), std::string::npos) << out;
+  const double printed = std::stod(out.substr(at + key.size()));
+  const auto j = nlohmann::json::parse(ReadFile(dir + "/b.json"))["execution"];
+  const double ratio = j["cost_ratio_per_agent_over_central"].get<double>();
+  EXPECT_TRUE(std::isfinite(ratio));
+  EXPECT_GT(ratio, 0.0);
+  EXPECT_DOUBLE_EQ(
+      ratio, j["steps_per_s_central"].get<double>() / j["steps_per_s_per_agent"].get<double>());
+  EXPECT_NEAR(printed, ratio, 5e-4);  // printed with three decimals
+  EXPECT_EQ(j["coupling"], "central_solve");
+  EXPECT_EQ(j["predict"], "input");
+  // Both flights really ran Exp 2: a finite formation error each.
+  EXPECT_TRUE(std::isfinite(j["sigma_f_mean_per_agent"].get<double>()));
+  EXPECT_TRUE(std::isfinite(j["sigma_f_mean_central"].get<double>()));
+}
+
+// Central mode prints no execution line.
+TEST(BenchTest, NoExecutionLineInCentralMode) {
+  ::testing::internal::CaptureStdout();
+  const int code =
+      Cli({"bench", std::string(MJF_SOURCE_DIR) + "/experiments/exp2.toml", "--duration", "0.05"});
+  const std::string out = ::testing::internal::GetCapturedStdout();
+  ASSERT_EQ(code, 0);
+  EXPECT_EQ(out.find("execution:"), std::string::npos) << out;
+}
+
 TEST(BenchTest, BadInputIsExitCodeOne) {
   const std::string dir = TempDir("bench_bad");
   EXPECT_EQ(Cli({"bench", dir + "/missing.toml"}), 1);
