@@ -9,6 +9,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <random>
 #include <vector>
 
@@ -150,64 +151,77 @@ TEST(KfIns, NoiseFreeSensorsWithLatencyGiveTheTruth) {
   EXPECT_LT(run.max_error, 1e-6);
 }
 
-// The same sample fused on time (then propagated 110 ms) and fused 110 ms late at its own time.
-TEST(KfIns, ALateMeasurementFusedAtItsTimeEqualsTheOnTimeOnePropagated) {
+// The filter the late-fusion tests fly twice, once fusing on time and once late.
+KfInsConfig LateFusionConfig() {
   KfInsConfig c;
   c.timestep = kDt;
   c.accel_noise_density = 0.05;
   c.accel_bias_walk = 1e-3;
   c.history = 0.2;
-  KfIns on_time(c), late(c);
+  return c;
+}
+
+// A position and velocity sample taken at step `taken`.
+AidingSample PositionAndVelocityAt(int64_t taken) {
   AidingSample m;
   m.has_position = m.has_velocity = true;
   m.position = Vec3(0.3, -0.2, 0.1);
   m.velocity = Vec3(0.05, 0.02, -0.01);
   m.position_std = Vec3::Constant(0.3);
   m.velocity_std = Vec3::Constant(0.05);
-  const int64_t taken = 40, lag = 55;  // 55 steps of 2 ms: 110 ms
-  m.time_taken = taken * kDt;
-  for (int64_t n = 1; n <= taken + lag; ++n) {
+  m.time_taken = static_cast<double>(taken) * kDt;
+  return m;
+}
+
+// Propagates both filters with the true specific force over steps 1..last; fuse_due(n) fuses
+// what either takes at step n.
+void FlyTwins(KfIns& on_time, KfIns& late, int64_t last,
+              const std::function<void(int64_t)>& fuse_due) {
+  for (int64_t n = 1; n <= last; ++n) {
     const Vec3 f = TrueAccel(n) + Vec3(0, 0, kG);
     on_time.Propagate(n, f);
     late.Propagate(n, f);
+    fuse_due(n);
+  }
+}
+
+void ExpectSameEstimate(const KfIns& a, const KfIns& b) {
+  EXPECT_LT((a.state() - b.state()).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_LT((a.covariance() - b.covariance()).cwiseAbs().maxCoeff(), 1e-12);
+}
+
+// The same sample fused on time (then propagated 110 ms) and fused 110 ms late at its own time.
+TEST(KfIns, ALateMeasurementFusedAtItsTimeEqualsTheOnTimeOnePropagated) {
+  const KfInsConfig c = LateFusionConfig();
+  KfIns on_time(c), late(c);
+  const int64_t taken = 40, lag = 55;  // 55 steps of 2 ms: 110 ms
+  const AidingSample m = PositionAndVelocityAt(taken);
+  FlyTwins(on_time, late, taken + lag, [&](int64_t n) {
     if (n == taken) {
       EXPECT_TRUE(on_time.Fuse(m));
     }
-  }
+  });
   EXPECT_GT((on_time.state() - late.state()).norm(), 1e-3);  // the sample matters
   EXPECT_TRUE(late.Fuse(m));
-  EXPECT_LT((on_time.state() - late.state()).cwiseAbs().maxCoeff(), 1e-12);
-  EXPECT_LT((on_time.covariance() - late.covariance()).cwiseAbs().maxCoeff(), 1e-12);
+  ExpectSameEstimate(on_time, late);
 }
 
 // Two late samples whose windows overlap: the second is taken at a step whose stored posterior
 // the first fusion left stale (it was stored before the first arrived). Both fused late, each at
 // its own time, equal both fused on time, propagated.
 TEST(KfIns, OverlappingLateMeasurementsEqualTheOnTimeOnesPropagated) {
-  KfInsConfig c;
-  c.timestep = kDt;
-  c.accel_noise_density = 0.05;
-  c.accel_bias_walk = 1e-3;
+  KfInsConfig c = LateFusionConfig();
   c.position_wander_std = 2.0;
   c.position_wander_tau = 100.0;
-  c.history = 0.2;
   KfIns on_time(c), late(c);
-  AidingSample first, second;
-  first.has_position = first.has_velocity = true;
-  first.position = Vec3(0.3, -0.2, 0.1);
-  first.velocity = Vec3(0.05, 0.02, -0.01);
-  first.position_std = Vec3::Constant(0.3);
-  first.velocity_std = Vec3::Constant(0.05);
+  const int64_t taken_first = 40, taken_second = 60, lag = 55;
+  const AidingSample first = PositionAndVelocityAt(taken_first);
+  AidingSample second;
   second.has_velocity = true;  // velocity only, 20 steps later
   second.velocity = Vec3(-0.04, 0.03, 0.02);
   second.velocity_std = Vec3::Constant(0.05);
-  const int64_t taken_first = 40, taken_second = 60, lag = 55;
-  first.time_taken = taken_first * kDt;
   second.time_taken = taken_second * kDt;
-  for (int64_t n = 1; n <= taken_second + lag; ++n) {
-    const Vec3 f = TrueAccel(n) + Vec3(0, 0, kG);
-    on_time.Propagate(n, f);
-    late.Propagate(n, f);
+  FlyTwins(on_time, late, taken_second + lag, [&](int64_t n) {
     if (n == taken_first) {
       EXPECT_TRUE(on_time.Fuse(first));
     }
@@ -217,11 +231,10 @@ TEST(KfIns, OverlappingLateMeasurementsEqualTheOnTimeOnesPropagated) {
     if (n == taken_first + lag) {
       EXPECT_TRUE(late.Fuse(first));
     }
-  }
+  });
   EXPECT_GT((on_time.state() - late.state()).norm(), 1e-4);  // the second sample matters
   EXPECT_TRUE(late.Fuse(second));
-  EXPECT_LT((on_time.state() - late.state()).cwiseAbs().maxCoeff(), 1e-12);
-  EXPECT_LT((on_time.covariance() - late.covariance()).cwiseAbs().maxCoeff(), 1e-12);
+  ExpectSameEstimate(on_time, late);
   EXPECT_EQ(late.fused(), 2);
 }
 
