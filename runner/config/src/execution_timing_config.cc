@@ -71,6 +71,8 @@ const char* ToString(ExchangeRounds value) {
   return value == ExchangeRounds::kOverLinks ? "over_links" : "instantaneous";
 }
 
+const char* ToString(RoundPolicy value) { return value == RoundPolicy::kHold ? "hold" : "apply"; }
+
 void ParseExchangeRounds(SectionReader& keys, ExperimentConfig& c) {
   NetworkConfig& n = c.network;
   n.rounds = keys.Enum("rounds", ExchangeRounds::kInstantaneous,
@@ -83,6 +85,12 @@ void ParseExchangeRounds(SectionReader& keys, ExperimentConfig& c) {
   }
   if (keys.Has("round_timeout") && n.rounds != ExchangeRounds::kOverLinks) {
     keys.Fail("round_timeout", "needs rounds = \"over_links\" (instantaneous rounds take no time)");
+  }
+  n.round_policy = keys.Enum("round_policy", RoundPolicy::kApply,
+                             {{"apply", RoundPolicy::kApply}, {"hold", RoundPolicy::kHold}});
+  if (keys.Has("round_policy") && n.rounds != ExchangeRounds::kOverLinks) {
+    keys.Fail("round_policy",
+              "needs rounds = \"over_links\" (instantaneous rounds end in the tick they start)");
   }
   if (n.rounds != ExchangeRounds::kOverLinks || n.coupling == Coupling::kLastInput) return;
   // Not even one round fits a sample: a Jacobi round takes one hop (a follower link's fixed

@@ -206,7 +206,7 @@ void ParseNetworkSections(const toml::table& root, ExperimentConfig& c) {
                 "reference: one instance that sees every state)");
   }
   std::set<std::string> known(std::begin(kLinkKeys), std::end(kLinkKeys));
-  known.insert({"link", "rounds", "round_timeout"});
+  known.insert({"link", "rounds", "round_timeout", "round_policy"});
   Know(keys, known);
   keys.RejectUnknown();
   c.network.defaults = ReadLinkParams(keys, network::LinkParams{}, c.timestep, c.duration);

@@ -22,11 +22,26 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "mjformation/control/agent_channel.hpp"
 #include "mjformation/control/errors.hpp"
 
 namespace mjf::runner {
+namespace {
+
+// summary.json rounds_over_links.policy: when a round runs and what the follower flies meanwhile.
+std::string PolicyText(RoundPolicy policy) {
+  return std::string(
+             "a round runs when the previous round of every in-neighbour (or W_i) has arrived, or "
+             "on the timeout with u_j for what is missing; ") +
+         (policy == RoundPolicy::kHold
+              ? "the command of the last finished exchange is held until this one finishes; "
+              : "each round's result is applied at once; ") +
+         "the next sample drops the rounds still missing";
+}
+
+}  // namespace
 
 void AgentChannel::SetUpRoundsOverLinks(uint64_t seed) {
   over_links_ = config_.rounds == ExchangeRounds::kOverLinks && n_rounds_ > 1;
@@ -37,6 +52,7 @@ void AgentChannel::SetUpRoundsOverLinks(uint64_t seed) {
           ? std::max<int64_t>(1, static_cast<int64_t>(
                                      std::ceil(config_.round_timeout / network_.timestep() - 1e-9)))
           : 0;
+  held_acc_.assign(n_followers_, {0.0, 0.0});
   call_time_.assign(n_followers_, 0.0);
   call_step_.assign(n_followers_, 0);
   exchanges_.resize(n_followers_);
@@ -71,6 +87,19 @@ void AgentChannel::SetUpRoundsOverLinks(uint64_t seed) {
     solver_up_.emplace_back(params, network_.timestep(), network::LinkSeed(seed, base + i));
     solver_down_.emplace_back(params, network_.timestep(),
                               network::LinkSeed(seed, base + n_followers_ + i));
+  }
+}
+
+void AgentChannel::HoldPendingCommands(std::vector<mjfSetpoint>* setpoints) {
+  if (config_.round_policy != RoundPolicy::kHold) return;
+  for (int i = 0; i < n_followers_; ++i) {
+    double* acc = (*setpoints)[i + 1].acc;
+    if (exchanges_[i].waiting) {
+      acc[0] = held_acc_[i][0];
+      acc[1] = held_acc_[i][1];
+    } else {
+      held_acc_[i] = {acc[0], acc[1]};
+    }
   }
 }
 
@@ -383,10 +412,8 @@ nlohmann::json AgentChannel::RoundsSummary() const {
   const Json solver = central_ ? SolverStarSummary() : Json(nullptr);
   const int64_t finished = total.complete + total.timed_out;
   return {{"round_timeout_s", config_.round_timeout},
-          {"policy",
-           "a round runs when the previous round of every in-neighbour (or W_i) has arrived, or "
-           "on the timeout with u_j for what is missing; each round's result is applied at once; "
-           "the next sample drops the rounds still missing"},
+          {"round_policy", ToString(config_.round_policy)},
+          {"policy", PolicyText(config_.round_policy)},
           {"samples", total.samples},
           {"complete", total.complete},
           {"timed_out", total.timed_out},

@@ -152,6 +152,7 @@ void ControlTick::RunAgentsOverLinks(mjfStepContext& agent_ctx, const mjfStepCon
   }
   channel_->EndSampleRound(setpoints_);
   continue_rounds();
+  channel_->HoldPendingCommands(&setpoints_);
 }
 
 // The host's part of the bus contract (plugin.h): followers hold the altitude, level, yaw 0;

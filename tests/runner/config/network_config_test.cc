@@ -143,6 +143,19 @@ TEST(NetworkConfigTest, ExchangeRoundsAreChecked) {
   EXPECT_THAT(
       ErrorOf(Experiment(jacobi, "[network]\nrounds = \"over_links\"\nround_timeout = -1.0\n")),
       AllOf(HasSubstr("net.toml:22: [network] round_timeout"), HasSubstr("[0, ")));
+  // round_policy: "apply" | "hold", only with rounds over the links.
+  EXPECT_EQ(over.network.round_policy, RoundPolicy::kApply);
+  EXPECT_EQ(mjf::testing::Parse(Experiment(jacobi,
+                                           "[network]\nrounds = \"over_links\"\n"
+                                           "round_policy = \"hold\"\n"),
+                                "net.toml")
+                .network.round_policy,
+            RoundPolicy::kHold);
+  EXPECT_THAT(ErrorOf(Experiment(jacobi, "[network]\nround_policy = \"hold\"\n")),
+              AllOf(HasSubstr("net.toml:21: [network] round_policy"), HasSubstr("over_links")));
+  EXPECT_THAT(
+      ErrorOf(Experiment(jacobi, "[network]\nrounds = \"over_links\"\nround_policy = \"wait\"\n")),
+      AllOf(HasSubstr("net.toml:22: [network] round_policy"), HasSubstr("hold")));
   EXPECT_THAT(ErrorOf(Experiment(jacobi, "[network]\nrounds = \"over_links\"\nlatency = 0.001\n")),
               AllOf(HasSubstr("net.toml:22: [network] latency"), HasSubstr("one hop"),
                     HasSubstr("not one round fits a sample")));

@@ -127,6 +127,70 @@ TEST(AgentChannelRoundsTest, ARoundOverALinkWithLatencyLArrivesLLater) {
   }
 }
 
+// round_policy = "hold": the command changes once per sample, when the exchange finishes (the
+// central solve's W_i 2L after the sample, Jacobi's round 3 at 3L), not at round 0 and not at the
+// rounds between; and at the first sample's finish (both flights sampled the same state) the
+// command it changes to is the one "apply" has then: the finished exchange's result.
+TEST(AgentChannelRoundsTest, HoldPolicyChangesTheCommandOnlyWhenTheExchangeFinishes) {
+  const int64_t l_steps = 10;  // L = 10 ms, T = 50 steps
+  for (const char* coupling : {kJacobi, kCentral}) {
+    const bool central = coupling == kCentral;
+    Simulation hold(
+        Exp2({coupling, "network={rounds=\"over_links\", latency=0.01, round_policy=\"hold\"}"}));
+    Simulation apply(Exp2({coupling, "network={rounds=\"over_links\", latency=0.01}"}));
+    std::vector<int64_t> changes;
+    double last = NAN;
+    int64_t first_finish_checked = 0;
+    for (int64_t k = 0; k < 400; ++k) {
+      hold.ComputeControls();
+      apply.ComputeControls();
+      const double a = hold.setpoints()[1].acc[0];
+      if (a != last && k > 0) changes.push_back(k);
+      last = a;
+      // The first sample is at step L (the first messages arrive then), from the same state in
+      // both flights: its finished exchange gives both the same command.
+      if (k == l_steps + (central ? 2 : 3) * l_steps) {
+        EXPECT_EQ(a, apply.setpoints()[1].acc[0]) << coupling;
+        ++first_finish_checked;
+      }
+      hold.Integrate();
+      apply.Integrate();
+    }
+    EXPECT_EQ(first_finish_checked, 1);
+    std::vector<int64_t> expected;
+    for (int64_t sample = 50; sample < 400; sample += 50) {
+      expected.push_back(sample + (central ? 2 : 3) * l_steps);
+    }
+    std::vector<int64_t> seen;
+    for (int64_t k : changes) {
+      if (k >= 50) seen.push_back(k);
+    }
+    EXPECT_EQ(seen, expected) << coupling;
+    EXPECT_EQ(Rounds(hold)["round_policy"], "hold");
+    EXPECT_EQ(Rounds(apply)["round_policy"], "apply");
+  }
+}
+
+// Latency 0: every exchange finishes in the tick it starts, so holding changes nothing.
+TEST(AgentChannelRoundsTest, HoldPolicyWithoutLatencyIsApplyToTheBit) {
+  for (const char* coupling : {kJacobi, kCentral}) {
+    Simulation apply(Exp2({coupling, "network={rounds=\"over_links\"}"}));
+    Simulation hold(Exp2({coupling, "network={rounds=\"over_links\", round_policy=\"hold\"}"}));
+    int64_t differing = 0;
+    for (int64_t k = 0; k < 1000; ++k) {
+      apply.ComputeControls();
+      hold.ComputeControls();
+      for (int i = 1; i < apply.n_vehicles(); ++i) {
+        differing += apply.setpoints()[i].acc[0] != hold.setpoints()[i].acc[0];
+        differing += apply.setpoints()[i].acc[1] != hold.setpoints()[i].acc[1];
+      }
+      apply.Integrate();
+      hold.Integrate();
+    }
+    EXPECT_EQ(differing, 0) << coupling;
+  }
+}
+
 // Jacobi m = 3 with L = 20 ms and T = 50 ms: rounds 1 and 2 run at 20 and 40 ms; round 3 would
 // need 60 ms, so the next sample drops it (the exchange is incomplete, 2 rounds run) and the
 // round 2 messages, arriving 10 ms into the next sample, are counted late. The command between

@@ -58,6 +58,12 @@ const char* ToString(Predict value);
 // jitter and loss, a round starting only when the previous one has arrived (docs/NETWORK.md).
 enum class ExchangeRounds { kInstantaneous, kOverLinks };
 const char* ToString(ExchangeRounds value);
+// [network] round_policy (rounds = "over_links"): what a follower flies while its exchange runs.
+// kApply: each round's result at once (from round 0's last-input estimate on); kHold: the
+// command of its last finished exchange until this one finishes (an input delay instead of a
+// wrong input; docs/NETWORK.md).
+enum class RoundPolicy { kApply, kHold };
+const char* ToString(RoundPolicy value);
 
 struct NetworkConfig {
   Execution execution = Execution::kCentral;
@@ -84,6 +90,7 @@ struct NetworkConfig {
   // s, over_links: a follower waiting longer than this for a round's messages runs the next
   // round with what it has (0: no timeout, it waits until its next sample).
   double round_timeout = 0.0;
+  RoundPolicy round_policy = RoundPolicy::kApply;
 };
 
 // One plugin attribute as written in the experiment file.

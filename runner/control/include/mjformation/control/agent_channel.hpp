@@ -63,6 +63,10 @@ class AgentChannel {
   int NextContinuedRound(int* round, double* local_time, int64_t* local_step);
   const mjfAgentInput& ContinuedInput(int follower, int round);
   void EndContinuedRound(int follower, int round, const std::vector<mjfSetpoint>& setpoints);
+  // The tick's last call (round_policy = "hold"): a follower whose exchange is still running
+  // flies the command of its last finished exchange (setpoint acc x, y); one whose exchange has
+  // ended keeps its plugin's command, which becomes the held one.
+  void HoldPendingCommands(std::vector<mjfSetpoint>* setpoints);
 
   const network::Network& network() const { return network_; }
   // summary.json "network": coupling, Jacobi spectral radius, per-link counts and measured
@@ -163,7 +167,8 @@ class AgentChannel {
   std::vector<double> solver_rows_;  // [2 follower + axis] R_i as it arrived
   int solver_count_ = 0;
   int64_t solver_solves_ = 0;
-  std::vector<int64_t> up_late_, down_late_;  // [follower]
+  std::vector<int64_t> up_late_, down_late_;     // [follower]
+  std::vector<std::array<double, 2>> held_acc_;  // [follower] round_policy = "hold"
 };
 
 }  // namespace mjf::runner
