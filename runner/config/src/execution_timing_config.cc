@@ -44,6 +44,7 @@ void ParseExecutionTiming(SectionReader& keys, const ExperimentConfig& c, Networ
       {{"none", Predict::kNone}, {"input", Predict::kInput}, {"attitude", Predict::kAttitude}});
   n.clock_offset = keys.Number("clock_offset", 0.0);
   const double period = SamplePeriod(c);
+  n.sample_period = period;
   if (!(n.clock_offset >= 0.0 && n.clock_offset < period)) {
     std::ostringstream out;
     out << "must be in [0, T) s with T = " << period

@@ -52,6 +52,8 @@ void AgentChannel::SetUpRoundsOverLinks(uint64_t seed) {
           ? std::max<int64_t>(1, static_cast<int64_t>(
                                      std::ceil(config_.round_timeout / network_.timestep() - 1e-9)))
           : 0;
+  steps_per_sample_ =
+      std::max<int64_t>(1, std::llround(config_.sample_period / network_.timestep()));
   held_acc_.assign(n_followers_, {0.0, 0.0});
   call_time_.assign(n_followers_, 0.0);
   call_step_.assign(n_followers_, 0);
@@ -154,6 +156,7 @@ void AgentChannel::EndSampleRound(const std::vector<mjfSetpoint>& setpoints) {
     ++round_stats_[i].samples;
     ex.waiting = true;
     ex.sample_step = step_;
+    ex.sample_index = call_step_[i] / steps_per_sample_;
     ex.local_time = call_time_[i];
     ex.local_step = call_step_[i];
     ex.next_round = 1;
@@ -166,7 +169,9 @@ void AgentChannel::EndSampleRound(const std::vector<mjfSetpoint>& setpoints) {
     std::fill(ex.got.begin(), ex.got.end(), 0);
     ex.has_solved = false;
     if (central_) {
-      up_in_flight_.Post(solver_up_[i], i, step_, step_, out);
+      // Tagged with the sample index: in phase the same one-to-one key as the step; out of
+      // phase the solver gathers one index's R_i, taken up to clock_offset apart.
+      up_in_flight_.Post(solver_up_[i], i, step_, ex.sample_index, out);
     } else {
       network_.SendRound(step_, i + 1, step_, out);
     }
@@ -249,7 +254,7 @@ void AgentChannel::TakeSolverLetter(const network::RoundLetter& letter) {
 void AgentChannel::TakeSolutionLetter(const network::RoundLetter& letter) {
   const int i = letter.link;
   Exchange& ex = exchanges_[i];
-  if (!ex.waiting || ex.sample_step != letter.sample_step) {
+  if (!ex.waiting || ex.sample_index != letter.sample_step) {
     ++down_late_[i];
     return;
   }

@@ -127,6 +127,37 @@ TEST(AgentChannelRoundsTest, ARoundOverALinkWithLatencyLArrivesLLater) {
   }
 }
 
+// Clocks out of phase (offsets U[0, 25 ms], T = 50 ms): the instantaneous central solve finds no
+// instant at which every follower samples and skips every sample; over the links the solver
+// gathers the R_i of one sample index (each follower's own period), so it solves once per period
+// and every exchange completes, W_i arriving after the last follower of that period sampled.
+TEST(AgentChannelRoundsTest, CentralSolveOverLinksGathersOneSampleIndexAcrossClocks) {
+  const std::string clocks =
+      "execution={mode=\"per_agent\", coupling=\"central_solve\", predict=\"input\", "
+      "clock_offset=0.025}";
+  Simulation instant(Exp2({clocks}));
+  Simulation over(Exp2({clocks, "network={rounds=\"over_links\"}"}));
+  for (int64_t k = 0; k < 1000; ++k) {  // 1 s: 20 periods
+    instant.ComputeControls();
+    over.ComputeControls();
+    instant.Integrate();
+    over.Integrate();
+  }
+  const nlohmann::json inst = instant.channel()->Summary();
+  EXPECT_GT(inst["central_solve_skipped_samples"].get<int64_t>(), 0);
+  const nlohmann::json r = Rounds(over);
+  EXPECT_EQ(over.channel()->Summary()["central_solve_skipped_samples"].get<int64_t>(), 0);
+  const int64_t solves = r["solver"]["solves"].get<int64_t>();
+  EXPECT_GE(solves, 19);  // one per period after the first messages
+  EXPECT_LE(solves, 21);
+  // Every follower's exchange of a solved period completes (the last may still be running).
+  EXPECT_GE(r["complete"].get<int64_t>(), 6 * (solves - 1));
+  EXPECT_EQ(r["incomplete"].get<int64_t>(), 0);
+  // The waiting is the clocks' disagreement: some exchange took longer than a step, none a period.
+  EXPECT_GT(r["completion_max_s"].get<double>(), 0.001);
+  EXPECT_LT(r["completion_max_s"].get<double>(), 0.05);
+}
+
 // round_policy = "hold": the command changes once per sample, when the exchange finishes (the
 // central solve's W_i 2L after the sample, Jacobi's round 3 at 3L), not at round 0 and not at the
 // rounds between; and at the first sample's finish (both flights sampled the same state) the

@@ -91,6 +91,9 @@ struct NetworkConfig {
   // round with what it has (0: no timeout, it waits until its next sample).
   double round_timeout = 0.0;
   RoundPolicy round_policy = RoundPolicy::kApply;
+  // s, derived at parse time: the sample period T ([formation] period, else the timestep). The
+  // central solve over links gathers the R_i of one sample index floor(c_i(t) / T).
+  double sample_period = 0.0;
 };
 
 // One plugin attribute as written in the experiment file.

@@ -87,7 +87,10 @@ class AgentChannel {
   struct Exchange {
     bool waiting = false;      // rounds of this sample still to run
     int64_t sample_step = -1;  // the physics step the sample was taken at
-    double local_time = 0.0;   // the follower's clock then (handed back to the plugin)
+    // Its index on the follower's own clock, local step / steps per sample: the central solve
+    // over links gathers the R_i of one index (followers out of phase share it).
+    int64_t sample_index = -1;
+    double local_time = 0.0;  // the follower's clock then (handed back to the plugin)
     int64_t local_step = 0;
     int next_round = 1;            // the round it runs when its inputs are there
     int64_t round_start_step = 0;  // when it ran round next_round - 1 (for the timeout)
@@ -152,6 +155,7 @@ class AgentChannel {
   bool over_links_ = false;
   int64_t step_ = 0;
   int64_t timeout_steps_ = 0;      // round_timeout in steps (0: none)
+  int64_t steps_per_sample_ = 1;   // T in physics steps (the sample index's divisor)
   std::vector<double> call_time_;  // [follower] clock reading of this tick's round 0
   std::vector<int64_t> call_step_;
   std::vector<Exchange> exchanges_;      // [follower] its current sample's rounds

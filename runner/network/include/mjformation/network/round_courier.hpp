@@ -20,7 +20,8 @@ namespace mjf::network {
 
 struct RoundLetter {
   int link = 0;              // index of the link it travelled on (the poster's numbering)
-  int64_t sample_step = 0;   // the physics step of the sample its round belongs to
+  int64_t sample_step = 0;   // the sample its round belongs to (its physics step; the central
+                             // solve: the sender's sample index)
   int64_t send_step = 0;     // when it was handed to the link
   int64_t arrival_step = 0;  // when it arrived
   mjfMessage message{};      // round in message.round, the iterate in its payload
