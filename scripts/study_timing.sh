@@ -10,11 +10,15 @@
 #   off_phase: a 50 Hz broadcast, follower clocks offset by U[0, T/2], loss {0, 20 %};
 #              coupling {last_input, Jacobi m = 1, Jacobi m = 3} (the central solve needs every
 #              row at one instant: out of phase it skips every sample) x predict {none, the
-#              vehicle's: input on the point mass, attitude on the quadrotor}.
+#              vehicle's: input on the point mass, attitude on the quadrotor};
+#   off_phase_solve: the central solve with its rounds over the links (the solver gathers one
+#              sample index across the clocks), clocks offset by U[0, T/2], broadcast {1 kHz,
+#              50 Hz}, the vehicle's prediction.
 # Then analysis/timing_study.py writes the table (largest latency within 1.5x central sigma_f
 # beside the predicted margin). Restartable (--resume).
 # Usage: scripts/study_timing.sh [seeds (2)] [out (runs/study_timing)] [jobs (2)]
-#   STUDY_VEHICLES="pointmass quadrotor" STUDY_PARTS="in_phase off_phase" (the defaults)
+#   STUDY_VEHICLES="pointmass quadrotor" STUDY_PARTS="in_phase off_phase off_phase_solve"
+#   (the defaults)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seeds=${1:-2}
@@ -25,6 +29,10 @@ export PYTHONPATH="$PWD/analysis${PYTHONPATH:+:$PYTHONPATH}"
 declare -A latencies=(
   [exp2]="0,0.002,0.004,0.01,0.02,0.03,0.04,0.045,0.049"
   [exp3]="0,0.01,0.02,0.05,0.08,0.1,0.15,0.18,0.199")
+# Over the links a central-solve round takes 2L (R_i up, W_i down): refused from L = T/2 on.
+declare -A solve_latencies=(
+  [exp2]="0,0.002,0.004,0.01,0.015,0.02,0.024"
+  [exp3]="0,0.01,0.02,0.05,0.08,0.09,0.099")
 declare -A half_period=([exp2]=0.025 [exp3]=0.1)
 declare -A predicts=([pointmass]="none input" [quadrotor]="none input attitude")
 declare -A own_predict=([pointmass]=input [quadrotor]=attitude)
@@ -55,13 +63,19 @@ for vehicle in ${STUDY_VEHICLES:-pointmass quadrotor}; do
     dir="$out/$vehicle/$exp"
     echo "study_timing: $vehicle $exp: central mode" >&2
     sweep "experiments/$exp.toml" "${sets[@]}" -o "$dir/central"
-    for part in ${STUDY_PARTS:-in_phase off_phase}; do
+    for part in ${STUDY_PARTS:-in_phase off_phase off_phase_solve}; do
       echo "study_timing: $vehicle $exp: $part" >&2
       if [ "$part" = in_phase ]; then
         grid=$(exec_grid "${predicts[$vehicle]}" "" 'coupling="central_solve"' \
           'coupling="jacobi",jacobi_rounds=3')
         sweep "experiments/$exp.toml" "${sets[@]}" --vary "$grid" \
           --vary "network.latency=${latencies[$exp]}" -o "$dir/in_phase"
+      elif [ "$part" = off_phase_solve ]; then
+        grid=$(exec_grid "${own_predict[$vehicle]}" ",clock_offset=${half_period[$exp]}" \
+          'coupling="central_solve"')
+        sweep "experiments/$exp.toml" "${sets[@]}" --set 'network.rounds="over_links"' \
+          --vary "$grid" --vary "network.rate=1000.0,50.0" \
+          --vary "network.latency=${solve_latencies[$exp]}" -o "$dir/off_phase_solve"
       else
         grid=$(exec_grid "none ${own_predict[$vehicle]}" ",clock_offset=${half_period[$exp]}" \
           'coupling="last_input"' 'coupling="jacobi",jacobi_rounds=1' \
