@@ -86,7 +86,9 @@ constexpr const char* kAllocation = "allocation";
 
 // Defaults equal PdCascade::Gains{} (checked by tests/plugins/attitude/plugin_test.cc).
 const mjfAttribute kCascadeAttributes[] = {
-    {kTiltMax, "0.35", "rad: limit on the tilt (norm of roll, pitch references)"},
+    {kTiltMax, "0",
+     "rad: limit on the tilt (norm of roll, pitch references; 0: 0.35, lowered to torque "
+     "authority / 3^2 rad/s^2 when that is smaller)"},
     {kKpAtt, "0",
      "1/s^2: roll/pitch proportional gain (angular acceleration per rad; 0: 150, lowered to the "
      "vehicle's torque authority)"},
@@ -154,8 +156,8 @@ void* CascadeCreate(const mjfCreateContext* ctx) {
     const Attributes attributes(ctx);
     PdCascade::Gains gains;
     gains.tilt_max = attributes.Number(kTiltMax);
-    Require(gains.tilt_max > 0 && gains.tilt_max < M_PI / 2, kTiltMax, "0 < tilt_max < pi/2",
-            gains.tilt_max);
+    Require(gains.tilt_max >= 0 && gains.tilt_max < M_PI / 2, kTiltMax,
+            "0 <= tilt_max < pi/2 (0: derived)", gains.tilt_max);
     const struct {
       const char* key;
       double* value;
@@ -223,7 +225,9 @@ constexpr const char* kThrustMargin = "thrust_margin";
 // Defaults equal Geometric::Gains{} (checked by tests/plugins/attitude/plugin_test.cc); 0 = derived
 // from the vehicle info (motor lag, inertia, mass, rotor limits).
 const mjfAttribute kGeometricAttributes[] = {
-    {kTiltMax, "0.78", "rad: limit on the angle of the thrust vector from the vertical"},
+    {kTiltMax, "0",
+     "rad: limit on the angle of the thrust vector from the vertical (0: 0.78, lowered to torque "
+     "authority / 3^2 rad/s^2 when that is smaller)"},
     {kRateBw, "0",
      "rad/s: body-rate loop crossover (0: 0.9 / (motor lag + 2 timesteps), at most 4 sqrt(torque "
      "authority / tilt_max))"},
@@ -239,8 +243,8 @@ void* GeometricCreate(const mjfCreateContext* ctx) {
     const Attributes attributes(ctx);
     Geometric::Gains gains;
     gains.tilt_max = attributes.Number(kTiltMax);
-    Require(gains.tilt_max > 0 && gains.tilt_max < M_PI / 2, kTiltMax, "0 < tilt_max < pi/2",
-            gains.tilt_max);
+    Require(gains.tilt_max >= 0 && gains.tilt_max < M_PI / 2, kTiltMax,
+            "0 <= tilt_max < pi/2 (0: derived)", gains.tilt_max);
     const struct {
       const char* key;
       double* value;

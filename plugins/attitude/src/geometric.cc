@@ -18,6 +18,10 @@ constexpr double kRateBwPerSampleRate = 0.05;  // rad/s per Hz of control rate
 Geometric::Gains Geometric::Resolve(const Gains& gains, const Vehicle& vehicle,
                                     const Vec3& angular_authority) {
   Gains g = gains;
+  if (g.tilt_max == 0) {
+    g.tilt_max =
+        AuthorityTiltLimit(std::min(angular_authority[0], angular_authority[1]), kNominalTiltMax);
+  }
   // Rate loop: plant 1/s (angular acceleration -> rate) behind the motor lag tau plus about two
   // control periods of sampling delay; crossover at 0.9 / tau_eff leaves 48 deg of phase margin
   // (90 deg - atan(0.9)), the usual target for an inner rate loop. A slower rate loop (0.5 /
@@ -55,8 +59,8 @@ void CheckGiven(const Geometric::Gains& gains, const Geometric::Vehicle& vehicle
   for (double i : vehicle.inertia) RequirePositive(i, "vehicle inertia");
   RequireNonNegative(vehicle.motor_lag, "motor time constant");
   RequirePositive(vehicle.timestep, "timestep");
-  if (!(gains.tilt_max > 0 && gains.tilt_max < M_PI / 2)) {
-    throw std::invalid_argument("tilt_max must be in (0, pi/2) rad (got " +
+  if (!(gains.tilt_max >= 0 && gains.tilt_max < M_PI / 2)) {
+    throw std::invalid_argument("tilt_max must be in [0, pi/2) rad, 0: derived (got " +
                                 std::to_string(gains.tilt_max) + ")");
   }
   for (const auto& [value, name] :

@@ -10,6 +10,7 @@ namespace mjf::attitude {
 
 PdCascade::Gains PdCascade::Resolve(const Gains& gains, double alpha) {
   Gains g = gains;
+  if (g.tilt_max == 0) g.tilt_max = AuthorityTiltLimit(alpha, kNominalTiltMax);
   const double limit = AuthorityAttitudeBandwidth(alpha, g.tilt_max);
   // The PD torque I (kp e - kd w) = I kd ((kp / kd) e - w) is a rate loop of gain kd under an
   // attitude loop of gain kp / kd (1/s): the criterion bounds the latter.
@@ -36,23 +37,23 @@ PdCascade::PdCascade(const Gains& gains, const Vehicle& vehicle,
   RequirePositive(vehicle.mass, "vehicle mass");
   RequirePositive(vehicle.gravity, "gravity");
   for (double i : vehicle.inertia) RequirePositive(i, "vehicle inertia");
-  if (!(gains.tilt_max > 0 && gains.tilt_max < M_PI / 2)) {
-    throw std::invalid_argument("tilt_max must be in (0, pi/2) rad (got " +
+  if (!(gains.tilt_max >= 0 && gains.tilt_max < M_PI / 2)) {
+    throw std::invalid_argument("tilt_max must be in [0, pi/2) rad, 0: derived (got " +
                                 std::to_string(gains.tilt_max) + ")");
   }
+  RequireNonNegative(gains.kp_att, "kp_att");
+  RequireNonNegative(gains.kd_att, "kd_att");
+  gains_ = Resolve(gains, TiltAuthority(mixer_, vehicle));
   const bool fixed =
       gains.euler_rate_damping && gains.allocation == Mixer::Priority::kRollPitchFirst;
-  if (gains.tilt_max > kMaxTiltUnfixed && !fixed) {
+  if (gains_.tilt_max > kMaxTiltUnfixed && !fixed) {
     throw std::invalid_argument(
-        "tilt_max " + std::to_string(gains.tilt_max) + " rad is above " +
+        "tilt_max " + std::to_string(gains_.tilt_max) + " rad is above " +
         std::to_string(kMaxTiltUnfixed) +
         " rad: with body-rate damping and thrust-first allocation a follower flips there (Exp 2 "
         "flips at 0.70 rad and above; docs/DISCUSSION.md). Set damping = \"euler_rates\" and "
         "allocation = \"roll_pitch_first\", or use the geometric plugin");
   }
-  RequireNonNegative(gains.kp_att, "kp_att");
-  RequireNonNegative(gains.kd_att, "kd_att");
-  gains_ = Resolve(gains, TiltAuthority(mixer_, vehicle));
   const Gains unlimited = Resolve(gains, INFINITY);
   unlimited_att_bw_ = unlimited.kp_att / unlimited.kd_att;
   RequirePositive(gains.kp_yaw, "kp_yaw");

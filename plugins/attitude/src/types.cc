@@ -27,6 +27,11 @@ double AuthorityAttitudeBandwidth(double alpha, double tilt_max) {
   return std::sqrt(alpha / tilt_max);
 }
 
+double AuthorityTiltLimit(double alpha, double nominal_tilt) {
+  if (!(alpha > 0) || !std::isfinite(alpha)) return nominal_tilt;
+  return std::min(nominal_tilt, alpha / (kMinAttitudeBandwidth * kMinAttitudeBandwidth));
+}
+
 void RequirePositive(double value, const char* what) {
   if (!(value > 0) || !std::isfinite(value)) {
     throw std::invalid_argument(std::string(what) + " must be positive and finite (got " +

@@ -27,6 +27,35 @@ TEST(AuthorityGainsTest, BandwidthIsSquareRootOfAuthorityOverTiltLimit) {
   EXPECT_TRUE(std::isinf(AuthorityAttitudeBandwidth(0.0, 0.5)));
 }
 
+// The default tilt limit: the nominal one unless the authority cannot follow a 3 rad/s loop from
+// it, then alpha / 3^2 (so that loop asks exactly the authority: 3^2 tilt = alpha).
+TEST(AuthorityGainsTest, DerivedTiltLimitKeepsTheSlowestUsableLoopWithinTheAuthority) {
+  EXPECT_EQ(AuthorityTiltLimit(60.5, 0.78), 0.78);  // the Iris keeps the nominal limit
+  EXPECT_EQ(AuthorityTiltLimit(38.5, 0.78), 0.78);  // the Skydio X2 too
+  const double cf2 = 1e-5 / 2.4e-5;
+  const double tilt = AuthorityTiltLimit(cf2, 0.78);
+  EXPECT_NEAR(tilt, cf2 / (kMinAttitudeBandwidth * kMinAttitudeBandwidth), 1e-15);
+  EXPECT_NEAR(AuthorityAttitudeBandwidth(cf2, tilt), kMinAttitudeBandwidth, 1e-12);
+  // The edge: alpha = 3^2 x nominal keeps the nominal limit exactly, a little less lowers it.
+  EXPECT_EQ(AuthorityTiltLimit(9 * 0.35, 0.35), 0.35);
+  EXPECT_LT(AuthorityTiltLimit(9 * 0.35 - 1e-9, 0.35), 0.35);
+  // Nothing known (infinite or non-positive authority): the nominal limit.
+  EXPECT_EQ(AuthorityTiltLimit(INFINITY, 0.35), 0.35);
+  EXPECT_EQ(AuthorityTiltLimit(0.0, 0.35), 0.35);
+  // An explicit tilt limit is never changed by either plugin's resolution.
+  PdCascade::Gains pd;
+  pd.tilt_max = 0.2;
+  EXPECT_EQ(PdCascade::Resolve(pd, cf2).tilt_max, 0.2);
+  Geometric::Gains geo;
+  geo.tilt_max = 0.2;
+  EXPECT_EQ(Geometric::Resolve(geo, Geometric::Vehicle{}, {cf2, cf2, cf2}).tilt_max, 0.2);
+  // The default is resolved from the weaker tilt axis.
+  EXPECT_NEAR(
+      Geometric::Resolve(Geometric::Gains{}, Geometric::Vehicle{}, {5.0, cf2, 100}).tilt_max,
+      cf2 / 9, 1e-15);
+  EXPECT_NEAR(PdCascade::Resolve(PdCascade::Gains{}, cf2).tilt_max, cf2 / 9, 1e-15);
+}
+
 Geometric::Vehicle Vehicle(double motor_lag) {
   Geometric::Vehicle v;
   v.mass = 1.5;
@@ -40,19 +69,24 @@ Geometric::Vehicle Vehicle(double motor_lag) {
 TEST(AuthorityGainsTest, GeometricRateLoopIsCappedByAuthorityAndTiltLimit) {
   const Geometric::Vehicle v = Vehicle(0.025);  // lag bound 0.9 / 0.027 = 33.3 rad/s
   const double lag_bound = 0.9 / 0.027;
-  // Strong (the Iris: 60.5 rad/s^2 in pitch): the lag bound decides, nothing changes.
+  // Strong (the Iris: 60.5 rad/s^2 in pitch): the lag bound decides, nothing changes, and the
+  // derived tilt limit is the nominal one.
   Geometric::Gains g = Geometric::Resolve(Geometric::Gains{}, v, {102, 60.5, 14.7});
   EXPECT_DOUBLE_EQ(g.rate_bw, lag_bound);
   EXPECT_DOUBLE_EQ(g.att_bw, lag_bound / 4);
-  // Weak (a cf2-like 0.42 rad/s^2): rate_bw = 4 sqrt(alpha / tilt_max), the cascade below it.
-  g = Geometric::Resolve(Geometric::Gains{}, v, {0.42, 0.42, 0.31});
+  EXPECT_EQ(g.tilt_max, Geometric::kNominalTiltMax);
+  // Weak (a cf2-like 0.42 rad/s^2) with the nominal tilt limit given: rate_bw = 4 sqrt(alpha /
+  // tilt_max), the cascade below it.
+  Geometric::Gains nominal_tilt;
+  nominal_tilt.tilt_max = 0.78;
+  g = Geometric::Resolve(nominal_tilt, v, {0.42, 0.42, 0.31});
   EXPECT_DOUBLE_EQ(g.rate_bw, 4 * std::sqrt(0.42 / 0.78));
   EXPECT_DOUBLE_EQ(g.att_bw, std::sqrt(0.42 / 0.78));
   EXPECT_NEAR(g.att_bw * g.att_bw * g.tilt_max, 0.42, 1e-12);  // within the authority
   EXPECT_DOUBLE_EQ(g.yaw_bw, g.att_bw / 2);
   EXPECT_DOUBLE_EQ(g.z_bw, g.att_bw / 2.5);
   // The weaker tilt axis decides.
-  g = Geometric::Resolve(Geometric::Gains{}, v, {5.0, 0.42, 100});
+  g = Geometric::Resolve(nominal_tilt, v, {5.0, 0.42, 100});
   EXPECT_DOUBLE_EQ(g.att_bw, std::sqrt(0.42 / 0.78));
   // A lower tilt limit lets the same vehicle fly a faster loop.
   Geometric::Gains small_tilt;
@@ -80,7 +114,8 @@ TEST(AuthorityGainsTest, PdCascadeKeepsNominalGainsWhereTheAuthorityAllows) {
 }
 
 TEST(AuthorityGainsTest, PdCascadeLowersBothGainsTogetherForAWeakVehicle) {
-  PdCascade::Gains g;  // tilt_max 0.35
+  PdCascade::Gains g;
+  g.tilt_max = 0.35;  // the nominal limit, given
   const double alpha = 0.42;
   const PdCascade::Gains r = PdCascade::Resolve(g, alpha);
   // The attitude gain kp / kd lands on the bound, so (kp / kd)^2 tilt_max = alpha ...
@@ -92,6 +127,7 @@ TEST(AuthorityGainsTest, PdCascadeLowersBothGainsTogetherForAWeakVehicle) {
   EXPECT_LT(r.kp_att, 150);
   // An explicit gain stays as given; only the other one is derived.
   PdCascade::Gains given;
+  given.tilt_max = 0.35;
   given.kp_att = 100;
   const PdCascade::Gains rg = PdCascade::Resolve(given, alpha);
   EXPECT_EQ(rg.kp_att, 100);
@@ -110,9 +146,11 @@ TEST(AuthorityGainsTest, ControllersUseTheAdaptedGains) {
     actuators[1 + i].ctrl_max = 1e-5;
   }
   const double alpha = 1e-5 / 2.4e-5;
+  // The defaults: the tilt limit lowered to alpha / 3^2, the loop then at 3 rad/s.
   const PdCascade pd(PdCascade::Gains{}, PdCascade::Vehicle{0.027, 9.81, {2.4e-5, 2.4e-5, 3.2e-5}},
                      actuators);
-  EXPECT_NEAR(pd.gains().kp_att / pd.gains().kd_att, std::sqrt(alpha / 0.35), 1e-9);
+  EXPECT_NEAR(pd.gains().tilt_max, alpha / 9, 1e-12);
+  EXPECT_NEAR(pd.gains().kp_att / pd.gains().kd_att, kMinAttitudeBandwidth, 1e-9);
   EXPECT_NEAR(pd.unlimited_att_bw(), 150.0 / 22.0, 1e-12);
   Geometric::Vehicle v;
   v.mass = 0.027;
@@ -120,7 +158,14 @@ TEST(AuthorityGainsTest, ControllersUseTheAdaptedGains) {
   v.inertia = {2.4e-5, 2.4e-5, 3.2e-5};
   v.timestep = 0.001;
   const Geometric geo(Geometric::Gains{}, v, actuators);
-  EXPECT_NEAR(geo.gains().att_bw, std::sqrt(alpha / 0.78), 1e-9);
+  EXPECT_NEAR(geo.gains().tilt_max, alpha / 9, 1e-12);
+  EXPECT_NEAR(geo.gains().att_bw, kMinAttitudeBandwidth, 1e-9);
+  // With the nominal tilt limit given, the loop is capped to what that tilt allows instead.
+  Geometric::Gains nominal_tilt;
+  nominal_tilt.tilt_max = 0.78;
+  const Geometric geo_given(nominal_tilt, v, actuators);
+  EXPECT_EQ(geo_given.gains().tilt_max, 0.78);
+  EXPECT_NEAR(geo_given.gains().att_bw, std::sqrt(alpha / 0.78), 1e-9);
   EXPECT_DOUBLE_EQ(geo.unlimited_att_bw(), 50.0 / 4);  // sampling bound 0.05 / 1 ms, / 4
 }
 

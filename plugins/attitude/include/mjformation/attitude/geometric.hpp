@@ -33,7 +33,9 @@ class Geometric {
  public:
   // Bandwidths in rad/s; 0 = derive from the vehicle (see Derive()).
   struct Gains {
-    double tilt_max = 0.78;      // rad, limit on the angle between F and the vertical (PX4: 45 deg)
+    // rad, limit on the angle between F and the vertical; 0 = derived (Resolve): kNominalTiltMax
+    // (PX4: 45 deg), lowered to the vehicle's torque authority (AuthorityTiltLimit, types.hpp).
+    double tilt_max = 0;
     double rate_bw = 0;          // rad/s, roll/pitch/yaw rate loop crossover; 0: 0.5 / motor lag
     double att_bw = 0;           // rad/s, roll/pitch attitude loop gain; 0: rate_bw / 3
     double yaw_bw = 0;           // rad/s, yaw attitude loop gain; 0: att_bw / 2
@@ -93,7 +95,9 @@ class Geometric {
   double unlimited_att_bw() const { return unlimited_att_bw_; }
   double altitude_integral() const { return integral_z_; }  // m/s^2
 
-  // The resolved bandwidths (rad/s) for given gains and vehicle: 0 entries replaced.
+  static constexpr double kNominalTiltMax = 0.78;  // rad
+  // The resolved tilt limit and bandwidths (rad/s) for given gains and vehicle: 0 entries
+  // replaced (tilt_max: AuthorityTiltLimit of the weaker tilt axis, types.hpp).
   static Gains Resolve(const Gains& gains, const Vehicle& vehicle,
                        const Vec3& angular_authority = {INFINITY, INFINITY, INFINITY});
 

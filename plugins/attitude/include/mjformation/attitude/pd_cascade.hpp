@@ -19,7 +19,9 @@ namespace mjf::attitude {
 class PdCascade {
  public:
   struct Gains {
-    double tilt_max = 0.35;  // rad, limit on the norm of (roll, pitch) references
+    // rad, limit on the norm of (roll, pitch) references; 0 = derived (Resolve): kNominalTiltMax,
+    // lowered to the vehicle's torque authority (AuthorityTiltLimit, types.hpp).
+    double tilt_max = 0;
     // Roll/pitch PD, per unit inertia; 0 = derived (Resolve): kNominalKpAtt and kNominalKdAtt,
     // lowered together when the vehicle's torque authority cannot follow them.
     double kp_att = 0;  // 1/s^2, roll/pitch: angular acceleration per rad of error
@@ -40,8 +42,9 @@ class PdCascade {
   static constexpr double kMaxTiltUnfixed = 0.65;
   // The roll/pitch PD of the paper's experiments (torque = I (kp e - kd w)), used as they are on
   // any vehicle whose torque authority can follow them (every vehicle of 1-4 kg flown so far).
-  static constexpr double kNominalKpAtt = 150;  // 1/s^2
-  static constexpr double kNominalKdAtt = 22;   // 1/s
+  static constexpr double kNominalTiltMax = 0.35;  // rad
+  static constexpr double kNominalKpAtt = 150;     // 1/s^2
+  static constexpr double kNominalKdAtt = 22;      // 1/s
   struct Vehicle {
     double mass = 0;     // kg
     double gravity = 0;  // m/s^2, magnitude
@@ -56,15 +59,16 @@ class PdCascade {
   };
 
   // Throws std::invalid_argument on a non-positive mass, gravity, inertia or gain (ki_z, imax_z
-  // may be 0), tilt_max outside (0, pi/2), tilt_max above kMaxTiltUnfixed without both large-tilt
-  // fixes, or a singular allocation.
+  // may be 0), tilt_max outside [0, pi/2) (0: derived), a resolved tilt_max above kMaxTiltUnfixed
+  // without both large-tilt fixes, or a singular allocation.
   PdCascade(const Gains& gains, const Vehicle& vehicle,
             const std::array<RotorGeometry, Mixer::kRotors>& rotors);
 
   // One control step of dt seconds (integrator update). No allocation.
   Output Update(const VehicleState& state, const Setpoint& setpoint, double dt);
 
-  // The gains with kp_att and kd_att resolved: a 0 (derived) is the nominal value, scaled so
+  // The gains with tilt_max, kp_att and kd_att resolved. A 0 tilt_max is
+  // AuthorityTiltLimit(alpha, kNominalTiltMax). A 0 kp_att / kd_att is the nominal value, scaled so
   // that the loop's attitude gain kp / kd stays within AuthorityAttitudeBandwidth(alpha,
   // tilt_max) (types.hpp) for the weaker tilt axis' angular authority alpha (rad/s^2, torque at
   // hover over inertia): kp by c^2, kd by c, c = min(1, that bandwidth / (150 / 22)), which

@@ -55,6 +55,24 @@ void RequireNonNegative(double value, const char* what);
 // inequality (runner/control/src/torque_authority.cc, docs/VEHICLES.md).
 double AuthorityAttitudeBandwidth(double alpha, double tilt_max);
 
+// The slowest attitude loop (rad/s) the stock outer loops can sit on: the experiments' formation
+// loop (k = [3, 1]) closes at about 3 rad/s, and an attitude loop below it is outrun. Measured on
+// Menagerie's Crazyflie 2 (0.42 rad/s^2, docs/VEHICLES.md): loops of 2.4-3.2 rad/s (tilt limits
+// 0.04-0.07 rad) fly the scaled Exp 2 without an event, 0.73 rad/s (tilt 0.78) flips every
+// follower.
+constexpr double kMinAttitudeBandwidth = 3.0;
+
+// The default tilt limit (rad) of a vehicle of angular authority alpha (rad/s^2): the plugin's
+// nominal limit, lowered to alpha / kMinAttitudeBandwidth^2 when the authority cannot follow a
+// loop of kMinAttitudeBandwidth from the nominal tilt (the criterion above, solved for tilt_max).
+// Smaller tilts ask less angular acceleration of the same loop, so a weak vehicle keeps a loop
+// fast enough for its outer loops and gives up tilt (its largest horizontal acceleration, g tan
+// tilt_max) instead. Every vehicle of 1-4 kg flown so far keeps the nominal limit (the Iris: 60.5
+// rad/s^2 gives 6.7 rad); the cf2 gets 0.046 rad. Nothing is floored: below about 0.03 rad the
+// formation lacks acceleration for its reaching phase (measured on the cf2), which the runner's
+// torque-authority warning then reports.
+double AuthorityTiltLimit(double alpha, double nominal_tilt);
+
 }  // namespace mjf::attitude
 
 #endif  // MJFORMATION_ATTITUDE_TYPES_HPP_
