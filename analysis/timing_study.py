@@ -20,6 +20,7 @@ EXPERIMENTS = ["exp2", "exp3"]
 VEHICLES = ["pointmass", "quadrotor"]
 PARTS = {
     "in_phase": "a message every step, clocks in phase, no loss",
+    "rates": "clocks in phase, the central solve, broadcast 20 / 50 / 100 Hz, loss 0 / 20 %",
     "off_phase": "a 50 Hz broadcast, follower clocks offset by U[0, T/2]",
     "off_phase_solve": "the central solve over the links, follower clocks offset by U[0, T/2]",
 }

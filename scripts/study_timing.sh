@@ -11,13 +11,15 @@
 #              coupling {last_input, Jacobi m = 1, Jacobi m = 3} (the central solve needs every
 #              row at one instant: out of phase it skips every sample) x predict {none, the
 #              vehicle's: input on the point mass, attitude on the quadrotor};
+#   rates:     clocks in phase, the central solve (instantaneous rounds) with the vehicle's
+#              prediction, broadcast {20, 50, 100 Hz} x loss {0, 20 %};
 #   off_phase_solve: the central solve with its rounds over the links (the solver gathers one
 #              sample index across the clocks), clocks offset by U[0, T/2], broadcast {1 kHz,
 #              50 Hz}, the vehicle's prediction.
 # Then analysis/timing_study.py writes the table (largest latency within 1.5x central sigma_f
 # beside the predicted margin). Restartable (--resume).
 # Usage: scripts/study_timing.sh [seeds (2)] [out (runs/study_timing)] [jobs (2)]
-#   STUDY_VEHICLES="pointmass quadrotor" STUDY_PARTS="in_phase off_phase off_phase_solve"
+#   STUDY_VEHICLES="pointmass quadrotor" STUDY_PARTS="in_phase rates off_phase off_phase_solve"
 #   (the defaults)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -63,13 +65,18 @@ for vehicle in ${STUDY_VEHICLES:-pointmass quadrotor}; do
     dir="$out/$vehicle/$exp"
     echo "study_timing: $vehicle $exp: central mode" >&2
     sweep "experiments/$exp.toml" "${sets[@]}" -o "$dir/central"
-    for part in ${STUDY_PARTS:-in_phase off_phase off_phase_solve}; do
+    for part in ${STUDY_PARTS:-in_phase rates off_phase off_phase_solve}; do
       echo "study_timing: $vehicle $exp: $part" >&2
       if [ "$part" = in_phase ]; then
         grid=$(exec_grid "${predicts[$vehicle]}" "" 'coupling="central_solve"' \
           'coupling="jacobi",jacobi_rounds=3')
         sweep "experiments/$exp.toml" "${sets[@]}" --vary "$grid" \
           --vary "network.latency=${latencies[$exp]}" -o "$dir/in_phase"
+      elif [ "$part" = rates ]; then
+        grid=$(exec_grid "${own_predict[$vehicle]}" "" 'coupling="central_solve"')
+        sweep "experiments/$exp.toml" "${sets[@]}" --vary "$grid" \
+          --vary "network.rate=20.0,50.0,100.0" --vary "network.loss=0.0,0.2" \
+          --vary "network.latency=${latencies[$exp]}" -o "$dir/rates"
       elif [ "$part" = off_phase_solve ]; then
         grid=$(exec_grid "${own_predict[$vehicle]}" ",clock_offset=${half_period[$exp]}" \
           'coupling="central_solve"')
