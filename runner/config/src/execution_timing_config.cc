@@ -1,8 +1,8 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
-// [execution] predict / clock_offset / clock_drift_ppm, and the whole-step latency rule
-// (issue 19, docs/NETWORK.md): the timing of per-agent execution as a swarm has it. Every value
-// is checked here, before anything runs.
+// [execution] predict / clock_offset / clock_drift_ppm / clock_sync, and the whole-step latency
+// rule (issue 19, docs/NETWORK.md): the timing of per-agent execution as a swarm has it. Every
+// value is checked here, before anything runs.
 #include <cmath>
 #include <sstream>
 
@@ -58,11 +58,13 @@ void ParseExecutionTiming(SectionReader& keys, const ExperimentConfig& c, Networ
               "must be in [0, 1e4] ppm (the largest |drift|; each follower "
               "draws its own in [-value, value])");
   }
-  const bool timing =
-      n.predict != Predict::kNone || n.clock_offset > 0.0 || n.clock_drift_ppm > 0.0;
+  n.clock_sync = keys.Bool("clock_sync", false);
+  const bool timing = n.predict != Predict::kNone || n.clock_offset > 0.0 ||
+                      n.clock_drift_ppm > 0.0 || n.clock_sync;
   if (timing && n.execution != Execution::kPerAgent) {
     keys.Fail(keys.Has("predict")        ? "predict"
               : keys.Has("clock_offset") ? "clock_offset"
+              : keys.Has("clock_sync")   ? "clock_sync"
                                          : "clock_drift_ppm",
               "needs mode = \"per_agent\" (central mode sees every state at once)");
   }

@@ -137,7 +137,7 @@ void ParseExecution(const std::string& path, const toml::table& t, const Experim
                     NetworkConfig& n) {
   SectionReader keys(path, &t, "execution");
   Know(keys, {"mode", "coupling", "jacobi_rounds", "jacobi_divergence", "predict", "clock_offset",
-              "clock_drift_ppm"});
+              "clock_drift_ppm", "clock_sync"});
   keys.RejectUnknown();
   const std::string mode = keys.String("mode", "central");
   if (mode == "per_agent") {

@@ -75,7 +75,8 @@ AgentChannel::AgentChannel(const core::Graph& graph, const NetworkConfig& config
       inbox_(n_followers_),
       inputs_(n_followers_),
       solved_(2 * static_cast<size_t>(n_followers_), 0.0),
-      clocks_(n_followers_, config.clock_offset, config.clock_drift_ppm, timestep, seed),
+      clocks_(n_followers_, config.clock_offset, config.clock_drift_ppm, timestep, seed,
+              config.clock_sync),
       leader_held_(n_followers_),
       sample_age_(n_followers_),
       coupling_radius_(CouplingSpectralRadius(graph)) {
@@ -157,11 +158,12 @@ const mjfAgentInput& AgentChannel::Input(int follower, int round) {
 }
 
 // Each message carried from the time its state refers to up to this follower's sample time,
-// both read on the clocks that stamped them: tau = c_i(now) - c_j(send time) (issue 19).
+// both read on the clocks that stamped them: tau = c_i(now) - c_j(send time) (issue 19); with
+// synchronised clocks both read the common time and tau is the message's true age.
 void AgentChannel::PredictInbox(int follower, const mjfMessage* leader) {
-  const double now = clocks_.Local(follower + 1, time_);
+  const double now = clocks_.Reading(follower + 1, time_);
   for (mjfMessage& m : inbox_[follower]) {
-    PredictMessage(config_.predict, now - clocks_.Local(m.sender, m.send_time), &m);
+    PredictMessage(config_.predict, now - clocks_.Reading(m.sender, m.send_time), &m);
   }
   if (!leader) return;
   leader_held_[follower] = *leader;
@@ -317,7 +319,11 @@ nlohmann::json AgentChannel::ClocksSummary() const {
     offsets.push_back(clocks_.offset(i));
     drifts.push_back(clocks_.drift(i) * 1e6);
   }
-  return {{"in_phase", !clocks_.active()}, {"offset_s", offsets}, {"drift_ppm", drifts}};
+  nlohmann::json clocks = {
+      {"in_phase", !clocks_.active()}, {"offset_s", offsets}, {"drift_ppm", drifts}};
+  // Written only when set, so that runs without it keep their summary's bytes.
+  if (clocks_.synchronised()) clocks["synchronised"] = true;
+  return clocks;
 }
 
 nlohmann::json AgentChannel::DelayMarginSummary(double period, double q) const {

@@ -14,9 +14,10 @@ constexpr uint64_t kClockStream = 0x636c6f636bULL;  // "clock"
 }  // namespace
 
 AgentClocks::AgentClocks(int n_followers, double offset_max, double drift_ppm_max, double timestep,
-                         uint64_t seed)
+                         uint64_t seed, bool synchronised)
     : timestep_(timestep),
       active_(offset_max > 0.0 || drift_ppm_max > 0.0),
+      synchronised_(synchronised),
       offset_(n_followers, 0.0),
       drift_(n_followers, 0.0) {
   if (!active_) return;

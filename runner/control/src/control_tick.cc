@@ -109,7 +109,7 @@ void ControlTick::RunAgents(const mjfStepContext& ctx, const std::vector<mjfVehi
     for (size_t i = 0; i < plugins_.formation_agents.size(); ++i) {
       if (clocks.active()) {
         // Each follower runs on its own clock (issue 19): it samples when that clock says so.
-        agent_ctx.time = clocks.Local(static_cast<int>(i) + 1, ctx.time);
+        agent_ctx.time = clocks.Reading(static_cast<int>(i) + 1, ctx.time);
         agent_ctx.step = clocks.LocalStep(static_cast<int>(i), ctx.time);
       }
       agent_ctx.setpoints = &setpoints_[i + 1];
@@ -143,7 +143,7 @@ void ControlTick::RunAgentsOverLinks(mjfStepContext& agent_ctx, const mjfStepCon
   continue_rounds();
   for (size_t i = 0; i < plugins_.formation_agents.size(); ++i) {
     const int follower = static_cast<int>(i);
-    agent_ctx.time = clocks.active() ? clocks.Local(follower + 1, ctx.time) : ctx.time;
+    agent_ctx.time = clocks.active() ? clocks.Reading(follower + 1, ctx.time) : ctx.time;
     agent_ctx.step = clocks.active() ? clocks.LocalStep(follower, ctx.time) : ctx.step;
     agent_ctx.setpoints = &setpoints_[i + 1];
     channel_->SetCallContext(follower, agent_ctx.time, agent_ctx.step);

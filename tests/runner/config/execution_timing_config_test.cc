@@ -38,15 +38,18 @@ TEST(ExecutionTimingConfigTest, DefaultsPredictNothingInPhase) {
   EXPECT_EQ(c.network.predict, Predict::kNone);
   EXPECT_EQ(c.network.clock_offset, 0.0);
   EXPECT_EQ(c.network.clock_drift_ppm, 0.0);
+  EXPECT_FALSE(c.network.clock_sync);
 }
 
 TEST(ExecutionTimingConfigTest, KeysParse) {
   const ExperimentConfig c =
       mjf::testing::Parse(Experiment("[execution]\nmode = \"per_agent\"\npredict = \"attitude\"\n"
-                                     "clock_offset = 0.025\nclock_drift_ppm = 100.0\n"));
+                                     "clock_offset = 0.025\nclock_drift_ppm = 100.0\n"
+                                     "clock_sync = true\n"));
   EXPECT_EQ(c.network.predict, Predict::kAttitude);
   EXPECT_EQ(c.network.clock_offset, 0.025);
   EXPECT_EQ(c.network.clock_drift_ppm, 100.0);
+  EXPECT_TRUE(c.network.clock_sync);
 }
 
 TEST(ExecutionTimingConfigTest, BadValuesAreRefusedWithFileLineAndKey) {
@@ -67,6 +70,11 @@ TEST(ExecutionTimingConfigTest, BadValuesAreRefusedWithFileLineAndKey) {
               HasSubstr("[execution] clock_offset"));
   EXPECT_THAT(ErrorOf(Experiment("[execution]\npredict = \"input\"\n")),
               AllOf(HasSubstr("[execution] predict"), HasSubstr("per_agent")));
+  EXPECT_THAT(
+      ErrorOf(Experiment("[execution]\nclock_sync = true\n")),
+      AllOf(HasSubstr("t.toml:19"), HasSubstr("[execution] clock_sync"), HasSubstr("per_agent")));
+  EXPECT_THAT(ErrorOf(Experiment(head + "clock_sync = \"gnss\"\n")),
+              AllOf(HasSubstr("t.toml:20"), HasSubstr("[execution] clock_sync")));
 }
 
 TEST(ExecutionTimingConfigTest, SubStepLatencyIsRefusedNotRounded) {

@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
+#include "mjformation/core/graph.hpp"
 #include "mjformation/core/shape.hpp"
 #include "mjformation/run/run.hpp"
 #include "mjformation/sim/simulation.hpp"
@@ -308,6 +309,48 @@ TEST(AgentChannelTest, ClocksOutOfPhaseDefeatTheCentralSolveOracle) {
     EXPECT_GE(a["samples"].get<int64_t>(), 19);  // each follower still samples every T
     EXPECT_LE(a["samples"].get<int64_t>(), 21);
   }
+}
+
+// Receiver-side prediction over clocks out of phase (leader -> 1 <-> 2, a message every step,
+// latency 20 ms): follower 2 moves at a constant velocity with no input, so its true position at
+// the receiver's sample time is p(send) + v (t - send). With synchronised clocks the prediction
+// carries the message over its true age and lands on it (exact for a double integrator); with
+// free clocks it is carried over the age read on the two clocks, off by o_1 - o_2.
+TEST(AgentChannelTest, SynchronisedClocksPredictOverTheTrueAge) {
+  const core::Graph graph(2, {1.0, 0.0}, {{0, 1}, {1, 0}});
+  const double dt = 0.001, latency = 0.02, v = 3.0;
+  auto predicted_x = [&](bool sync) {
+    NetworkConfig c;
+    c.execution = Execution::kPerAgent;
+    c.coupling = Coupling::kLastInput;
+    c.predict = Predict::kInput;
+    c.clock_offset = 0.04;
+    c.clock_sync = sync;
+    c.defaults.latency = latency;
+    AgentChannel channel(graph, c, dt, 5);
+    std::vector<mjfVehicleState> states(3);
+    std::vector<mjfSetpoint> setpoints(3);
+    const mjfMessage* from_2 = nullptr;
+    const int64_t last = 100;
+    for (int64_t step = 0; step <= last; ++step) {
+      const double t = static_cast<double>(step) * dt;
+      states[2].pos[0] = 1.0 + v * t;  // follower 2: constant velocity, input 0
+      states[2].vel[0] = v;
+      channel.BeginTick(step, t, states, states, setpoints);
+      const mjfAgentInput& in = channel.Input(0, 0);
+      from_2 = in.n_messages > 0 ? &in.messages[0] : nullptr;
+      channel.EndRound(0, setpoints);
+    }
+    EXPECT_NE(from_2, nullptr);
+    const double t = static_cast<double>(last) * dt;
+    return std::pair{from_2 ? from_2->state.pos[0] - (1.0 + v * t) : NAN,
+                     channel.clocks().offset(0) - channel.clocks().offset(1)};
+  };
+  const auto [synced_error, offset_gap] = predicted_x(true);
+  EXPECT_NEAR(synced_error, 0.0, 1e-12);
+  const auto [free_error, same_gap] = predicted_x(false);
+  EXPECT_NEAR(free_error, v * offset_gap, 1e-12);  // tau read on the clocks: off by o_1 - o_2
+  EXPECT_GT(std::abs(free_error), 1e-3);
 }
 
 }  // namespace

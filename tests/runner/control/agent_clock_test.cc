@@ -59,5 +59,25 @@ TEST(AgentClockTest, StepsReadProduceTheConfiguredSampleTimes) {
   }
 }
 
+// Synchronised clocks ([execution] clock_sync): the same draws and the same sample steps as free
+// clocks of the same seed (the loops still sample out of phase), but every clock reads the
+// common time.
+TEST(AgentClockTest, SynchronisedClocksReadTheCommonTimeAndSampleAsFreeOnes) {
+  const AgentClocks free(5, 0.04, 300.0, 0.001, 11);
+  const AgentClocks synced(5, 0.04, 300.0, 0.001, 11, /*synchronised=*/true);
+  EXPECT_FALSE(free.synchronised());
+  EXPECT_TRUE(synced.synchronised());
+  for (int i = 0; i < 5; ++i) {
+    EXPECT_EQ(free.offset(i), synced.offset(i));
+    EXPECT_EQ(free.drift(i), synced.drift(i));
+    for (double t : {0.0, 0.0123, 7.5, 39.999}) {
+      EXPECT_EQ(synced.LocalStep(i, t), free.LocalStep(i, t));
+      EXPECT_EQ(synced.Reading(i + 1, t), t);
+      EXPECT_EQ(free.Reading(i + 1, t), free.Local(i + 1, t));
+    }
+  }
+  EXPECT_NE(free.Reading(1, 1.0), 1.0);  // the free clock is off (offset or drift drawn)
+}
+
 }  // namespace
 }  // namespace mjf::runner

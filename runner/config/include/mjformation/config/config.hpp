@@ -85,6 +85,11 @@ struct NetworkConfig {
   Predict predict = Predict::kNone;
   double clock_offset = 0.0;     // s, the largest offset; < the sample period
   double clock_drift_ppm = 0.0;  // ppm, the largest |drift|; <= 1e4
+  // [execution] clock_sync: true when the followers' clocks are synchronised to the leader's
+  // (GNSS time, PTP): the offset and drift above then shift only when each follower's loop
+  // samples, while its time stamps, its formation reference h_i(t) and its prediction read the
+  // common time. false (default): each follower reads its own free-running clock for all of it.
+  bool clock_sync = false;
   // Issue 19 ([network] rounds, round_timeout): exchange rounds carried over the links.
   ExchangeRounds rounds = ExchangeRounds::kInstantaneous;
   // s, over_links: a follower waiting longer than this for a round's messages runs the next
