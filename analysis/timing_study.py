@@ -2,7 +2,7 @@
 # Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 """Table of the timing study (scripts/study_timing.sh, issue 19).
 
-Reads <study>/<vehicle>/<exp>/{central,in_phase,off_phase}/sweep.json and, per vehicle,
+Reads <study>/<vehicle>/<exp>/{central,<part>}/sweep.json (PARTS below) and, per vehicle,
 experiment and part, writes the mean sigma_f
 (95 % CI, Student t over the completed runs, as the sweep computes it) per coupling x predict x
 loss x latency, and the largest latency of the grid up to which the formation holds (every run
@@ -23,7 +23,14 @@ PARTS = {
     "rates": "clocks in phase, the central solve, broadcast 20 / 50 / 100 Hz, loss 0 / 20 %",
     "off_phase": "a 50 Hz broadcast, follower clocks offset by U[0, T/2]",
     "off_phase_solve": "the central solve over the links, follower clocks offset by U[0, T/2]",
+    "rates_couplings": "clocks in phase, no loss, broadcast 20 / 50 / 100 Hz, last_input and "
+                       "Jacobi with the vehicle's prediction",
+    "off_phase_sync": "as off_phase (loss 0), the clocks synchronised (clock_sync = true): "
+                      "sampling out of phase, time stamps and prediction on the common time",
+    "off_phase_solve_sync": "as off_phase_solve, the clocks synchronised (clock_sync = true)",
 }
+# The broadcast rate the script sets for a part that does not vary it.
+DEFAULT_RATE = {"off_phase": 50.0, "off_phase_sync": 50.0}
 
 
 def label(value):
@@ -108,8 +115,7 @@ def tables(study):
                         f"{1e3 * dm.get('without_prediction_s', float('nan')):.3g} ms without "
                         f"prediction, {1e3 * dm.get('with_prediction_s', float('nan')):.3g} ms with "
                         f"(rho(L_H^-1 A) = {dm.get('coupling_spectral_radius', float('nan')):.3g}).\n")
-                # The broadcast rate the script sets for a part that does not vary it.
-                part_table(grid, ref[0], dm, lines, 50.0 if part == "off_phase" else 1000.0,
+                part_table(grid, ref[0], dm, lines, DEFAULT_RATE.get(part, 1000.0),
                            part == "in_phase")
     return "\n".join(lines) + "\n"
 

@@ -16,11 +16,16 @@
 #   off_phase_solve: the central solve with its rounds over the links (the solver gathers one
 #              sample index across the clocks), clocks offset by U[0, T/2], broadcast {1 kHz,
 #              50 Hz}, the vehicle's prediction.
+#   rates_couplings: clocks in phase, no loss, broadcast {20, 50, 100 Hz}, coupling {last_input,
+#              Jacobi m = 1, Jacobi m = 3} with the vehicle's prediction;
+#   off_phase_sync, off_phase_solve_sync: off_phase (loss 0 only) and off_phase_solve with the
+#              clocks synchronised ([execution] clock_sync = true: the loops sample out of phase,
+#              but time stamps and prediction read the common time).
 # Then analysis/timing_study.py writes the table (largest latency within 1.5x central sigma_f
 # beside the predicted margin). Restartable (--resume).
 # Usage: scripts/study_timing.sh [seeds (2)] [out (runs/study_timing)] [jobs (2)]
-#   STUDY_VEHICLES="pointmass quadrotor" STUDY_PARTS="in_phase rates off_phase off_phase_solve"
-#   (the defaults)
+#   STUDY_VEHICLES="pointmass quadrotor" STUDY_PARTS="in_phase rates off_phase off_phase_solve
+#   rates_couplings off_phase_sync off_phase_solve_sync" (the defaults)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seeds=${1:-2}
@@ -65,7 +70,7 @@ for vehicle in ${STUDY_VEHICLES:-pointmass quadrotor}; do
     dir="$out/$vehicle/$exp"
     echo "study_timing: $vehicle $exp: central mode" >&2
     sweep "experiments/$exp.toml" "${sets[@]}" -o "$dir/central"
-    for part in ${STUDY_PARTS:-in_phase rates off_phase off_phase_solve}; do
+    for part in ${STUDY_PARTS:-in_phase rates off_phase off_phase_solve rates_couplings off_phase_sync off_phase_solve_sync}; do
       echo "study_timing: $vehicle $exp: $part" >&2
       if [ "$part" = in_phase ]; then
         grid=$(exec_grid "${predicts[$vehicle]}" "" 'coupling="central_solve"' \
@@ -77,12 +82,26 @@ for vehicle in ${STUDY_VEHICLES:-pointmass quadrotor}; do
         sweep "experiments/$exp.toml" "${sets[@]}" --vary "$grid" \
           --vary "network.rate=20.0,50.0,100.0" --vary "network.loss=0.0,0.2" \
           --vary "network.latency=${latencies[$exp]}" -o "$dir/rates"
-      elif [ "$part" = off_phase_solve ]; then
-        grid=$(exec_grid "${own_predict[$vehicle]}" ",clock_offset=${half_period[$exp]}" \
+      elif [ "$part" = rates_couplings ]; then
+        grid=$(exec_grid "${own_predict[$vehicle]}" "" 'coupling="last_input"' \
+          'coupling="jacobi",jacobi_rounds=1' 'coupling="jacobi",jacobi_rounds=3')
+        sweep "experiments/$exp.toml" "${sets[@]}" --vary "$grid" \
+          --vary "network.rate=20.0,50.0,100.0" \
+          --vary "network.latency=${latencies[$exp]}" -o "$dir/rates_couplings"
+      elif [ "$part" = off_phase_solve ] || [ "$part" = off_phase_solve_sync ]; then
+        sync=""
+        [ "$part" = off_phase_solve_sync ] && sync=",clock_sync=true"
+        grid=$(exec_grid "${own_predict[$vehicle]}" ",clock_offset=${half_period[$exp]}$sync" \
           'coupling="central_solve"')
         sweep "experiments/$exp.toml" "${sets[@]}" --set 'network.rounds="over_links"' \
           --vary "$grid" --vary "network.rate=1000.0,50.0" \
-          --vary "network.latency=${solve_latencies[$exp]}" -o "$dir/off_phase_solve"
+          --vary "network.latency=${solve_latencies[$exp]}" -o "$dir/$part"
+      elif [ "$part" = off_phase_sync ]; then
+        grid=$(exec_grid "none ${own_predict[$vehicle]}" \
+          ",clock_offset=${half_period[$exp]},clock_sync=true" 'coupling="last_input"' \
+          'coupling="jacobi",jacobi_rounds=1' 'coupling="jacobi",jacobi_rounds=3')
+        sweep "experiments/$exp.toml" "${sets[@]}" --set network.rate=50.0 --vary "$grid" \
+          --vary "network.latency=${latencies[$exp]}" -o "$dir/off_phase_sync"
       else
         grid=$(exec_grid "none ${own_predict[$vehicle]}" ",clock_offset=${half_period[$exp]}" \
           'coupling="last_input"' 'coupling="jacobi",jacobi_rounds=1' \
