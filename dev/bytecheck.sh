@@ -26,6 +26,8 @@ CASES=(
   "exp2_per_agent|experiments/exp2.toml|run.duration=3.0;run.metric_window=[1.5,3.0];execution={mode=\"per_agent\",coupling=\"central_solve\",predict=\"attitude\"};network={latency=0.01,loss=0.05}"
   "exp2_pm_jacobi|experiments/exp2.toml|run.duration=3.0;run.metric_window=[1.5,3.0];vehicles.model=\"pointmass\";attitude={plugin=\"pointmass_direct\"};execution={mode=\"per_agent\",coupling=\"jacobi\",jacobi_rounds=3,predict=\"input\",clock_offset=0.02};network={latency=0.005,loss=0.2,rate=50.0}"
   "exp2_pm_over_links|experiments/exp2.toml|run.duration=3.0;run.metric_window=[1.5,3.0];vehicles.model=\"pointmass\";attitude={plugin=\"pointmass_direct\"};execution={mode=\"per_agent\",coupling=\"central_solve\",predict=\"input\",clock_offset=0.02};network={latency=0.004,rounds=\"over_links\"}"
+  "exp2_pm_solve_ideal|experiments/exp2.toml|run.duration=3.0;run.metric_window=[1.5,3.0];vehicles.model=\"pointmass\";attitude={plugin=\"pointmass_direct\"};execution={mode=\"per_agent\",coupling=\"central_solve\",predict=\"input\"};network={latency=0.02}"
+  "exp3_quad_jacobi_rates|experiments/exp3.toml|run.duration=4.0;run.metric_window=[2.0,4.0];execution={mode=\"per_agent\",coupling=\"jacobi\",jacobi_rounds=1,predict=\"attitude\"};network={rate=50.0,latency=0.03,jitter=0.005}"
   "exp2_gnss_kf|experiments/exp2.toml|run.duration=3.0;run.metric_window=[1.5,3.0];sensors={preset=\"consumer_gnss\"};estimator={plugin=\"kf_ins\"}"
   "exp2_wind|experiments/exp2.toml|run.duration=3.0;run.metric_window=[1.5,3.0];vehicles.start_jitter=0.5;wind={mean=[2.0,0.0,0.0],turbulence=\"moderate\"}"
   "exp3_bang_bang|experiments/leaders/exp3_bang_bang.toml|run.duration=3.0;run.metric_window=[1.5,3.0]"

@@ -68,8 +68,11 @@ for vehicle in ${STUDY_VEHICLES:-pointmass quadrotor}; do
     sets+=(--set 'vehicles.model="pointmass"' --set 'attitude={plugin="pointmass_direct"}')
   for exp in exp2 exp3; do
     dir="$out/$vehicle/$exp"
-    echo "study_timing: $vehicle $exp: central mode" >&2
-    sweep "experiments/$exp.toml" "${sets[@]}" -o "$dir/central"
+    # The reference, once: a later invocation for other parts (maybe with fewer seeds) keeps it.
+    if [ ! -f "$dir/central/sweep.json" ]; then
+      echo "study_timing: $vehicle $exp: central mode" >&2
+      sweep "experiments/$exp.toml" "${sets[@]}" -o "$dir/central"
+    fi
     for part in ${STUDY_PARTS:-in_phase rates off_phase off_phase_solve rates_couplings off_phase_sync off_phase_solve_sync}; do
       echo "study_timing: $vehicle $exp: $part" >&2
       if [ "$part" = in_phase ]; then
