@@ -69,6 +69,7 @@ struct Agent {
   // f_i(t) and f_i(t + horizon) of this follower, and the same for each neighbour: evaluated
   // one follower at a time (mjfShape.evaluate_one), so the cost is O(degree), not O(N).
   double own_f_now[6] = {0, 0, 0, 0, 0, 0};
+  double own_f_now_time = NAN;  // the time own_f_now was evaluated at (NaN: not yet)
   double own_f_next[6] = {0, 0, 0, 0, 0, 0};
   std::vector<double> neighbour_pv, neighbour_f_now, neighbour_f_next, neighbour_w;
   std::vector<const mjfMessage*> found;  // [m] the message of neighbour m this call
@@ -203,7 +204,11 @@ int Compute(void* instance, const mjfStepContext* ctx) {
     const mjfAgentInput& in = *ctx->agent;
     const bool ready = Gather(a, in);
     if (!ready && !a.has_sample) return 0;  // nothing heard yet: hold the initial setpoint
-    a.shape.EvaluateOne(ctx->time, a.follower, a.own_f_now);
+    // Every round of a tick runs at the same time: f_i(t) once per tick, not once per round.
+    if (!(ctx->time == a.own_f_now_time)) {
+      a.shape.EvaluateOne(ctx->time, a.follower, a.own_f_now);
+      a.own_f_now_time = ctx->time;
+    }
     const int64_t index = ctx->step / a.steps_per_sample;
     if (in.round == 0) {
       a.sample_due = !a.has_sample || index != a.due_index;

@@ -135,17 +135,24 @@ void AgentChannel::BeginTick(int64_t step, double time, const std::vector<mjfVeh
 
 const mjfAgentInput& AgentChannel::Input(int follower, int round) {
   mjfAgentInput& in = inputs_[follower];
-  const mjfMessage* leader = nullptr;
-  network_.Inbox(follower + 1, round > 0 ? round - 1 : -1, &inbox_[follower], &leader);
-  if (config_.predict != Predict::kNone) {
-    PredictInbox(follower, leader);
-    if (leader) leader = &leader_held_[follower];
+  // Instantaneous rounds r > 0 run in round 0's tick, on the messages round 0 fetched and
+  // predicted: only their round part changes (Jacobi), or nothing (the central solve carries no
+  // round messages: the host solves). Re-fetching and re-predicting would give the same bytes.
+  if (round > 0 && !over_links_) {
+    if (!central_) network_.RefreshRound(follower + 1, round - 1, &inbox_[follower]);
+  } else {
+    const mjfMessage* leader = nullptr;
+    network_.Inbox(follower + 1, round > 0 ? round - 1 : -1, &inbox_[follower], &leader);
+    if (config_.predict != Predict::kNone) {
+      PredictInbox(follower, leader);
+      if (leader) leader = &leader_held_[follower];
+    }
+    in.n_messages = static_cast<int>(inbox_[follower].size());
+    in.messages = inbox_[follower].data();
+    in.leader = leader;
   }
   in.follower = follower;
   in.self = &self_[follower];
-  in.n_messages = static_cast<int>(inbox_[follower].size());
-  in.messages = inbox_[follower].data();
-  in.leader = leader;
   in.round = round;
   in.n_rounds = n_rounds_;
   mjfMessage& out = outgoing_[follower];

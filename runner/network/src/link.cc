@@ -29,8 +29,23 @@ uint64_t LinkSeed(uint64_t run_seed, uint64_t link_index) {
   return mix(mix(run_seed) ^ (link_index + 1));
 }
 
+namespace {
+
+// First step at or after send time + delay; the 1e-9 guards a delay that is an exact multiple of
+// dt against rounding up one step (0.02 / 0.001 = 20.000000000000004).
+int64_t DelaySteps(double delay, double timestep) {
+  return std::max<int64_t>(static_cast<int64_t>(std::ceil(delay / timestep - 1e-9)), 0);
+}
+
+}  // namespace
+
 Link::Link(const LinkParams& params, double timestep, uint64_t seed)
-    : params_(params), timestep_(timestep), random_(seed) {
+    : params_(params),
+      timestep_(timestep),
+      random_(seed),
+      ideal_(params.loss_model == LossModel::kBernoulli && params.loss == 0.0 &&
+             params.jitter == 0.0),
+      fixed_delay_steps_(0) {
   Require(timestep > 0.0 && std::isfinite(timestep), "timestep must be > 0");
   Require(params.period_steps >= 1, "period_steps must be >= 1");
   Require(params.latency >= 0.0 && std::isfinite(params.latency), "latency must be >= 0");
@@ -40,9 +55,11 @@ Link::Link(const LinkParams& params, double timestep, uint64_t seed)
               IsProbability(params.burst_loss),
           "burst parameters must be probabilities");
   Require(params.range >= 0.0 && std::isfinite(params.range), "range must be >= 0");
+  fixed_delay_steps_ = DelaySteps(params.latency, timestep);
 }
 
 bool Link::DrawLoss() {
+  if (ideal_) return false;  // u < 0 never holds, and nothing else reads the stream
   const double u = random_.Uniform();
   if (params_.loss_model == LossModel::kBernoulli) return u < params_.loss;
   // Gilbert-Elliott: the channel state moves first (one transition per message), then the
@@ -61,12 +78,8 @@ std::optional<int64_t> Link::Transmit(int64_t send_step) {
 }
 
 int64_t Link::ArrivalStep(int64_t send_step) {
-  double delay = params_.latency;
-  if (params_.jitter > 0.0) delay += params_.jitter * random_.Uniform();
-  // First step at or after send time + delay; the 1e-9 guards a delay that is an exact
-  // multiple of dt against rounding up one step (0.02 / 0.001 = 20.000000000000004).
-  const int64_t steps = static_cast<int64_t>(std::ceil(delay / timestep_ - 1e-9));
-  return send_step + std::max<int64_t>(steps, 0);
+  if (!(params_.jitter > 0.0)) return send_step + fixed_delay_steps_;
+  return send_step + DelaySteps(params_.latency + params_.jitter * random_.Uniform(), timestep_);
 }
 
 bool Link::TransmitRound() {

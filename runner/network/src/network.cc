@@ -138,6 +138,19 @@ void Network::Inbox(int receiver, int round, std::vector<mjfMessage>* out,
   }
 }
 
+void Network::RefreshRound(int receiver, int round, std::vector<mjfMessage>* out) const {
+  size_t k = 0;
+  for (int l : in_links_[receiver]) {
+    if (!has_held_[l] || specs_[l].from == 0) continue;
+    mjfMessage& m = (*out)[k++];
+    const bool fresh = has_round_[l] && round_[l].round == round;
+    const mjfMessage& source = fresh ? round_[l] : held_[l];
+    m.round = fresh ? round : held_[l].round;
+    m.n_payload = source.n_payload;
+    std::copy(source.payload, source.payload + MJF_MESSAGE_PAYLOAD, m.payload);
+  }
+}
+
 void Network::ExchangeRound(int sender, const mjfMessage& message) {
   for (int l : out_links_[sender]) {
     if (!up_[l] || specs_[l].from == 0) continue;

@@ -95,6 +95,11 @@ class Link {
   LinkParams params_;
   double timestep_;
   Random random_;
+  // A lossless, jitter-free link draws nothing that matters: its loss draw always passes and its
+  // stream feeds nothing else, so it skips the draw (the same messages, the same bytes) and
+  // its delay is a fixed number of steps.
+  bool ideal_;
+  int64_t fixed_delay_steps_;
   bool bad_ = false;  // Gilbert-Elliott channel state
   LinkStats stats_;
 };

@@ -64,6 +64,10 @@ class Network {
   // (else its held payload and round).
   void Inbox(int receiver, int round, std::vector<mjfMessage>* out,
              const mjfMessage** leader) const;
+  // `out` as Inbox(receiver, -1 or an earlier round) packed it in this tick, with only the round
+  // part (round, n_payload, payload) of each message set for `round` as Inbox would set it: the
+  // state and input parts (which the receiver may have predicted) are kept.
+  void RefreshRound(int receiver, int round, std::vector<mjfMessage>* out) const;
   // A Jacobi round message from `sender` (loss only: see docs/NETWORK.md).
   void ExchangeRound(int sender, const mjfMessage& message);
   void ClearRounds();
