@@ -54,6 +54,10 @@ PdCascade::PdCascade(const Gains& gains, const Vehicle& vehicle,
         "flips at 0.70 rad and above; docs/DISCUSSION.md). Set damping = \"euler_rates\" and "
         "allocation = \"roll_pitch_first\", or use the geometric plugin");
   }
+  // Constants of Update, once: libm calls are not merged across steps (-fmath-errno keeps GCC
+  // from treating cos as pure), and the bits are those Update computed each step.
+  cos_tilt_max_ = std::cos(gains_.tilt_max);
+  tilt_max_sq_below_ = gains_.tilt_max * gains_.tilt_max * (1 - 1e-9);
   const Gains unlimited = Resolve(gains, INFINITY);
   unlimited_att_bw_ = unlimited.kp_att / unlimited.kd_att;
   RequirePositive(gains.kp_yaw, "kp_yaw");
@@ -77,10 +81,17 @@ PdCascade::Output PdCascade::Update(const VehicleState& state, const Setpoint& s
   //   inverse, so theta = (ax cos psi + ay sin psi) / g, phi = (ax sin psi - ay cos psi) / g.
   double pitch_ref = (setpoint.acc[0] * cos_yaw + setpoint.acc[1] * sin_yaw) / g;  // eq. (9)
   double roll_ref = (setpoint.acc[0] * sin_yaw - setpoint.acc[1] * cos_yaw) / g;   // eq. (9)
-  const double tilt = std::hypot(roll_ref, pitch_ref);
-  if (tilt > gains_.tilt_max) {  // keep the direction of the horizontal command
-    roll_ref *= gains_.tilt_max / tilt;
-    pitch_ref *= gains_.tilt_max / tilt;
+  // The tilt's norm hypot(roll_ref, pitch_ref) decides only when it may exceed tilt_max: a sum
+  // of squares below tilt_max^2 (1 - 1e-9) puts the true norm below tilt_max by about 5e-10
+  // relative, far more than the few ulps by which the sum and hypot can err, so hypot would
+  // return less than tilt_max and nothing would change. Below the limit (most steps) the libm
+  // call is skipped; the references are the same bits either way.
+  if (!(roll_ref * roll_ref + pitch_ref * pitch_ref < tilt_max_sq_below_)) {
+    const double tilt = std::hypot(roll_ref, pitch_ref);
+    if (tilt > gains_.tilt_max) {  // keep the direction of the horizontal command
+      roll_ref *= gains_.tilt_max / tilt;
+      pitch_ref *= gains_.tilt_max / tilt;
+    }
   }
   out.roll_ref = roll_ref;
   out.pitch_ref = pitch_ref;
@@ -107,7 +118,7 @@ PdCascade::Output PdCascade::Update(const VehicleState& state, const Setpoint& s
   const double z_error = setpoint.pos[2] - state.pos[2];
   const double az = setpoint.acc[2] + gains_.kp_z * z_error +
                     gains_.kd_z * (setpoint.vel[2] - state.vel[2]) + integral_z_;
-  const double tilt_cos = std::max(std::cos(roll) * std::cos(pitch), std::cos(gains_.tilt_max));
+  const double tilt_cos = std::max(std::cos(roll) * std::cos(pitch), cos_tilt_max_);
   out.thrust = std::max(0.0, vehicle_.mass * (g + az) / tilt_cos);
 
   out.mix = mixer_.Mix(Wrench(out.thrust, out.torque[0], out.torque[1], out.torque[2]),

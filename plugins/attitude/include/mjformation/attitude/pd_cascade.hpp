@@ -91,8 +91,10 @@ class PdCascade {
   Gains gains_;
   Vehicle vehicle_;
   Mixer mixer_;
-  double unlimited_att_bw_ = 0;  // 1/s
-  double integral_z_ = 0;        // m/s^2, ki_z * integral of the altitude error
+  double unlimited_att_bw_ = 0;   // 1/s
+  double cos_tilt_max_ = 1;       // cos(gains_.tilt_max): the floor of the thrust's tilt factor
+  double tilt_max_sq_below_ = 0;  // tilt_max^2 (1 - 1e-9): below it the tilt limit is not hit
+  double integral_z_ = 0;         // m/s^2, ki_z * integral of the altitude error
 };
 
 }  // namespace mjf::attitude
