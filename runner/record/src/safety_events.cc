@@ -11,11 +11,14 @@ namespace {
 
 std::string VehicleName(int v) { return v == 0 ? "leader" : fmt::format("follower {}", v); }
 
-// Tilt of the body z axis from the world's: cos = R_zz = 1 - 2 (x^2 + y^2) for q = (w, x, y, z).
-double TiltDeg(const double q[4]) {
-  const double cos_tilt = std::clamp(1 - 2 * (q[1] * q[1] + q[2] * q[2]), -1.0, 1.0);
-  return std::acos(cos_tilt) * 180.0 / M_PI;
+// Cosine of the tilt of the body z axis from the world's: R_zz = 1 - 2 (x^2 + y^2) for
+// q = (w, x, y, z).
+double CosTilt(const double q[4]) {
+  return std::clamp(1 - 2 * (q[1] * q[1] + q[2] * q[2]), -1.0, 1.0);
 }
+
+// The tilt in degrees from its cosine.
+double TiltDeg(double cos_tilt) { return std::acos(cos_tilt) * 180.0 / M_PI; }
 
 // How far p lies outside the box (0 inside).
 double DistanceOutside(const std::array<double, 6>& box, const double p[3]) {
@@ -53,6 +56,11 @@ std::string DescribeEvent(const SafetyEvent& e) {
 SafetyMonitor::SafetyMonitor(const SafetyConfig& config, std::vector<double> radii)
     : config_(config), radii_(std::move(radii)), airborne_(radii_.size(), 0) {
   for (double r : radii_) max_radius_ = std::max(max_radius_, r);
+  // A tilt's cosine at or above this leaves the tilt below flip_tilt_deg (in (0, 180], checked
+  // by the config): acos falls with slope at least 1, so the 1e-9 margin keeps the tilt at
+  // least 1e-9 rad below the limit, far beyond the few ulps by which acos, the degrees and this
+  // cosine can err. Below it (or with no finite cosine) the tilt is computed and compared.
+  flip_cos_skip_ = std::cos(config_.flip_tilt_deg * M_PI / 180.0) + 1e-9;
   for (size_t i = 0; i < radii_.size(); ++i) order_.emplace_back(0.0, static_cast<int>(i));
 }
 
@@ -69,8 +77,11 @@ void SafetyMonitor::Report(const std::string& kind, double t, std::vector<int> v
 // Flip, ground impact (the bounding sphere reaches z = 0 after the vehicle was above it) and
 // leaving the region.
 void SafetyMonitor::CheckVehicle(double t, int i, const mjfVehicleState& s) {
-  const double tilt = TiltDeg(s.quat);
-  if (tilt > config_.flip_tilt_deg) Report("flip", t, {i}, tilt);
+  const double cos_tilt = CosTilt(s.quat);
+  if (!(cos_tilt >= flip_cos_skip_)) {  // the libm call only where a flip is possible
+    const double tilt = TiltDeg(cos_tilt);
+    if (tilt > config_.flip_tilt_deg) Report("flip", t, {i}, tilt);
+  }
   const double clearance = s.pos[2] - radii_[i];
   if (clearance > 0) airborne_[i] = 1;
   if (airborne_[i] && clearance <= 0) Report("ground_impact", t, {i}, s.pos[2]);

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -50,6 +51,37 @@ TEST(SafetyMonitor, FlipBeyondTheThresholdOncePerVehicle) {
   EXPECT_DOUBLE_EQ(e.time_s, 2.5);
   EXPECT_NEAR(e.value, 120, 1e-9);
   EXPECT_EQ(DescribeEvent(e), "follower 1 flipped at 2.50 s (tilt 120.0 deg)");
+}
+
+// The tilt's acos is skipped where the cosine shows the tilt below the limit
+// (safety_events.cc): a tilt a few ulps of the cosine either side of the limit is still judged
+// by the tilt itself, and a flip's value is the tilt computed from the quaternion as before.
+TEST(SafetyMonitor, FlipAtTheThresholdIsJudgedByTheTiltItself) {
+  for (const double limit : {30.0, 90.0, 179.0, 180.0}) {
+    SafetyConfig config;
+    config.flip_tilt_deg = limit;
+    const double limit_cos = std::cos(limit * M_PI / 180.0);
+    int flips = 0;
+    // Quaternions rolled about x whose R_zz = 1 - 2 x^2 steps through the limit's cosine.
+    for (int k = -40; k <= 40; ++k) {
+      const double c = std::clamp(limit_cos + k * 1e-12, -1.0, 1.0);
+      mjfVehicleState s = At(0, 0, 5);
+      s.quat[1] = std::sqrt((1 - c) / 2);
+      s.quat[0] = std::sqrt(1 - s.quat[1] * s.quat[1]);
+      const double cos_tilt = std::clamp(1 - 2 * (s.quat[1] * s.quat[1]), -1.0, 1.0);
+      const double tilt = std::acos(cos_tilt) * 180.0 / M_PI;  // the formula of the monitor
+      SafetyMonitor m(config, {0.2});
+      const size_t fresh = m.Check(1.0, {s});
+      EXPECT_EQ(fresh, tilt > limit ? 1u : 0u) << "limit " << limit << ", step " << k;
+      if (fresh == 1) {
+        EXPECT_EQ(m.events()[0].value, tilt);
+        ++flips;
+      }
+    }
+    // The steps cross the limit (at 180 no tilt exceeds it).
+    if (limit < 180) EXPECT_GT(flips, 0) << limit;
+    if (limit < 180) EXPECT_LT(flips, 81) << limit;
+  }
 }
 
 TEST(SafetyMonitor, GroundImpactOnlyAfterTheVehicleWasAloft) {

@@ -53,6 +53,7 @@ class SafetyMonitor {
 
   SafetyConfig config_;
   std::vector<double> radii_;
+  double flip_cos_skip_ = 0;  // a tilt's cosine at or above it cannot be a flip (constructor)
   double max_radius_ = 0;
   std::vector<char> airborne_;                        // seen above the ground: impacts count after
   std::set<std::tuple<std::string, int, int>> seen_;  // (kind, vehicle, other or -1)
