@@ -79,8 +79,10 @@ TEST(SafetyMonitor, FlipAtTheThresholdIsJudgedByTheTiltItself) {
       }
     }
     // The steps cross the limit (at 180 no tilt exceeds it).
-    if (limit < 180) EXPECT_GT(flips, 0) << limit;
-    if (limit < 180) EXPECT_LT(flips, 81) << limit;
+    if (limit < 180) {
+      EXPECT_GT(flips, 0) << limit;
+      EXPECT_LT(flips, 81) << limit;
+    }
   }
 }
 
@@ -124,6 +126,54 @@ TEST(SafetyMonitor, PairsAreFoundWhateverTheirOrderAlongX) {
   m.Check(1.0, {At(4, 0, 5), At(3, 0, 5), At(2, 0, 5), At(1, 0, 5), At(4.1, 0.05, 5)});
   ASSERT_EQ(m.events().size(), 1u);
   EXPECT_EQ(m.events()[0].vehicles, (std::vector<int>{0, 4}));
+}
+
+// Begin, Scan over ranges (the partitions' threads, in any order) and Finish report what Check
+// reports, in the same order, step after step: a crowd that drifts, crosses, tilts, lands and
+// leaves the region.
+TEST(SafetyMonitor, ScanningInRangesReportsWhatCheckReports) {
+  SafetyConfig config;
+  config.near_miss_m = 0.3;
+  config.has_region = true;
+  config.region = {-4, 4, -4, 4, 0, 20};
+  const int n = 12;
+  std::vector<double> radii(n);
+  for (int i = 0; i < n; ++i) radii[i] = 0.1 + 0.01 * i;
+  SafetyMonitor whole(config, radii), split(config, radii);
+  size_t events = 0;
+  for (int step = 0; step < 60; ++step) {
+    const double t = 0.1 * step;
+    std::vector<mjfVehicleState> states;
+    for (int i = 0; i < n; ++i) {
+      // Vehicles on a line, the odd ones moving against the even ones, some sinking and tilting.
+      const double x = 0.6 * i + (i % 2 ? -1 : 1) * 0.05 * step * (1 + 0.1 * i);
+      const double z = i % 3 == 0 ? 2.0 - 0.04 * step : 2.0;
+      states.push_back(Rolled(At(x - 3, 0.02 * i, z), i % 4 == 1 ? 3.0 * step : 0.0));
+    }
+    const size_t expected = whole.Check(t, states);
+    split.Begin(states);
+    split.Scan(7, 5, states);  // the ranges [0, 3), [3, 7), [7, 12), last first
+    split.Scan(0, 3, states);
+    split.Scan(3, 4, states);
+    EXPECT_EQ(split.Finish(t, states), expected) << "step " << step;
+    ASSERT_EQ(split.events().size(), whole.events().size()) << "step " << step;
+    for (size_t k = 0; k < whole.events().size(); ++k) {
+      const SafetyEvent& a = whole.events()[k];
+      const SafetyEvent& b = split.events()[k];
+      EXPECT_EQ(b.kind, a.kind);
+      EXPECT_EQ(b.time_s, a.time_s);
+      EXPECT_EQ(b.vehicles, a.vehicles);
+      EXPECT_EQ(b.value, a.value);
+      EXPECT_EQ(b.clearance, a.clearance);
+    }
+    events = whole.events().size();
+  }
+  // Every kind happened, so the comparison covered each.
+  const auto counts = whole.Summary()["by_kind"];
+  for (const char* kind : {"flip", "ground_impact", "collision", "near_miss", "left_region"}) {
+    EXPECT_GT(counts[kind].get<int>(), 0) << kind;
+  }
+  EXPECT_GT(events, 10u);
 }
 
 TEST(SafetyMonitor, LeavingTheRegion) {
