@@ -31,8 +31,10 @@ namespace mjf::runner {
 // through the control tick costs a futex wake and, on a virtual machine, the wake-up of an idle
 // virtual CPU (tens of microseconds) at every phase, several per step, which is what kept the
 // 2-thread speed-up below its Amdahl bound at 1000 followers (docs/PERFORMANCE.md); a yielding
-// waiter sees the next phase within a microsecond and, on a loaded machine, hands its core to
-// whatever else is runnable instead of burning it. No allocation after construction.
+// waiter sees the next phase within a microsecond. On a loaded machine a yield hands the core
+// to whatever else is runnable and comes back only after it (a slice, about a millisecond): a
+// waiter whose yield took longer than kBusyYield sleeps at once, so that it does not keep
+// competing for a core with the thread it waits for. No allocation after construction.
 class LockstepPool {
  public:
   using Job = void (*)(void* context, int partition);
@@ -71,6 +73,9 @@ class LockstepPool {
   // Longest a waiter yields before it sleeps: longer than the caller's work between phases at
   // 1000 followers (a recording step included), short against a run.
   static constexpr std::chrono::microseconds kYieldFor{5000};
+  // A yield that returns later than this gave the core to another runnable thread: the machine
+  // is busy (on an idle core sched_yield returns within a few microseconds).
+  static constexpr std::chrono::microseconds kBusyYield{100};
   static void Pause() {
 #if defined(__x86_64__) || defined(__i386__)
     __builtin_ia32_pause();
@@ -85,14 +90,17 @@ class LockstepPool {
       if (ready()) return;
       Pause();
     }
-    const auto until = std::chrono::steady_clock::now() + kYieldFor;
+    auto now = std::chrono::steady_clock::now();
+    const auto until = now + kYieldFor;
     while (!ready()) {
-      if (std::chrono::steady_clock::now() >= until) {
+      std::this_thread::yield();
+      const auto before = now;
+      now = std::chrono::steady_clock::now();
+      if (now >= until || now - before > kBusyYield) {
         std::unique_lock<std::mutex> lock(mutex_);
         cv.wait(lock, ready);
         return;
       }
-      std::this_thread::yield();
     }
   }
 
