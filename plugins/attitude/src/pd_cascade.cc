@@ -68,6 +68,21 @@ PdCascade::PdCascade(const Gains& gains, const Vehicle& vehicle,
   RequireNonNegative(gains.imax_z, "imax_z");
 }
 
+// Keeps the direction of the horizontal command: (roll_ref, pitch_ref) scaled onto tilt_max
+// when their norm hypot(roll_ref, pitch_ref) is above it. The norm is needed only when it may
+// exceed tilt_max: a sum of squares below tilt_max^2 (1 - 1e-9) puts the true norm below
+// tilt_max by about 5e-10 relative, far more than the few ulps by which the sum and hypot can
+// err, so hypot would return less than tilt_max and nothing would change. Below the limit (most
+// steps of level flight) the libm call is skipped; the references are the same bits either way.
+void PdCascade::LimitTilt(double* roll_ref, double* pitch_ref) const {
+  if (*roll_ref * *roll_ref + *pitch_ref * *pitch_ref < tilt_max_sq_below_) return;
+  const double tilt = std::hypot(*roll_ref, *pitch_ref);
+  if (tilt > gains_.tilt_max) {
+    *roll_ref *= gains_.tilt_max / tilt;
+    *pitch_ref *= gains_.tilt_max / tilt;
+  }
+}
+
 PdCascade::Output PdCascade::Update(const VehicleState& state, const Setpoint& setpoint,
                                     double dt) {
   Output out;
@@ -81,18 +96,7 @@ PdCascade::Output PdCascade::Update(const VehicleState& state, const Setpoint& s
   //   inverse, so theta = (ax cos psi + ay sin psi) / g, phi = (ax sin psi - ay cos psi) / g.
   double pitch_ref = (setpoint.acc[0] * cos_yaw + setpoint.acc[1] * sin_yaw) / g;  // eq. (9)
   double roll_ref = (setpoint.acc[0] * sin_yaw - setpoint.acc[1] * cos_yaw) / g;   // eq. (9)
-  // The tilt's norm hypot(roll_ref, pitch_ref) decides only when it may exceed tilt_max: a sum
-  // of squares below tilt_max^2 (1 - 1e-9) puts the true norm below tilt_max by about 5e-10
-  // relative, far more than the few ulps by which the sum and hypot can err, so hypot would
-  // return less than tilt_max and nothing would change. Below the limit (most steps) the libm
-  // call is skipped; the references are the same bits either way.
-  if (!(roll_ref * roll_ref + pitch_ref * pitch_ref < tilt_max_sq_below_)) {
-    const double tilt = std::hypot(roll_ref, pitch_ref);
-    if (tilt > gains_.tilt_max) {  // keep the direction of the horizontal command
-      roll_ref *= gains_.tilt_max / tilt;
-      pitch_ref *= gains_.tilt_max / tilt;
-    }
-  }
+  LimitTilt(&roll_ref, &pitch_ref);
   out.roll_ref = roll_ref;
   out.pitch_ref = pitch_ref;
 

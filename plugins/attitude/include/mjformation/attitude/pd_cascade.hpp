@@ -88,6 +88,9 @@ class PdCascade {
   double altitude_integral() const { return integral_z_; }  // m/s^2
 
  private:
+  // The tilt limit on the references of eq. (9) (pd_cascade.cc).
+  void LimitTilt(double* roll_ref, double* pitch_ref) const;
+
   Gains gains_;
   Vehicle vehicle_;
   Mixer mixer_;
