@@ -54,6 +54,10 @@ PdCascade::PdCascade(const Gains& gains, const Vehicle& vehicle,
         "flips at 0.70 rad and above; docs/DISCUSSION.md). Set damping = \"euler_rates\" and "
         "allocation = \"roll_pitch_first\", or use the geometric plugin");
   }
+  // Constants of Update, once: libm calls are not merged across steps (-fmath-errno keeps GCC
+  // from treating cos as pure), and the bits are those Update computed each step.
+  cos_tilt_max_ = std::cos(gains_.tilt_max);
+  tilt_max_sq_below_ = gains_.tilt_max * gains_.tilt_max * (1 - 1e-9);
   const Gains unlimited = Resolve(gains, INFINITY);
   unlimited_att_bw_ = unlimited.kp_att / unlimited.kd_att;
   RequirePositive(gains.kp_yaw, "kp_yaw");
@@ -62,6 +66,21 @@ PdCascade::PdCascade(const Gains& gains, const Vehicle& vehicle,
   RequirePositive(gains.kd_z, "kd_z");
   RequireNonNegative(gains.ki_z, "ki_z");
   RequireNonNegative(gains.imax_z, "imax_z");
+}
+
+// Keeps the direction of the horizontal command: (roll_ref, pitch_ref) scaled onto tilt_max
+// when their norm hypot(roll_ref, pitch_ref) is above it. The norm is needed only when it may
+// exceed tilt_max: a sum of squares below tilt_max^2 (1 - 1e-9) puts the true norm below
+// tilt_max by about 5e-10 relative, far more than the few ulps by which the sum and hypot can
+// err, so hypot would return less than tilt_max and nothing would change. Below the limit (most
+// steps of level flight) the libm call is skipped; the references are the same bits either way.
+void PdCascade::LimitTilt(double* roll_ref, double* pitch_ref) const {
+  if (*roll_ref * *roll_ref + *pitch_ref * *pitch_ref < tilt_max_sq_below_) return;
+  const double tilt = std::hypot(*roll_ref, *pitch_ref);
+  if (tilt > gains_.tilt_max) {
+    *roll_ref *= gains_.tilt_max / tilt;
+    *pitch_ref *= gains_.tilt_max / tilt;
+  }
 }
 
 PdCascade::Output PdCascade::Update(const VehicleState& state, const Setpoint& setpoint,
@@ -77,11 +96,7 @@ PdCascade::Output PdCascade::Update(const VehicleState& state, const Setpoint& s
   //   inverse, so theta = (ax cos psi + ay sin psi) / g, phi = (ax sin psi - ay cos psi) / g.
   double pitch_ref = (setpoint.acc[0] * cos_yaw + setpoint.acc[1] * sin_yaw) / g;  // eq. (9)
   double roll_ref = (setpoint.acc[0] * sin_yaw - setpoint.acc[1] * cos_yaw) / g;   // eq. (9)
-  const double tilt = std::hypot(roll_ref, pitch_ref);
-  if (tilt > gains_.tilt_max) {  // keep the direction of the horizontal command
-    roll_ref *= gains_.tilt_max / tilt;
-    pitch_ref *= gains_.tilt_max / tilt;
-  }
+  LimitTilt(&roll_ref, &pitch_ref);
   out.roll_ref = roll_ref;
   out.pitch_ref = pitch_ref;
 
@@ -107,7 +122,7 @@ PdCascade::Output PdCascade::Update(const VehicleState& state, const Setpoint& s
   const double z_error = setpoint.pos[2] - state.pos[2];
   const double az = setpoint.acc[2] + gains_.kp_z * z_error +
                     gains_.kd_z * (setpoint.vel[2] - state.vel[2]) + integral_z_;
-  const double tilt_cos = std::max(std::cos(roll) * std::cos(pitch), std::cos(gains_.tilt_max));
+  const double tilt_cos = std::max(std::cos(roll) * std::cos(pitch), cos_tilt_max_);
   out.thrust = std::max(0.0, vehicle_.mass * (g + az) / tilt_cos);
 
   out.mix = mixer_.Mix(Wrench(out.thrust, out.torque[0], out.torque[1], out.torque[2]),

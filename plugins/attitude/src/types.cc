@@ -17,7 +17,10 @@ Vec3 EulerZYX(const std::array<double, 4>& q) {
 
 double WrapPi(double angle) {
   const double two_pi = 2 * M_PI;
-  double a = std::fmod(angle + M_PI, two_pi);
+  double a = angle + M_PI;
+  // fmod is exact, so for a already in [0, 2 pi) it returns a itself: the libm call is needed
+  // only outside that range (NaN and infinities included), and the bits are the same.
+  if (!(a >= 0 && a < two_pi)) a = std::fmod(a, two_pi);
   if (a < 0) a += two_pi;
   return a - M_PI;
 }

@@ -56,6 +56,15 @@ OnlineMetrics::OnlineMetrics(const Simulation& sim)
   shape_now_.resize(6 * static_cast<size_t>(nf));
   sort_buffer_.resize(3 * static_cast<size_t>(sim.n_vehicles()));
   final_errors_.assign(nf, kNaN);
+  // StepControls' bounds, [vehicle][actuator] as the controls: the same sums it formed per step.
+  const int na = sim.actuators_per_vehicle();
+  for (int i = 0; i < sim.n_vehicles(); ++i) {
+    for (int k = 0; k < na; ++k) {
+      const mjfActuatorInfo& a = sim.binding(i).actuator_info[k];
+      saturation_low_.push_back(a.ctrl_min + 1e-9);
+      saturation_high_.push_back(a.ctrl_max - 1e-9);
+    }
+  }
 }
 
 double OnlineMetrics::Sample(const Simulation& sim, std::vector<double>* slots, bool accumulate) {
@@ -163,16 +172,15 @@ void OnlineMetrics::SampleFollowerMotion(const Simulation& sim, double t) {
 }
 
 void OnlineMetrics::StepControls(const Simulation& sim) {
-  const int na = sim.actuators_per_vehicle();
-  const auto& u = sim.controls();
-  for (int i = 0; i < sim.n_vehicles(); ++i) {
-    const VehicleBinding& b = sim.binding(i);
-    for (int k = 0; k < na; ++k) {
-      const double c = u[static_cast<size_t>(i) * na + k];
-      if (c <= b.actuator_info[k].ctrl_min + 1e-9 || c >= b.actuator_info[k].ctrl_max - 1e-9) {
-        ++saturated_steps_;
-        return;
-      }
+  // One flat pass over every control of the step (the bounds were formed once, constructor).
+  const double* u = sim.controls().data();
+  const double* low = saturation_low_.data();
+  const double* high = saturation_high_.data();
+  const size_t n = saturation_low_.size();
+  for (size_t j = 0; j < n; ++j) {
+    if (u[j] <= low[j] || u[j] >= high[j]) {
+      ++saturated_steps_;
+      return;
     }
   }
 }

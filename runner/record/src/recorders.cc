@@ -194,7 +194,7 @@ class SafetyRecorder final : public Recorder {
   SafetyRecorder(const Simulation& sim, std::shared_ptr<EventMarks> marks)
       : monitor_(sim.config().safety, VehicleRadii(sim)), marks_(std::move(marks)) {}
   void OnStep(const Simulation& sim) override {
-    const size_t fresh = monitor_.Check(sim.time(), sim.states());
+    const size_t fresh = Check(sim);
     const auto& stop_on = sim.config().safety.stop_on;
     const auto& events = monitor_.events();
     for (size_t k = events.size() - fresh; k < events.size(); ++k) Mark(sim, events[k]);
@@ -213,6 +213,25 @@ class SafetyRecorder final : public Recorder {
   }
 
  private:
+  // The monitor's check of this step. With partitioned physics each partition's thread tests
+  // its own vehicles and the pairs its sorted places start (every step, on the caller's thread
+  // it was the largest per-vehicle cost left there); the events are the same, in the same order.
+  size_t Check(const Simulation& sim) {
+    if (sim.threads() == 1) return monitor_.Check(sim.time(), sim.states());
+    monitor_.Begin(sim.states());
+    struct Job {
+      SafetyMonitor* monitor;
+      const std::vector<mjfVehicleState>* states;
+    } job{&monitor_, &sim.states()};
+    sim.ForEachVehicleRange(
+        [](void* context, int first, int count, char*, size_t) {
+          const Job& j = *static_cast<Job*>(context);
+          j.monitor->Scan(first, count, *j.states);
+        },
+        &job);
+    return monitor_.Finish(sim.time(), sim.states());
+  }
+
   // The event's mark for the pictures, at the vehicles' positions (their midpoint for a pair)
   // of this step.
   void Mark(const Simulation& sim, const SafetyEvent& e) {

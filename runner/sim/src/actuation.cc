@@ -79,6 +79,7 @@ class WrenchActuation final : public Actuation {
       : model_(m),
         bindings_(bindings),
         timestep_(timestep),
+        axial_(AllAxial(bindings)),
         rotor_state_(bindings.vehicles.size() * bindings.actuators_per_vehicle, 0.0) {}
   void Apply(const std::vector<double>& controls, mjData* data) override;
   void Advance(const std::vector<double>& controls) override;
@@ -89,9 +90,20 @@ class WrenchActuation final : public Actuation {
   void VehicleWrench(int i, const std::vector<double>& controls, const mjData* data,
                      mjtNum wrench[6]) const;
 
+  // True when every rotor's gear acts along its site's z axis only: [0, 0, g, 0, 0, c].
+  static bool AllAxial(const VehicleBindings& bindings) {
+    for (const VehicleBinding& b : bindings.vehicles) {
+      for (const mjfActuatorInfo& a : b.actuator_info) {
+        if (a.gear[0] != 0 || a.gear[1] != 0 || a.gear[3] != 0 || a.gear[4] != 0) return false;
+      }
+    }
+    return true;
+  }
+
   const mjModel* model_;
   const VehicleBindings& bindings_;
   double timestep_;
+  bool axial_;                       // AllAxial: the rotors' wrenches need one column of xmat
   std::vector<double> rotor_state_;  // motor lag states, like MuJoCo's act
 };
 
@@ -110,11 +122,24 @@ void WrenchActuation::VehicleWrench(int i, const std::vector<double>& controls, 
                                         : std::clamp(controls[base + k], a.ctrl_min, a.ctrl_max));
     const mjtNum* xmat = data->site_xmat + 9 * b.sites[k];
     const mjtNum* xpos = data->site_xpos + 3 * b.sites[k];
-    mjtNum f[3], t[3], local[3], arm[3], moment[3];
-    for (int j = 0; j < 3; ++j) local[j] = a.gear[j] * force;
-    MulMat3Vec(f, xmat, local);
-    for (int j = 0; j < 3; ++j) local[j] = a.gear[3 + j] * force;
-    MulMat3Vec(t, xmat, local);
+    mjtNum f[3], t[3], arm[3], moment[3];
+    if (axial_) {
+      // xmat [0, 0, g force] (and [0, 0, c force]) without the two products by exact zeros:
+      // MulMat3Vec's row sum (m0 * 0 + m1 * 0) + m2 * l is m2 * l bit for bit when m2 * l is
+      // not zero (x + 0 = x), and when it is, the two differ at most in the sign of a zero, which
+      // the sums below, started from +0, never keep (+0 + -0 = +0): the wrench's bits are equal.
+      const mjtNum lz = a.gear[2] * force, tz = a.gear[5] * force;
+      for (int r = 0; r < 3; ++r) {
+        f[r] = xmat[3 * r + 2] * lz;
+        t[r] = xmat[3 * r + 2] * tz;
+      }
+    } else {
+      mjtNum local[3];
+      for (int j = 0; j < 3; ++j) local[j] = a.gear[j] * force;
+      MulMat3Vec(f, xmat, local);
+      for (int j = 0; j < 3; ++j) local[j] = a.gear[3 + j] * force;
+      MulMat3Vec(t, xmat, local);
+    }
     for (int j = 0; j < 3; ++j) arm[j] = xpos[j] - com[j];
     Cross(moment, arm, f);
     for (int j = 0; j < 3; ++j) {

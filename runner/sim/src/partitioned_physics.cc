@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <cstdio>
 #include <cstring>
@@ -13,19 +14,27 @@
 #include <mutex>
 #include <thread>
 
-#include "mjformation/sim/actuation.hpp"
 #include "mjformation/control/errors.hpp"
+#include "mjformation/scene/vehicle_binding.hpp"
+#include "mjformation/sim/actuation.hpp"
 #include "mjformation/sim/mujoco_errors.hpp"
 #include "mjformation/sim/step_checks.hpp"
-#include "mjformation/scene/vehicle_binding.hpp"
 
 namespace mjf::runner {
 
 // K - 1 worker threads that run one job per partition in lockstep with the caller, which runs
-// partition 0. A phase is short (tens of microseconds to a millisecond), so a worker first spins
-// briefly on the phase counter, then sleeps on a condition variable: on a machine with a core
-// per partition it never pays a wake-up, on a loaded one it does not burn a core while the
-// control tick runs. No allocation after construction.
+// partition 0. A phase is short (tens of microseconds to a millisecond), and so is the caller's
+// work between two phases (the control tick, recording: about 0.4 ms per step at 1000 followers,
+// a few ms on a recording step). Every wait (a worker's for the next phase, the caller's for the
+// workers) spins briefly on the counter, then yields its core (sched_yield) for up to
+// kYieldFor, then sleeps on a condition variable. Why the middle stage: a worker that slept
+// through the control tick costs a futex wake and, on a virtual machine, the wake-up of an idle
+// virtual CPU (tens of microseconds) at every phase, several per step, which is what kept the
+// 2-thread speed-up below its Amdahl bound at 1000 followers (docs/PERFORMANCE.md); a yielding
+// waiter sees the next phase within a microsecond. On a loaded machine a yield hands the core
+// to whatever else is runnable and comes back only after it (a slice, about a millisecond): a
+// waiter whose yield took longer than kBusyYield sleeps at once, so that it does not keep
+// competing for a core with the thread it waits for. No allocation after construction.
 class LockstepPool {
  public:
   using Job = void (*)(void* context, int partition);
@@ -56,36 +65,50 @@ class LockstepPool {
     }
     start_.notify_all();
     job(context, 0);
-    for (int s = 0; s < kSpins; ++s) {
-      if (pending_.load(std::memory_order_acquire) == 0) return;
-      Pause();
-    }
-    std::unique_lock<std::mutex> lock(mutex_);
-    done_.wait(lock, [this] { return pending_.load(std::memory_order_acquire) == 0; });
+    Await(done_, [this] { return pending_.load(std::memory_order_acquire) == 0; });
   }
 
  private:
   static constexpr int kSpins = 1000;  // 4-50 us of pause instructions, by CPU generation
+  // Longest a waiter yields before it sleeps: longer than the caller's work between phases at
+  // 1000 followers (a recording step included), short against a run.
+  static constexpr std::chrono::microseconds kYieldFor{5000};
+  // A yield that returns later than this gave the core to another runnable thread: the machine
+  // is busy (on an idle core sched_yield returns within a few microseconds).
+  static constexpr std::chrono::microseconds kBusyYield{100};
   static void Pause() {
 #if defined(__x86_64__) || defined(__i386__)
     __builtin_ia32_pause();
 #endif
   }
 
+  // Returns once ready() holds: spins, then yields the core, then sleeps on `cv` (whose
+  // notifier changes what ready() reads under mutex_ or notifies after such a change).
+  template <typename Ready>
+  void Await(std::condition_variable& cv, Ready ready) {
+    for (int s = 0; s < kSpins; ++s) {
+      if (ready()) return;
+      Pause();
+    }
+    auto now = std::chrono::steady_clock::now();
+    const auto until = now + kYieldFor;
+    while (!ready()) {
+      std::this_thread::yield();
+      const auto before = now;
+      now = std::chrono::steady_clock::now();
+      if (now >= until || now - before > kBusyYield) {
+        std::unique_lock<std::mutex> lock(mutex_);
+        cv.wait(lock, ready);
+        return;
+      }
+    }
+  }
+
   void Work(int k) {
     uint64_t seen = 0;
     for (;;) {
-      uint64_t g = generation_.load(std::memory_order_acquire);
-      for (int s = 0; s < kSpins && g == seen; ++s) {
-        Pause();
-        g = generation_.load(std::memory_order_acquire);
-      }
-      if (g == seen) {
-        std::unique_lock<std::mutex> lock(mutex_);
-        start_.wait(lock, [&] { return generation_.load(std::memory_order_acquire) != seen; });
-        g = generation_.load(std::memory_order_acquire);
-      }
-      seen = g;
+      Await(start_, [&] { return generation_.load(std::memory_order_acquire) != seen; });
+      seen = generation_.load(std::memory_order_acquire);
       if (stop_) return;
       job_(context_, k);
       if (pending_.fetch_sub(1, std::memory_order_acq_rel) == 1) {

@@ -195,6 +195,15 @@ void Simulation::Integrate() {
   CheckState();
 }
 
+void Simulation::ForEachVehicleRange(PartitionedPhysics::RangeJob job, void* context) const {
+  if (partitions_) {
+    partitions_->ForEachRange(job, context);  // the pool is idle between phases
+    return;
+  }
+  char error[1] = {'\0'};
+  job(context, 0, n_vehicles(), error, sizeof(error));
+}
+
 void Simulation::CheckState() const { CheckStepState(model_.get(), data_.get(), time()); }
 
 void Simulation::SyncWholeData() const {

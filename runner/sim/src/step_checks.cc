@@ -4,6 +4,8 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <string>
 
 #include "mjformation/control/errors.hpp"
@@ -30,6 +32,21 @@ int WholeModelInfo(int warning, int info, const StateOffsets& o) {
       return info;
   }
 }
+
+// True when x[0..n) are all finite. Each value's exponent field is all ones exactly for
+// infinities and NaN, and adding 1 to the field then carries into the sign bit; OR-ing the
+// sums keeps one flag for the whole array, without a branch per value (the loops below, which
+// name the first non-finite value, run only when it is set).
+bool AllFinite(const mjtNum* x, int n) {
+  constexpr uint64_t kExponent = 0x7ff0000000000000ull, kOneInExponent = 0x0010000000000000ull;
+  uint64_t flag = 0;
+  for (int i = 0; i < n; ++i) {
+    uint64_t bits;
+    std::memcpy(&bits, x + i, sizeof(bits));
+    flag |= (bits & kExponent) + kOneInExponent;
+  }
+  return (flag >> 63) == 0;
+}
 }  // namespace
 
 void CheckStepState(const mjModel* m, const mjData* d, double time, StateOffsets offsets) {
@@ -42,6 +59,7 @@ void CheckStepState(const mjModel* m, const mjData* d, double time, StateOffsets
                             " (the simulation is no longer trustworthy)");
     }
   }
+  if (AllFinite(d->qpos, m->nq) && AllFinite(d->qvel, m->nv)) return;
   for (int i = 0; i < m->nq; ++i) {
     if (!std::isfinite(d->qpos[i])) {
       throw SimulationError(TimeTag(time) + ": non-finite qpos[" +

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -52,6 +53,39 @@ TEST(SafetyMonitor, FlipBeyondTheThresholdOncePerVehicle) {
   EXPECT_EQ(DescribeEvent(e), "follower 1 flipped at 2.50 s (tilt 120.0 deg)");
 }
 
+// The tilt's acos is skipped where the cosine shows the tilt below the limit
+// (safety_events.cc): a tilt a few ulps of the cosine either side of the limit is still judged
+// by the tilt itself, and a flip's value is the tilt computed from the quaternion as before.
+TEST(SafetyMonitor, FlipAtTheThresholdIsJudgedByTheTiltItself) {
+  for (const double limit : {30.0, 90.0, 179.0, 180.0}) {
+    SafetyConfig config;
+    config.flip_tilt_deg = limit;
+    const double limit_cos = std::cos(limit * M_PI / 180.0);
+    int flips = 0;
+    // Quaternions rolled about x whose R_zz = 1 - 2 x^2 steps through the limit's cosine.
+    for (int k = -40; k <= 40; ++k) {
+      const double c = std::clamp(limit_cos + k * 1e-12, -1.0, 1.0);
+      mjfVehicleState s = At(0, 0, 5);
+      s.quat[1] = std::sqrt((1 - c) / 2);
+      s.quat[0] = std::sqrt(1 - s.quat[1] * s.quat[1]);
+      const double cos_tilt = std::clamp(1 - 2 * (s.quat[1] * s.quat[1]), -1.0, 1.0);
+      const double tilt = std::acos(cos_tilt) * 180.0 / M_PI;  // the formula of the monitor
+      SafetyMonitor m(config, {0.2});
+      const size_t fresh = m.Check(1.0, {s});
+      EXPECT_EQ(fresh, tilt > limit ? 1u : 0u) << "limit " << limit << ", step " << k;
+      if (fresh == 1) {
+        EXPECT_EQ(m.events()[0].value, tilt);
+        ++flips;
+      }
+    }
+    // The steps cross the limit (at 180 no tilt exceeds it).
+    if (limit < 180) {
+      EXPECT_GT(flips, 0) << limit;
+      EXPECT_LT(flips, 81) << limit;
+    }
+  }
+}
+
 TEST(SafetyMonitor, GroundImpactOnlyAfterTheVehicleWasAloft) {
   SafetyMonitor m(SafetyConfig{}, {0.2});
   m.Check(0.0, {At(0, 0, 0.1)});  // starts on the ground: no impact
@@ -92,6 +126,54 @@ TEST(SafetyMonitor, PairsAreFoundWhateverTheirOrderAlongX) {
   m.Check(1.0, {At(4, 0, 5), At(3, 0, 5), At(2, 0, 5), At(1, 0, 5), At(4.1, 0.05, 5)});
   ASSERT_EQ(m.events().size(), 1u);
   EXPECT_EQ(m.events()[0].vehicles, (std::vector<int>{0, 4}));
+}
+
+// Begin, Scan over ranges (the partitions' threads, in any order) and Finish report what Check
+// reports, in the same order, step after step: a crowd that drifts, crosses, tilts, lands and
+// leaves the region.
+TEST(SafetyMonitor, ScanningInRangesReportsWhatCheckReports) {
+  SafetyConfig config;
+  config.near_miss_m = 0.3;
+  config.has_region = true;
+  config.region = {-4, 4, -4, 4, 0, 20};
+  const int n = 12;
+  std::vector<double> radii(n);
+  for (int i = 0; i < n; ++i) radii[i] = 0.1 + 0.01 * i;
+  SafetyMonitor whole(config, radii), split(config, radii);
+  size_t events = 0;
+  for (int step = 0; step < 60; ++step) {
+    const double t = 0.1 * step;
+    std::vector<mjfVehicleState> states;
+    for (int i = 0; i < n; ++i) {
+      // Vehicles on a line, the odd ones moving against the even ones, some sinking and tilting.
+      const double x = 0.6 * i + (i % 2 ? -1 : 1) * 0.05 * step * (1 + 0.1 * i);
+      const double z = i % 3 == 0 ? 2.0 - 0.04 * step : 2.0;
+      states.push_back(Rolled(At(x - 3, 0.02 * i, z), i % 4 == 1 ? 3.0 * step : 0.0));
+    }
+    const size_t expected = whole.Check(t, states);
+    split.Begin(states);
+    split.Scan(7, 5, states);  // the ranges [0, 3), [3, 7), [7, 12), last first
+    split.Scan(0, 3, states);
+    split.Scan(3, 4, states);
+    EXPECT_EQ(split.Finish(t, states), expected) << "step " << step;
+    ASSERT_EQ(split.events().size(), whole.events().size()) << "step " << step;
+    for (size_t k = 0; k < whole.events().size(); ++k) {
+      const SafetyEvent& a = whole.events()[k];
+      const SafetyEvent& b = split.events()[k];
+      EXPECT_EQ(b.kind, a.kind);
+      EXPECT_EQ(b.time_s, a.time_s);
+      EXPECT_EQ(b.vehicles, a.vehicles);
+      EXPECT_EQ(b.value, a.value);
+      EXPECT_EQ(b.clearance, a.clearance);
+    }
+    events = whole.events().size();
+  }
+  // Every kind happened, so the comparison covered each.
+  const auto counts = whole.Summary()["by_kind"];
+  for (const char* kind : {"flip", "ground_impact", "collision", "near_miss", "left_region"}) {
+    EXPECT_GT(counts[kind].get<int>(), 0) << kind;
+  }
+  EXPECT_GT(events, 10u);
 }
 
 TEST(SafetyMonitor, LeavingTheRegion) {

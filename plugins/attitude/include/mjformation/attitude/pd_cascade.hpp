@@ -88,11 +88,16 @@ class PdCascade {
   double altitude_integral() const { return integral_z_; }  // m/s^2
 
  private:
+  // The tilt limit on the references of eq. (9) (pd_cascade.cc).
+  void LimitTilt(double* roll_ref, double* pitch_ref) const;
+
   Gains gains_;
   Vehicle vehicle_;
   Mixer mixer_;
-  double unlimited_att_bw_ = 0;  // 1/s
-  double integral_z_ = 0;        // m/s^2, ki_z * integral of the altitude error
+  double unlimited_att_bw_ = 0;   // 1/s
+  double cos_tilt_max_ = 1;       // cos(gains_.tilt_max): the floor of the thrust's tilt factor
+  double tilt_max_sq_below_ = 0;  // tilt_max^2 (1 - 1e-9): below it the tilt limit is not hit
+  double integral_z_ = 0;         // m/s^2, ki_z * integral of the altitude error
 };
 
 }  // namespace mjf::attitude

@@ -48,6 +48,9 @@ class OnlineMetrics {
   double max_abs_s_since_violation_ = 0;
   double max_abs_s_ever_ = 0;
   std::vector<double> final_errors_;
+  // A control at or beyond these (ctrl_min + 1e-9, ctrl_max - 1e-9), [vehicle][actuator], counts
+  // as saturated (StepControls).
+  std::vector<double> saturation_low_, saturation_high_;
   long saturated_steps_ = 0;
   double max_follower_tilt_in_window_ = 0;  // rad
   double timestep_;

@@ -68,6 +68,11 @@ class TimeseriesWriter {
   std::string path_;
   std::FILE* file_ = nullptr;
   std::string buffer_;
+  // Partitioned physics: the partitions' cells of a block before they are joined (output.cc,
+  // Block): [first vehicle of a range] its bytes and its vehicles.
+  std::vector<char> scratch_;
+  std::vector<size_t> range_length_;
+  std::vector<int> range_count_;
   size_t n_extra_ = 0;
   bool measured_ = false, wind_ = false;  // the [sensors] / [wind] columns
   bool estimated_ = false;                // the [estimator] columns

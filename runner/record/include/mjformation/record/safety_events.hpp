@@ -39,6 +39,15 @@ class SafetyMonitor {
   // Checks the vehicles at time t; returns how many events were first seen now (the last ones
   // of events()).
   size_t Check(double t, const std::vector<mjfVehicleState>& states);
+  // Check in three parts, so that the tests of each vehicle and of the pairs can run on several
+  // threads at once (the partitions' threads, recorders.cc): Begin (sorts the vehicles along x),
+  // then Scan for ranges of [0, n) that cover it once, at the same time on different threads,
+  // then Finish, which reports what the scans found in Check's order (each vehicle's tests in
+  // vehicle order, then the pairs in the sweep's order) and returns what Check returns. The same
+  // events, values and order as Check for any split into ranges.
+  void Begin(const std::vector<mjfVehicleState>& states);
+  void Scan(int first, int count, const std::vector<mjfVehicleState>& states);
+  size_t Finish(double t, const std::vector<mjfVehicleState>& states);
   const std::vector<SafetyEvent>& events() const { return events_; }
   // summary.json "events": the list (at most kMaxListed) and the count per kind.
   nlohmann::ordered_json Summary() const;
@@ -46,17 +55,32 @@ class SafetyMonitor {
   static constexpr size_t kMaxListed = 1000;
 
  private:
-  void CheckVehicle(double t, int i, const mjfVehicleState& s);
-  void CheckPairs(double t, const std::vector<mjfVehicleState>& states);
+  // A pair closer than the near-miss margin or its radii, found by Scan.
+  struct PairHit {
+    int i, j;  // i < j
+    double distance, clearance;
+  };
+  // What Scan found for vehicle i (bits of found_[i]) and the values it found.
+  enum : char { kFlip = 1, kGroundImpact = 2, kLeftRegion = 4 };
+  void ScanVehicle(int i, const mjfVehicleState& s);
+  void ScanPairs(int first, int count, const std::vector<mjfVehicleState>& states);
   void Report(const std::string& kind, double t, std::vector<int> vehicles, double value,
               double clearance = 0);
 
   SafetyConfig config_;
   std::vector<double> radii_;
+  double flip_cos_skip_ = 0;  // a tilt's cosine at or above it cannot be a flip (constructor)
   double max_radius_ = 0;
   std::vector<char> airborne_;                        // seen above the ground: impacts count after
   std::set<std::tuple<std::string, int, int>> seen_;  // (kind, vehicle, other or -1)
   std::vector<std::pair<double, int>> order_;         // vehicles by x, kept nearly sorted
+  // Scan's findings, [vehicle]: kFlip | kGroundImpact | kLeftRegion, the tilt (deg) and the
+  // distance outside the region (m); [first of a range]: the range's pairs in sweep order and
+  // its size (0: not the first of a range). Sized once; a range's list grows only with hits.
+  std::vector<char> found_;
+  std::vector<double> tilt_, outside_;
+  std::vector<std::vector<PairHit>> pair_hits_;
+  std::vector<int> range_count_;
   std::vector<SafetyEvent> events_;
   int64_t total_ = 0;
 };

@@ -62,6 +62,11 @@ class Simulation {
   int threads() const { return partitions_ ? partitions_->size() : 1; }
   // The partitions (nullptr with threads = 1).
   PartitionedPhysics* partitions() { return partitions_.get(); }
+  // Per-vehicle work between steps that vehicles do not share (recording a row): runs
+  // job(context, first, count, error, error_size) over vehicle ranges covering [0, n_vehicles())
+  // once, on the partitions' threads (one range each) with partitioned physics, else here.
+  // Between ComputeControls and Integrate or after Integrate only (the partitions are idle).
+  void ForEachVehicleRange(PartitionedPhysics::RangeJob job, void* context) const;
   const std::string& scene_xml() const { return scene_xml_; }
   int64_t step_index() const { return step_; }
   int64_t total_steps() const { return total_steps_; }
