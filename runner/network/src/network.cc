@@ -6,6 +6,20 @@
 #include <stdexcept>
 
 namespace mjf::network {
+namespace {
+
+// The round part (round, n_payload, payload) of a held message as a receiver sees it in round
+// `round`: the neighbour's round message when one of that round got through (`sent`, nullptr:
+// none this tick), else the held message's own.
+void SetRoundPart(const mjfMessage& held, const mjfMessage* sent, int round, mjfMessage* m) {
+  const bool fresh = sent && sent->round == round;
+  const mjfMessage& source = fresh ? *sent : held;
+  m->round = fresh ? round : held.round;
+  m->n_payload = source.n_payload;
+  std::copy(source.payload, source.payload + MJF_MESSAGE_PAYLOAD, m->payload);
+}
+
+}  // namespace
 
 Network::Network(int n_followers, std::vector<LinkSpec> links, double timestep, uint64_t seed)
     : n_vehicles_(n_followers + 1),
@@ -129,12 +143,8 @@ void Network::Inbox(int receiver, int round, std::vector<mjfMessage>* out,
       continue;
     }
     out->push_back(held_[l]);
-    if (round >= 0 && has_round_[l] && round_[l].round == round) {
-      mjfMessage& m = out->back();
-      m.round = round;
-      m.n_payload = round_[l].n_payload;
-      std::copy(round_[l].payload, round_[l].payload + MJF_MESSAGE_PAYLOAD, m.payload);
-    }
+    if (round >= 0)
+      SetRoundPart(held_[l], has_round_[l] ? &round_[l] : nullptr, round, &out->back());
   }
 }
 
@@ -142,12 +152,7 @@ void Network::RefreshRound(int receiver, int round, std::vector<mjfMessage>* out
   size_t k = 0;
   for (int l : in_links_[receiver]) {
     if (!has_held_[l] || specs_[l].from == 0) continue;
-    mjfMessage& m = (*out)[k++];
-    const bool fresh = has_round_[l] && round_[l].round == round;
-    const mjfMessage& source = fresh ? round_[l] : held_[l];
-    m.round = fresh ? round : held_[l].round;
-    m.n_payload = source.n_payload;
-    std::copy(source.payload, source.payload + MJF_MESSAGE_PAYLOAD, m.payload);
+    SetRoundPart(held_[l], has_round_[l] ? &round_[l] : nullptr, round, &(*out)[k++]);
   }
 }
 
