@@ -7,6 +7,7 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-$root/build}
 shift || true
 bash "$root/scripts/setup.sh"
-cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null
+cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release ${MJF_PYTHON_ENV:+-DMJF_PYTHON_ENV="$MJF_PYTHON_ENV"} \
+  "$@" >/dev/null
 # MJF_BUILD_TARGET=mjformation builds the runner and its plugins only (no tests).
 cmake --build "$build" -j"$(nproc)" ${MJF_BUILD_TARGET:+--target "$MJF_BUILD_TARGET"}

@@ -51,6 +51,15 @@ def version() -> str:
     return _core.version()
 
 
+def engine() -> dict:
+    """The MuJoCo this process runs: {"version", "library" (the file), "sha256" (of it)}.
+
+    The same library as the `mujoco` Python package of the project's environment (.venv), so
+    `import mujoco, mjformation` share one engine and a scene of ours opens in MuJoCo's tools.
+    """
+    return dict(_core.engine())
+
+
 # ---- formation laws in Python ----------------------------------------------------------------
 
 

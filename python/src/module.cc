@@ -22,6 +22,7 @@
 #include "mjformation/config/config.hpp"
 #include "mjformation/config/paths.hpp"
 #include "mjformation/control/plugin_host.hpp"
+#include "mjformation/record/engine_identity.hpp"
 #include "mjformation/record/output.hpp"
 #include "mjformation/run/interrupt.hpp"
 #include "mjformation/run/run.hpp"
@@ -344,5 +345,13 @@ PYBIND11_MODULE(_core, m) {
   m.def("plugins", &Plugins, py::arg("plugin_path"));
   m.def("read_csv", &ReadCsv, py::arg("path"));
   m.def("version", &rn::VersionString);
+  m.def("engine", [] {
+    const rn::EngineIdentity& e = rn::RunningEngine();
+    py::dict d;
+    d["version"] = e.version;
+    d["library"] = e.library_path;
+    d["sha256"] = e.library_sha256;
+    return d;
+  });
   BindSimulation(m);
 }

@@ -444,12 +444,10 @@ class Viewer {
     } else if (left_) {
       action = shift ? mjMOUSE_ROTATE_H : mjMOUSE_ROTATE_V;
     }
-    mjv_moveCamera(src_->model(), action, dx / h, dy / h, &scn_, &cam_);
+    mjv_moveCamera(src_->model(), action, dx / h, dy / h, &cam_);
   }
 
-  void Scroll(double dy) {
-    mjv_moveCamera(src_->model(), mjMOUSE_ZOOM, 0, -0.05 * dy, &scn_, &cam_);
-  }
+  void Scroll(double dy) { mjv_moveCamera(src_->model(), mjMOUSE_ZOOM, 0, -0.05 * dy, &cam_); }
 
   Source* src_;
   Options opt_;

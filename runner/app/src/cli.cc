@@ -10,6 +10,7 @@
 #include "mjformation/config/paths.hpp"
 #include "mjformation/config/source_location.hpp"
 #include "mjformation/control/plugin_host.hpp"
+#include "mjformation/record/engine_identity.hpp"
 #include "mjformation/record/output.hpp"
 #include "mjformation/run/run.hpp"
 #include "mjformation/scene/scene.hpp"
@@ -101,9 +102,9 @@ int CheckCommand(const CliCommands& c) {
   std::printf(
       "%s: OK (%d followers, model %s, %d bodies, leader '%s', formation '%s', attitude "
       "'%s')\n",
-      c.experiment.c_str(), config.followers, config.model_path.c_str(), sim.model()->nbody,
-      config.leader.plugin.c_str(), config.formation.plugin.c_str(),
-      config.attitude.plugin.c_str());
+      c.experiment.c_str(), config.followers, config.model_path.c_str(),
+      static_cast<int>(sim.model()->nbody), config.leader.plugin.c_str(),
+      config.formation.plugin.c_str(), config.attitude.plugin.c_str());
   for (const auto& note : sim.vehicle_notes()) std::printf("  vehicle model: %s\n", note.c_str());
   std::printf("  %s\n", AuthorityText(sim.torque_authority()).c_str());
   const AttitudeDemand& d = sim.attitude_demand();
@@ -121,8 +122,10 @@ int CheckCommand(const CliCommands& c) {
 // (an installed one: only its own prefix, docs/ARCHITECTURE.md "Installed layout").
 std::string VersionText() {
   const std::string prefix = InstalledPrefix();
+  const EngineIdentity& engine = RunningEngine();
   std::string text =
-      VersionString() + "\n" +
+      VersionString() + "\n" + "MuJoCo library: " + engine.library_path + " (sha256 " +
+      engine.library_sha256 + ")\n" +
       (prefix.empty() ? "running from the build tree\n" : "installed in " + prefix + "\n");
   text += "plugin search path:";
   for (const auto& dir : PluginSearchPath({})) text += " " + dir;

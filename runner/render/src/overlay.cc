@@ -99,7 +99,7 @@ class GeomAppender {
     if (a == b) return;
     mjvGeom* g = NewGeom(rgba);
     if (!g) return;
-    mjv_makeConnector(g, mjGEOM_LINE, pixels, a[0], a[1], a[2], b[0], b[1], b[2]);
+    mjv_connector(g, mjGEOM_LINE, pixels, a.data(), b.data());
   }
 
  private:

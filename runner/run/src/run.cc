@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <memory>
 
+#include "mjformation/record/engine_identity.hpp"
 #include "mjformation/record/metrics.hpp"
 #include "mjformation/record/output.hpp"
 #include "mjformation/record/recorders.hpp"
@@ -131,8 +132,8 @@ void RunInDirectory(Simulation& sim, const RunDirectory* dir, const RunOptions& 
 }  // namespace
 
 std::string VersionString() {
-  return fmt::format("mjformation {} (MuJoCo {}, plugin ABI {})", MJF_VERSION, mj_versionString(),
-                     MJF_ABI_VERSION);
+  return fmt::format("mjformation {} (MuJoCo {}, plugin ABI {})", MJF_VERSION,
+                     RunningEngine().version, MJF_ABI_VERSION);
 }
 
 RunResult RunExperiment(const ExperimentConfig& config, const RunOptions& options) {

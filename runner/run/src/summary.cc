@@ -4,6 +4,7 @@
 #include <mujoco/mujoco.h>
 
 #include "mjformation/config/realism_config.hpp"
+#include "mjformation/record/engine_identity.hpp"
 #include "mjformation/record/output.hpp"
 #include "mjformation/sim/simulation.hpp"
 
@@ -35,7 +36,8 @@ void DescribeExperiment(const Simulation& sim, Json& s) {
   s["seed"] = config.seed;
   s["config_sha256"] = Sha256Hex(ConfigEcho(config));
   s["versions"] = {{"mjformation", MJF_VERSION},
-                   {"mujoco", mj_versionString()},
+                   {"mujoco", RunningEngine().version},
+                   {"mujoco_library_sha256", RunningEngine().library_sha256},
                    {"plugin_abi", MJF_ABI_VERSION}};
   s["n_followers"] = config.followers;
   s["vehicle_model"] = config.model;

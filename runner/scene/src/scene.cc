@@ -207,12 +207,10 @@ mjModel_* CompileModel(const std::string& xml, const std::string& name) {
   mjVFS vfs;
   mj_defaultVFS(&vfs);
   const char* file = "mjformation_scene.xml";
-  if (mj_makeEmptyFileVFS(&vfs, file, static_cast<int>(xml.size())) != 0) {
+  if (mj_addBufferVFS(&vfs, file, xml.data(), static_cast<int>(xml.size())) != 0) {
     mj_deleteVFS(&vfs);
     throw SceneError(name + ": cannot allocate the in-memory model file");
   }
-  const int index = mj_findFileVFS(&vfs, file);
-  std::memcpy(vfs.filedata[index], xml.data(), xml.size());
   char error[1024] = {0};
   mjModel* m = mj_loadXML(file, &vfs, error, sizeof(error));
   mj_deleteVFS(&vfs);

@@ -51,7 +51,6 @@ bool AllFinite(const mjtNum* x, int n) {
 
 void CheckStepState(const mjModel* m, const mjData* d, double time, StateOffsets offsets) {
   for (int w = 0; w < mjNWARNING; ++w) {
-    if (w == mjWARN_VGEOMFULL) continue;  // a rendering matter, not the physics'
     if (d->warning[w].number > 0) {
       std::string text = mju_warningText(w, WholeModelInfo(w, d->warning[w].lastinfo, offsets));
       while (!text.empty() && (text.back() == '.' || text.back() == ' ')) text.pop_back();

@@ -31,7 +31,7 @@ std::string ErrorOf(void (*raise)()) {
 TEST(MujocoErrorsTest, AnEngineErrorThrowsWithMujocosMessage) {
   InstallMujocoHandlers();
   EXPECT_EQ(ErrorOf([] { mju_error("the stack is full"); }), "MuJoCo error: the stack is full");
-  EXPECT_EQ(ErrorOf([] { mju_error_i("bad id %d", 7); }), "MuJoCo error: bad id 7");
+  EXPECT_EQ(ErrorOf([] { mju_error("bad id %d", 7); }), "MuJoCo error: bad id 7");
   // A MujocoError is a SimulationError: the run loop's handler ends the run with it.
   EXPECT_THROW(mju_error("x"), SimulationError);
 }
@@ -42,7 +42,7 @@ TEST(MujocoErrorsTest, TheErrorStaysOnTheThreadThatRaisedIt) {
   std::string message;
   std::thread worker([&] {
     try {
-      mju_error_s("raised on %s", "the worker");
+      mju_error("raised on %s", "the worker");
     } catch (const MujocoError& e) {
       message = e.what();
       caught_here = 1;
@@ -64,8 +64,9 @@ TEST(MujocoErrorsTest, AnErrorInsideARealStepUnwindsToTheCaller) {
   mjModel* m = mj_loadXML(path.c_str(), nullptr, error, sizeof(error));
   ASSERT_NE(m, nullptr) << error;
   mjData* d = mj_makeData(m);
-  // An mjData whose stack cannot hold one step's scratch: mj_step raises mju_error.
-  d->nstack = 1;
+  // An mjData whose stack is used up (the stack grows down from the arena's end towards the
+  // arena): the step's first mj_stackAlloc raises mju_error.
+  d->pstack = d->narena - d->parena;
   try {
     mj_step(m, d);
     ADD_FAILURE() << "mj_step with no stack did not raise an engine error";

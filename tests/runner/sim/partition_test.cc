@@ -140,12 +140,12 @@ TEST(PartitionTest, EngineErrorOnAWorkerThreadReachesTheCaller) {
   sim.ComputeControls();
   // No stack left: the partition's next mj_stackAlloc (in mj_step2) calls mju_error.
   mjData* d = sim.partitions()->partition_data(1);
-  d->pstack = d->nstack;
+  d->pstack = d->narena - d->parena;
   try {
     sim.Integrate();
     FAIL() << "no error";
   } catch (const MujocoError& e) {
-    EXPECT_THAT(e.what(), HasSubstr("MuJoCo error: Stack overflow"));
+    EXPECT_THAT(e.what(), HasSubstr("MuJoCo error: mj_stackAlloc: out of memory, stack overflow"));
   }
   EXPECT_EQ(sim.step_index(), 10);  // the failed step is not counted, as with one model
 }
