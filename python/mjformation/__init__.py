@@ -285,6 +285,8 @@ class Simulation:
                          doc="(V, 14): acc 3, pos 3, vel 3, yaw, sliding 2 (the setpoint bus)")
     slots = property(lambda self: self._sim.slots, doc="(V, 2) desired x, y of each vehicle")
     controls = property(lambda self: self._sim.controls, doc="(V, actuators) the controls")
+    scene_xml = property(lambda self: self._sim.scene_xml,
+                         doc="the composed MJCF (scene.xml): loads in the `mujoco` package alone")
 
     @property
     def graph(self) -> Graph:

@@ -217,7 +217,9 @@ TEST(OffscreenRenderer, OverlaysChangePixels) {
   slots_only.slots = SampleOverlay().slots;
   const std::vector<unsigned char> with_slots =
       renderer.Render(d.get(), FollowCamera(), slots_only, kBoxA);
-  EXPECT_GT(DifferentPixels(plain, with_slots), 1000);
+  // Two slot spheres about 20 px across (some 300 px each); MuJoCo 2.2.2 also drew their shadows
+  // on the floor (over 1000 px in all), MuJoCo 4's renderer draws 737 px.
+  EXPECT_GT(DifferentPixels(plain, with_slots), 500);
 
   Overlay label_only;
   label_only.label = "t = 10.0 s";

@@ -100,7 +100,11 @@ TEST(RunTest, WritesACompleteRunDirectory) {
   EXPECT_EQ(s["seed"], 7);
   EXPECT_EQ(s["config_sha256"].get<std::string>().size(), 64u);
   EXPECT_GT(s["timing"]["real_time_factor"].get<double>(), 0.0);
-  EXPECT_THAT(s["versions"]["mujoco"].get<std::string>(), HasSubstr("2.2"));
+  // The engine that ran: its version and the SHA-256 of its library file (64 hex digits; the
+  // Python tests check it against the file itself).
+  EXPECT_EQ(s["versions"]["mujoco"].get<std::string>(), std::string(mj_versionString()));
+  EXPECT_THAT(s["versions"]["mujoco_library_sha256"].get<std::string>(),
+              ::testing::MatchesRegex("[0-9a-f]{64}"));
   // timeseries: header + one row per 10 ms over 1 s, inclusive.
   const std::string csv = ReadFile(out + "/timeseries.csv");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 101);
