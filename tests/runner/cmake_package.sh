@@ -22,6 +22,9 @@ exported=$(nm -D --defined-only "$work/example-build/libexample_orbit.so" | awk 
 mv "$work/prefix" "$work/moved"
 bin="$work/moved/bin/mjformation"
 "$bin" --version | grep -Eq "^mjformation [0-9.]+ \(MuJoCo [0-9.]+, plugin ABI [0-9]+\)"
+# Standalone: the moved tree runs with the MuJoCo library it carries, not the build's.
+"$bin" --version | grep -q "^MuJoCo library: $work/moved/lib/libmujoco.so" ||
+  { "$bin" --version; false; }
 cat > "$work/exp.toml" <<'T'
 [run]
 name = "orbit"

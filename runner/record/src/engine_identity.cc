@@ -4,6 +4,8 @@
 #include <dlfcn.h>
 #include <mujoco/mujoco.h>
 
+#include <climits>
+#include <cstdlib>
 #include <fstream>
 #include <iterator>
 
@@ -16,7 +18,9 @@ namespace {
 std::string LoadedLibraryPath() {
   Dl_info info{};
   if (dladdr(reinterpret_cast<void*>(&mj_version), &info) == 0 || !info.dli_fname) return "";
-  return info.dli_fname;
+  // Canonical: the loader spells it through the RPATH ($ORIGIN/../lib) or a symlink.
+  char resolved[PATH_MAX];
+  return realpath(info.dli_fname, resolved) ? resolved : info.dli_fname;
 }
 
 std::string FileSha256(const std::string& path) {
