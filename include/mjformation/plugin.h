@@ -13,9 +13,10 @@
  * (MJF_KIND_FORMATION_AGENT, mjfNeighbourhood, mjfAgentInput, mjfMessage). A library built for
  * another version is refused at load with a message naming both versions.
  *
- * MuJoCo 2.2.2 (Debian 12) predates MuJoCo's native engine plugins (mjpPlugin, MuJoCo >= 2.3),
- * so mjformation defines its own C ABI with the same shape: a descriptor with a name, a kind,
- * declared attributes with defaults, and create / compute / reset / destroy callbacks.
+ * The ABI is mjformation's own, with the shape of MuJoCo's native engine plugins (mjpPlugin): a
+ * descriptor with a name, a kind, declared attributes with defaults, and create / compute /
+ * reset / destroy callbacks. It was written when the runner was on MuJoCo 2.2.2, which had no
+ * engine plugins; it holds no MuJoCo type, so a plugin needs no MuJoCo headers to be built.
  *
  * A shared library exports one C function, MJF_ENTRY_SYMBOL, returning an array of descriptors
  * (a plugin family, e.g. all guidance laws, is one library). The host (runner/plugin_host.*)
