@@ -1,8 +1,6 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 #include "mjformation/run/summary.hpp"
 
-#include <mujoco/mujoco.h>
-
 #include "mjformation/config/realism_config.hpp"
 #include "mjformation/record/engine_identity.hpp"
 #include "mjformation/record/output.hpp"

@@ -135,7 +135,7 @@ void MergeGlobalSections(XMLDocument& scene, XMLElement* root, const XMLElement*
 // Time step, integrator, contacts and the offscreen buffer the renderers need.
 void SetSimulationOptions(XMLDocument& scene, XMLElement* root, const SceneRequest& request) {
   // mj_step1/mj_step2 (the split the controllers need to read sensors of the current state)
-  // integrates with semi-implicit Euler in MuJoCo 2.2.2 whatever the model says: say so here.
+  // supports Euler and the implicit integrators, not RK4; the experiments integrate with Euler.
   XMLElement* option = ChildOrNew(scene, root, "option");
   char ts[64];
   std::snprintf(ts, sizeof(ts), "%.17g", request.timestep);

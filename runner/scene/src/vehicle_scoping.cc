@@ -119,7 +119,7 @@ void NoteModelOptions(const XMLElement* root, Notes* notes) {
     if (const char* v = option->Attribute(a)) {
       notes->push_back(std::string("the model's <option ") + a + "=\"" + v +
                        "\"> is replaced by the experiment's ([run] timestep; integrator Euler: "
-                       "the mj_step1/mj_step2 split of MuJoCo 2.2.2 integrates with Euler)");
+                       "the runner's mj_step1/mj_step2 split cannot run RK4)");
     }
   }
   for (const char* a : {"gravity", "density", "viscosity", "wind"}) {

@@ -11,7 +11,7 @@ namespace mjf::runner {
 
 struct EngineIdentity {
   std::string version;         // mj_versionString(), e.g. "4.0.1"
-  std::string library_path;    // the loaded libmujoco file, as the dynamic loader found it
+  std::string library_path;    // the loaded libmujoco file, canonical (realpath)
   std::string library_sha256;  // SHA-256 of that file's bytes (hex); empty if it cannot be read
 };
 
