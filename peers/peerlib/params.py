@@ -105,7 +105,8 @@ def mjcf(ref=REFERENCE):
         f'      <inertial pos="0 0 0" mass="{ref["mass"]:.9g}" diaginertia="{ref["ixx"]:.9g} '
         f'{ref["iyy"]:.9g} {ref["izz"]:.9g}"/>',
         '      <geom name="hull" type="box" size="0.02 0.02 0.006" contype="0" conaffinity="0" group="2"/>',
-        '      <geom name="bumper" type="box" size="0.04 0.04 0.008" group="3" contype="1" conaffinity="1"/>',
+        # bumper: touches the ground (contype 1), never another vehicle (as mjcf/quadrotor.xml)
+        '      <geom name="bumper" type="box" size="0.04 0.04 0.008" group="3" contype="2" conaffinity="1"/>',
         '      <site name="imu" pos="0 0 0" size="0.002"/>',
         *sites,
         "    </body>",

@@ -21,6 +21,7 @@ import numpy as np  # noqa: E402
 
 from peerlib import params as P  # noqa: E402
 from peerlib import workload as W  # noqa: E402
+from peerlib.scenarios import open_loop_schedule, tier_states  # noqa: E402,F401
 
 
 def fly(backend_cls, workload, n, controller, duration, wall_budget):
@@ -91,54 +92,20 @@ def speed(backend_cls, job):
 
 
 # ---- dynamics tiers -----------------------------------------------------------------------------
-def rot_xyzw(roll, pitch, yaw):
-    """Quaternion (x, y, z, w) of the ZYX Euler angles."""
-    cr, sr = math.cos(roll / 2), math.sin(roll / 2)
-    cp, sp = math.cos(pitch / 2), math.sin(pitch / 2)
-    cy, sy = math.cos(yaw / 2), math.sin(yaw / 2)
-    return np.array([sr * cp * cy - cr * sp * sy, cr * sp * cy + sr * cp * sy,
-                     cr * cp * sy - sr * sp * cy, cr * cp * cy + sr * sp * sy])
-
-
-def tier_states():
-    """The states of tier (a): pos, quat xyzw, world velocity, body angular velocity, thrusts (N,
-    reference rotor order r1..r4)."""
-    h = P.derived()["hover_thrust"]
-    thr = [h * 1.05, h * 0.95, h * 1.02, h * 0.98]
-    return {
-        "level_at_rest": {"pos": [0, 0, 0.5], "quat": rot_xyzw(0, 0, 0).tolist(), "vel": [0, 0, 0],
-                          "omega": [0, 0, 0], "thrusts": thr},
-        "tilted_moving": {"pos": [0, 0, 0.5], "quat": rot_xyzw(0.2, -0.1, 0.3).tolist(),
-                          "vel": [1.0, -0.5, 0.3], "omega": [0.5, -0.4, 0.3], "thrusts": thr},
-    }
-
-
-def open_loop_schedule(hz=20.0, duration=4.0):
-    """Per-rotor thrust commands (N, reference order) held for 1 / hz each: hover plus a small
-    differential (0.1 %, 0.07 %) that rolls and pitches the vehicle back and forth (yaw-neutral pairs)."""
-    h = P.derived()["hover_thrust"]
-    rows = []
-    for k in range(int(round(duration * hz))):
-        t = k / hz
-        a = 0.001 * h * math.sin(2 * math.pi * 0.5 * t)
-        b = 0.0007 * h * math.sin(2 * math.pi * 0.3 * t + 1.0)
-        # r1 (+,+), r2 (+,-), r3 (-,-), r4 (-,+): a rolls (y+ vs y-), b pitches (x+ vs x-)
-        rows.append([h + a - b, h - a - b, h - a + b, h + a + b])
-    return rows
-
-
-def dynamics(backend_cls):
-    out = {"accel": {}, "open_loop": None, "rotor_step": None}
+def dynamics(backend_cls, bare=False):
+    """Tiers (a)-(c). bare: the peer's unmatched terms (drag, propeller inertia) switched off."""
+    make = (lambda: backend_cls(bare=True)) if bare else backend_cls
+    out = {"accel": {}, "open_loop": None, "rotor_step": None, "bare": bare}
     for name, st in tier_states().items():
-        sim = backend_cls()
+        sim = make()
         out["accel"][name] = sim.accel(st)
         sim.close()
-    sim = backend_cls()
+    sim = make()
     hz = 20.0
     out["open_loop"] = sim.open_loop({"pos": [0, 0, 0.5], "quat": [0, 0, 0, 1], "vel": [0, 0, 0],
                                       "omega": [0, 0, 0]}, open_loop_schedule(hz), hz)
     sim.close()
-    sim = backend_cls()
+    sim = make()
     h = P.derived()["hover_thrust"]
     out["rotor_step"] = sim.rotor_step(h, 1.3 * h, 0.4)
     sim.close()
@@ -155,7 +122,7 @@ def main(backend_cls):
             if job["kind"] == "speed":
                 entry.update(speed(backend_cls, job))
             elif job["kind"] == "dynamics":
-                entry.update(dynamics(backend_cls))
+                entry.update(dynamics(backend_cls, job.get("bare", False)))
         except Exception as exc:  # recorded, reported in PEERS.md with its message
             import traceback
             entry["error"] = f"{type(exc).__name__}: {exc}"

@@ -20,7 +20,7 @@ from crazyflow.sim import Sim
 RPM = P.RPM_PER_RAD_S
 
 
-def matched(sim):
+def matched(sim, bare=False):
     ref = P.crazyflow_params()
     d = P.derived()
     p = sim.data.params
@@ -29,6 +29,8 @@ def matched(sim):
                   L=jnp.asarray(ref["L"]), rpm2thrust=jnp.asarray(ref["rpm2thrust"]),
                   rpm2torque=jnp.asarray(ref["rpm2torque"]), rotor_dyn_coef=jnp.asarray(ref["rotor_dyn_coef"]),
                   mixing_matrix=jnp.asarray(ref["mixing_matrix"]))
+    if bare:   # its linear drag and propeller inertia off
+        p = p.replace(drag_matrix=jnp.zeros_like(p.drag_matrix), prop_inertia=jnp.zeros_like(p.prop_inertia))
     vehicle = {"thrust_max": d["thrust_max"], "L": ref["L"][0], "rpm2thrust": ref["rpm2thrust"][0],
                "thrust2torque": d["yaw_arm"], "mixing_matrix": ref["mixing_matrix"], "thrust_min": 0.0}
     ctrls = sim.data.controls
@@ -49,14 +51,15 @@ class Crazyflow:
     control_hz = 100.0
     hosts_law = True
 
-    def __init__(self):
+    def __init__(self, bare=False):
         self.sim = None
+        self.bare = bare
 
     def _make(self, n, control):
         kw = {"state_freq": 100} if control == Control.state else {}
         sim = Sim(n_worlds=1, n_drones=n, drone=Drone.cf2x_L250, dynamics=Dynamics.first_principles,
                   control=control, freq=500, **kw)
-        matched(sim)
+        matched(sim, self.bare)
         return sim
 
     def _set_state(self, sim, pos, quat=None, vel=None, omega=None, rotor_rpm=None):

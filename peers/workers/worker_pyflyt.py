@@ -18,7 +18,7 @@ from PyFlyt.core import Aviary
 MODEL = "cfref"
 
 
-def model_dir():
+def model_dir(bare=False):
     own = os.path.join(os.path.dirname(PyFlyt.__file__), "models", "vehicles", "cf2x", "cf2x.yaml")
     with open(own) as f:
         cf2x = yaml.safe_load(f)
@@ -26,7 +26,8 @@ def model_dir():
     os.makedirs(os.path.join(root, MODEL))
     with open(os.path.join(root, MODEL, MODEL + ".urdf"), "w") as f:
         f.write(P.pyflyt_urdf())
-    body = P.pyflyt_yaml(drag=cf2x["drag_params"],
+    drag = {k: 0.0 for k in cf2x["drag_params"]} if bare else cf2x["drag_params"]
+    body = P.pyflyt_yaml(drag=drag,
                          controller_yaml=yaml.safe_dump({"control_params": cf2x["control_params"]}))
     with open(os.path.join(root, MODEL, MODEL + ".yaml"), "w") as f:
         f.write(body)
@@ -38,8 +39,8 @@ class PyFlyt_:
     control_hz = 120.0
     hosts_law = False   # mode 6 takes velocities, no mode takes accelerations: see PEERS.md
 
-    def __init__(self, control_hz=120):
-        self.dir = model_dir()
+    def __init__(self, control_hz=120, bare=False):
+        self.dir = model_dir(bare)   # bare: body and rotational drag off
         self.env = None
         self.ctrl_hz = control_hz
 

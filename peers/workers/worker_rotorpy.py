@@ -16,7 +16,8 @@ class RotorPy:
     control_hz = 100.0
     hosts_law = True
 
-    def __init__(self):
+    def __init__(self, bare=False):
+        self.aero = not bare   # bare: RotorPy's rotor drag (aero) off
         self.params = P.rotorpy_params(base=CF)
         self.params["rotor_pos"] = {k: np.array(v) for k, v in self.params["rotor_pos"].items()}
         self.params["rotor_directions"] = np.array(self.params["rotor_directions"])
@@ -31,7 +32,7 @@ class RotorPy:
     def make(self, starts):
         for p in starts:
             s = self._state(p)
-            self.vehicles.append(Multirotor(self.params, initial_state=s, control_abstraction="cmd_motor_speeds", aero=True))
+            self.vehicles.append(Multirotor(self.params, initial_state=s, control_abstraction="cmd_motor_speeds", aero=self.aero))
             self.ctrls.append(SE3Control(self.params))
             self.states.append(s)
 
@@ -57,7 +58,7 @@ class RotorPy:
 
     # dynamics tiers
     def _vehicle(self, abstraction="cmd_motor_thrusts"):
-        return Multirotor(self.params, control_abstraction=abstraction, aero=True)
+        return Multirotor(self.params, control_abstraction=abstraction, aero=self.aero)
 
     def accel(self, st):
         omegas = [P.thrust_to_omega(t) for t in st["thrusts"]]
