@@ -186,6 +186,44 @@ def lag_section(results):
                      "thrust at 0.4 s / hover", "prediction"], rows, ["l", "l", "r", "r", "r", "l"]) + "\n"
 
 
+def batch_section(results):
+    b = results.get("batch")
+    if not b:
+        return "Batched worlds: not measured in this invocation.\n"
+    ours, cf = b["mjformation"], b["crazyflow"]
+    rows = [["mjformation `sweep --jobs 2` (2 threads)", f"{ours['runs']} runs of 40 s", fmt(ours["wall_s"], 3),
+             fmt(ours["runs_per_hour"], 3), ours.get("error") or ""]]
+    if "wall_s" in cf:
+        rows.append([f"Crazyflow, {cf['worlds']} worlds in one Sim (XLA on 2 threads)",
+                     f"{fmt(cf['sim_s'], 3)} s simulated, scaled to 40 s",
+                     f"{fmt(cf['setup_s'], 3)} setup + {fmt(cf['warmup_s'], 3)} first period + {fmt(cf['wall_s'], 3)} stepping",
+                     fmt(cf.get("runs_per_hour_40s"), 3), f"mean slot error at the end {fmt(cf.get('final_error'), 2)} m"])
+    else:
+        rows.append(["Crazyflow batched", "-", "-", "-", f"failed: {cf.get('error')}"])
+    return ("**Batched**: W2 (N = 7) 40-s runs per hour on both cores, one invocation. RotorPy's batched "
+            "vehicle (`BatchedMultirotor`) needs PyTorch, which RotorPy 3.0 does not install and the harness "
+            "does not add: not measured.\n\n" + markdown(["how", "work", "wall s", "40-s runs per hour", "note"], rows,
+                                                            ["l", "l", "r", "r", "l"]) + "\n")
+
+
+SPEED_NOTES = """Reading the table:
+- *Error* is the mean distance of the followers from their slots (W2) or of the vehicles from their hover
+  points (W1) over [25, 40] s, sampled at 10 Hz, computed by the same function for every simulator
+  (peers/peerlib/workload.py); it says whether the run flew the work, not how good a controller is.
+  A run cut by the wall budget gives its error at its last time instead.
+- PyFlyt has no flight mode that takes an acceleration (mode 6 takes velocities, 7 positions), so the
+  Python SMC law, whose output is an acceleration, is not flown there; its "own position controller" row
+  gets positions only (no feed-forward), which is why it trails the turning slots.
+- mjformation's followers fly `pd_cascade`. With the `geometric` attitude plugin, whose loops are derived
+  from the vehicle (rate_bw <= 1 / tau = 13.9 rad/s for the 72 ms motors, att_bw 3.0 rad/s, z_bw 1.2 rad/s),
+  the discrete SMC law (T = 0.05 s, gain 1 / (k2 T) = 20 1/s on the velocity error) outruns the tilt loop on
+  this slow-motor vehicle: in W2 at N = 7 the followers oscillate with tilts up to 0.56 rad, one touches the
+  ground at 3.6 s, and the slot error stays near 0.5 m (`--set 'attitude={plugin="geometric"}'` on
+  peers/out/W2_n7.toml reproduces it). That is a finding about our stock plugin on a slow-motor vehicle,
+  not a peer's. RotorPy's SE3 controller (kp_att 310, kd_att 57) carries the same law.
+"""
+
+
 def write(results, doc, out):
     doc = Path(doc)
     fig_path = doc.parent / "peers_divergence.png"
@@ -246,6 +284,8 @@ def write(results, doc, out):
               "which for equal N is the ratio of real-time factors. A peer run that would exceed "
               f"{results['args']['wall_budget']:g} s of wall time stops there (\"budget\" in the sim-s column).", "",
               speed_section(results), "",
+              batch_section(results),
+              SPEED_NOTES, "",
               "## Dynamics cross-check", "",
               "mjformation's side is the `scene.xml` the runner composed for this vehicle, stepped by MuJoCo "
               f"{(results['dynamics'].get('mjformation') or {}).get('mujoco', '?')} from PyPI with the model's "
@@ -255,7 +295,7 @@ def write(results, doc, out):
               "### (a) Accelerations from identical states and thrusts", "",
               accel_section(results), ""]
     lines += ["### (b) Open loop: time until positions differ by 5 cm", "",
-              "From level hover at 0.5 m (rotors at hover speed), every simulator gets the same per-rotor thrust "
+              "From level hover 20 m up (rotors at hover speed; high enough that no floor is reached in 4 s: PyFlyt and Crazyflow have one), every simulator gets the same per-rotor thrust "
               "sequence for 4 s, changed every 50 ms (a common divisor of the four physics rates): hover plus "
               "0.1 % and 0.07 % differential terms that roll and pitch the vehicle back and forth. Positions are "
               "compared on a 1 ms grid (linear interpolation of each simulator's own samples).", ""]
@@ -271,4 +311,62 @@ def write(results, doc, out):
     doc.write_text("\n".join(lines) + "\n" + (EXPLAIN if EXPLAIN else ""))
 
 
-EXPLAIN = ""
+EXPLAIN = """
+## What the differences come from
+
+**(a) Accelerations.** With the matched parameters, the four simulators compute the same rigid body
+under the same thrusts: level and at rest they agree to rounding (Crazyflow to float32's 1e-6 relative,
+JAX's default precision; RotorPy's 8e-9 rad/s^2 is the square root in its thrust-to-speed conversion).
+In the tilted, moving state each peer adds terms of its own model that mjformation's vehicle does not
+have (MuJoCo computes no aerodynamics for it), and the "predicted" column evaluates exactly those terms
+from the peers' published formulas and coefficients (peers/peerlib/crosscheck.py): the residual after
+subtracting them is at rounding level, so every difference is accounted for.
+- **RotorPy**: rotor drag ("H-force", `aero=True`), H_i = -w_i diag(k_d, k_d, k_z) (v_body + w x r_i) at each
+  hub: a force against the body velocity of about w_hover k_d per rotor (4 x 1789 x 1.03e-6 = 7.3e-3 N per
+  m/s, 0.25 m/s^2 per m/s on 30 g) and a moment from the hub offsets.
+- **PyFlyt**: quadratic body drag 0.5 rho Cd A v^2 (small at these speeds: Cd A = 1.2e-3 m^2) and a
+  rotational damping -1e-4 w|w| N m per body axis, which is large for a body of 1.4e-5 kg m^2: -1.75
+  rad/s^2 about x at 0.5 rad/s. Bullet's rigid-body step includes the w x Jw term as MuJoCo does.
+- **Crazyflow**: linear drag (its drag_matrix: -0.015 N s/m, 0.5 1/s on 30 g) and the propellers'
+  gyroscopic torque (w_y h, -w_x h, 0), h = I_p sum(s_i w_i): with unequal rotor speeds the rotors' net
+  angular momentum is not zero and tilts the angular acceleration by about 0.15 rad/s^2 here.
+With these terms off ("drag/gyro off"), each peer agrees with mjformation to rounding in both states.
+So the tolerance the models' documented differences allow is: equality to rounding without the extra
+terms, and the predicted terms' size with them (here up to 0.6 m/s^2 and 2.1 rad/s^2 at 1.2 m/s and
+0.7 rad/s).
+
+**(b) Open loop.** A hovering quadrotor is open-loop unstable: a small torque error tilts it, the tilt
+turns the thrust sideways and the position error grows as the second integral of the tilt, so any
+difference between two simulators grows in time and the time to 5 cm measures how early the models
+part. As modelled, the peers part from mjformation (and from each other) after 1.2-1.3 s: their drag
+terms act from the first instant the vehicle turns or moves (PyFlyt's rotational damping most, since it
+acts on the attitude, whose error is integrated twice into position). With the extra terms off, what is
+left is the integration of the same equations:
+- RotorPy (RK45 within each 10 ms step, its error tolerance ~1e-3 relative) and mjformation
+  (semi-implicit Euler at 1 ms) stay within a centimetre for the whole 4 s: both integrate the same
+  smooth equations finely.
+- PyFlyt and Crazyflow integrate the motor state with explicit Euler at their physics step (4.17 ms and
+  2 ms), which shortens the effective motor time constant (see (c)) and shifts every thrust change by a
+  fraction of a step, and Bullet and Crazyflow integrate the body at 240 Hz and 500 Hz; Crazyflow also
+  works in float32. These are the remaining, smaller sources; the table gives the time each takes to
+  reach 5 cm.
+
+**(c) Motor lag.** All four use the matched first-order constant tau = 72 ms, but not on the same
+quantity. mjformation's MuJoCo `filter` actuator lags the thrust itself, so the thrust reaches 63.2 % of
+its step at tau (71.0 ms: explicit Euler at dt = 1 ms gives dt ln(0.368) / ln(1 - dt/tau) = 71.5 ms; the
+measurement interpolates between 1 ms samples). RotorPy, PyFlyt (its throttle is the rotor speed as a
+fraction of the maximum) and Crazyflow lag the rotor speed, and thrust goes as its square: a 1.3 x thrust
+step is a 1.14 x speed step, and the thrust's 63.2 % point comes later, at 1.035 tau = 74.5 ms (RotorPy,
+integrated accurately by RK45). PyFlyt and Crazyflow step the speed with explicit Euler at 4.17 ms and
+2 ms, whose discrete pole (1 - dt/tau per step) is faster than exp(-dt/tau), which brings them back to
+72.4 and 73.5 ms. For small commands (the open-loop test's 0.1 %) thrust lag and speed lag are the same to
+first order; for large steps mjformation's thrust responds up to about 3 ms sooner.
+
+## What is not done here, and why
+- RotorPy batched (`BatchedMultirotor`, `simulate_batch`) needs PyTorch, not among RotorPy 3.0's
+  dependencies; the harness does not install it. Crazyflow's batch is measured on one size (8 worlds).
+- N = 1000: not attempted with the peers (RotorPy and PyFlyt step vehicles one by one in Python: a 40-s
+  run would take hours); mjformation's own scaling to 1000 followers is in docs/PERFORMANCE.md.
+- The runner's figures are taken on the engine this build links (its version is in the header above);
+  rerun with `--build` on the MuJoCo 4.0.1 build for the new engine's figures.
+"""

@@ -115,13 +115,41 @@ def mjformation_speed(binary, toml, out, workload, n, repeats):
             errs = [W.hover_error(pos[i], n_run) for i in range(len(t)) if win[i]]
         else:
             errs = [W.slot_error(t[i], pos[i], n_run - 1) for i in range(len(t)) if win[i]]
+        final = W.hover_error(pos[-1], n_run) if workload == "W1" else W.slot_error(t[-1], pos[-1], n_run - 1)
         runs.append({"wall_s": tm.get("wall_time_s"), "sim_s": float(s.get("sim_time_s") or t[-1]),
                      "physics_steps": int(s.get("steps") or round(float(t[-1]) * 1000)), "setup_s": proc - (tm.get("wall_time_s") or 0),
-                     "warmup_s": None, "error_mean_25_40": sum(errs) / len(errs) if errs else None,
+                     "warmup_s": None, "error_mean_25_40": sum(errs) / len(errs) if errs else None, "error_final": final,
                      "complete": s.get("complete"), "events": (s.get("events") or {}).get("by_kind")})
         if k > 0:
             shutil.rmtree(rd, ignore_errors=True)
     return {"runs": runs, "physics_hz": 1000.0, "n_run": n_run}
+
+
+def batch_cell(binary, crazyflow_py, model, out, args):
+    """40-s W2 runs (N = 7) per hour on both cores: Crazyflow's batch of worlds (XLA on 2 threads)
+    against mjformation's sweep with 2 workers, over the same number of runs."""
+    worlds = args.batch_worlds
+    log(f"batched: Crazyflow {worlds} worlds, mjformation sweep of {worlds} runs on 2 workers")
+    toml = out / "W2_n7_batch.toml"
+    toml.write_text(E.experiment("W2", 7, str(model), duration=40.0))
+    t0 = time.perf_counter()
+    r = subprocess.run([binary, "sweep", str(toml), "--seeds", str(worlds), "--jobs", "2", "--no-render",
+                        "-o", str(out / "mjf_sweep"), "--overwrite"], capture_output=True, text=True)
+    wall = time.perf_counter() - t0
+    ours = {"runs": worlds, "wall_s": wall, "runs_per_hour": worlds * 3600.0 / wall,
+            "error": None if r.returncode == 0 else f"exit {r.returncode}: {r.stderr.strip()[-500:]}"}
+    task = {"peer": "crazyflow", "tag": "batch",
+            "jobs": [{"kind": "batch", "n": 7, "worlds": worlds, "duration": args.batch_duration}]}
+    env_flags = THREADS_ENV["XLA_FLAGS"]
+    THREADS_ENV["XLA_FLAGS"] = "--xla_cpu_multi_thread_eigen=true intra_op_parallelism_threads=2"
+    try:
+        res = run_worker(crazyflow_py, PEERS["crazyflow"]["worker"], task, out, 3600)
+    finally:
+        THREADS_ENV["XLA_FLAGS"] = env_flags
+    j = res["jobs"][0] if res.get("jobs") else {"error": res.get("process_error")}
+    if "wall_s" in j:   # scale the stepping to a 40-s run; setup and compilation once
+        j["runs_per_hour_40s"] = worlds * 3600.0 / (j["setup_s"] + j["warmup_s"] + j["wall_s"] * 40.0 / j["sim_s"])
+    return {"mjformation": ours, "crazyflow": j}
 
 
 def machine():
@@ -142,11 +170,15 @@ def main(argv=None):
     ap.add_argument("--peers", default="rotorpy,pyflyt,crazyflow")
     ap.add_argument("--sizes", default="1,7,49", help="vehicles in all, comma separated")
     ap.add_argument("--repeats", type=int, default=5, help="runs per cell (median and range reported)")
+    ap.add_argument("--repeats-other", type=int, default=0,
+                    help="runs per cell for sizes other than 7 (0: --repeats)")
     ap.add_argument("--duration", type=float, default=40.0, help="simulated seconds per run")
     ap.add_argument("--wall-budget", type=float, default=120.0, help="stop a peer run after this many wall seconds")
     ap.add_argument("--python", default="/usr/bin/python3", help="interpreter the virtual environments are made from")
     ap.add_argument("--out", default=str(HERE / "out"))
     ap.add_argument("--doc", default=str(ROOT / "docs" / "PEERS.md"))
+    ap.add_argument("--batch-worlds", type=int, default=8, help="Crazyflow worlds in the batched 2-core cell (0: skip)")
+    ap.add_argument("--batch-duration", type=float, default=10.0, help="simulated seconds of the batched cell")
     ap.add_argument("--skip-speed", action="store_true")
     ap.add_argument("--skip-dynamics", action="store_true")
     ap.add_argument("--report-only", action="store_true", help="rewrite the doc from OUT/results.json")
@@ -162,6 +194,13 @@ def main(argv=None):
     sizes = [int(s) for s in args.sizes.split(",") if s]
     envs = HERE / ".envs"
     envs.mkdir(exist_ok=True)
+    import fcntl
+    guard = open(envs / ".harness-lock", "w")
+    try:   # two invocations at once would rebuild the same environments under each other
+        fcntl.flock(guard, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except OSError:
+        log(f"another run_peers.py holds {envs / '.harness-lock'}: wait for it to finish")
+        return 2
     results = {"started": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
                "command": " ".join([os.path.relpath(sys.argv[0], ROOT)] + sys.argv[1:]),
                "machine": machine(), "binary": binary, "reference": P.REFERENCE, "derived": P.derived(),
@@ -199,6 +238,7 @@ def main(argv=None):
         (out / "results.json").write_text(json.dumps(results, indent=1, default=float))
     if not args.skip_speed:
         for n in sizes:
+            reps = args.repeats if (n == 7 or not args.repeats_other) else args.repeats_other
             for workload in ("W1", "W2"):
                 toml = out / f"{workload}_n{n}.toml"
                 toml.write_text(E.experiment(workload, n, str(model), duration=args.duration))
@@ -206,7 +246,7 @@ def main(argv=None):
                 log(f"{workload} N={n}: mjformation")
                 cell = {"sim": "mjformation", "workload": workload, "n": n,
                         "controller": "smc (48)" if workload == "W2" else "hover"}
-                cell.update(mjformation_speed(binary, toml, out, workload, n, args.repeats))
+                cell.update(mjformation_speed(binary, toml, out, workload, n, reps))
                 results["speed"].append(cell)
                 for name in peers:
                     if name not in pys:
@@ -215,16 +255,19 @@ def main(argv=None):
                     for ctrl in ctrls:
                         log(f"{workload} N={n}: {name} ({ctrl})")
                         job = {"kind": "speed", "workload": workload, "n": n, "controller": ctrl,
-                               "duration": args.duration, "repeats": args.repeats, "wall_budget": args.wall_budget}
+                               "duration": args.duration, "repeats": reps, "wall_budget": args.wall_budget}
                         res = run_worker(pys[name], PEERS[name]["worker"],
                                          {"peer": name, "tag": f"{workload}_{n}_{ctrl}", "jobs": [job]}, out,
-                                         args.repeats * (args.wall_budget + 120) + 300)
+                                         reps * (args.wall_budget + 120) + 300)
                         j = res["jobs"][0] if res["jobs"] else {}
                         cell = {"sim": name, "workload": workload, "n": n, "controller": ctrl,
                                 "runs": j.get("runs", []), "physics_hz": j.get("physics_hz"),
                                 "error": j.get("error") or res.get("process_error")}
                         results["speed"].append(cell)
                 (out / "results.json").write_text(json.dumps(results, indent=1, default=float))
+    if not args.skip_speed and args.batch_worlds and "crazyflow" in pys:
+        results["batch"] = batch_cell(binary, pys["crazyflow"], model, out, args)
+        (out / "results.json").write_text(json.dumps(results, indent=1, default=float))
     results["finished"] = datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds")
     results["machine"]["loadavg_end"] = os.getloadavg()
     (out / "results.json").write_text(json.dumps(results, indent=1, default=float))

@@ -102,7 +102,7 @@ def dynamics(backend_cls, bare=False):
         sim.close()
     sim = make()
     hz = 20.0
-    out["open_loop"] = sim.open_loop({"pos": [0, 0, 0.5], "quat": [0, 0, 0, 1], "vel": [0, 0, 0],
+    out["open_loop"] = sim.open_loop({"pos": [0, 0, 20.0], "quat": [0, 0, 0, 1], "vel": [0, 0, 0],
                                       "omega": [0, 0, 0]}, open_loop_schedule(hz), hz)
     sim.close()
     sim = make()

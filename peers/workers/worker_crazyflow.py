@@ -150,5 +150,60 @@ class Crazyflow:
         return {"t": ts, "thrust": th, "note": "thrust = rpm2thrust rpm^2 of the rotor state"}
 
 
+def batch(job):
+    """W2 at n = job["n"] in job["worlds"] worlds at once (Crazyflow's batching): every world flies
+    the same references under the Mellinger state controller. Returns the stepping wall time."""
+    import time
+    from common import W
+    n, worlds, duration = job["n"], job["worlds"], job["duration"]
+    t0 = time.perf_counter()
+    sim = Sim(n_worlds=worlds, n_drones=n, drone=Drone.cf2x_L250, dynamics=Dynamics.first_principles,
+              control=Control.state, freq=500, state_freq=100)
+    matched(sim)
+    st = sim.data.states
+    starts = np.broadcast_to(W.starts(n)[None], (worlds, n, 3))
+    rpm = P.derived()["hover_omega"] * RPM
+    sim.data = sim.data.replace(states=st.replace(
+        pos=jnp.asarray(starts, dtype=st.pos.dtype),
+        rotor_vel=jnp.full(st.rotor_vel.shape, rpm, dtype=st.rotor_vel.dtype)))
+    setup = time.perf_counter() - t0
+    steps, k_max = 5, int(round(duration * 100))
+    warm, t0 = None, time.perf_counter()
+    for k in range(k_max):
+        t = k / 100.0
+        p0, v0, a0 = W.leader(t)
+        ps, vs, as_ = W.slot_references(t, n - 1)
+        cmd = np.zeros((worlds, n, 16))
+        cmd[:, :, 0:3] = np.vstack([p0, ps])
+        cmd[:, :, 3:6] = np.vstack([v0, vs])
+        cmd[:, :, 6:9] = np.vstack([a0, as_])
+        cmd[:, :, 12] = 1.0
+        sim.state_control(cmd)
+        sim.step(steps)
+        if k == 0:
+            sim.data.states.pos.block_until_ready()
+            warm, t0 = time.perf_counter() - t0, time.perf_counter()
+    sim.data.states.pos.block_until_ready()
+    wall = time.perf_counter() - t0
+    pos = np.asarray(sim.data.states.pos)
+    err = float(np.mean([W.slot_error((k_max - 1) / 100.0 + 0.01, pos[w], n - 1) for w in range(worlds)]))
+    return {"worlds": worlds, "n": n, "setup_s": setup, "warmup_s": warm, "wall_s": wall,
+            "sim_s": (k_max - 1) / 100.0, "runs_per_hour": worlds * 3600.0 / (wall + warm + setup),
+            "runs_per_hour_stepping": worlds * 3600.0 / wall, "final_error": err,
+            "xla_flags": __import__("os").environ.get("XLA_FLAGS")}
+
+
 if __name__ == "__main__":
-    main(Crazyflow)
+    import json
+    import sys
+    task = json.load(open(sys.argv[1]))
+    if task["jobs"] and task["jobs"][0]["kind"] == "batch":
+        out = {"peer": "crazyflow", "jobs": []}
+        for job in task["jobs"]:
+            try:
+                out["jobs"].append(dict(batch(job), job=job))
+            except Exception as exc:
+                out["jobs"].append({"job": job, "error": f"{type(exc).__name__}: {exc}"})
+            json.dump(out, open(sys.argv[2], "w"), indent=1, default=float)
+    else:
+        main(Crazyflow)
