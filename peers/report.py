@@ -341,15 +341,16 @@ difference between two simulators grows in time and the time to 5 cm measures ho
 part. As modelled, the peers part from mjformation (and from each other) after 1.2-1.3 s: their drag
 terms act from the first instant the vehicle turns or moves (PyFlyt's rotational damping most, since it
 acts on the attitude, whose error is integrated twice into position). With the extra terms off, what is
-left is the integration of the same equations:
-- RotorPy (RK45 within each 10 ms step, its error tolerance ~1e-3 relative) and mjformation
-  (semi-implicit Euler at 1 ms) stay within a centimetre for the whole 4 s: both integrate the same
-  smooth equations finely.
-- PyFlyt and Crazyflow integrate the motor state with explicit Euler at their physics step (4.17 ms and
-  2 ms), which shortens the effective motor time constant (see (c)) and shifts every thrust change by a
-  fraction of a step, and Bullet and Crazyflow integrate the body at 240 Hz and 500 Hz; Crazyflow also
-  works in float32. These are the remaining, smaller sources; the table gives the time each takes to
-  reach 5 cm.
+left is the integration of the same equations, and the table and figure show it is small:
+- RotorPy (RK45 within each 10 ms step) and mjformation (semi-implicit Euler at 1 ms) integrate the same
+  smooth equations finely and stay about a centimetre apart after 4 s of tumbling.
+- PyFlyt (Bullet at 240 Hz, the motor state by explicit Euler at 4.17 ms) ends a few centimetres away.
+- Crazyflow (explicit Euler at 500 Hz for body and motors, in float32) is the first to part, after a few
+  seconds: explicit Euler's first-order error at a step twice mjformation's, the motor Euler that shortens
+  the effective time constant (see (c)), and float32, which rounds the state at 1e-7 relative every step;
+  this harness does not separate the three.
+So the matched models agree in open loop for seconds; what separates them within about a second is the
+peers' aerodynamic terms, not the integrators.
 
 **(c) Motor lag.** All four use the matched first-order constant tau = 72 ms, but not on the same
 quantity. mjformation's MuJoCo `filter` actuator lags the thrust itself, so the thrust reaches 63.2 % of
