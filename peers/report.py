@@ -217,9 +217,10 @@ SPEED_NOTES = """Reading the table:
 - mjformation's followers fly `pd_cascade`. With the `geometric` attitude plugin, whose loops are derived
   from the vehicle (rate_bw <= 1 / tau = 13.9 rad/s for the 72 ms motors, att_bw 3.0 rad/s, z_bw 1.2 rad/s),
   the discrete SMC law (T = 0.05 s, gain 1 / (k2 T) = 20 1/s on the velocity error) outruns the tilt loop on
-  this slow-motor vehicle: in W2 at N = 7 the followers oscillate with tilts up to 0.56 rad, one touches the
-  ground at 3.6 s, and the slot error stays near 0.5 m (`--set 'attitude={plugin="geometric"}'` on
-  peers/out/W2_n7.toml reproduces it). That is a finding about our stock plugin on a slow-motor vehicle,
+  this slow-motor vehicle: in W2 at N = 7 the followers oscillate with tilts up to 0.72 rad, follower 5
+  touches the ground at 3.6 s (15 safety events in all), and the slot error stays at 0.49 m on [25, 40] s
+  against 0.008 m with `pd_cascade` (`mjformation run peers/out/W2_n7.toml --set
+  'attitude={plugin="geometric"}'` reproduces it). That is a finding about our stock plugin on a slow-motor vehicle,
   not a peer's. RotorPy's SE3 controller (kp_att 310, kd_att 57) carries the same law.
 """
 
@@ -316,7 +317,8 @@ EXPLAIN = """
 
 **(a) Accelerations.** With the matched parameters, the four simulators compute the same rigid body
 under the same thrusts: level and at rest they agree to rounding (Crazyflow to float32's 1e-6 relative,
-JAX's default precision; RotorPy's 8e-9 rad/s^2 is the square root in its thrust-to-speed conversion).
+JAX's default precision; the 8e-9 rad/s^2 in yaw against RotorPy and PyFlyt is mjformation's side: the
+generated MJCF writes the yaw arm k_m / k_eta to 9 significant digits).
 In the tilted, moving state each peer adds terms of its own model that mjformation's vehicle does not
 have (MuJoCo computes no aerodynamics for it), and the "predicted" column evaluates exactly those terms
 from the peers' published formulas and coefficients (peers/peerlib/crosscheck.py): the residual after
