@@ -214,6 +214,13 @@ SPEED_NOTES = """Reading the table:
 - PyFlyt has no flight mode that takes an acceleration (mode 6 takes velocities, 7 positions), so the
   Python SMC law, whose output is an acceleration, is not flown there; its "own position controller" row
   gets positions only (no feed-forward), which is why it trails the turning slots.
+- RotorPy hovers (W1) at a lower real-time factor than it flies W2: each 10 ms step is a fresh
+  `solve_ivp` RK45 call, and at an exact equilibrium (W1 starts every vehicle at hover, rotors at hover
+  speed, and RotorPy holds it to the last digit: error 0) scipy's initial-step rule takes h0 = 1e-6 s when
+  the derivative is below 1e-5 and RK45 grows the step at most tenfold per step, so each call takes
+  several more internal steps (consistent with the cost; the steps were not counted).
+- Crazyflow steps all drones of a world as one array: from N = 1 to 7 its vehicle-steps per second grow
+  almost sevenfold; its setup and JIT compilation (the "first period") cost seconds, once per Sim.
 - mjformation's followers fly `pd_cascade`. With the `geometric` attitude plugin, whose loops are derived
   from the vehicle (rate_bw <= 1 / tau = 13.9 rad/s for the 72 ms motors, att_bw 3.0 rad/s, z_bw 1.2 rad/s),
   the discrete SMC law (T = 0.05 s, gain 1 / (k2 T) = 20 1/s on the velocity error) outruns the tilt loop on
