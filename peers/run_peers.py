@@ -1,0 +1,281 @@
+#!/usr/bin/env python3
+# Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+"""The peers harness (issue 37, docs/PEERS.md): mjformation beside RotorPy, PyFlyt and Crazyflow.
+
+  /usr/bin/python3 peers/run_peers.py --build build            # everything -> docs/PEERS.md
+  /usr/bin/python3 peers/run_peers.py --build /work/base/build --sizes 7 --repeats 3 --quick
+
+Installs each peer into its own virtual environment (peers/.envs/NAME) from its pinned lock
+(peers/locks/NAME.txt), runs each in its own process (peers/workers/worker_NAME.py) with
+single-threaded BLAS/XLA, times mjformation's runner (BUILD/runner/mjformation) on the same
+workloads in the same invocation, runs the dynamics tiers, writes peers/out/results.json, the
+divergence figure and docs/PEERS.md. Not part of CI: it installs from a registry."""
+
+import argparse
+import datetime
+import hashlib
+import json
+import os
+import platform
+import shutil
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parent
+sys.path.insert(0, str(HERE))
+
+from peerlib import experiments as E  # noqa: E402
+from peerlib import params as P  # noqa: E402
+from peerlib import workload as W  # noqa: E402
+
+PEERS = {
+    "rotorpy": {"lock": "rotorpy.txt", "worker": "worker_rotorpy.py", "hosts_law": True},
+    "pyflyt": {"lock": "pyflyt.txt", "worker": "worker_pyflyt.py", "hosts_law": False},
+    "crazyflow": {"lock": "crazyflow.txt", "worker": "worker_crazyflow.py", "hosts_law": True},
+}
+THREADS_ENV = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1",
+               "NUMBA_NUM_THREADS": "1",
+               "XLA_FLAGS": "--xla_cpu_multi_thread_eigen=false intra_op_parallelism_threads=1",
+               "JAX_PLATFORMS": "cpu", "PYTHONDONTWRITEBYTECODE": "1"}
+
+
+def log(msg):
+    print(f"[peers {time.strftime('%H:%M:%S')}] {msg}", flush=True)
+
+
+def ensure_env(name, python, envs):
+    """peers/.envs/NAME from locks/NAME.txt (exact pins); reinstalled when the lock changes.
+    Returns (python path or None, error text or None)."""
+    lock = HERE / "locks" / f"{name}.txt"
+    env = envs / name
+    stamp = env / ".lock-sha256"
+    digest = hashlib.sha256(lock.read_bytes()).hexdigest()
+    py = env / "bin" / "python"
+    if py.exists() and stamp.exists() and stamp.read_text() == digest:
+        return str(py), None
+    log(f"installing {name} from {lock.name}")
+    if env.exists():
+        shutil.rmtree(env)
+    cmds = [[python, "-m", "venv", str(env)],
+            ["nice", "-n", "10", str(py), "-m", "pip", "install", "-q", "--disable-pip-version-check",
+             "--no-deps", "-r", str(lock)]]
+    for cmd in cmds:
+        r = subprocess.run(cmd, capture_output=True, text=True)
+        if r.returncode != 0:
+            return None, f"`{' '.join(cmd[-4:])}` exit {r.returncode}: {(r.stderr or r.stdout).strip()[-1500:]}"
+    stamp.write_text(digest)
+    return str(py), None
+
+
+def run_worker(py, worker, task, out, timeout):
+    tf, rf = out / f"task_{task['peer']}_{task['tag']}.json", out / f"result_{task['peer']}_{task['tag']}.json"
+    tf.write_text(json.dumps(task))
+    env = dict(os.environ, **THREADS_ENV)
+    t0 = time.perf_counter()
+    try:
+        r = subprocess.run([py, str(HERE / "workers" / worker), str(tf), str(rf)], capture_output=True,
+                           text=True, timeout=timeout, env=env, cwd=str(HERE / "workers"))
+        err = None if r.returncode == 0 else f"exit {r.returncode}: {r.stderr.strip()[-1500:]}"
+    except subprocess.TimeoutExpired:
+        err = f"timed out after {timeout:.0f} s"
+    res = json.loads(rf.read_text()) if rf.exists() else {"jobs": []}
+    res["process_error"], res["process_wall_s"] = err, time.perf_counter() - t0
+    return res
+
+
+def read_positions(run_dir, n):
+    """(t, positions (k, n, 3)) from a run's timeseries.csv."""
+    import numpy as np
+    d = np.genfromtxt(run_dir / "timeseries.csv", delimiter=",", names=True)
+    pos = np.stack([np.stack([d[f"uav{i}_p{c}"] for c in "xyz"], axis=1) for i in range(n)], axis=1)
+    return d["t"], pos
+
+
+def mjformation_speed(binary, toml, out, workload, n, repeats):
+    """Runs of the runner (no render); wall = summary.json's timing.wall_time_s (the stepping
+    loop); setup = the process's wall time less that."""
+    n_run = max(n, 2)
+    runs = []
+    for k in range(repeats):
+        rd = out / f"mjf_{workload}_n{n}_{k}"
+        t0 = time.perf_counter()
+        r = subprocess.run([binary, "run", str(toml), "--out", str(rd), "--no-render", "--overwrite", "-q"],
+                           capture_output=True, text=True)
+        proc = time.perf_counter() - t0
+        if not (rd / "summary.json").exists():
+            return {"error": f"exit {r.returncode}: {r.stderr.strip()[-800:]}", "runs": runs}
+        s = json.loads((rd / "summary.json").read_text())
+        tm = s.get("timing", {})
+        t, pos = read_positions(rd, n_run)
+        win = (t >= 25.0) & (t <= 40.0 + 1e-9)
+        if workload == "W1":
+            errs = [W.hover_error(pos[i], n_run) for i in range(len(t)) if win[i]]
+        else:
+            errs = [W.slot_error(t[i], pos[i], n_run - 1) for i in range(len(t)) if win[i]]
+        final = W.hover_error(pos[-1], n_run) if workload == "W1" else W.slot_error(t[-1], pos[-1], n_run - 1)
+        runs.append({"wall_s": tm.get("wall_time_s"), "sim_s": float(s.get("sim_time_s") or t[-1]),
+                     "physics_steps": int(s.get("steps") or round(float(t[-1]) * 1000)), "setup_s": proc - (tm.get("wall_time_s") or 0),
+                     "warmup_s": None, "error_mean_25_40": sum(errs) / len(errs) if errs else None, "error_final": final,
+                     "complete": s.get("complete"), "events": (s.get("events") or {}).get("by_kind")})
+        if k > 0:
+            shutil.rmtree(rd, ignore_errors=True)
+    return {"runs": runs, "physics_hz": 1000.0, "n_run": n_run}
+
+
+def batch_cell(binary, crazyflow_py, model, out, args):
+    """40-s W2 runs (N = 7) per hour on both cores: Crazyflow's batch of worlds (XLA on 2 threads)
+    against mjformation's sweep with 2 workers, over the same number of runs."""
+    worlds = args.batch_worlds
+    log(f"batched: Crazyflow {worlds} worlds, mjformation sweep of {worlds} runs on 2 workers")
+    toml = out / "W2_n7_batch.toml"
+    toml.write_text(E.experiment("W2", 7, str(model), duration=40.0))
+    t0 = time.perf_counter()
+    r = subprocess.run([binary, "sweep", str(toml), "--seeds", str(worlds), "--jobs", "2", "--no-render",
+                        "-o", str(out / "mjf_sweep"), "--overwrite"], capture_output=True, text=True)
+    wall = time.perf_counter() - t0
+    ours = {"runs": worlds, "wall_s": wall, "runs_per_hour": worlds * 3600.0 / wall,
+            "error": None if r.returncode == 0 else f"exit {r.returncode}: {r.stderr.strip()[-500:]}"}
+    task = {"peer": "crazyflow", "tag": "batch",
+            "jobs": [{"kind": "batch", "n": 7, "worlds": worlds, "duration": args.batch_duration}]}
+    env_flags = THREADS_ENV["XLA_FLAGS"]
+    THREADS_ENV["XLA_FLAGS"] = "--xla_cpu_multi_thread_eigen=true intra_op_parallelism_threads=2"
+    try:
+        res = run_worker(crazyflow_py, PEERS["crazyflow"]["worker"], task, out, 3600)
+    finally:
+        THREADS_ENV["XLA_FLAGS"] = env_flags
+    j = res["jobs"][0] if res.get("jobs") else {"error": res.get("process_error")}
+    if "wall_s" in j:   # scale the stepping to a 40-s run; setup and compilation once
+        j["runs_per_hour_40s"] = worlds * 3600.0 / (j["setup_s"] + j["warmup_s"] + j["wall_s"] * 40.0 / j["sim_s"])
+    return {"mjformation": ours, "crazyflow": j}
+
+
+def machine():
+    def sh(cmd):
+        try:
+            return subprocess.run(cmd, shell=True, capture_output=True, text=True).stdout.strip()
+        except OSError:
+            return ""
+    return {"cpu": sh("lscpu | sed -n 's/^Model name: *//p'"), "nproc": os.cpu_count(),
+            "python": platform.python_version(), "os": sh(". /etc/os-release; echo $PRETTY_NAME"),
+            "loadavg": os.getloadavg()}
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--build", default=str(ROOT / "build"), help="mjformation build folder (BUILD/runner/mjformation)")
+    ap.add_argument("--binary", help="the runner itself (overrides --build)")
+    ap.add_argument("--peers", default="rotorpy,pyflyt,crazyflow")
+    ap.add_argument("--sizes", default="1,7,49", help="vehicles in all, comma separated")
+    ap.add_argument("--repeats", type=int, default=5, help="runs per cell (median and range reported)")
+    ap.add_argument("--repeats-other", type=int, default=0,
+                    help="runs per cell for sizes other than 7 (0: --repeats)")
+    ap.add_argument("--duration", type=float, default=40.0, help="simulated seconds per run")
+    ap.add_argument("--wall-budget", type=float, default=120.0, help="stop a peer run after this many wall seconds")
+    ap.add_argument("--python", default="/usr/bin/python3", help="interpreter the virtual environments are made from")
+    ap.add_argument("--out", default=str(HERE / "out"))
+    ap.add_argument("--doc", default=str(ROOT / "docs" / "PEERS.md"))
+    ap.add_argument("--batch-worlds", type=int, default=8, help="Crazyflow worlds in the batched 2-core cell (0: skip)")
+    ap.add_argument("--batch-duration", type=float, default=10.0, help="simulated seconds of the batched cell")
+    ap.add_argument("--skip-speed", action="store_true")
+    ap.add_argument("--skip-dynamics", action="store_true")
+    ap.add_argument("--report-only", action="store_true", help="rewrite the doc from OUT/results.json")
+    args = ap.parse_args(argv)
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    if args.report_only:
+        import report
+        report.write(json.loads((out / "results.json").read_text()), Path(args.doc), out)
+        return 0
+    binary = args.binary or str(Path(args.build) / "runner" / "mjformation")
+    peers = [p for p in args.peers.split(",") if p]
+    sizes = [int(s) for s in args.sizes.split(",") if s]
+    envs = HERE / ".envs"
+    envs.mkdir(exist_ok=True)
+    import fcntl
+    guard = open(envs / ".harness-lock", "w")
+    try:   # two invocations at once would rebuild the same environments under each other
+        fcntl.flock(guard, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except OSError:
+        log(f"another run_peers.py holds {envs / '.harness-lock'}: wait for it to finish")
+        return 2
+    results = {"started": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
+               "command": " ".join([os.path.relpath(sys.argv[0], ROOT)] + sys.argv[1:]),
+               "machine": machine(), "binary": binary, "reference": P.REFERENCE, "derived": P.derived(),
+               "unmatched": P.unmatched(), "args": vars(args), "install": {}, "speed": [], "dynamics": {}}
+    ver = subprocess.run([binary, "--version"], capture_output=True, text=True)
+    results["mjformation_version"] = (ver.stdout or ver.stderr).strip().splitlines()[0]
+    pys = {}
+    for name in peers + ["mujoco"]:
+        py, err = ensure_env(name, args.python, envs)
+        results["install"][name] = {"ok": py is not None, "error": err,
+                                    "pins": [l for l in (HERE / "locks" / f"{name}.txt").read_text().split()
+                                             if l.split("==")[0].lower() in (name, "pyflyt", "rotorpy", "crazyflow", "drone_models", "mujoco", "numpy", "jax", "pybullet", "scipy")]}
+        if py:
+            pys[name] = py
+        else:
+            log(f"{name}: install failed: {err}")
+    model = out / "cfref.xml"
+    model.write_text(P.mjcf())
+    if not args.skip_dynamics:
+        log("dynamics tiers")
+        toml = out / "dyn_w1.toml"
+        toml.write_text(E.experiment("W1", 2, str(model), duration=0.1))
+        rd = out / "mjf_scene"
+        subprocess.run([binary, "run", str(toml), "--out", str(rd), "--no-render", "--overwrite", "-q"],
+                       capture_output=True, text=True)
+        scene = rd / "scene.xml"
+        if "mujoco" in pys:
+            results["dynamics"]["mjformation"] = run_worker(
+                pys["mujoco"], "worker_mujoco.py", {"peer": "mjformation", "tag": "dyn",
+                                                    "model": str(scene) if scene.exists() else None}, out, 600)
+        for name in peers:
+            if name in pys:
+                task = {"peer": name, "tag": "dyn", "jobs": [{"kind": "dynamics"}, {"kind": "dynamics", "bare": True}]}
+                results["dynamics"][name] = run_worker(pys[name], PEERS[name]["worker"], task, out, 1200)
+        (out / "results.json").write_text(json.dumps(results, indent=1, default=float))
+    if not args.skip_speed:
+        for n in sizes:
+            reps = args.repeats if (n == 7 or not args.repeats_other) else args.repeats_other
+            for workload in ("W1", "W2"):
+                toml = out / f"{workload}_n{n}.toml"
+                toml.write_text(E.experiment(workload, n, str(model), duration=args.duration))
+                results["machine"].setdefault("load_during", []).append(os.getloadavg())
+                log(f"{workload} N={n}: mjformation")
+                cell = {"sim": "mjformation", "workload": workload, "n": n,
+                        "controller": "smc (48)" if workload == "W2" else "hover"}
+                cell.update(mjformation_speed(binary, toml, out, workload, n, reps))
+                results["speed"].append(cell)
+                for name in peers:
+                    if name not in pys:
+                        continue
+                    ctrls = ["own"] + (["smc"] if workload == "W2" and PEERS[name]["hosts_law"] and n > 1 else [])
+                    for ctrl in ctrls:
+                        log(f"{workload} N={n}: {name} ({ctrl})")
+                        job = {"kind": "speed", "workload": workload, "n": n, "controller": ctrl,
+                               "duration": args.duration, "repeats": reps, "wall_budget": args.wall_budget}
+                        res = run_worker(pys[name], PEERS[name]["worker"],
+                                         {"peer": name, "tag": f"{workload}_{n}_{ctrl}", "jobs": [job]}, out,
+                                         reps * (args.wall_budget + 120) + 300)
+                        j = res["jobs"][0] if res["jobs"] else {}
+                        cell = {"sim": name, "workload": workload, "n": n, "controller": ctrl,
+                                "runs": j.get("runs", []), "physics_hz": j.get("physics_hz"),
+                                "error": j.get("error") or res.get("process_error")}
+                        results["speed"].append(cell)
+                (out / "results.json").write_text(json.dumps(results, indent=1, default=float))
+    if not args.skip_speed and args.batch_worlds and "crazyflow" in pys:
+        results["batch"] = batch_cell(binary, pys["crazyflow"], model, out, args)
+        (out / "results.json").write_text(json.dumps(results, indent=1, default=float))
+    results["finished"] = datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds")
+    results["machine"]["loadavg_end"] = os.getloadavg()
+    (out / "results.json").write_text(json.dumps(results, indent=1, default=float))
+    import report
+    report.write(results, Path(args.doc), out)
+    log(f"wrote {args.doc}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
