@@ -1,59 +1,25 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// The scene is composed with MuJoCo's model editing API: the world and the vehicle are read
+// into specs, the vehicle body attached once per vehicle with its prefix (mjs_attach brings its
+// actuators, sensors, contact pairs, tendons and equalities along, in attachment order, so the
+// compiled model orders them vehicle by vehicle as the MJCF composition did), compiled once and
+// written by MuJoCo's own MJCF writer.
 #include "mjformation/scene/scene.hpp"
 
 #include <mujoco/mujoco.h>
-#include <tinyxml2.h>
 
-#include <cstdio>
-#include <cstdlib>
+#include <algorithm>
 #include <cstring>
-#include <set>
 
 #include "mjcf_util.hpp"
+#include "mjspec_util.hpp"
+#include "scene_assets.hpp"
 
 namespace mjf::runner {
 namespace {
 
-using tinyxml2::XMLDocument;
-using tinyxml2::XMLElement;
-
-void Load(XMLDocument& doc, const std::string& path, const char* what) {
-  if (doc.LoadFile(path.c_str()) != tinyxml2::XML_SUCCESS) {
-    throw SceneError(path + ":" + std::to_string(doc.ErrorLineNum()) + ": cannot read the " + what +
-                     ": " + doc.ErrorStr());
-  }
-  if (!doc.RootElement() || std::strcmp(doc.RootElement()->Name(), "mujoco") != 0) {
-    throw SceneError(path + ": the " + std::string(what) + " is not MJCF (no <mujoco> root)");
-  }
-}
-
-XMLElement* ChildOrNew(XMLDocument& doc, XMLElement* parent, const char* tag) {
-  XMLElement* e = parent->FirstChildElement(tag);
-  if (!e) e = parent->InsertNewChildElement(tag);
-  (void)doc;
-  return e;
-}
-
-void CopyAttributes(const XMLElement* from, XMLElement* to) {
-  for (auto* a = from->FirstAttribute(); a; a = a->Next()) to->SetAttribute(a->Name(), a->Value());
-}
-
-void PrefixNames(XMLElement* e, const std::string& prefix) {
-  // The element's own name and every name it refers to belong to this copy.
-  if (const char* v = e->Attribute("name")) e->SetAttribute("name", (prefix + v).c_str());
-  for (const auto& ref : mjcf::kReferenceAttributes) {
-    if (const char* v = e->Attribute(ref.name)) e->SetAttribute(ref.name, (prefix + v).c_str());
-  }
-  for (XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
-    PrefixNames(c, prefix);
-  }
-}
-
-std::string FormatVec(const std::array<double, 3>& v) {
-  char buf[128];
-  std::snprintf(buf, sizeof(buf), "%.17g %.17g %.17g", v[0], v[1], v[2]);
-  return buf;
-}
+using spec::SpecPtr;
 
 // Bring your own quadrotor: what the adapter did to the model, for the scene's header comment.
 std::string AdapterNotes(const SceneRequest& request) {
@@ -66,22 +32,14 @@ std::string AdapterNotes(const SceneRequest& request) {
   return out + "\n";
 }
 
-}  // namespace
-
-std::string VehiclePrefix(int vehicle) { return "uav" + std::to_string(vehicle) + "_"; }
-
-namespace {
-
 // The vehicle's top-level body: exactly one, named "vehicle".
-const XMLElement* VehicleBody(const XMLElement* vroot, const std::string& vehicle_path) {
-  const XMLElement* vworld = vroot->FirstChildElement("worldbody");
-  const XMLElement* body = nullptr;
-  for (const XMLElement* b = vworld ? vworld->FirstChildElement("body") : nullptr; b;
-       b = b->NextSiblingElement("body")) {
-    if (b->Attribute("name", "vehicle")) {
-      if (body) throw SceneError(vehicle_path + ": two top-level bodies named 'vehicle'");
-      body = b;
-    }
+mjsBody* VehicleBody(mjSpec* vehicle, const std::string& vehicle_path) {
+  mjsBody* world = mjs_findBody(vehicle, "world");
+  mjsBody* body = nullptr;
+  for (mjsElement* e = mjs_firstChild(world, mjOBJ_BODY, 0); e; e = mjs_nextChild(world, e, 0)) {
+    if (spec::Name(e) != "vehicle") continue;
+    if (body) throw SceneError(vehicle_path + ": two top-level bodies named 'vehicle'");
+    body = mjs_asBody(e);
   }
   if (!body) {
     throw SceneError(vehicle_path +
@@ -91,116 +49,150 @@ const XMLElement* VehicleBody(const XMLElement* vroot, const std::string& vehicl
   return body;
 }
 
-// <default> or <asset> of the vehicle added to the scene's, skipping names it already has; asset
-// files are found relative to the vehicle file, wherever the scene is written.
-void MergeNamedChildren(XMLDocument& scene, XMLElement* root, const XMLElement* s,
-                        const std::string& vdir) {
-  const std::string tag = s->Name();
-  XMLElement* target = ChildOrNew(scene, root, tag.c_str());
-  if (tag == "default") CopyAttributes(s, target);
-  std::set<std::string> existing;
-  for (XMLElement* c = target->FirstChildElement(); c; c = c->NextSiblingElement()) {
-    if (const char* n = c->Attribute("name")) existing.insert(std::string(c->Name()) + n);
-    if (const char* n = c->Attribute("class")) existing.insert(std::string(c->Name()) + n);
-  }
-  for (const XMLElement* c = s->FirstChildElement(); c; c = c->NextSiblingElement()) {
-    const char* n = c->Attribute(tag == "default" ? "class" : "name");
-    if (n && existing.count(std::string(c->Name()) + n)) continue;
-    XMLElement* copy = c->DeepClone(&scene)->ToElement();
-    if (const char* file = copy->Attribute("file"); file && file[0] != '/') {
-      copy->SetAttribute("file", (vdir + "/" + file).c_str());
-    }
-    target->InsertEndChild(copy);
-  }
+// A field the vehicle sets (it differs from MuJoCo's default) overrides the scene's: what the
+// vehicle's <compiler>, <option> and <size> attributes did when both were merged as MJCF.
+void MergeField(const void* from, const void* fallback, void* to, size_t size) {
+  if (std::memcmp(from, fallback, size) != 0) std::memcpy(to, from, size);
+}
+#define MJF_MERGE(from, fallback, to, field) \
+  MergeField(&(from).field, &(fallback).field, &(to).field, sizeof((to).field))
+
+void MergeFlags(int from, int fallback, int* to) {
+  const int set = from ^ fallback;
+  *to = (*to & ~set) | (from & set);
 }
 
-// Global sections: the vehicle's compiler, option, size, default and asset merged into the scene.
-void MergeGlobalSections(XMLDocument& scene, XMLElement* root, const XMLElement* vroot,
-                         const std::string& vehicle_path) {
-  const std::string vdir = mjcf::ModelDirectory(vehicle_path);
-  for (const XMLElement* s = vroot->FirstChildElement(); s; s = s->NextSiblingElement()) {
-    const std::string tag = s->Name();
-    if (tag == "compiler" || tag == "option" || tag == "size") {
-      XMLElement* target = ChildOrNew(scene, root, tag.c_str());
-      CopyAttributes(s, target);
-      for (const XMLElement* c = s->FirstChildElement(); c; c = c->NextSiblingElement()) {
-        CopyAttributes(c, ChildOrNew(scene, target, c->Name()));
-      }
-    } else if (tag == "default" || tag == "asset") {
-      MergeNamedChildren(scene, root, s, vdir);
-    }
+void MergeOption(const mjOption& v, const mjOption& d, mjOption& s) {
+  for (auto f :
+       {&mjOption::timestep, &mjOption::impratio, &mjOption::tolerance, &mjOption::ls_tolerance,
+        &mjOption::noslip_tolerance, &mjOption::ccd_tolerance, &mjOption::sleep_tolerance,
+        &mjOption::density, &mjOption::viscosity, &mjOption::o_margin}) {
+    MergeField(&(v.*f), &(d.*f), &(s.*f), sizeof(mjtNum));
   }
+  for (auto f : {&mjOption::integrator, &mjOption::cone, &mjOption::jacobian, &mjOption::solver,
+                 &mjOption::iterations, &mjOption::ls_iterations, &mjOption::noslip_iterations,
+                 &mjOption::ccd_iterations, &mjOption::sdf_initpoints, &mjOption::sdf_iterations}) {
+    MergeField(&(v.*f), &(d.*f), &(s.*f), sizeof(int));
+  }
+  MJF_MERGE(v, d, s, gravity);
+  MJF_MERGE(v, d, s, wind);
+  MJF_MERGE(v, d, s, magnetic);
+  MJF_MERGE(v, d, s, o_solref);
+  MJF_MERGE(v, d, s, o_solimp);
+  MJF_MERGE(v, d, s, o_friction);
+  MergeFlags(v.disableflags, d.disableflags, &s.disableflags);  // <flag>: one by one
+  MergeFlags(v.enableflags, d.enableflags, &s.enableflags);
+  MergeFlags(v.disableactuator, d.disableactuator, &s.disableactuator);
 }
 
-// Time step, integrator, contacts and the offscreen buffer the renderers need.
-void SetSimulationOptions(XMLDocument& scene, XMLElement* root, const SceneRequest& request) {
-  // mj_step1/mj_step2 (the split the controllers need to read sensors of the current state)
-  // supports Euler and the implicit integrators, not RK4; the experiments integrate with Euler.
-  XMLElement* option = ChildOrNew(scene, root, "option");
-  char ts[64];
-  std::snprintf(ts, sizeof(ts), "%.17g", request.timestep);
-  option->SetAttribute("timestep", ts);
-  option->SetAttribute("integrator", "Euler");
-  if (request.disable_contacts) {
-    ChildOrNew(scene, option, "flag")->SetAttribute("contact", "disable");
+void MergeCompilerAndSize(const mjSpec& v, const mjSpec& d, mjSpec& s) {
+  MJF_MERGE(v, d, s, compiler.autolimits);
+  MJF_MERGE(v, d, s, compiler.boundmass);
+  MJF_MERGE(v, d, s, compiler.boundinertia);
+  MJF_MERGE(v, d, s, compiler.settotalmass);
+  MJF_MERGE(v, d, s, compiler.balanceinertia);
+  MJF_MERGE(v, d, s, compiler.fitaabb);
+  MJF_MERGE(v, d, s, compiler.degree);
+  MJF_MERGE(v, d, s, compiler.eulerseq);
+  MJF_MERGE(v, d, s, compiler.discardvisual);
+  MJF_MERGE(v, d, s, compiler.usethread);
+  MJF_MERGE(v, d, s, compiler.fusestatic);
+  MJF_MERGE(v, d, s, compiler.inertiafromgeom);
+  MJF_MERGE(v, d, s, compiler.inertiagrouprange);
+  MJF_MERGE(v, d, s, compiler.alignfree);
+  MJF_MERGE(v, d, s, compiler.LRopt);
+  for (auto f : {&mjSpec::nemax, &mjSpec::nuserdata, &mjSpec::nuser_body, &mjSpec::nuser_jnt,
+                 &mjSpec::nuser_geom, &mjSpec::nuser_site, &mjSpec::nuser_cam,
+                 &mjSpec::nuser_tendon, &mjSpec::nuser_actuator, &mjSpec::nuser_sensor,
+                 &mjSpec::nkey, &mjSpec::njmax, &mjSpec::nconmax}) {
+    MergeField(&(v.*f), &(d.*f), &(s.*f), sizeof(int));
   }
-  XMLElement* visual = ChildOrNew(scene, root, "visual");
-  XMLElement* global = ChildOrNew(scene, visual, "global");
-  global->SetAttribute("offwidth",
-                       std::max(request.offscreen_width, global->IntAttribute("offwidth")));
-  global->SetAttribute("offheight",
-                       std::max(request.offscreen_height, global->IntAttribute("offheight")));
+  MJF_MERGE(v, d, s, memory);
+  MJF_MERGE(v, d, s, nstack);
+}
+#undef MJF_MERGE
+
+// The scene's global settings: the vehicle's merged in, then the experiment's time step,
+// integrator, contacts and offscreen size. mj_step1/mj_step2 (the split the controllers need to
+// read sensors of the current state) supports Euler and the implicit integrators, not RK4; the
+// experiments integrate with Euler.
+void SetGlobals(mjSpec* scene, mjSpec* vehicle, const SceneRequest& request) {
+  const SpecPtr defaults(mj_makeSpec());
+  MergeCompilerAndSize(*vehicle, *defaults, *scene);
+  MergeOption(vehicle->option, defaults->option, scene->option);
+  scene->option.timestep = request.timestep;
+  scene->option.integrator = mjINT_EULER;
+  if (request.disable_contacts) scene->option.disableflags |= mjDSBL_CONTACT;
+  mjVisual& visual = scene->visual;
+  visual.global.offwidth = std::max(request.offscreen_width, visual.global.offwidth);
+  visual.global.offheight = std::max(request.offscreen_height, visual.global.offheight);
+  // An attached body is compiled with its own model's settings: the scene's, as when it was one
+  // MJCF file; and with equal settings mjs_attach has no conflict to warn about.
+  mjString* meshdir = vehicle->compiler.meshdir;
+  mjString* texturedir = vehicle->compiler.texturedir;
+  vehicle->compiler = scene->compiler;
+  vehicle->compiler.meshdir = meshdir;
+  vehicle->compiler.texturedir = texturedir;
+  vehicle->option = scene->option;
+  vehicle->visual = scene->visual;
+  vehicle->stat = scene->stat;
+  vehicle->authored = scene->authored;
+  MergeCompilerAndSize(*scene, *defaults, *vehicle);
 }
 
-// 1 + N prefixed copies of the vehicle body and of its per-vehicle sections (actuators, sensors,
-// contact pairs/excludes, tendons, equalities).
-void AddVehicleCopies(XMLDocument& scene, XMLElement* root, const XMLElement* vroot,
-                      const XMLElement* body, const SceneRequest& request) {
-  XMLElement* world = ChildOrNew(scene, root, "worldbody");
-  const int n_vehicles = static_cast<int>(request.positions.size());
-  for (int i = 0; i < n_vehicles; ++i) {
-    XMLElement* copy = body->DeepClone(&scene)->ToElement();
-    PrefixNames(copy, VehiclePrefix(request.first_vehicle + i));
-    copy->SetAttribute("pos", FormatVec(request.positions[i]).c_str());
-    world->InsertEndChild(copy);
-  }
-  for (const char* tag : {"actuator", "sensor", "contact", "tendon", "equality"}) {
-    const XMLElement* s = vroot->FirstChildElement(tag);
-    if (!s) continue;
-    if (request.strip_actuators && std::strcmp(tag, "actuator") == 0) continue;
-    XMLElement* target = ChildOrNew(scene, root, tag);
-    for (int i = 0; i < n_vehicles; ++i) {
-      for (const XMLElement* c = s->FirstChildElement(); c; c = c->NextSiblingElement()) {
-        XMLElement* copy = c->DeepClone(&scene)->ToElement();
-        PrefixNames(copy, VehiclePrefix(request.first_vehicle + i));
-        target->InsertEndChild(copy);
-      }
+// 1 + N prefixed copies of the vehicle body, each at its start position, with the elements that
+// refer to it; one copy of the vehicle's assets.
+void AttachCopies(mjSpec* scene, mjSpec* vehicle, mjsBody* body, const SceneRequest& request) {
+  const std::set<std::string> assets = spec::AssetNames(vehicle);
+  mjs_setDeepCopy(scene, 1);  // each copy its own; the vehicle spec stays as it is
+  mjsBody* world = mjs_findBody(scene, "world");
+  std::vector<std::string> prefixes;
+  for (size_t i = 0; i < request.positions.size(); ++i) {
+    prefixes.push_back(VehiclePrefix(request.first_vehicle + static_cast<int>(i)));
+    mjsFrame* frame = mjs_addFrame(world, nullptr);
+    mjsBody* copy =
+        mjs_asBody(mjs_attach(frame->element, body->element, prefixes.back().c_str(), ""));
+    if (!copy) {
+      throw SceneError(request.vehicle_path +
+                       ": MuJoCo cannot attach the vehicle: " + mjs_getError(scene));
     }
+    std::copy(request.positions[i].begin(), request.positions[i].end(), copy->pos);
   }
+  ShareVehicleAssets(scene, assets, prefixes);
+}
+
+std::string Header(const SceneRequest& request) {
+  return std::string("<!-- Composed by mjformation from ") + request.scene_path + " and " +
+         std::to_string(request.positions.size()) + " copies of " + request.vehicle_path +
+         AdapterNotes(request) + " -->\n";
 }
 
 }  // namespace
 
-std::string ComposeScene(const SceneRequest& request) {
-  XMLDocument scene, vehicle;
-  Load(scene, request.scene_path, "scene model");
-  if (request.vehicle_xml.empty()) {
-    Load(vehicle, request.vehicle_path, "vehicle model");
-  } else if (vehicle.Parse(request.vehicle_xml.c_str()) != tinyxml2::XML_SUCCESS) {
-    throw SceneError(request.vehicle_path + " (adapted): " + vehicle.ErrorStr());
+std::string VehiclePrefix(int vehicle) { return "uav" + std::to_string(vehicle) + "_"; }
+
+void ModelDeleter::operator()(mjModel_* m) const { mj_deleteModel(m); }
+
+ComposedScene ComposeScene(const SceneRequest& request, const std::string& name) {
+  const SpecPtr scene = spec::Parse(request.scene_path, "", request.scene_path, "scene model");
+  const bool adapted = !request.vehicle_xml.empty();
+  const SpecPtr vehicle =
+      spec::Parse(request.vehicle_path, request.vehicle_xml,
+                  request.vehicle_path + (adapted ? " (adapted)" : ""), "vehicle model");
+  mjsBody* body = VehicleBody(vehicle.get(), request.vehicle_path);
+  if (request.strip_actuators) spec::DeleteAll(vehicle.get(), mjOBJ_ACTUATOR);
+  spec::DeleteAll(vehicle.get(), mjOBJ_KEY);  // a vehicle's keyframes do not fit the swarm
+  PrepareVehicleAssets(vehicle.get(), body, mjcf::ModelDirectory(request.vehicle_path));
+  mjs_setString(scene->modelname, "mjformation");
+  SetGlobals(scene.get(), vehicle.get(), request);
+  AttachCopies(scene.get(), vehicle.get(), body, request);
+  ComposedScene out;
+  out.model.reset(mj_compile(scene.get(), nullptr));
+  if (!out.model) {
+    throw SceneError(name + ": MuJoCo cannot load the model: " + mjs_getError(scene.get()));
   }
-  XMLElement* root = scene.RootElement();
-  const XMLElement* vroot = vehicle.RootElement();
-  root->SetAttribute("model", "mjformation");
-  const XMLElement* body = VehicleBody(vroot, request.vehicle_path);
-  MergeGlobalSections(scene, root, vroot, request.vehicle_path);
-  SetSimulationOptions(scene, root, request);
-  AddVehicleCopies(scene, root, vroot, body, request);
-  tinyxml2::XMLPrinter printer;
-  scene.Print(&printer);
-  return std::string("<!-- Composed by mjformation from ") + request.scene_path + " and " +
-         std::to_string(request.positions.size()) + " copies of " + request.vehicle_path +
-         AdapterNotes(request) + " -->\n" + printer.CStr();
+  out.xml = Header(request) + spec::SaveXml(scene.get(), name);
+  return out;
 }
 
 mjModel_* CompileModel(const std::string& xml, const std::string& name) {

@@ -3,7 +3,7 @@
 // The adapter is a pipeline of steps of one job each: read the MJCF (mjcf_document), keep out
 // of the shared scene what one vehicle must not bring (vehicle_scoping), rename the body and
 // the contract's names (vehicle_renaming), map the actuators (actuator_mapping), resolve the
-// assets (vehicle_assets), add the contract's site and sensors (vehicle_sensors).
+// assets (vehicle_assets), add the contract's site and sensors (vehicle_sensors, through mjSpec).
 #include "mjformation/scene/vehicle_adapter.hpp"
 
 #include <tinyxml2.h>
@@ -72,13 +72,14 @@ AdaptedVehicle AdaptVehicle(const VehicleMapping& m) {
   MakeRoomForContractNames(root, &notes);
   DropDanglingReferences(root, body, &notes);
   notes = ResolveAssets(root, body, m.model_path, dir, std::move(notes));
-  AddImuAndSensors(&doc, root, body, m.model_path + " (adapted to the vehicle contract)", &notes);
-
+  // The contract's site and sensors go in through MuJoCo's model editing API, which also
+  // writes the adapted text.
   tinyxml2::XMLPrinter printer;
   doc.Print(&printer);
+  const std::string label = m.model_path + " (adapted to the vehicle contract)";
   AdaptedVehicle out;
   out.xml = std::string("<!-- ") + m.model_path + " adapted to the mjformation vehicle contract" +
-            " (docs/VEHICLES.md) -->\n" + printer.CStr();
+            " (docs/VEHICLES.md) -->\n" + AddImuAndSensors(printer.CStr(), label, &notes);
   out.notes = notes;
   return out;
 }

@@ -7,17 +7,15 @@
 #include <cstdio>
 
 #include "mjformation/scene/scene.hpp"
+#include "mjspec_util.hpp"
 
 namespace mjf::runner {
 namespace {
 
-using tinyxml2::XMLElement;
-
-// The centre of mass of `vehicle`'s subtree in the body's axes, from the model as it stands.
-std::array<double, 3> CentreOfMass(tinyxml2::XMLDocument* doc, const std::string& label) {
-  tinyxml2::XMLPrinter printer;
-  doc->Print(&printer);
-  mjModel* m = CompileModel(printer.CStr(), label);
+// The centre of mass of `vehicle`'s subtree in the body's axes, from the spec as it stands.
+std::array<double, 3> CentreOfMass(mjSpec* s, const std::string& label) {
+  mjModel* m = mj_compile(s, nullptr);
+  if (!m) throw SceneError(label + ": MuJoCo cannot load the model: " + mjs_getError(s));
   mjData* d = mj_makeData(m);
   mj_forward(m, d);
   const int b = mj_name2id(m, mjOBJ_BODY, "vehicle");
@@ -30,36 +28,50 @@ std::array<double, 3> CentreOfMass(tinyxml2::XMLDocument* doc, const std::string
   return com;
 }
 
+// The site is made as the MJCF element <site name="imu" .../> inside the body was: from the
+// body's childclass (else the main class), then its own attributes.
+void AddImuSite(mjSpec* s, mjsBody* body, const std::array<double, 3>& com) {
+  const std::string childclass = spec::Str(body->childclass);
+  const mjsDefault* def =
+      childclass.empty() ? mjs_getSpecDefault(s) : mjs_findDefault(s, childclass.c_str());
+  mjsSite* site = mjs_addSite(body, def);
+  mjs_setName(site->element, "imu");
+  for (int k = 0; k < 3; ++k) site->pos[k] = com[k];
+  site->quat[0] = 1;
+  site->quat[1] = site->quat[2] = site->quat[3] = 0;
+  site->size[0] = 0.005;
+  site->group = 5;  // not drawn by default
+}
+
 }  // namespace
 
-void AddImuAndSensors(tinyxml2::XMLDocument* doc, XMLElement* root, XMLElement* body,
-                      const std::string& label, std::vector<std::string>* notes) {
-  const std::array<double, 3> com = CentreOfMass(doc, label);
+std::string AddImuAndSensors(const std::string& xml, const std::string& label,
+                             std::vector<std::string>* notes) {
+  const spec::SpecPtr s = spec::Parse(label, xml, label, "adapted model");
+  mjsBody* body = mjs_findBody(s.get(), "vehicle");
+  if (!body) throw SceneError(label + ": no body 'vehicle'");
+  const std::array<double, 3> com = CentreOfMass(s.get(), label);
+  AddImuSite(s.get(), body, com);
   char pos[128];
   std::snprintf(pos, sizeof(pos), "%.17g %.17g %.17g", com[0], com[1], com[2]);
-  XMLElement* site = body->InsertNewChildElement("site");
-  site->SetAttribute("name", "imu");
-  site->SetAttribute("pos", pos);
-  site->SetAttribute("quat", "1 0 0 0");
-  site->SetAttribute("size", "0.005");
-  site->SetAttribute("group", "5");  // not drawn by default
   notes->push_back(std::string("added site 'imu' at the centre of mass (") + pos +
                    " in body axes)");
-
-  XMLElement* sensor = root->FirstChildElement("sensor");
-  if (!sensor) sensor = root->InsertNewChildElement("sensor");
-  const char* const kinds[][2] = {
-      {"framepos", "pos"}, {"framelinvel", "vel"}, {"framequat", "quat"}};
+  const struct {
+    mjtSensor type;
+    const char* name;
+  } kinds[] = {{mjSENS_FRAMEPOS, "pos"},
+               {mjSENS_FRAMELINVEL, "vel"},
+               {mjSENS_FRAMEQUAT, "quat"},
+               {mjSENS_GYRO, "gyro"}};
   for (const auto& k : kinds) {
-    XMLElement* s = sensor->InsertNewChildElement(k[0]);
-    s->SetAttribute("name", k[1]);
-    s->SetAttribute("objtype", "site");
-    s->SetAttribute("objname", "imu");
+    mjsSensor* sensor = mjs_addSensor(s.get());
+    mjs_setName(sensor->element, k.name);
+    sensor->type = k.type;
+    sensor->objtype = mjOBJ_SITE;
+    mjs_setString(sensor->objname, "imu");
   }
-  XMLElement* gyro = sensor->InsertNewChildElement("gyro");
-  gyro->SetAttribute("name", "gyro");
-  gyro->SetAttribute("site", "imu");
   notes->push_back("added sensors pos, vel, quat, gyro at site 'imu'");
+  return spec::SaveXml(s.get(), label);
 }
 
 }  // namespace mjf::runner

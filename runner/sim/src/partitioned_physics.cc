@@ -129,9 +129,6 @@ class LockstepPool {
 };
 
 namespace {
-struct ModelDeleter {
-  void operator()(mjModel* m) const { mj_deleteModel(m); }
-};
 struct DataDeleter {
   void operator()(mjData* d) const { mj_deleteData(d); }
 };
@@ -225,7 +222,7 @@ PartitionedPhysics::PartitionedPhysics(const ExperimentConfig& config, const Sce
     part.positions.assign(request.positions.begin() + p->first,
                           request.positions.begin() + p->first + p->count);
     part.first_vehicle = p->first;
-    p->model.reset(CompileModel(ComposeScene(part), fmt::format("partition {} of the scene", k)));
+    p->model = ComposeScene(part, fmt::format("partition {} of the scene", k)).model;
     p->data.reset(mj_makeData(p->model.get()));
     p->bindings = BindVehicles(p->model.get(), config, attitude, vehicle_xml, p->first, p->count);
     p->actuation = MakeActuation(config.rotor_model, p->model.get(), p->bindings, config.timestep);

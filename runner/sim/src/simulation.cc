@@ -54,9 +54,11 @@ Simulation::Simulation(const ExperimentConfig& config) : config_(config) {
 
   std::vector<std::array<double, 3>> initial_positions = InitialPositions(config_);
   AdaptForeignVehicle(*attitude.descriptor);  // [vehicles] body / rotors (docs/VEHICLES.md)
-  scene_xml_ =
-      ComposeScene(MakeSceneRequest(config_, initial_positions, vehicle_xml_, vehicle_notes_));
-  model_.reset(CompileModel(scene_xml_, "composed scene of " + config_.model_path));
+  ComposedScene scene =
+      ComposeScene(MakeSceneRequest(config_, initial_positions, vehicle_xml_, vehicle_notes_),
+                   "composed scene of " + config_.model_path);
+  scene_xml_ = std::move(scene.xml);
+  model_.reset(scene.model.release());
   data_.reset(mj_makeData(model_.get()));
   total_steps_ = std::llround(config_.duration / config_.timestep);
 

@@ -5,6 +5,9 @@
 #include <gtest/gtest.h>
 #include <mujoco/mujoco.h>
 
+#include <string>
+#include <vector>
+
 #include "test_util.hpp"
 
 namespace mjf::runner {
@@ -21,8 +24,8 @@ SceneRequest Request(int vehicles) {
 }
 
 TEST(SceneTest, ComposesPrefixedCopies) {
-  const std::string xml = ComposeScene(Request(7));
-  mjModel* m = CompileModel(xml, "test");
+  ComposedScene scene = ComposeScene(Request(7), "test");
+  mjModel* m = scene.model.get();
   for (int i = 0; i < 7; ++i) {
     const std::string p = VehiclePrefix(i);
     EXPECT_GE(mj_name2id(m, mjOBJ_BODY, (p + "vehicle").c_str()), 0) << p;
@@ -38,16 +41,14 @@ TEST(SceneTest, ComposesPrefixedCopies) {
   EXPECT_NEAR(d->xpos[3 * body], 3.0, 1e-12);
   EXPECT_NEAR(d->xpos[3 * body + 2], 2.0, 1e-12);
   mj_deleteData(d);
-  mj_deleteModel(m);
 }
 
 TEST(SceneTest, WrenchModelHasNoActuators) {
   SceneRequest r = Request(3);
   r.strip_actuators = true;
-  mjModel* m = CompileModel(ComposeScene(r), "test");
-  EXPECT_EQ(m->nu, 0);
-  EXPECT_GE(mj_name2id(m, mjOBJ_SITE, "uav2_rotor0"), 0);
-  mj_deleteModel(m);
+  ComposedScene scene = ComposeScene(r, "test");
+  EXPECT_EQ(scene.model->nu, 0);
+  EXPECT_GE(mj_name2id(scene.model.get(), mjOBJ_SITE, "uav2_rotor0"), 0);
 }
 
 TEST(SceneTest, VehicleWithoutVehicleBodyIsRefused) {
@@ -56,12 +57,44 @@ TEST(SceneTest, VehicleWithoutVehicleBodyIsRefused) {
   r.vehicle_path = mjf::testing::WriteFile(
       dir + "/v.xml", "<mujoco><worldbody><body name=\"drone\"/></worldbody></mujoco>");
   try {
-    ComposeScene(r);
+    ComposeScene(r, "test");
     FAIL() << "no error";
   } catch (const SceneError& e) {
     EXPECT_THAT(e.what(), HasSubstr("v.xml"));
     EXPECT_THAT(e.what(), HasSubstr("<body name=\"vehicle\">"));
   }
+}
+
+// The written scene is the composed spec as MuJoCo writes it: alone, it compiles to the very
+// model the run uses, byte for byte.
+TEST(SceneTest, WrittenSceneCompilesToTheSameModel) {
+  ComposedScene scene = ComposeScene(Request(3), "test");
+  mjModel* reloaded = CompileModel(scene.xml, "reloaded");
+  auto bytes = [](const mjModel* m) {
+    std::vector<char> out(mj_sizeModel(m));
+    mj_saveModel(m, nullptr, out.data(), static_cast<int>(out.size()));
+    return out;
+  };
+  EXPECT_TRUE(bytes(reloaded) == bytes(scene.model.get()));
+  mj_deleteModel(reloaded);
+}
+
+// mjs_attach carries every asset of the vehicle and one copy per vehicle; the scene keeps one
+// shared copy of what the vehicle uses.
+TEST(SceneTest, UnusedAssetsOfTheVehicleAreNotCarried) {
+  const std::string dir = mjf::testing::TempDir("scene_assets");
+  std::string xml = mjf::testing::ReadFile(std::string(MJF_SOURCE_DIR) + "/mjcf/quadrotor.xml");
+  xml.replace(xml.find("<asset>"), 7, "<asset>\n<material name=\"unused_paint\"/>");
+  SceneRequest r = Request(3);
+  r.vehicle_path = mjf::testing::WriteFile(dir + "/v.xml", xml);
+  ComposedScene scene = ComposeScene(r, "test");
+  EXPECT_EQ(mj_name2id(scene.model.get(), mjOBJ_MATERIAL, "unused_paint"), -1);
+  EXPECT_EQ(mj_name2id(scene.model.get(), mjOBJ_MATERIAL, "uav1_unused_paint"), -1);
+  EXPECT_EQ(scene.model->nmat, 1 + 5);  // the floor's and the quadrotor's five, once
+  const int hull = mj_name2id(scene.model.get(), mjOBJ_GEOM, "uav2_hull");
+  ASSERT_GE(hull, 0);
+  EXPECT_EQ(scene.model->geom_matid[hull],
+            mj_name2id(scene.model.get(), mjOBJ_MATERIAL, "quad_frame"));
 }
 
 }  // namespace

@@ -60,10 +60,6 @@ std::string ErrorOf(const VehicleMapping& m) {
   return "(no error)";
 }
 
-struct ModelDeleter {
-  void operator()(mjModel* m) const { mj_deleteModel(m); }
-};
-
 TEST(VehicleAdapterTest, BumblebeeBecomesAContractVehicle) {
   const AdaptedVehicle a = AdaptVehicle(BumblebeeMapping());
   std::unique_ptr<mjModel, ModelDeleter> m(CompileModel(a.xml, "adapted"));
@@ -115,9 +111,9 @@ TEST(VehicleAdapterTest, ComposedSceneHasTheAdaptedVehicles) {
   r.vehicle_xml = a.xml;
   r.vehicle_notes = a.notes;
   r.positions = {{0, 0, 1}, {2, 0, 1}, {4, 0, 1}};
-  const std::string xml = ComposeScene(r);
-  EXPECT_NE(xml.find("renamed body 'bumblebee' to 'vehicle'"), std::string::npos);
-  std::unique_ptr<mjModel, ModelDeleter> m(CompileModel(xml, "composed"));
+  ComposedScene scene = ComposeScene(r, "composed");
+  EXPECT_NE(scene.xml.find("renamed body 'bumblebee' to 'vehicle'"), std::string::npos);
+  const auto& m = scene.model;
   EXPECT_EQ(m->nmesh, 1);
   EXPECT_EQ(m->nlight, 1);  // the scene's sun only
   for (int i = 0; i < 3; ++i) {
@@ -158,7 +154,7 @@ TEST(VehicleAdapterTest, TopLevelDefaultsDoNotReachTheScene) {
     const AdaptedVehicle a = AdaptVehicle(BumblebeeMapping(model));
     r.vehicle_path = model;
     r.vehicle_xml = a.xml;
-    return std::unique_ptr<mjModel, ModelDeleter>(CompileModel(ComposeScene(r), "composed"));
+    return ComposeScene(r, "composed").model;
   };
   const auto plain = compose(kBumblebee);
   const auto scoped = compose(edited);

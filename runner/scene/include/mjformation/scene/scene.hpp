@@ -1,12 +1,14 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
-// Composes one MJCF scene from the world (mjcf/scene.xml) and 1 + N copies of a vehicle model
-// (docs/ARCHITECTURE.md, "Vehicle model contract"), names prefixed uav<i>_. The result is plain
-// MJCF text: written next to the results, it loads in MuJoCo alone.
+// Composes one scene from the world (mjcf/scene.xml) and 1 + N copies of a vehicle model
+// (docs/ARCHITECTURE.md, "Vehicle model contract"), names prefixed uav<i>_, with MuJoCo's model
+// editing API (mjSpec). The result is the compiled model and its MJCF text, written by MuJoCo:
+// saved next to the results, the text loads in MuJoCo alone and compiles to the same model.
 #ifndef MJFORMATION_SCENE_SCENE_HPP_
 #define MJFORMATION_SCENE_SCENE_HPP_
 
 #include <array>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -38,8 +40,18 @@ struct SceneRequest {
   std::vector<std::string> vehicle_notes;
 };
 
-// The composed MJCF text. Throws SceneError naming the file (and XML line) on bad input.
-std::string ComposeScene(const SceneRequest& request);
+struct ModelDeleter {
+  void operator()(mjModel_* m) const;  // mj_deleteModel
+};
+
+struct ComposedScene {
+  std::unique_ptr<mjModel_, ModelDeleter> model;  // compiled once, from the composed spec
+  std::string xml;  // the same spec as MJCF (MuJoCo's writer), with a header comment
+};
+
+// Throws SceneError naming the file (and XML line) on bad input, and `name` (the scene's name in
+// messages) with MuJoCo's message when the composed model does not compile.
+ComposedScene ComposeScene(const SceneRequest& request, const std::string& name);
 
 // Compiles MJCF text held in memory (no temporary file). Throws SceneError with MuJoCo's
 // message, prefixed with `name`.
