@@ -270,7 +270,7 @@ void AddBenchCommand(CLI::App& app, CliCommands* c) {
                    "swarm sizes to measure (default: the file's); other sizes use a "
                    "generated ring topology")
       ->delimiter(',')
-      ->check(CLI::Range(1, 100000));  // [vehicles] followers' bound, checked before any vector
+      ->check(IntegerOption(1, 100000));  // [vehicles] followers' bound, before any vector
   c->bench->add_option("--duration", c->bench_duration, "simulated seconds (default: the file's)")
       ->check(kPositiveFinite);
   c->bench->add_option("--set", c->overrides, "override a value: section.key=value");
@@ -281,7 +281,7 @@ void AddBenchCommand(CLI::App& app, CliCommands* c) {
                    "physics partitions to time the full pipeline with, e.g. 1,2 (prints the "
                    "speed-up over the first)")
       ->delimiter(',')
-      ->check(CLI::PositiveNumber);
+      ->check(IntegerOption(1, kMaxThreads));
   c->bench->add_flag("--memory", c->bench_memory,
                      "also run the first size 10x longer and compare peak memory");
 }

@@ -2,6 +2,7 @@
 #include "mjformation/app/replay.hpp"
 
 #include <fmt/format.h>
+#include <sys/stat.h>
 #include <toml++/toml.h>
 
 #include <algorithm>
@@ -295,6 +296,44 @@ void ReplayScene::Pose(int frame) {
   data_->time = rec_.t[frame];
   mj_kinematics(model_, data_);
   mj_camlight(model_, data_);
+}
+
+void CheckReplayTimes(const Recording& rec, const std::vector<double>& times) {
+  const double first = rec.t.front(), last = rec.t.back();
+  for (double t : times) {
+    if (!(std::isfinite(t) && t >= first - 1e-9 && t <= last + 1e-9)) {
+      throw ConfigError(fmt::format("--snapshots {}: outside the recorded run [{}, {}] s ({})", t,
+                                    first, last, rec.dir + "/timeseries.csv"));
+    }
+  }
+}
+
+std::string SnapshotPath(const std::string& out_dir, const Recording& rec, double time) {
+  return fmt::format("{}/replay_t{:06.2f}.png", out_dir, rec.t[rec.Frame(time)]);
+}
+
+std::vector<std::string> ReplayOutputs(const Recording& rec, const std::vector<double>& times,
+                                       const std::string& out_dir, const std::string& video) {
+  std::vector<std::string> paths;
+  for (double time : times) {
+    const std::string path = SnapshotPath(out_dir, rec, time);
+    if (std::find(paths.begin(), paths.end(), path) == paths.end()) paths.push_back(path);
+  }
+  if (!video.empty()) paths.push_back(video);
+  return paths;
+}
+
+void RefuseExistingOutputs(const std::vector<std::string>& paths) {
+  for (const std::string& path : paths) {
+    for (const std::string& file : {path, path + ".tmp"}) {
+      struct stat st {};
+      if (lstat(file.c_str(), &st) == 0) {
+        throw ReplayError(file +
+                          ": exists; replay never replaces a file (it has no --overwrite): "
+                          "remove it or choose another name");
+      }
+    }
+  }
 }
 
 std::array<int, 2> ParseVideoSize(const std::string& text) {

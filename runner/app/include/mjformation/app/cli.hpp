@@ -44,6 +44,11 @@ struct CliCommands {
   bool sweep_resume = false;  // --resume: rerun only runs missing or incomplete
 };
 
+// The validator of every integer option: "--threads: an integer >= 1, got 0" (or "an integer in
+// [1, 1024]" when `max` is a real bound) for a number out of range and for any text that is not
+// a whole decimal number, instead of CLI11's floating-point range message.
+CLI::Validator IntegerOption(long long min, long long max);
+
 void AddCommands(CLI::App& app, CliCommands* commands);
 // Runs the chosen subcommand; returns the process exit code:
 // 0 ok, 1 bad input (nothing run), 2 usage, 3 the run stopped early (partial results kept).
