@@ -34,6 +34,9 @@ for t in "${targets[@]}"; do
         --timeout $((seconds + 300)) | tail -n 25); then
     found=1
   fi
+  # What the run did: executions, coverage at the start and the end, peak memory.
+  grep -E 'INITED|DONE|stat::number_of_executed_units|stat::peak_rss_mb' \
+    "$build/Testing/Temporary/LastTest.log" || true
   ls "$build/tests/fuzz/work/$t/" | grep -E '^(crash|leak|timeout|oom|slow-unit)-' || true
 done
 exit $found

@@ -3,15 +3,15 @@
 // `mjformation replay` and `mjformation view`. Windows are drawn by mjformation-view (GLFW, GLX),
 // a separate executable next to this one: the runner itself renders offscreen with OSMesa, and
 // one process should not load two GL implementations.
-#include <fmt/format.h>
 #include <fcntl.h>
+#include <fmt/format.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
-#include <cerrno>
 #include <cstdio>
 #include <cstring>
 
@@ -92,6 +92,32 @@ class VideoProgress {
 
 }  // namespace
 
+namespace {
+
+// The PNGs of `times` into out_dir, each frame once, appended to `written`.
+void RenderSnapshots(const Recording& rec, const std::vector<double>& times,
+                     const std::string& out_dir, ReplayScene& scene,
+                     std::vector<std::string>* written) {
+  render::OffscreenRenderer renderer(scene.model(), rec.render.width, rec.render.height,
+                                     rec.render.shadows);
+  mkdir(out_dir.c_str(), 0755);
+  for (double time : times) {
+    const int frame = rec.Frame(time);
+    const std::string path = SnapshotPath(out_dir, rec, time);
+    if (std::find(written->begin(), written->end(), path) != written->end()) continue;
+    scene.Pose(frame);
+    const Vec3 target = CameraTarget(rec.render, rec.pos[frame]);
+    const auto& rgb = renderer.Render(
+        scene.data(), FollowingCamera(rec.render, rec.pos[frame], target),
+        ReplayOverlay(rec, scene.model(), TrailsAt(rec, frame), frame), target.data());
+    ClaimNewFile(path);
+    render::WritePng(path, rgb.data(), rec.render.width, rec.render.height);
+    written->push_back(path);
+  }
+}
+
+}  // namespace
+
 // Offscreen (OSMesa), so here and not in replay.cc, which the window executable links.
 std::vector<std::string> RenderReplay(const Recording& rec, const std::vector<double>& times,
                                       const std::string& out_dir, const ReplayVideo& v) {
@@ -100,24 +126,7 @@ std::vector<std::string> RenderReplay(const Recording& rec, const std::vector<do
   auto overlay = [&](const TrailBuffer& trails, int frame) {
     return ReplayOverlay(rec, scene.model(), trails, frame);
   };
-  if (!times.empty()) {
-    render::OffscreenRenderer renderer(scene.model(), rec.render.width, rec.render.height,
-                                       rec.render.shadows);
-    mkdir(out_dir.c_str(), 0755);
-    for (double time : times) {
-      const int frame = rec.Frame(time);
-      scene.Pose(frame);
-      const Vec3 target = CameraTarget(rec.render, rec.pos[frame]);
-      const auto& rgb =
-          renderer.Render(scene.data(), FollowingCamera(rec.render, rec.pos[frame], target),
-                          overlay(TrailsAt(rec, frame), frame), target.data());
-      const std::string path = SnapshotPath(out_dir, rec, time);
-      if (std::find(written.begin(), written.end(), path) != written.end()) continue;
-      ClaimNewFile(path);
-      render::WritePng(path, rgb.data(), rec.render.width, rec.render.height);
-      written.push_back(path);
-    }
-  }
+  if (!times.empty()) RenderSnapshots(rec, times, out_dir, scene, &written);
   if (!v.path.empty()) {
     // The snapshots' size by default: a video frame then shows what a snapshot shows.
     const int width = v.width > 0 ? v.width : rec.render.width;

@@ -56,8 +56,9 @@ std::vector<Axis> ParseAxes(const std::vector<std::string>& texts) {
     // still showed both values: refused, the values go into one --vary.
     for (const Axis& earlier : axes) {
       if (earlier.key == axis.key) {
-        throw ConfigError("--vary " + axis.key + " is given twice; list all its values in one: --vary " +
-                          axis.key + "=v1,v2,...");
+        throw ConfigError("--vary " + axis.key +
+                          " is given twice; list all its values in one: --vary " + axis.key +
+                          "=v1,v2,...");
       }
     }
     axes.push_back(std::move(axis));

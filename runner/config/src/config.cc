@@ -148,12 +148,15 @@ PluginSection ReadPluginSection(const Reporter& reporter, const toml::table& roo
   const toml::table* table = node ? node->as_table() : nullptr;
   out.plugin = default_plugin;
   if (table) {
-    if (const toml::node* p = table->get("plugin")) {
+    const toml::node* p = table->get("plugin");
+    if (p) {
       auto v = p->value_exact<std::string>();
       if (!v) reporter.Fail(p, "[" + name + "] plugin", "expected a string (a plugin name)");
       out.plugin = *v;
-      out.line = static_cast<int>(p->source().begin.line);
     }
+    const ValueOrigin origin = OriginOf(p ? p : node);
+    out.line = p ? origin.line : 0;
+    out.origin = origin.argument;
     for (auto&& [key, value] : *table) {
       const std::string k(key.str());
       if (k == "plugin" || reserved.count(k)) continue;
@@ -280,6 +283,16 @@ int PaperExperiment(SectionReader& run) {
   return static_cast<int>(paper);
 }
 
+// [run] threads, range-checked before the conversion to int, with where it was given.
+void ReadThreads(SectionReader& run, ExperimentConfig& c) {
+  const int64_t threads = run.Integer("threads", 1);
+  if (threads < 1 || threads > kMaxThreads) {
+    run.Fail("threads", fmt::format("must be in [1, {}] (1: one model)", kMaxThreads));
+  }
+  c.threads = static_cast<int>(threads);
+  c.threads_origin = OriginOf(run.Node("threads"));
+}
+
 void ParseRunSection(const Reporter& reporter, SectionReader run, const std::string& path,
                      ExperimentConfig& c) {
   c.name = run.String("name", "");
@@ -298,12 +311,7 @@ void ParseRunSection(const Reporter& reporter, SectionReader run, const std::str
   c.reaching_band = run.Number("reaching_band", 0.0);
   c.record_leader_acceleration = run.Bool("record_leader_acceleration", false);
   run.MarkUsed("stop_on");  // read with [safety] (safety_config.cc)
-  const int64_t threads = run.Integer("threads", 1);
-  if (threads < 1 || threads > kMaxThreads) {
-    run.Fail("threads", fmt::format("must be in [1, {}] (1: one model)", kMaxThreads));
-  }
-  c.threads = static_cast<int>(threads);
-  c.threads_origin = OriginOf(run.Node("threads"));
+  ReadThreads(run, c);
   if (const toml::array* a = run.Array("plugin_path")) {
     for (const toml::node& item : *a) {
       auto v = item.value_exact<std::string>();

@@ -23,7 +23,7 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 std::string Where(const ExperimentConfig& c, const PluginSection& s) {
-  return SourceLocation{c.source_path, s.line, SectionKey(s.section)}.Prefix();
+  return OriginLocation(c.source_path, {s.line, s.origin}, SectionKey(s.section)).Prefix();
 }
 
 }  // namespace

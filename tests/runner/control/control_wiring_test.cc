@@ -55,8 +55,8 @@ class ControlWiringTest : public ::testing::Test {
 // a key given to it is refused at its --set origin, as kf_ins refuses a key it does not know,
 // instead of being dropped unread.
 TEST_F(ControlWiringTest, PassthroughRefusesAnyAttributeAtItsOrigin) {
-  for (const std::string set : {"estimator={plugin=\"passthrough\", gate_sigma=5.0}",
-                                "estimator={gate_sigma=-5.0}"}) {
+  for (const std::string set :
+       {"estimator={plugin=\"passthrough\", gate_sigma=5.0}", "estimator={gate_sigma=-5.0}"}) {
     ControlWiring wiring = Wire(Exp2({set}));
     try {
       wiring.MakeSensors();

@@ -124,6 +124,9 @@ struct PluginSection {
   std::string section;  // "leader", "formation", "attitude", "estimator"
   std::string plugin;
   int line = 0;  // line of the `plugin` key
+  // "--set section={...}" when the plugin key (or, without one, the section) came from the
+  // command line, else "": where refusals of the plugin point.
+  std::string origin;
   std::map<std::string, AttributeValue> attributes;
   // Defaults the runner derives for attributes the file leaves out, used only when the plugin
   // declares the key: "seed" = [run] seed, so run.seed drives every seeded plugin unless the
