@@ -5,6 +5,7 @@
 // same scene and step count, and prints both and their ratio; repeats for several swarm sizes;
 // reports peak memory per point (each point runs in its own child process so its peak RSS is
 // its own) and, on request, offscreen rendering cost.
+#include <fcntl.h>
 #include <fmt/format.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -470,7 +471,9 @@ Json BenchRender(const ExperimentConfig& config) {
 }
 
 void WriteJson(const std::string& path, const Json& report) {
-  std::FILE* f = std::fopen(path.c_str(), "wb");
+  // Created, never replaced (RefuseExistingFiles looked before the bench began).
+  const int fd = open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0644);
+  std::FILE* f = fd >= 0 ? fdopen(fd, "wb") : nullptr;
   if (!f) throw OutputError(path + ": cannot write: " + std::strerror(errno));
   const std::string text = report.dump(2) + "\n";
   const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
@@ -481,6 +484,7 @@ void WriteJson(const std::string& path, const Json& report) {
 }  // namespace
 
 int BenchCommand(const CliCommands& c) {
+  if (!c.bench_json.empty()) RefuseExistingFiles({c.bench_json});
   ExperimentConfig base = LoadExperiment(c.experiment, c.overrides);
   if (c.bench_duration > 0) {
     base.duration = c.bench_duration;

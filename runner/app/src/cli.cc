@@ -2,6 +2,7 @@
 #include "mjformation/app/cli.hpp"
 
 #include <fmt/format.h>
+#include <sys/stat.h>
 
 #include <cerrno>
 #include <cstdio>
@@ -174,6 +175,19 @@ int PluginsCommand(const CliCommands& c) {
 }
 
 }  // namespace
+
+void RefuseExistingFiles(const std::vector<std::string>& paths) {
+  for (const std::string& path : paths) {
+    for (const std::string& file : {path, path + ".tmp"}) {
+      struct stat st {};
+      if (lstat(file.c_str(), &st) == 0) {
+        throw ConfigError(file +
+                          ": exists; this command never replaces a file (it has no "
+                          "--overwrite): remove it or choose another name");
+      }
+    }
+  }
+}
 
 CLI::Validator IntegerOption(long long min, long long max) {
   const bool bounded = max < std::numeric_limits<int>::max();

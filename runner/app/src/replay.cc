@@ -2,7 +2,6 @@
 #include "mjformation/app/replay.hpp"
 
 #include <fmt/format.h>
-#include <sys/stat.h>
 #include <toml++/toml.h>
 
 #include <algorithm>
@@ -321,19 +320,6 @@ std::vector<std::string> ReplayOutputs(const Recording& rec, const std::vector<d
   }
   if (!video.empty()) paths.push_back(video);
   return paths;
-}
-
-void RefuseExistingOutputs(const std::vector<std::string>& paths) {
-  for (const std::string& path : paths) {
-    for (const std::string& file : {path, path + ".tmp"}) {
-      struct stat st {};
-      if (lstat(file.c_str(), &st) == 0) {
-        throw ReplayError(file +
-                          ": exists; replay never replaces a file (it has no --overwrite): "
-                          "remove it or choose another name");
-      }
-    }
-  }
 }
 
 std::array<int, 2> ParseVideoSize(const std::string& text) {

@@ -206,7 +206,7 @@ int ReplayCommand(const CliCommands& c) {
   const Recording rec = LoadRecording(c.replay_dir);
   CheckReplayTimes(rec, c.replay_snapshots);
   const std::string out = c.replay_out.empty() ? c.replay_dir + "/replay" : c.replay_out;
-  RefuseExistingOutputs(ReplayOutputs(rec, c.replay_snapshots, out, c.replay_video));
+  RefuseExistingFiles(ReplayOutputs(rec, c.replay_snapshots, out, c.replay_video));
   ReplayVideo video;
   video.path = c.replay_video;
   if (!c.replay_video_size.empty()) {

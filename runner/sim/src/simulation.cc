@@ -230,13 +230,15 @@ template <typename Instances>
 std::vector<std::pair<std::string, double>> LargestOverInstances(const Instances& instances) {
   std::vector<std::pair<std::string, double>> merged;
   for (const auto& instance : instances) {
-    for (const auto& [key, value] : instance->Report()) {
+    for (const auto& entry : instance->Report()) {
+      // Not a structured binding: Clang 14 (the fuzz build) cannot capture one in a lambda.
+      const std::string& key = entry.first;
       auto it = std::find_if(merged.begin(), merged.end(),
                              [&](const auto& kv) { return kv.first == key; });
       if (it == merged.end()) {
-        merged.emplace_back(key, value);
+        merged.push_back(entry);
       } else {
-        it->second = std::max(it->second, value);
+        it->second = std::max(it->second, entry.second);
       }
     }
   }

@@ -114,6 +114,9 @@ TEST(CliTest, ValuesFromTheCommandLineAreReportedAtTheirOrigin) {
        "error: --threads 3: [run] threads: 3 partitions for 2 vehicles"},
       {{"check", exp, "--set", "estimator={plugin=\"kf_ins\"}"},
        "error: --set estimator={plugin=\"kf_ins\"}: [estimator] plugin 'kf_ins'"},
+      {{"check", exp, "--set", "vehicles.thrust=\"rotor0\"", "--set",
+        "vehicles.moments=[\"rotor1\", \"rotor2\", \"rotor3\"]"},
+       "error: --set vehicles.thrust=\"rotor0\": [vehicles] thrust: "},
       {{"check", exp, "--set", "network.link=[{from=0,to=1}]"},
        "error: --set network.link=[{from=0,to=1}]: [network]: needs [execution]"}};
   for (const auto& [args, message] : cases) {

@@ -49,6 +49,12 @@ struct CliCommands {
 // a whole decimal number, instead of CLI11's floating-point range message.
 CLI::Validator IntegerOption(long long min, long long max);
 
+// Nothing of the user's is replaced: the commands that write a file the user names (replay's
+// --video and snapshots, bench --json) have no --overwrite, so a file that exists already (or
+// its ".tmp" sibling, which the PNG writer renames into place) is refused before any work, with
+// a ConfigError naming it. The write itself then creates the file exclusively (O_EXCL).
+void RefuseExistingFiles(const std::vector<std::string>& paths);
+
 void AddCommands(CLI::App& app, CliCommands* commands);
 // Runs the chosen subcommand; returns the process exit code:
 // 0 ok, 1 bad input (nothing run), 2 usage, 3 the run stopped early (partial results kept).

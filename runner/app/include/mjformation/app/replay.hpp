@@ -117,11 +117,6 @@ std::string SnapshotPath(const std::string& out_dir, const Recording& recording,
 std::vector<std::string> ReplayOutputs(const Recording& recording, const std::vector<double>& times,
                                        const std::string& out_dir, const std::string& video);
 
-// Nothing of the user's is replaced: replay has no --overwrite, so a file it would write that
-// exists already (or its ".tmp" sibling, which the PNG writer renames into place) is refused
-// before anything is rendered, with ReplayError naming it.
-void RefuseExistingOutputs(const std::vector<std::string>& paths);
-
 // `mjformation replay` without a window: PNGs at `times` into out_dir (replay_t<sss.ss>.png)
 // and/or a video; returns the paths written.
 std::vector<std::string> RenderReplay(const Recording& recording, const std::vector<double>& times,
