@@ -108,9 +108,10 @@ TEST(SweepSeeds, TableAndArrayValuesOnAnAxis) {
   const std::string csv = ReadFile(dir + "/s/sweep.csv");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 4);
   EXPECT_THAT(csv, HasSubstr("\n\"[2.0,0.0,0.0]\",\"{preset=\"\"typical\"\", scale=3.0}\",2,2,"));
-  const auto summary = nlohmann::json::parse(
-      ReadFile(dir + "/s/mean=%5B2.0%2C0.0%2C0.0%5D,sensors={preset=typical%2Cscale=3.0},seed=2/"
-                     "summary.json"));
+  const auto summary =
+      nlohmann::json::parse(ReadFile(
+          dir + "/s/mean=%5B2.0%2C0.0%2C0.0%5D,sensors={preset=typical%2Cscale=3.0},seed=2/"
+                "summary.json"));
   EXPECT_EQ(summary["sensors"]["scale"], 3.0);
   EXPECT_EQ(summary["wind"]["mean"][0], 2.0);
   EXPECT_EQ(Cli({"sweep", exp, "--vary", "wind.mean=[1.0,0.0", "--out", dir + "/bad"}), 1);
