@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs what is missing, builds, and runs every test (scripts/test.sh forwards here): the C++
 # suites and the analysis pytest (through ctest), then all of them again under AddressSanitizer + UBSan.
-# Set MJF_SKIP_SANITIZE=1 to skip the sanitizer build.
+# Set MJF_SKIP_SANITIZE=1 to skip the sanitizer build, MJF_SKIP_FUZZ=1 to skip the short fuzz runs
+# (dev/fuzz.sh, MJF_FUZZ_SECONDS per target, default 15).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 bash "$root/scripts/build.sh" "$root/build"
@@ -22,5 +23,10 @@ if [ "${MJF_SKIP_SANITIZE:-0}" != 1 ]; then
   (cd "$root/build-asan" && ASAN_OPTIONS=detect_leaks=1 \
       LSAN_OPTIONS="suppressions=$root/tests/lsan.supp" ctest --output-on-failure -j2 \
       -R "${MJF_SANITIZE_TESTS:-.}")
+fi
+if [ "${MJF_SKIP_FUZZ:-0}" != 1 ]; then
+  # A short run of every fuzz target from its checked-in corpus (docs/FUZZING.md).
+  echo "== fuzz targets, ${MJF_FUZZ_SECONDS:-15} s each (libFuzzer, Clang)"
+  bash "$root/dev/fuzz.sh" --seconds "${MJF_FUZZ_SECONDS:-15}"
 fi
 echo "test.sh: every test passed (${SECONDS} s)"

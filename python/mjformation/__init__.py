@@ -257,6 +257,7 @@ class Simulation:
 
     def __init__(self, experiment, set=None, formation=None, plugin_path=None):
         self._law = _LawInUse(formation, experiment)
+        self._stopped = None  # why the simulation stopped (a SimulationError), once it has
         overrides = self._law.__enter__() + _overrides(set)
         try:
             self._sim = _core.Simulation(str(experiment), overrides, _plugin_path(plugin_path))
@@ -271,8 +272,20 @@ class Simulation:
             law.__exit__()
 
     def step(self, n: int = 1) -> "Simulation":
-        """n physics steps (fewer at the end of the experiment); the GIL is released."""
-        self._sim.step(int(n))
+        """n >= 0 physics steps (fewer at the end of the experiment); the GIL is released.
+
+        Once a step has failed (a law's exception, a non-finite state: SimulationError), the
+        simulation stays where it stopped and every later step raises SimulationError again: a
+        failed tick left its setpoints half made, and stepping on would fly them.
+        """
+        if self._stopped is not None:
+            raise SimulationError(f"this Simulation stopped at t = {self.time:.3f} s "
+                                  f"({self._stopped}); create a new one to run again")
+        try:
+            self._sim.step(int(n))
+        except SimulationError as e:
+            self._stopped = e
+            raise
         return self
 
     time = property(lambda self: self._sim.time, doc="s, simulated time")

@@ -256,6 +256,8 @@ py::array_t<double> Setpoints(const rn::Simulation& sim) {
 // The Python Simulation is always at a control tick: its states, setpoints and slots are those of
 // time(), as a timeseries.csv row at that time records them. step(n): integrate, then the tick.
 void Step(rn::Simulation& sim, int64_t n) {
+  if (n < 0)
+    throw py::value_error("step(n): n is a number of physics steps >= 0, got " + std::to_string(n));
   py::gil_scoped_release nogil;
   for (int64_t k = 0; k < n && sim.step_index() < sim.total_steps(); ++k) {
     sim.Integrate();

@@ -9,6 +9,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -103,16 +104,22 @@ py::array_t<double> Copy(const double* data, std::vector<py::ssize_t> shape) {
   return out;
 }
 
-// What a law's output must be: `count` finite-or-not doubles (the runner checks finiteness).
-void ReadInput(const py::object& result, size_t count, double* out, const char* expected) {
+// What a law's output must be: an array of exactly `shape` (docs/PYTHON.md: a wrong shape ends
+// the run; a (2, N) array has the element count of an (N, 2) one but not its meaning), of
+// finite-or-not doubles (the runner checks finiteness).
+void ReadInput(const py::object& result, const std::vector<py::ssize_t>& shape, double* out,
+               const char* expected) {
   auto u = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(result);
-  if (!u || static_cast<size_t>(u.size()) != count) {
+  const bool same_shape =
+      u && u.ndim() == static_cast<py::ssize_t>(shape.size()) &&
+      std::equal(shape.begin(), shape.end(), u.shape(), [](auto a, auto b) { return a == b; });
+  if (!same_shape) {
     throw std::runtime_error(
         std::string("the formation law returned ") +
         std::string(py::str(py::repr(result)).cast<std::string>()).substr(0, 80) + "; expected " +
         expected);
   }
-  std::memcpy(out, u.data(), count * sizeof(double));
+  std::memcpy(out, u.data(), static_cast<size_t>(u.size()) * sizeof(double));
 }
 
 // ---- one instance per swarm ---------------------------------------------------------------
@@ -168,7 +175,7 @@ void CallCentral(Central& self, const mjfStepContext* ctx) {
   const py::ssize_t v = ctx->n_vehicles, n = self.n;
   py::object u = self.law(ctx->time, Copy(&ctx->states[0].pos[0], {v, kStateSize}),
                           Copy(self.offsets.data(), {n, 6}), self.graph);
-  ReadInput(u, 2 * self.n, self.input.data(), "an (n_followers, 2) array of accelerations");
+  ReadInput(u, {self.n, 2}, self.input.data(), "an (n_followers, 2) array of accelerations");
   ++self.calls;
 }
 
@@ -312,7 +319,7 @@ void CallAgent(Agent& a, const mjfStepContext* ctx) {
   a.shape.evaluate(a.shape.self, ctx->time, a.offsets.data());
   py::object u = a.law(ctx->time, Copy(&in.self->pos[0], {kStateSize}), messages, leader,
                        Copy(a.offsets.data(), {a.n, 6}));
-  ReadInput(u, 2, a.input, "2 accelerations (x, y)");
+  ReadInput(u, {2}, a.input, "a (2,) array of accelerations (x, y)");
   ++a.calls;
 }
 

@@ -98,3 +98,38 @@ def test_a_nan_input_is_the_runners_non_finite_setpoint_failure(exp2, tmp_path):
     run = mjformation.run(exp2, set=short(0.5), formation=lambda t, s, f, g: np.full((6, 2), np.nan),
                           out=tmp_path / "r")
     assert not run.complete and "python" in run.summary["error"]
+
+
+def test_a_law_returning_the_transposed_shape_is_reported(exp2, tmp_path):
+    # (2, 6) has the element count of (6, 2) but not its meaning: refused, not read row-wise
+    run = mjformation.run(exp2, set=short(0.5), formation=lambda t, s, f, g: np.zeros((2, 6)),
+                          out=tmp_path / "r")
+    assert not run.complete
+    assert "expected an (n_followers, 2) array" in run.summary["error"]
+
+
+def test_an_agent_law_returning_a_column_is_reported(exp2, tmp_path):
+    run = mjformation.run(exp2, set=short(0.5), out=tmp_path / "r",
+                          formation=mjformation.AgentLaw(lambda hood: lambda *a: np.zeros((2, 1))))
+    assert not run.complete
+    assert "expected a (2,) array of accelerations" in run.summary["error"]
+
+
+def test_step_refuses_a_negative_count_and_stays_stopped_after_a_failure(exp2):
+    def law(t, states, offsets, graph):
+        if t >= 0.01:
+            raise RuntimeError("the law gave up")
+        return np.zeros((6, 2))
+
+    sim = mjformation.Simulation(exp2, set=short(1.0), formation=law)
+    with pytest.raises(ValueError, match="got -1"):
+        sim.step(-1)
+    assert sim.step_index == 0
+    with pytest.raises(mjformation.SimulationError, match="the law gave up"):
+        sim.step(50)
+    stopped_at = sim.step_index
+    # Then every later step raises again, naming the first failure, and nothing moves
+    for _ in range(2):
+        with pytest.raises(mjformation.SimulationError, match="stopped at t = 0.010 s"):
+            sim.step(5)
+    assert sim.step_index == stopped_at

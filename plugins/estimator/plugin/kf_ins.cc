@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <mjformation/plugin_util.hpp>
 #include <string>
 
@@ -40,9 +41,23 @@ Vec3 Rotate(const double q[4], const double v[3]) {
   return x + q[0] * t + u.cross(t);
 }
 
-double OrSuite(const Attributes& a, const char* key, double suite) {
+// A standard deviation (or noise density) the filter squares into its covariance: a number in
+// [0, max], in the key's unit, so every variance it forms stays finite and a negative one is not
+// silently squared into a positive one.
+double Bounded(const Attributes& a, const char* key, double max, const char* unit) {
+  const double v = a.Number(key);
+  if (!(v >= 0 && v <= max)) {
+    char range[64];
+    std::snprintf(range, sizeof(range), "[0, %g] ", max);
+    throw ConfigError(std::string("attribute '") + key + "': must be a number in " + range + unit +
+                      ", got " + a.String(key));
+  }
+  return v;
+}
+
+double OrSuite(const Attributes& a, const char* key, double suite, double max, const char* unit) {
   const std::string text = a.String(key);
-  return text.empty() ? suite : a.Number(key);
+  return text.empty() ? suite : Bounded(a, key, max, unit);
 }
 
 KfInsConfig ReadConfig(const mjfCreateContext* ctx) {
@@ -59,18 +74,21 @@ KfInsConfig ReadConfig(const mjfCreateContext* ctx) {
   const Attributes a(ctx);
   KfInsConfig c;
   c.timestep = ctx->timestep;
-  c.accel_noise_density = OrSuite(a, "accel_noise", s->accel_noise_density);
-  c.accel_bias_walk = OrSuite(a, "accel_bias_walk", s->accel_bias_walk);
+  // The bounds are the sensor suite's ([sensors] accel_noise, accel_bias_walk, position_std).
+  c.accel_noise_density = OrSuite(a, "accel_noise", s->accel_noise_density, 100, "m/s^2/sqrt(Hz)");
+  c.accel_bias_walk = OrSuite(a, "accel_bias_walk", s->accel_bias_walk, 10, "m/s^3/sqrt(Hz)");
   c.gate_sigma = a.Number("gate_sigma");
+  if (!(c.gate_sigma > 0)) throw ConfigError("attribute 'gate_sigma': must be > 0 (sigmas)");
   c.history = s->max_latency + 2.0 * ctx->timestep;
   c.gravity = ctx->vehicle_info ? ctx->vehicle_info->gravity : 9.81;
   if (ctx->initial_pos)
     c.initial_position = Vec3(ctx->initial_pos[0], ctx->initial_pos[1], ctx->initial_pos[2]);
-  c.initial_position_std = a.Number("initial_position_std");
-  c.initial_velocity_std = a.Number("initial_velocity_std");
-  c.initial_bias_std = a.Number("initial_bias_std");
-  c.position_wander_std = OrSuite(a, "position_wander", s->position_wander_std);
-  c.position_wander_tau = OrSuite(a, "position_wander_tau", s->position_wander_tau);
+  c.initial_position_std = Bounded(a, "initial_position_std", 1e4, "m");
+  c.initial_velocity_std = Bounded(a, "initial_velocity_std", 1e3, "m/s");
+  c.initial_bias_std = Bounded(a, "initial_bias_std", 100, "m/s^2");
+  c.position_wander_std = OrSuite(a, "position_wander", s->position_wander_std, 1000, "m");
+  const std::string tau = a.String("position_wander_tau");
+  c.position_wander_tau = tau.empty() ? s->position_wander_tau : a.Number("position_wander_tau");
   if (!(c.position_wander_std >= 0) || !std::isfinite(c.position_wander_std)) {
     throw ConfigError("attribute 'position_wander': must be a finite number >= 0 m");
   }

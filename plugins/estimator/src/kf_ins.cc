@@ -29,6 +29,13 @@ KfIns::KfIns(const KfInsConfig& c) : config_(c) {
   Require(c.history >= 0 && c.history <= 10 && std::isfinite(c.history),
           "history must be in [0, 10] s");
   Require(c.gate_sigma > 0, "gate_sigma must be > 0");
+  // Squared into the initial covariance: a negative value would pass as its absolute value.
+  for (const auto& [value, name] : {std::pair{c.initial_position_std, "initial_position_std"},
+                                    std::pair{c.initial_velocity_std, "initial_velocity_std"},
+                                    std::pair{c.initial_bias_std, "initial_bias_std"}}) {
+    Require(value >= 0 && std::isfinite(value * value),
+            std::string(name) + " must be a number >= 0 whose square is finite");
+  }
   Require(c.position_wander_std >= 0 && std::isfinite(c.position_wander_std),
           "position_wander_std must be a finite number >= 0");
   Require(c.position_wander_tau > 0 && std::isfinite(c.position_wander_tau),

@@ -5,6 +5,7 @@
 // same scene and step count, and prints both and their ratio; repeats for several swarm sizes;
 // reports peak memory per point (each point runs in its own child process so its peak RSS is
 // its own) and, on request, offscreen rendering cost.
+#include <fcntl.h>
 #include <fmt/format.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -270,7 +271,7 @@ void AddBenchCommand(CLI::App& app, CliCommands* c) {
                    "swarm sizes to measure (default: the file's); other sizes use a "
                    "generated ring topology")
       ->delimiter(',')
-      ->check(CLI::Range(1, 100000));  // [vehicles] followers' bound, checked before any vector
+      ->check(IntegerOption(1, 100000));  // [vehicles] followers' bound, before any vector
   c->bench->add_option("--duration", c->bench_duration, "simulated seconds (default: the file's)")
       ->check(kPositiveFinite);
   c->bench->add_option("--set", c->overrides, "override a value: section.key=value");
@@ -281,7 +282,7 @@ void AddBenchCommand(CLI::App& app, CliCommands* c) {
                    "physics partitions to time the full pipeline with, e.g. 1,2 (prints the "
                    "speed-up over the first)")
       ->delimiter(',')
-      ->check(CLI::PositiveNumber);
+      ->check(IntegerOption(1, kMaxThreads));
   c->bench->add_flag("--memory", c->bench_memory,
                      "also run the first size 10x longer and compare peak memory");
 }
@@ -470,7 +471,9 @@ Json BenchRender(const ExperimentConfig& config) {
 }
 
 void WriteJson(const std::string& path, const Json& report) {
-  std::FILE* f = std::fopen(path.c_str(), "wb");
+  // Created, never replaced (RefuseExistingFiles looked before the bench began).
+  const int fd = open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0644);
+  std::FILE* f = fd >= 0 ? fdopen(fd, "wb") : nullptr;
   if (!f) throw OutputError(path + ": cannot write: " + std::strerror(errno));
   const std::string text = report.dump(2) + "\n";
   const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
@@ -481,6 +484,7 @@ void WriteJson(const std::string& path, const Json& report) {
 }  // namespace
 
 int BenchCommand(const CliCommands& c) {
+  if (!c.bench_json.empty()) RefuseExistingFiles({c.bench_json});
   ExperimentConfig base = LoadExperiment(c.experiment, c.overrides);
   if (c.bench_duration > 0) {
     base.duration = c.bench_duration;

@@ -2,9 +2,13 @@
 #include "mjformation/app/cli.hpp"
 
 #include <fmt/format.h>
+#include <sys/stat.h>
 
+#include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
+#include <limits>
 
 #include "mjformation/config/config.hpp"
 #include "mjformation/config/paths.hpp"
@@ -55,7 +59,7 @@ int RunCommand(const CliCommands& c) {
   if (c.run_threads > 0) {
     // How to run, not what: the results are the same, so config.toml keeps the file's text.
     config.threads = c.run_threads;
-    config.threads_line = 0;
+    config.threads_origin = {0, "--threads " + std::to_string(c.run_threads)};
   }
   RunOptions options;
   options.out_dir = c.out.empty() ? "runs/" + config.name : c.out;
@@ -175,6 +179,35 @@ int PluginsCommand(const CliCommands& c) {
 
 }  // namespace
 
+void RefuseExistingFiles(const std::vector<std::string>& paths) {
+  for (const std::string& path : paths) {
+    for (const std::string& file : {path, path + ".tmp"}) {
+      struct stat st {};
+      if (lstat(file.c_str(), &st) == 0) {
+        throw ConfigError(file +
+                          ": exists; this command never replaces a file (it has no "
+                          "--overwrite): remove it or choose another name");
+      }
+    }
+  }
+}
+
+CLI::Validator IntegerOption(long long min, long long max) {
+  const bool bounded = max < std::numeric_limits<int>::max();
+  const std::string what = bounded ? fmt::format("an integer in [{}, {}]", min, max)
+                                   : fmt::format("an integer >= {}", min);
+  return CLI::Validator(
+      [=](std::string& text) {
+        errno = 0;
+        char* end = nullptr;
+        const long long v = std::strtoll(text.c_str(), &end, 10);
+        const bool whole = !text.empty() && end == text.c_str() + text.size() && errno == 0;
+        if (whole && v >= min && v <= max) return std::string();
+        return what + ", got '" + EscapeControl(text) + "'";
+      },
+      what);
+}
+
 void AddCommands(CLI::App& app, CliCommands* c) {
   app.set_version_flag("--version", VersionText);
   app.require_subcommand(1);
@@ -194,7 +227,7 @@ void AddCommands(CLI::App& app, CliCommands* c) {
   c->run
       ->add_option("--threads", c->run_threads,
                    "physics partitions stepped in parallel (default: [run] threads, 1)")
-      ->check(CLI::PositiveNumber);
+      ->check(IntegerOption(1, kMaxThreads));
 
   c->check = app.add_subcommand(
       "check", "Check an experiment file (config, model, plugins, topology) without running it");

@@ -297,6 +297,31 @@ void ReplayScene::Pose(int frame) {
   mj_camlight(model_, data_);
 }
 
+void CheckReplayTimes(const Recording& rec, const std::vector<double>& times) {
+  const double first = rec.t.front(), last = rec.t.back();
+  for (double t : times) {
+    if (!(std::isfinite(t) && t >= first - 1e-9 && t <= last + 1e-9)) {
+      throw ConfigError(fmt::format("--snapshots {}: outside the recorded run [{}, {}] s ({})", t,
+                                    first, last, rec.dir + "/timeseries.csv"));
+    }
+  }
+}
+
+std::string SnapshotPath(const std::string& out_dir, const Recording& rec, double time) {
+  return fmt::format("{}/replay_t{:06.2f}.png", out_dir, rec.t[rec.Frame(time)]);
+}
+
+std::vector<std::string> ReplayOutputs(const Recording& rec, const std::vector<double>& times,
+                                       const std::string& out_dir, const std::string& video) {
+  std::vector<std::string> paths;
+  for (double time : times) {
+    const std::string path = SnapshotPath(out_dir, rec, time);
+    if (std::find(paths.begin(), paths.end(), path) == paths.end()) paths.push_back(path);
+  }
+  if (!video.empty()) paths.push_back(video);
+  return paths;
+}
+
 std::array<int, 2> ParseVideoSize(const std::string& text) {
   const size_t x = text.find('x');
   auto number = [&](const std::string& part, const char* what, int max) {

@@ -3,17 +3,17 @@
 // `mjformation replay` and `mjformation view`. Windows are drawn by mjformation-view (GLFW, GLX),
 // a separate executable next to this one: the runner itself renders offscreen with OSMesa, and
 // one process should not load two GL implementations.
+#include <fcntl.h>
 #include <fmt/format.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <limits>
-#include <nlohmann/json.hpp>
+#include <cstring>
 
 #include "mjformation/app/cli.hpp"
 #include "mjformation/app/replay.hpp"
@@ -42,6 +42,17 @@ int ExecViewer(const std::vector<std::string>& args) {
 }
 
 constexpr double kTrailPeriod = 0.1;  // s, as run.cc and TrailsAt
+
+// Creates `path` for the renderer, refusing one that exists: O_EXCL makes the check and the
+// creation one step, so a file that appears after ReplayOutputs looked is not replaced either.
+void ClaimNewFile(const std::string& path) {
+  const int fd = open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0644);
+  if (fd < 0) {
+    throw ReplayError(path + ": cannot create it (" + std::strerror(errno) +
+                      "); replay never replaces a file");
+  }
+  close(fd);
+}
 
 }  // namespace
 
@@ -81,6 +92,32 @@ class VideoProgress {
 
 }  // namespace
 
+namespace {
+
+// The PNGs of `times` into out_dir, each frame once, appended to `written`.
+void RenderSnapshots(const Recording& rec, const std::vector<double>& times,
+                     const std::string& out_dir, ReplayScene& scene,
+                     std::vector<std::string>* written) {
+  render::OffscreenRenderer renderer(scene.model(), rec.render.width, rec.render.height,
+                                     rec.render.shadows);
+  mkdir(out_dir.c_str(), 0755);
+  for (double time : times) {
+    const int frame = rec.Frame(time);
+    const std::string path = SnapshotPath(out_dir, rec, time);
+    if (std::find(written->begin(), written->end(), path) != written->end()) continue;
+    scene.Pose(frame);
+    const Vec3 target = CameraTarget(rec.render, rec.pos[frame]);
+    const auto& rgb = renderer.Render(
+        scene.data(), FollowingCamera(rec.render, rec.pos[frame], target),
+        ReplayOverlay(rec, scene.model(), TrailsAt(rec, frame), frame), target.data());
+    ClaimNewFile(path);
+    render::WritePng(path, rgb.data(), rec.render.width, rec.render.height);
+    written->push_back(path);
+  }
+}
+
+}  // namespace
+
 // Offscreen (OSMesa), so here and not in replay.cc, which the window executable links.
 std::vector<std::string> RenderReplay(const Recording& rec, const std::vector<double>& times,
                                       const std::string& out_dir, const ReplayVideo& v) {
@@ -89,28 +126,14 @@ std::vector<std::string> RenderReplay(const Recording& rec, const std::vector<do
   auto overlay = [&](const TrailBuffer& trails, int frame) {
     return ReplayOverlay(rec, scene.model(), trails, frame);
   };
-  if (!times.empty()) {
-    render::OffscreenRenderer renderer(scene.model(), rec.render.width, rec.render.height,
-                                       rec.render.shadows);
-    mkdir(out_dir.c_str(), 0755);
-    for (double time : times) {
-      const int frame = rec.Frame(time);
-      scene.Pose(frame);
-      const Vec3 target = CameraTarget(rec.render, rec.pos[frame]);
-      const auto& rgb =
-          renderer.Render(scene.data(), FollowingCamera(rec.render, rec.pos[frame], target),
-                          overlay(TrailsAt(rec, frame), frame), target.data());
-      const std::string path = fmt::format("{}/replay_t{:06.2f}.png", out_dir, rec.t[frame]);
-      render::WritePng(path, rgb.data(), rec.render.width, rec.render.height);
-      written.push_back(path);
-    }
-  }
+  if (!times.empty()) RenderSnapshots(rec, times, out_dir, scene, &written);
   if (!v.path.empty()) {
     // The snapshots' size by default: a video frame then shows what a snapshot shows.
     const int width = v.width > 0 ? v.width : rec.render.width;
     const int height = v.height > 0 ? v.height : rec.render.height;
     scene.AllowOffscreen(width, height);
     render::OffscreenRenderer renderer(scene.model(), width, height, rec.render.video_shadows);
+    ClaimNewFile(v.path);
     render::VideoWriter video(v.path, width, height, rec.render.video_fps);
     const int64_t total =
         static_cast<int64_t>(std::floor(rec.t.back() * rec.render.video_fps + 1e-9)) + 1;
@@ -176,33 +199,14 @@ void AddReplayCommand(CLI::App& app, CliCommands* c) {
                         "folder for --snapshots PNGs (default: RUN_DIR/replay)");
 }
 
-// --snapshots times lie in the recorded run [0, sim_time_s of its summary.json]: a time outside
-// would render the nearest frame under a misleading name.
-namespace {
-void CheckSnapshotTimes(const std::string& dir, const std::vector<double>& times) {
-  double reached = std::numeric_limits<double>::infinity();
-  std::ifstream in(dir + "/summary.json");
-  try {
-    const auto summary = nlohmann::json::parse(in);
-    if (summary.contains("sim_time_s")) reached = summary["sim_time_s"].get<double>();
-  } catch (const std::exception&) {
-  }
-  for (double t : times) {
-    if (!(std::isfinite(t) && t >= 0 && t <= reached + 1e-9)) {
-      throw ConfigError(
-          fmt::format("--snapshots {}: outside the recorded run [0, {}] s", t, reached));
-    }
-  }
-}
-}  // namespace
-
 int ReplayCommand(const CliCommands& c) {
   if (c.replay_video.empty() && c.replay_snapshots.empty()) {
     return ExecViewer({"--replay", c.replay_dir});
   }
-  CheckSnapshotTimes(c.replay_dir, c.replay_snapshots);
   const Recording rec = LoadRecording(c.replay_dir);
+  CheckReplayTimes(rec, c.replay_snapshots);
   const std::string out = c.replay_out.empty() ? c.replay_dir + "/replay" : c.replay_out;
+  RefuseExistingFiles(ReplayOutputs(rec, c.replay_snapshots, out, c.replay_video));
   ReplayVideo video;
   video.path = c.replay_video;
   if (!c.replay_video_size.empty()) {

@@ -56,12 +56,12 @@ void AddSweepCommand(CLI::App& app, CliCommands* c) {
       ->add_option("--seeds", c->sweep_seeds,
                    "Monte Carlo: N runs per grid cell with seeds run.seed + 0..N-1; "
                    "sweep.csv then holds per cell mean, std and 95 % CI of every metric")
-      ->check(CLI::Range(1, 100000));
+      ->check(IntegerOption(1, 100000));
   c->sweep->add_option("--set", c->overrides, "fixed override: section.key=value");
   c->sweep->add_option("--out,-o", c->out, "sweep directory (default: runs/<run.name>_sweep)");
   c->sweep->add_option("--jobs,-j", c->sweep_jobs, "simulations at once (threads)")
       ->capture_default_str()
-      ->check(CLI::Range(1, 1024));
+      ->check(IntegerOption(1, 1024));
   c->sweep->add_option("--plugin-path", c->plugin_path, "extra folder to search for plugins");
   c->sweep->add_flag("--overwrite", c->overwrite, "replace an existing sweep directory");
   c->sweep->add_flag("--resume", c->sweep_resume,

@@ -49,6 +49,16 @@ struct RunOutcome {
   bool complete() const { return state == kFinished && error.empty(); }
 };
 
+// "formation.q=1,2.5,4.5" -> {formation.q, [1, 2.5, 4.5]}; throws ConfigError naming the
+// --vary argument when it is not section.key=v1,v2,... .
+Axis ParseAxis(const std::string& text);
+// Every --vary argument parsed; a key varied twice is refused.
+std::vector<Axis> ParseAxes(const std::vector<std::string>& texts);
+
+// The run directory name of a grid point (`index`: a value index per axis), e.g.
+// "altitude=3.0,turbulence=none": no value can add a separator or a path component.
+std::string PointName(const std::vector<Axis>& axes, const std::vector<size_t>& index);
+
 // Every run's configuration, parsed and checked before anything runs.
 SweepPlan PlanSweep(const CliCommands& c);
 

@@ -17,6 +17,8 @@ namespace {
 
 constexpr double kMaxRuns = 100000;  // runs in one sweep
 
+}  // namespace
+
 // "formation.q=1,2.5,4.5" -> {formation.q, [1, 2.5, 4.5]}. Commas inside [], {} or quotes do
 // not split: "wind.mean=[3,0,0],[6,0,0]" or "sensors={preset=\"typical\", scale=3.0},{...}".
 Axis ParseAxis(const std::string& text) {
@@ -46,6 +48,26 @@ Axis ParseAxis(const std::string& text) {
   return axis;
 }
 
+std::vector<Axis> ParseAxes(const std::vector<std::string>& texts) {
+  std::vector<Axis> axes;
+  for (const auto& text : texts) {
+    Axis axis = ParseAxis(text);
+    // The later override would win in every run while the run names and sweep.csv's columns
+    // still showed both values: refused, the values go into one --vary.
+    for (const Axis& earlier : axes) {
+      if (earlier.key == axis.key) {
+        throw ConfigError("--vary " + axis.key +
+                          " is given twice; list all its values in one: --vary " + axis.key +
+                          "=v1,v2,...");
+      }
+    }
+    axes.push_back(std::move(axis));
+  }
+  return axes;
+}
+
+namespace {
+
 // A run folder name's piece: letters, digits and . _ + - = { } kept, every other byte as %XX (like
 // a URL), so no value can add a separator (','), a path component, a glob ('[' '*' '?') or a byte
 // a shell would mangle; a table reads {preset=typical}.
@@ -63,6 +85,8 @@ std::string EscapeForName(const std::string& text) {
   return out;
 }
 
+}  // namespace
+
 // A name for a point's run directory: "key=value" pairs joined by ','. The value is shown plain
 // (DisplayValue; quotes and spaces of tables and arrays dropped: the run's config.toml holds the
 // exact value), then escaped: altitude=3.0,turbulence=none,seed=2.
@@ -78,6 +102,8 @@ std::string PointName(const std::vector<Axis>& axes, const std::vector<size_t>& 
   }
   return name;
 }
+
+namespace {
 
 // Refuses a grid too large to plan before anything is allocated for it: every run's
 // configuration is built up front.
@@ -163,7 +189,7 @@ std::string CsvField(const std::string& v) {
 
 SweepPlan PlanSweep(const CliCommands& c) {
   SweepPlan plan;
-  for (const auto& v : c.sweep_vary) plan.axes.push_back(ParseAxis(v));
+  plan.axes = ParseAxes(c.sweep_vary);
   if (c.sweep_seeds < 0 || (c.sweep->count("--seeds") && c.sweep_seeds == 0)) {
     throw ConfigError("sweep: --seeds must be >= 1 (seeds per grid cell)");
   }

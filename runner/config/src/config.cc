@@ -36,6 +36,14 @@ class Reporter {
   std::string path_;
 };
 
+// Where `node` was given (null: nowhere, a default): its line, or the --set that gave it.
+ValueOrigin OriginOf(const toml::node* node) {
+  if (!node) return {};
+  const auto& path = node->source().path;
+  if (path && path->rfind("--set ", 0) == 0) return {0, *path};
+  return {static_cast<int>(node->source().begin.line), ""};
+}
+
 // The actuator names of [vehicles] `key` (an array), each once across `seen`.
 std::vector<std::string> ActuatorNames(SectionReader& vehicles, const Reporter& reporter,
                                        const char* key, std::vector<std::string>* seen) {
@@ -60,7 +68,8 @@ std::vector<std::string> ActuatorNames(SectionReader& vehicles, const Reporter& 
 // [vehicles] thrust and moments: a thrust-and-moment vehicle's four actuators by role, in the
 // order the attitude plugin drives them (thrust, moment about body x, y, z).
 void ParseThrustAndMoments(SectionReader& vehicles, const Reporter& reporter,
-                           const std::function<int(const char*)>& line, ExperimentConfig* c) {
+                           const std::function<ValueOrigin(const char*)>& origin,
+                           ExperimentConfig* c) {
   if (!vehicles.Has("thrust") && !vehicles.Has("moments")) return;
   if (!c->vehicle_rotors.empty()) {
     vehicles.Fail("thrust", "a vehicle has rotors or thrust and moments, not both");
@@ -80,28 +89,25 @@ void ParseThrustAndMoments(SectionReader& vehicles, const Reporter& reporter,
   }
   c->vehicle_actuation = VehicleActuation::kThrustMoments;
   c->vehicle_rotors = seen;  // thrust, then the moments
-  c->vehicle_rotors_line = line("thrust");
-  c->vehicle_moments_line = line("moments");
+  c->vehicle_rotors_origin = origin("thrust");
+  c->vehicle_moments_origin = origin("moments");
 }
 
 // [vehicles] body and rotors (or thrust and moments): how a foreign vehicle model maps onto
 // the vehicle contract (docs/VEHICLES.md); whether the model has them is checked when the model
 // is adapted.
 void ParseVehicleMapping(SectionReader& vehicles, const Reporter& reporter, ExperimentConfig* c) {
-  auto line = [&](const char* key) {
-    const toml::node* n = vehicles.Node(key);
-    return n ? static_cast<int>(n->source().begin.line) : 0;
-  };
+  auto origin = [&](const char* key) { return OriginOf(vehicles.Node(key)); };
   c->vehicle_body = vehicles.String("body", "");
-  c->vehicle_body_line = line("body");
+  c->vehicle_body_origin = origin("body");
   if (vehicles.Has("body") && c->vehicle_body.empty()) vehicles.Fail("body", "must not be empty");
   if (vehicles.Array("rotors")) {
-    c->vehicle_rotors_line = line("rotors");
+    c->vehicle_rotors_origin = origin("rotors");
     std::vector<std::string> seen;
     c->vehicle_rotors = ActuatorNames(vehicles, reporter, "rotors", &seen);
     if (c->vehicle_rotors.empty()) vehicles.Fail("rotors", "must name the model's rotors");
   }
-  ParseThrustAndMoments(vehicles, reporter, line, c);
+  ParseThrustAndMoments(vehicles, reporter, origin, c);
 }
 
 // TOML value -> the ABI's attribute string ("3 1" for arrays of numbers).
@@ -142,12 +148,15 @@ PluginSection ReadPluginSection(const Reporter& reporter, const toml::table& roo
   const toml::table* table = node ? node->as_table() : nullptr;
   out.plugin = default_plugin;
   if (table) {
-    if (const toml::node* p = table->get("plugin")) {
+    const toml::node* p = table->get("plugin");
+    if (p) {
       auto v = p->value_exact<std::string>();
       if (!v) reporter.Fail(p, "[" + name + "] plugin", "expected a string (a plugin name)");
       out.plugin = *v;
-      out.line = static_cast<int>(p->source().begin.line);
     }
+    const ValueOrigin origin = OriginOf(p ? p : node);
+    out.line = p ? origin.line : 0;
+    out.origin = origin.argument;
     for (auto&& [key, value] : *table) {
       const std::string k(key.str());
       if (k == "plugin" || reserved.count(k)) continue;
@@ -274,6 +283,16 @@ int PaperExperiment(SectionReader& run) {
   return static_cast<int>(paper);
 }
 
+// [run] threads, range-checked before the conversion to int, with where it was given.
+void ReadThreads(SectionReader& run, ExperimentConfig& c) {
+  const int64_t threads = run.Integer("threads", 1);
+  if (threads < 1 || threads > kMaxThreads) {
+    run.Fail("threads", fmt::format("must be in [1, {}] (1: one model)", kMaxThreads));
+  }
+  c.threads = static_cast<int>(threads);
+  c.threads_origin = OriginOf(run.Node("threads"));
+}
+
 void ParseRunSection(const Reporter& reporter, SectionReader run, const std::string& path,
                      ExperimentConfig& c) {
   c.name = run.String("name", "");
@@ -292,10 +311,7 @@ void ParseRunSection(const Reporter& reporter, SectionReader run, const std::str
   c.reaching_band = run.Number("reaching_band", 0.0);
   c.record_leader_acceleration = run.Bool("record_leader_acceleration", false);
   run.MarkUsed("stop_on");  // read with [safety] (safety_config.cc)
-  const int64_t threads = run.Integer("threads", 1);
-  if (threads < 1 || threads > 1024) run.Fail("threads", "must be in [1, 1024] (1: one model)");
-  c.threads = static_cast<int>(threads);
-  if (const toml::node* node = run.Node("threads")) c.threads_line = node->source().begin.line;
+  ReadThreads(run, c);
   if (const toml::array* a = run.Array("plugin_path")) {
     for (const toml::node& item : *a) {
       auto v = item.value_exact<std::string>();

@@ -27,6 +27,12 @@ const char* TypeName(const toml::node& node) {
 SourceLocation NodeLocation(const std::string& file, const toml::node* node,
                             const std::string& what) {
   if (!node) return {file, 0, what};
+  // A table made for a --set (network.link=[...] makes [network]) has no source of its own: it is
+  // where its first value came from.
+  const toml::table* table = node->as_table();
+  if (table && !table->empty() && node->source().begin.line == 0 && !node->source().path) {
+    return NodeLocation(file, &table->cbegin()->second, what);
+  }
   const auto& origin = node->source().path;
   if (origin && origin->rfind("--set ", 0) == 0) return {*origin, 0, what};
   return {file, static_cast<int>(node->source().begin.line), what};

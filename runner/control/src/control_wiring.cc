@@ -23,7 +23,7 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 std::string Where(const ExperimentConfig& c, const PluginSection& s) {
-  return SourceLocation{c.source_path, s.line, SectionKey(s.section)}.Prefix();
+  return OriginLocation(c.source_path, {s.line, s.origin}, SectionKey(s.section)).Prefix();
 }
 
 }  // namespace
@@ -72,8 +72,15 @@ void ControlWiring::BuildGraphAndShape() {
 }
 
 std::unique_ptr<SensorStage> ControlWiring::MakeSensors() const {
-  // "passthrough" is today's stage itself: the held samples, bit for bit, no plugin call.
-  if (config_.estimator.plugin == "passthrough") return MakeSensorStage(config_);
+  // "passthrough" is today's stage itself: the held samples, bit for bit, no plugin call. It
+  // declares no attributes, so any key given is refused as the host refuses a plugin's unknown
+  // keys (else `gate_sigma` in an [estimator] that names no plugin would be dropped unread).
+  if (config_.estimator.plugin == "passthrough") {
+    mjfPlugin passthrough{};
+    passthrough.name = "passthrough";
+    ResolveAttributes(passthrough, config_.estimator, config_.source_path);
+    return MakeSensorStage(config_);
+  }
   const LoadedPlugin& estimator =
       FindPlugin(registry_, config_, config_.estimator, {MJF_KIND_ESTIMATOR},
                  "this section needs an estimator plugin (e.g. kf_ins, passthrough)");

@@ -19,6 +19,19 @@ using realism::Channel;
 // The wander part common to every vehicle: one stream, the same in every vehicle's model.
 constexpr uint64_t kCommonVehicle = 0xC0FFEE;
 
+// The first part of `s` that is not finite ("position", ...), or null when all are.
+const char* NonFinitePart(const mjfVehicleState& s) {
+  const std::pair<const double*, const char*> parts[] = {
+      {s.pos, "position"}, {s.vel, "velocity"}, {s.gyro, "body rate"}};
+  for (const auto& [values, name] : parts) {
+    if (!std::all_of(values, values + 3, [](double v) { return std::isfinite(v); })) return name;
+  }
+  if (!std::all_of(s.quat, s.quat + 4, [](double v) { return std::isfinite(v); })) {
+    return "attitude";
+  }
+  return nullptr;
+}
+
 }  // namespace
 
 mjfSensorInfo SuiteInfo(const realism::SensorParams& p, double gravity) {
@@ -131,6 +144,13 @@ void EstimatedSensors::EstimateOne(int vehicle, int64_t step, double time) {
                     "(code {}): {}",
                     time, plugin.descriptor().name, vehicle, code,
                     error_[0] ? error_.data() : "no reason given"));
+  }
+  // What the controllers get next: a non-finite estimate would end the run a step later under
+  // another name (the vehicles' states and setpoints), so it stops here, naming its source.
+  if (const char* part = NonFinitePart(estimates_[vehicle].state)) {
+    throw SimulationError(fmt::format(
+        "t = {:.3f} s: estimator plugin '{}' (vehicle {}) gave a non-finite {} estimate", time,
+        plugin.descriptor().name, vehicle, part));
   }
 }
 

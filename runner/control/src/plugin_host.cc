@@ -161,6 +161,13 @@ const LoadedPlugin& PluginRegistry::Find(const std::string& name, const std::str
   throw PluginError(message);
 }
 
+std::string PluginWhere(const PluginSection& section, const std::string& config_path,
+                        const std::string& key) {
+  return OriginLocation(config_path, {section.line, section.origin},
+                        SectionKey(section.section, key))
+      .Prefix();
+}
+
 std::vector<std::pair<std::string, std::string>> ResolveAttributes(const mjfPlugin& plugin,
                                                                    const PluginSection& section,
                                                                    const std::string& config_path) {
@@ -194,7 +201,7 @@ std::vector<std::pair<std::string, std::string>> ResolveAttributes(const mjfPlug
     } else if (a.default_value) {
       resolved.emplace_back(a.key, a.default_value);
     } else {
-      throw PluginError(where(section.line, a.key) + ": plugin '" + plugin.name +
+      throw PluginError(PluginWhere(section, config_path, a.key) + ": plugin '" + plugin.name +
                         "' requires attribute '" + a.key + "' (" + (a.doc ? a.doc : "") + ")");
     }
   }
@@ -213,7 +220,7 @@ std::string RefusalWhere(const PluginSection& section, const std::string& config
     return SourceLocation{config_path, value.line, SectionKey(section.section, key)}.Prefix() +
            ": plugin";
   }
-  return SourceLocation{config_path, section.line, SectionKey(section.section, "plugin")}.Prefix();
+  return PluginWhere(section, config_path, "plugin");
 }
 
 }  // namespace

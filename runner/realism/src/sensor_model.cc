@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <stdexcept>
 
@@ -154,16 +155,48 @@ bool SensorParams::IsIdeal() const {
   return true;
 }
 
+namespace {
+
+// The largest noise each channel accepts, in its units: far beyond any real sensor (every
+// preset at the largest `scale`, 100, stays inside), and small enough that the squares and sums
+// an estimator forms of them stay finite (1e300 m would make a kf_ins variance infinite).
+struct NoiseLimits {
+  double std;        // white_std and wander_sigma: m, m/s, rad, rad/s
+  double bias_walk;  // per sqrt(s)
+  const char* unit;
+};
+constexpr NoiseLimits kNoiseLimits[kChannels] = {
+    {1000.0, 100.0, "m"}, {100.0, 100.0, "m/s"}, {3.2, 1.0, "rad"}, {100.0, 10.0, "rad/s"}};
+constexpr double kMaxAccelNoise = 100.0;    // m/s^2/sqrt(Hz)
+constexpr double kMaxAccelBiasWalk = 10.0;  // m/s^3/sqrt(Hz)
+
+// "" when 0 <= value <= max, else "KEY: must be a number in [0, MAX] UNIT".
+std::string InRange(const std::string& key, double value, double max, const std::string& unit) {
+  if (value >= 0 && value <= max) return "";
+  char text[64];
+  std::snprintf(text, sizeof(text), "%g", max);
+  return key + ": must be a number in [0, " + text + "] " + unit;
+}
+
+std::string CheckNoise(const ChannelNoise& c, const std::string& name, const NoiseLimits& max) {
+  const std::string unit = max.unit;
+  for (const std::string& problem :
+       {InRange(name + "_std", c.white_std, max.std, unit),
+        InRange(name + "_bias_walk", c.bias_walk, max.bias_walk, unit + "/sqrt(s)"),
+        InRange(name + "_wander", c.wander_sigma, max.std, unit)}) {
+    if (!problem.empty()) return problem;
+  }
+  return "";
+}
+
+}  // namespace
+
 std::string SensorParams::Validate(double timestep) const {
   for (int k = 0; k < kChannels; ++k) {
     const ChannelNoise& c = channel[k];
     const std::string name = ChannelName(static_cast<Channel>(k));
-    if (!(c.white_std >= 0) || !std::isfinite(c.white_std)) {
-      return name + "_std: must be a finite number >= 0";
-    }
-    if (!(c.bias_walk >= 0) || !std::isfinite(c.bias_walk)) {
-      return name + "_bias_walk: must be a finite number >= 0";
-    }
+    const std::string noise = CheckNoise(c, name, kNoiseLimits[k]);
+    if (!noise.empty()) return noise;
     if (!(c.rate_hz >= 0) || !std::isfinite(c.rate_hz)) {
       return name + "_rate: must be a finite number >= 0 Hz (0: every physics step)";
     }
@@ -179,9 +212,6 @@ std::string SensorParams::Validate(double timestep) const {
              std::to_string(timestep) + " s";
     }
     if (c.latency_s > 10.0) return name + "_latency: must be <= 10 s";
-    if (!(c.wander_sigma >= 0) || !std::isfinite(c.wander_sigma)) {
-      return name + "_wander: must be a finite number >= 0";
-    }
     if (!(c.wander_tau > 0) || !std::isfinite(c.wander_tau)) {
       return name + "_wander_tau: must be a finite number > 0 s";
     }
@@ -189,13 +219,10 @@ std::string SensorParams::Validate(double timestep) const {
       return name + "_correlation: must be in [0, 1]";
     }
   }
-  if (!(accel.noise_density >= 0) || !std::isfinite(accel.noise_density)) {
-    return "accel_noise: must be a finite number >= 0";
-  }
-  if (!(accel.bias_walk >= 0) || !std::isfinite(accel.bias_walk)) {
-    return "accel_bias_walk: must be a finite number >= 0";
-  }
-  return "";
+  const std::string noise =
+      InRange("accel_noise", accel.noise_density, kMaxAccelNoise, "m/s^2/sqrt(Hz)");
+  if (!noise.empty()) return noise;
+  return InRange("accel_bias_walk", accel.bias_walk, kMaxAccelBiasWalk, "m/s^3/sqrt(Hz)");
 }
 
 SensorModel::SensorModel(const SensorParams& params, double timestep, uint64_t seed,

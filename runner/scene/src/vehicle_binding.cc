@@ -106,9 +106,9 @@ void RequireThrustAndMoments(const ExperimentConfig& config, const VehicleModelI
     if (!pure) {
       const bool thrust = k == 0;
       const std::string where =
-          SourceLocation{config.source_path,
-                         thrust ? config.vehicle_rotors_line : config.vehicle_moments_line,
-                         SectionKey("vehicles", thrust ? "thrust" : "moments")}
+          OriginLocation(config.source_path,
+                         thrust ? config.vehicle_rotors_origin : config.vehicle_moments_origin,
+                         SectionKey("vehicles", thrust ? "thrust" : "moments"))
               .Prefix();
       char gear[160];
       std::snprintf(gear, sizeof(gear), "%g %g %g %g %g %g", g[0], g[1], g[2], g[3], g[4], g[5]);

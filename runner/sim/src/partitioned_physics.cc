@@ -14,6 +14,7 @@
 #include <mutex>
 #include <thread>
 
+#include "mjformation/config/source_location.hpp"
 #include "mjformation/control/errors.hpp"
 #include "mjformation/scene/vehicle_binding.hpp"
 #include "mjformation/sim/actuation.hpp"
@@ -153,8 +154,7 @@ struct Partition {
 namespace {
 
 std::string ThreadsWhere(const ExperimentConfig& c) {
-  return c.source_path + (c.threads_line > 0 ? ":" + std::to_string(c.threads_line) : "") +
-         ": [run] threads";
+  return OriginLocation(c.source_path, c.threads_origin, SectionKey("run", "threads")).Prefix();
 }
 
 // Vehicle geoms that can touch a copy of themselves on another vehicle: MuJoCo collides two

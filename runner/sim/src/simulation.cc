@@ -120,14 +120,14 @@ void Simulation::AdaptForeignVehicle(const mjfPlugin& attitude) {
   m.body = config_.vehicle_body.empty() ? "vehicle" : config_.vehicle_body;
   for (int k = 0; k < attitude.n_actuators; ++k) m.actuator_names.push_back(attitude.actuators[k]);
   m.rotors = config_.vehicle_rotors.empty() ? m.actuator_names : config_.vehicle_rotors;
-  auto where = [&](int line, const char* key) {
-    return SourceLocation{config_.source_path, line, SectionKey("vehicles", key)}.Prefix();
+  auto where = [&](const ValueOrigin& origin, const char* key) {
+    return OriginLocation(config_.source_path, origin, SectionKey("vehicles", key)).Prefix();
   };
-  m.body_where = where(config_.vehicle_body_line, "body");
+  m.body_where = where(config_.vehicle_body_origin, "body");
   // A thrust-and-moment mapping's actuators are named by `thrust` and `moments`, not `rotors`.
   m.rotors_where = config_.vehicle_actuation == VehicleActuation::kRotors
-                       ? where(config_.vehicle_rotors_line, "rotors")
-                       : where(config_.vehicle_rotors_line, "thrust / moments");
+                       ? where(config_.vehicle_rotors_origin, "rotors")
+                       : where(config_.vehicle_rotors_origin, "thrust / moments");
   AdaptedVehicle adapted = AdaptVehicle(m);
   vehicle_xml_ = std::move(adapted.xml);
   vehicle_notes_ = std::move(adapted.notes);
@@ -232,13 +232,15 @@ template <typename Instances>
 std::vector<std::pair<std::string, double>> LargestOverInstances(const Instances& instances) {
   std::vector<std::pair<std::string, double>> merged;
   for (const auto& instance : instances) {
-    for (const auto& [key, value] : instance->Report()) {
+    for (const auto& entry : instance->Report()) {
+      // Not a structured binding: Clang 14 (the fuzz build) cannot capture one in a lambda.
+      const std::string& key = entry.first;
       auto it = std::find_if(merged.begin(), merged.end(),
                              [&](const auto& kv) { return kv.first == key; });
       if (it == merged.end()) {
-        merged.emplace_back(key, value);
+        merged.push_back(entry);
       } else {
-        it->second = std::max(it->second, value);
+        it->second = std::max(it->second, entry.second);
       }
     }
   }

@@ -46,6 +46,38 @@ TEST(EstimatorPlugins, KfInsRefusesASuiteWithoutAccelerometerOrPosition) {
   }
 }
 
+// Standard deviations are squared into the filter's covariance: a negative one (which would
+// pass as its absolute value) or one whose square overflows is refused naming the attribute,
+// as are noise densities beyond the sensor suite's bounds and a gate that is not > 0.
+TEST(EstimatorPlugins, KfInsRefusesNegativeOrUnboundedStandardDeviations) {
+  Library lib(MJF_ESTIMATOR_PLUGIN);
+  const mjfPlugin& p = *lib.Get("kf_ins");
+  const std::pair<const char*, const char*> bad[] = {{"initial_position_std", "-1.0"},
+                                                     {"initial_velocity_std", "-1.0"},
+                                                     {"initial_bias_std", "-0.2"},
+                                                     {"initial_position_std", "1e200"},
+                                                     {"initial_velocity_std", "1e300"},
+                                                     {"accel_noise", "1e300"},
+                                                     {"accel_bias_walk", "-1"},
+                                                     {"position_wander", "1e200"},
+                                                     {"gate_sigma", "-5.0"}};
+  for (const auto& [key, value] : bad) {
+    Context c(p, {{key, value}}, nullptr, 1, kStart);
+    const mjfSensorInfo s = Suite();
+    c.ctx.sensors = &s;
+    EXPECT_EQ(p.create(&c.ctx), nullptr) << key << " = " << value;
+    EXPECT_THAT(std::string(c.error), HasSubstr(std::string("attribute '") + key + "'"))
+        << key << " = " << value;
+  }
+  Context ok(p, {{"initial_position_std", "0"}, {"initial_velocity_std", "1e3"}}, nullptr, 1,
+             kStart);
+  const mjfSensorInfo s = Suite();
+  ok.ctx.sensors = &s;
+  void* filter = p.create(&ok.ctx);
+  EXPECT_NE(filter, nullptr) << ok.error;
+  if (filter) p.destroy(filter);
+}
+
 // At rest, the accelerometer reads +g and a late exact position sample keeps it at the start.
 TEST(EstimatorPlugins, KfInsHoldsAVehicleAtRestAndPassthroughHandsOnTheHeldSample) {
   Library lib(MJF_ESTIMATOR_PLUGIN);

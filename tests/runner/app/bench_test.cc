@@ -147,5 +147,17 @@ TEST(BenchTest, BadInputIsExitCodeOne) {
   EXPECT_FALSE(std::filesystem::exists(dir + "/b.json"));
 }
 
+// bench --json never replaces a file of the user's: refused before the bench runs (exit 1), the
+// file's bytes kept; a new name is written.
+TEST(BenchTest, AnExistingJsonFileIsNeverReplaced) {
+  const std::string dir = TempDir("bench_json_keep");
+  const std::string exp = WriteFile(dir + "/e.toml", HoverExperiment(1, 0.02));
+  const std::string mine = WriteFile(dir + "/mine.json", "the user's figures\n");
+  EXPECT_EQ(Cli({"bench", exp, "--json", mine}), 1);
+  EXPECT_EQ(mjf::testing::ReadFile(mine), "the user's figures\n");
+  EXPECT_EQ(Cli({"bench", exp, "--json", dir + "/new.json"}), 0);
+  EXPECT_TRUE(std::filesystem::exists(dir + "/new.json"));
+}
+
 }  // namespace
 }  // namespace mjf::runner

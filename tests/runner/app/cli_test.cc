@@ -6,6 +6,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <nlohmann/json.hpp>
 
 #include "test_util.hpp"
@@ -54,6 +55,76 @@ TEST(CliTest, SweepRunsEveryPointAndWritesTheTable) {
   EXPECT_EQ(summary["seed"], 2);
   // A bad value is refused before anything runs.
   EXPECT_EQ(Cli({"sweep", exp, "--vary", "vehicles.altitude=2.0,high", "--out", dir + "/bad"}), 1);
+}
+
+// The exit code and what stderr says for a command line.
+std::pair<int, std::string> CliStderr(const std::vector<std::string>& args) {
+  ::testing::internal::CaptureStderr();
+  const int code = Cli(args);
+  return {code, ::testing::internal::GetCapturedStderr()};
+}
+
+// Every integer option says what it takes, with the value given (CLI11's own message for a
+// PositiveNumber check was a floating-point range of 309 digits that contradicted itself).
+TEST(CliTest, EveryIntegerOptionSaysWhatItTakes) {
+  const std::string dir = TempDir("cli_integers");
+  const std::string exp = WriteFile(dir + "/e.toml", HoverExperiment(1, 0.2));
+  const std::pair<std::vector<std::string>, std::string> cases[] = {
+      {{"run", exp, "--threads", "0"}, "--threads: an integer in [1, 1024], got '0'"},
+      {{"run", exp, "--threads", "two"}, "--threads: an integer in [1, 1024], got 'two'"},
+      {{"run", exp, "--threads", "1.5"}, "--threads: an integer in [1, 1024], got '1.5'"},
+      {{"run", exp, "--threads", "100000"}, "--threads: an integer in [1, 1024], got '100000'"},
+      {{"bench", exp, "--threads", "1,0"}, "--threads: an integer in [1, 1024], got '0'"},
+      {{"bench", exp, "--followers", "x"}, "--followers: an integer in [1, 100000], got 'x'"},
+      {{"sweep", exp, "--seeds", "0"}, "--seeds: an integer in [1, 100000], got '0'"},
+      {{"sweep", exp, "--vary", "run.seed=1,2", "--jobs", "-1"},
+       "--jobs: an integer in [1, 1024], got '-1'"}};
+  for (const auto& [args, message] : cases) {
+    const auto [code, err] = CliStderr(args);
+    EXPECT_EQ(code, 2) << message;
+    EXPECT_THAT(err, HasSubstr(message));
+    EXPECT_THAT(err, ::testing::Not(HasSubstr("1797693134")));
+  }
+}
+
+// A key varied twice would run every cell at the last value while the run names and sweep.csv
+// showed both: refused before anything is written.
+TEST(CliTest, AKeyVariedTwiceIsRefused) {
+  const std::string dir = TempDir("cli_vary_twice");
+  const std::string exp = WriteFile(dir + "/e.toml", HoverExperiment(1, 0.2));
+  const auto [code, err] =
+      CliStderr({"sweep", exp, "--vary", "vehicles.altitude=3.0", "--vary",
+                 "vehicles.altitude=1.0,2.0", "--out", dir + "/s", "--no-render"});
+  EXPECT_EQ(code, 1);
+  EXPECT_THAT(err, HasSubstr("--vary vehicles.altitude is given twice"));
+  EXPECT_FALSE(std::filesystem::exists(dir + "/s"));
+}
+
+// Values from the command line are named by their origin, not by a line of the experiment file
+// (which does not hold them): the number of partitions, a plugin's refusal, a section a --set
+// made.
+TEST(CliTest, ValuesFromTheCommandLineAreReportedAtTheirOrigin) {
+  const std::string dir = TempDir("cli_origins");
+  const std::string exp =
+      WriteFile(dir + "/e.toml", "# a comment on line 1\n" + HoverExperiment(1, 0.2));
+  const std::pair<std::vector<std::string>, std::string> cases[] = {
+      {{"check", exp, "--set", "run.threads=3"},
+       "error: --set run.threads=3: [run] threads: 3 partitions for 2 vehicles"},
+      {{"run", exp, "--threads", "3", "-o", dir + "/r"},
+       "error: --threads 3: [run] threads: 3 partitions for 2 vehicles"},
+      {{"check", exp, "--set", "estimator={plugin=\"kf_ins\"}"},
+       "error: --set estimator={plugin=\"kf_ins\"}: [estimator] plugin 'kf_ins'"},
+      {{"check", exp, "--set", "vehicles.thrust=\"rotor0\"", "--set",
+        "vehicles.moments=[\"rotor1\", \"rotor2\", \"rotor3\"]"},
+       "error: --set vehicles.thrust=\"rotor0\": [vehicles] thrust: "},
+      {{"check", exp, "--set", "network.link=[{from=0,to=1}]"},
+       "error: --set network.link=[{from=0,to=1}]: [network]: needs [execution]"}};
+  for (const auto& [args, message] : cases) {
+    const auto [code, err] = CliStderr(args);
+    EXPECT_EQ(code, 1) << message;
+    EXPECT_THAT(err, HasSubstr(message));
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir + "/r"));
 }
 
 }  // namespace

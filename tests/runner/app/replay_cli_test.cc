@@ -70,6 +70,51 @@ TEST(ReplayCliTest, AMissingRunDirectoryIsBadInput) {
   EXPECT_FALSE(std::filesystem::exists(base + "/nothing"));
 }
 
+// A recorded run for the tests below: 0.05 s of hovering at rows every 0.01 s, small frames.
+std::string RecordedRun(const std::string& base) {
+  RunOptions o;
+  o.out_dir = base + "/run";
+  o.render = false;
+  const std::string small = "[render]\nwidth = 64\nheight = 48\n";
+  EXPECT_TRUE(RunExperiment(Parse(HoverExperiment(1, 0.05) + small), o).complete);
+  return o.out_dir;
+}
+
+// Nothing of the user's is replaced: replay has no --overwrite, so a --video file that exists
+// is refused (exit 1) with its bytes kept, and so is a snapshot PNG of the same name; the other
+// snapshots asked for are not written either (the refusal comes before any rendering).
+TEST(ReplayCliTest, AnExistingVideoOrSnapshotFileOfTheUserIsNeverReplaced) {
+  const std::string base = TempDir("replay_cli_keep");
+  const std::string run = RecordedRun(base);
+  const std::string video = base + "/mine.mp4";
+  mjf::testing::WriteFile(video, "the user's video");
+  EXPECT_EQ(Cli({"replay", run, "--video", video}), 1);
+  EXPECT_EQ(mjf::testing::ReadFile(video), "the user's video");
+
+  std::filesystem::create_directories(base + "/png");
+  mjf::testing::WriteFile(base + "/png/replay_t000.02.png", "the user's picture");
+  EXPECT_EQ(Cli({"replay", run, "--snapshots", "0.01,0.02", "--out", base + "/png"}), 1);
+  EXPECT_EQ(mjf::testing::ReadFile(base + "/png/replay_t000.02.png"), "the user's picture");
+  EXPECT_FALSE(std::filesystem::exists(base + "/png/replay_t000.01.png"));
+  // Into the same folder, a name it does not hold yet: written beside the user's file.
+  EXPECT_EQ(Cli({"replay", run, "--snapshots", "0.03", "--out", base + "/png"}), 0);
+  EXPECT_TRUE(std::filesystem::exists(base + "/png/replay_t000.03.png"));
+  EXPECT_EQ(mjf::testing::ReadFile(base + "/png/replay_t000.02.png"), "the user's picture");
+}
+
+// --snapshots times are checked against the recorded rows themselves: a killed run has no
+// summary.json, and a time past its last row is refused, not drawn as the last frame.
+TEST(ReplayCliTest, SnapshotTimesOutsideTheRecordingAreRefusedWithoutASummary) {
+  const std::string base = TempDir("replay_cli_killed");
+  const std::string run = RecordedRun(base);
+  std::filesystem::remove(run + "/summary.json");  // as a killed run leaves it
+  EXPECT_EQ(Cli({"replay", run, "--snapshots", "50", "--out", base + "/png"}), 1);
+  EXPECT_FALSE(std::filesystem::exists(base + "/png"));
+  EXPECT_EQ(Cli({"replay", run, "--snapshots", "-0.01", "--out", base + "/png"}), 1);
+  EXPECT_EQ(Cli({"replay", run, "--snapshots", "0.05", "--out", base + "/png"}), 0);
+  EXPECT_TRUE(std::filesystem::exists(base + "/png/replay_t000.05.png"));
+}
+
 TEST(ReplayCliTest, WindowsNeedTheViewerExecutable) {
   // The viewer is looked for next to the running executable; this test binary has none, so
   // the command says so and fails instead of starting anything.

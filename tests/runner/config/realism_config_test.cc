@@ -63,6 +63,34 @@ TEST(RealismConfig, SensorSuiteKeysAreRangeChecked) {
   EXPECT_FALSE(Parse(base + "[sensors]\npreset = \"typical\"\n").sensors.params.accel.enabled);
 }
 
+// Every noise key is bounded at parse time, as latency and scale are: 1e300 m of position noise
+// once ran to "complete" on 1e300 m estimates. The bound is the channel's, in its unit, and every
+// preset at the largest scale (100) stays inside it.
+TEST(RealismConfig, EveryNoiseKeyIsBoundedInItsUnit) {
+  const std::string base = HoverExperiment(2, 2.0);
+  const std::pair<const char*, const char*> bad[] = {
+      {"preset = \"mocap\"\nposition_std = 1e300",
+       "[sensors] position_std: must be a number in [0, 1000] m"},
+      {"position_wander = 1e200", "[sensors] position_wander: must be a number in [0, 1000] m"},
+      {"velocity_std = 1e6", "[sensors] velocity_std: must be a number in [0, 100] m/s"},
+      {"attitude_std = 4.0", "[sensors] attitude_std: must be a number in [0, 3.2] rad"},
+      {"body_rate_bias_walk = 1e9",
+       "[sensors] body_rate_bias_walk: must be a number in [0, 10] rad/s/sqrt(s)"},
+      {"position_bias_walk = 101.0", "[sensors] position_bias_walk"},
+      {"accel_noise = 1e300", "[sensors] accel_noise: must be a number in [0, 100] m/s^2/sqrt(Hz)"},
+      {"accel_bias_walk = 11.0", "[sensors] accel_bias_walk: must be a number in [0, 10]"}};
+  for (const auto& [lines, message] : bad) {
+    EXPECT_THAT(ErrorOf(base + "[sensors]\n" + lines + "\n"), HasSubstr(message)) << lines;
+  }
+  for (const char* preset : {"typical", "consumer_gnss", "rtk", "mocap"}) {
+    for (const char* imu : {"icm42688", "ekf2"}) {
+      EXPECT_NO_THROW(Parse(base + "[sensors]\npreset = \"" + std::string(preset) + "\"\nimu = \"" +
+                            imu + "\"\nscale = 100.0\n"))
+          << preset << " " << imu;
+    }
+  }
+}
+
 TEST(RealismConfig, DefaultsAreIdealAndCalm) {
   const ExperimentConfig c = Parse(HoverExperiment());
   EXPECT_FALSE(c.sensors.enabled());
@@ -99,9 +127,9 @@ TEST(RealismConfig, PresetScaleAndPerChannelKeys) {
 
 TEST(RealismConfig, BadInputNamesFileLineAndKey) {
   const std::string base = HoverExperiment(2, 2.0);  // 16 lines
-  EXPECT_THAT(
-      ErrorOf(base + "[sensors]\nposition_std = -0.1\n"),
-      AllOf(HasSubstr("exp.toml:18:"), HasSubstr("[sensors] position_std"), HasSubstr(">= 0")));
+  EXPECT_THAT(ErrorOf(base + "[sensors]\nposition_std = -0.1\n"),
+              AllOf(HasSubstr("exp.toml:18:"), HasSubstr("[sensors] position_std"),
+                    HasSubstr("a number in [0, 1000] m")));
   EXPECT_THAT(ErrorOf(base + "[sensors]\nbody_rate_bias_walk = nan\n"),
               AllOf(HasSubstr("exp.toml:18:"), HasSubstr("[sensors] body_rate_bias_walk"),
                     HasSubstr("finite")));

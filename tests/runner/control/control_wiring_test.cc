@@ -51,6 +51,26 @@ class ControlWiringTest : public ::testing::Test {
   PointMassInfo vehicle_;
 };
 
+// passthrough (named, or the default of an [estimator] that names no plugin) has no attributes:
+// a key given to it is refused at its --set origin, as kf_ins refuses a key it does not know,
+// instead of being dropped unread.
+TEST_F(ControlWiringTest, PassthroughRefusesAnyAttributeAtItsOrigin) {
+  for (const std::string set :
+       {"estimator={plugin=\"passthrough\", gate_sigma=5.0}", "estimator={gate_sigma=-5.0}"}) {
+    ControlWiring wiring = Wire(Exp2({set}));
+    try {
+      wiring.MakeSensors();
+      ADD_FAILURE() << set << " was accepted";
+    } catch (const PluginError& e) {
+      EXPECT_THAT(e.what(), HasSubstr("--set " + set +
+                                      ": [estimator] gate_sigma: plugin 'passthrough' has no "
+                                      "attribute 'gate_sigma' (its attributes: none)"));
+    }
+  }
+  ControlWiring plain = Wire(Exp2({"estimator={plugin=\"passthrough\"}"}));
+  EXPECT_NE(plain.MakeSensors(), nullptr);
+}
+
 TEST_F(ControlWiringTest, CentralModeWiresOneFormationLawAndAnAttitudeInstancePerVehicle) {
   ControlWiring wiring = Wire(Exp2({}));
   EXPECT_EQ(wiring.MakeChannel(), nullptr);

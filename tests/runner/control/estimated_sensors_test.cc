@@ -142,5 +142,34 @@ TEST(EstimatedSensors, KfInsWithoutAnAccelerometerIsRefusedWithTheSection) {
                                HasSubstr("accelerometer")));
 }
 
+// An estimator whose estimate of vehicle 1 turns NaN at step 3 (the others hand on the held
+// samples): what a filter fed 1e300 m noise did before the sensor keys were bounded.
+int g_nan_instance = 0, g_other_instance = 0;
+void* CreateNanEstimator(const mjfCreateContext* ctx) {
+  return ctx->vehicle == 1 ? &g_nan_instance : &g_other_instance;
+}
+int ComputeNanEstimate(void* instance, const mjfStepContext* ctx) {
+  ctx->estimate->state = *ctx->estimator->held;
+  if (instance == &g_nan_instance && ctx->step >= 3) ctx->estimate->state.vel[2] = std::nan("");
+  return 0;
+}
+const mjfPlugin kNanEstimator = {
+    MJF_ABI_VERSION, "nan_estimate_test", MJF_KIND_ESTIMATOR,  "test",  0,       nullptr, 0,
+    nullptr,         &CreateNanEstimator, &ComputeNanEstimate, nullptr, nullptr, nullptr};
+
+// A non-finite estimate stops the run where it appears, naming the estimator, the vehicle and
+// the part, instead of reaching the controllers (the stop was reported later as a non-finite
+// "vehicle states and setpoints", or not at all).
+TEST(EstimatedSensors, ANonFiniteEstimateStopsNamingTheEstimatorAndTheVehicle) {
+  RegisterInProcessPlugin(&kNanEstimator, "in-process (test)");
+  const ExperimentConfig c = Parse(PointMassExperiment(
+      2, 0, -2, 0, 1.0, "",
+      "[sensors]\npreset = \"typical\"\n[estimator]\nplugin = \"nan_estimate_test\"\n"));
+  EXPECT_EQ(ErrorOf([&] { Fly(c, 2); }), "(no error)");
+  EXPECT_EQ(ErrorOf([&] { Fly(c, 10); }),
+            "t = 0.003 s: estimator plugin 'nan_estimate_test' (vehicle 1) gave a non-finite "
+            "velocity estimate");
+}
+
 }  // namespace
 }  // namespace mjf::runner

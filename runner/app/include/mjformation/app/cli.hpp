@@ -44,6 +44,17 @@ struct CliCommands {
   bool sweep_resume = false;  // --resume: rerun only runs missing or incomplete
 };
 
+// The validator of every integer option: "--threads: an integer >= 1, got 0" (or "an integer in
+// [1, 1024]" when `max` is a real bound) for a number out of range and for any text that is not
+// a whole decimal number, instead of CLI11's floating-point range message.
+CLI::Validator IntegerOption(long long min, long long max);
+
+// Nothing of the user's is replaced: the commands that write a file the user names (replay's
+// --video and snapshots, bench --json) have no --overwrite, so a file that exists already (or
+// its ".tmp" sibling, which the PNG writer renames into place) is refused before any work, with
+// a ConfigError naming it. The write itself then creates the file exclusively (O_EXCL).
+void RefuseExistingFiles(const std::vector<std::string>& paths);
+
 void AddCommands(CLI::App& app, CliCommands* commands);
 // Runs the chosen subcommand; returns the process exit code:
 // 0 ok, 1 bad input (nothing run), 2 usage, 3 the run stopped early (partial results kept).

@@ -105,6 +105,18 @@ struct ReplayVideo {
   bool progress = true;       // a progress line on stderr while encoding
 };
 
+// --snapshots times must lie in the recording itself, [first, last] row of timeseries.csv (a
+// killed run has no summary.json; a time beyond the rows would render the last frame under a
+// misleading name). Throws ConfigError naming the time and the recorded range.
+void CheckReplayTimes(const Recording& recording, const std::vector<double>& times);
+
+// out_dir/replay_t<sss.ss>.png: the PNG of the frame nearest `time`, named by its recorded time.
+std::string SnapshotPath(const std::string& out_dir, const Recording& recording, double time);
+
+// Every file a replay would write: the PNGs of `times` (each once) and the video (when named).
+std::vector<std::string> ReplayOutputs(const Recording& recording, const std::vector<double>& times,
+                                       const std::string& out_dir, const std::string& video);
+
 // `mjformation replay` without a window: PNGs at `times` into out_dir (replay_t<sss.ss>.png)
 // and/or a video; returns the paths written.
 std::vector<std::string> RenderReplay(const Recording& recording, const std::vector<double>& times,

@@ -109,10 +109,24 @@ struct AttributeValue {
 };
 
 // A [leader] / [formation] / [attitude] section: plugin name plus its attributes.
+// Where a value was given, for the messages that name it after parsing (docs/ARCHITECTURE.md,
+// failure contract): a line of the experiment file, or the command-line argument that gave it
+// ("--set run.threads=4", "--threads 8"); neither (line 0, no argument): a default.
+struct ValueOrigin {
+  int line = 0;
+  std::string argument;
+};
+
+// Physics partitions at most ([run] threads, run and bench --threads).
+constexpr int kMaxThreads = 1024;
+
 struct PluginSection {
   std::string section;  // "leader", "formation", "attitude", "estimator"
   std::string plugin;
   int line = 0;  // line of the `plugin` key
+  // "--set section={...}" when the plugin key (or, without one, the section) came from the
+  // command line, else "": where refusals of the plugin point.
+  std::string origin;
   std::map<std::string, AttributeValue> attributes;
   // Defaults the runner derives for attributes the file leaves out, used only when the plugin
   // declares the key: "seed" = [run] seed, so run.seed drives every seeded plugin unless the
@@ -191,7 +205,7 @@ struct ExperimentConfig {
   // Physics partitions, each stepped on its own thread in lockstep with the one control tick
   // (partitioned_physics.hpp); 1: the single whole-swarm model. Same results either way.
   int threads = 1;
-  int threads_line = 0;  // for messages; 0: not in the file (default or --threads)
+  ValueOrigin threads_origin;  // the file's line, --set run.threads=K or --threads K
 
   SafetyConfig safety;  // [safety], [run] stop_on
 
@@ -213,12 +227,12 @@ struct ExperimentConfig {
   // in the attitude plugin's order. Empty body and rotors: the model follows the contract.
   std::string vehicle_body;
   std::vector<std::string> vehicle_rotors;
-  int vehicle_body_line = 0, vehicle_rotors_line = 0;  // for messages; 0: not in the file
+  ValueOrigin vehicle_body_origin, vehicle_rotors_origin;  // for messages
   // Thrust-and-moment vehicles ([vehicles] thrust = "...", moments = ["...", "...", "..."]):
   // vehicle_rotors then holds the four actuators in the plugin's order (thrust, moment x, y, z)
-  // and vehicle_rotors_line the line of `thrust`.
+  // and vehicle_rotors_origin the origin of `thrust`.
   VehicleActuation vehicle_actuation = VehicleActuation::kRotors;
-  int vehicle_moments_line = 0;
+  ValueOrigin vehicle_moments_origin;
 
   // [topology]
   std::vector<double> leader_weight;  // a_i0 per follower (0-based)

@@ -48,6 +48,14 @@ struct SourceLocation {
   }
 };
 
+// Where `origin` points, naming `what` there: "FILE:LINE: what", or "--set run.threads=4: what"
+// for a value from the command line.
+inline SourceLocation OriginLocation(const std::string& file, const ValueOrigin& origin,
+                                     const std::string& what) {
+  if (!origin.argument.empty()) return {origin.argument, 0, what};
+  return {file, origin.line, what};
+}
+
 }  // namespace mjf::runner
 
 #endif  // MJFORMATION_CONFIG_SOURCE_LOCATION_HPP_

@@ -90,6 +90,11 @@ class PluginInstance {
 // The descriptor must live as long as the process; same ABI check as a library's. Thread-safe.
 void RegisterInProcessPlugin(const mjfPlugin* plugin, const std::string& origin);
 
+// "FILE:LINE: [section] key" at the section's plugin key, or "--set section={...}: [section]
+// key" when the command line gave it: where a plugin's refusals point.
+std::string PluginWhere(const PluginSection& section, const std::string& config_path,
+                        const std::string& key);
+
 // The attribute checks of PluginInstance alone (also used by `mjformation check`).
 std::vector<std::pair<std::string, std::string>> ResolveAttributes(const mjfPlugin& plugin,
                                                                    const PluginSection& section,
