@@ -157,6 +157,13 @@ void AttachCopies(mjSpec* scene, mjSpec* vehicle, mjsBody* body, const SceneRequ
                        ": MuJoCo cannot attach the vehicle: " + mjs_getError(scene));
     }
     std::copy(request.positions[i].begin(), request.positions[i].end(), copy->pos);
+    if (i == 0) {
+      // The first copy brought the assets; the others refer to them. Deleting a copy's assets
+      // from the scene afterwards would cost a pass over the whole scene per asset (quadratic
+      // in N), so they are deleted from the small vehicle spec before they can be copied.
+      ShareVehicleAssets(scene, assets, prefixes);
+      for (mjtObj type : spec::kAssetTypes) spec::DeleteAll(vehicle, type);
+    }
   }
   ShareVehicleAssets(scene, assets, prefixes);
 }
