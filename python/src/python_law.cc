@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <mjformation/time_steps.hpp>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -43,12 +44,12 @@ std::string Attribute(const mjfCreateContext* ctx, const char* key) {
 int64_t StepsPerSample(const mjfCreateContext* ctx) {
   const double period = std::stod(Attribute(ctx, "period"));
   if (period == 0.0) return 1;
-  const double steps = period / ctx->timestep;
-  if (!(period > 0.0) || std::fabs(steps - std::round(steps)) > 1e-9 * steps || steps < 1) {
+  const int64_t steps = WholeSteps(period, ctx->timestep);
+  if (!(period > 0.0) || steps < 1) {
     throw std::invalid_argument("attribute 'period': T = " + Attribute(ctx, "period") +
                                 " s must be a positive whole number of physics steps");
   }
-  return std::llround(steps);
+  return steps;
 }
 
 // "ZeroDivisionError: division by zero": the last line of the traceback Python would print.

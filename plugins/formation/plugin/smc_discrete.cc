@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <mjformation/core/discrete_smc.hpp>
+#include <mjformation/time_steps.hpp>
 #include <sstream>
 #include <stdexcept>
 
@@ -57,9 +58,8 @@ int64_t StepsPerSample(double period, double timestep) {
   if (!(timestep > 0.0) || !std::isfinite(timestep)) {
     throw std::invalid_argument("smc_discrete: the physics timestep must be > 0");
   }
-  const double ratio = period / timestep;
-  const int64_t steps = std::llround(ratio);
-  if (steps < 1 || std::abs(ratio - static_cast<double>(steps)) > 1e-6 * ratio) {
+  const int64_t steps = WholeSteps(period, timestep);
+  if (steps < 1) {
     std::ostringstream out;
     out << "attribute 'period': T = " << period
         << " s is not an integer multiple of the physics timestep " << timestep
