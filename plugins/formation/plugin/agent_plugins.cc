@@ -55,7 +55,7 @@ struct Agent {
   double horizon;
   bool has_sample = false;
   // Sample k is due when the step the follower's clock reads enters a new period (step / steps
-  // per sample changes; the host hands the clock's step, issue 19): decided in round 0; the
+  // per sample changes; the host hands the step the follower's own clock reads): decided in round 0; the
   // later rounds of that sample take it again (last_round below).
   int64_t due_index = -1;
   bool sample_due = false;

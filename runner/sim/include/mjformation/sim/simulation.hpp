@@ -80,7 +80,7 @@ class Simulation {
   const std::vector<mjfVehicleState>& measured_states() const { return measured(); }
   // The wind at each vehicle this step (m/s, world); empty when [wind] is calm.
   const std::vector<std::array<double, 3>>& wind() const;
-  // The estimator stage (issue 18: [estimator] plugin other than "passthrough"): each vehicle's
+  // The estimator stage ([estimator] plugin other than "passthrough"): each vehicle's
   // estimate and covariance of the last ComputeControls, its plugin instances; else nullptr.
   const EstimatedSensors* estimation() const;
   const std::vector<mjfSetpoint>& setpoints() const { return tick_->setpoints(); }
