@@ -4,6 +4,7 @@
 // timing of per-agent execution as a swarm has it. Every value is checked here, before anything
 // runs.
 #include <cmath>
+#include <mjformation/plugin_contract.hpp>
 #include <sstream>
 
 #include "mjformation/config/source_location.hpp"
@@ -18,7 +19,7 @@ constexpr double kMaxDriftPpm = 1e4;
 // The sample period a follower's clock offset is bounded by: [formation] period when the file
 // gives it (the discrete law's T), else the physics step (laws that sample every step).
 double SamplePeriod(const ExperimentConfig& c) {
-  const auto it = c.formation.attributes.find("period");
+  const auto it = c.formation.attributes.find(plugin::contract::kPeriod);
   if (it == c.formation.attributes.end()) return c.timestep;
   char* end = nullptr;
   const double period = std::strtod(it->second.text.c_str(), &end);

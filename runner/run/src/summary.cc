@@ -54,14 +54,11 @@ void DescribeExperiment(const Simulation& sim, Json& s) {
 // "network", with the predicted delay margin when the law reports its T and q (eq. (48)).
 void AddNetworkSummary(const Simulation& sim, Json& s) {
   s["network"] = sim.channel()->Summary();
-  double period = 0.0, q = 0.0;
-  for (const auto& [k, v] : sim.FormationReport()) {
-    if (k == "period") period = v;
-    if (k == "q") q = v;
-  }
   // The margin is law (48)'s (T and q); other laws (e.g. consensus_linear) get none.
-  if (period > 0.0 && q > 0.0)
-    s["network"]["delay_margin"] = sim.channel()->DelayMarginSummary(period, q);
+  const plugin::contract::Law& law = sim.contracts().law;
+  if (law.HasDelayMargin()) {
+    s["network"]["delay_margin"] = sim.channel()->DelayMarginSummary(law.period, law.q);
+  }
 }
 
 // The followers' estimation accuracy among the metrics too, so a sweep's tables carry
