@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 # Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
-"""Table of the timing study (scripts/study_timing.sh, issue 19).
+"""Table of the timing study (scripts/study_timing.sh).
 
 Reads <study>/<vehicle>/<exp>/{central,<part>}/sweep.json (PARTS below) and, per vehicle,
 experiment and part, writes the mean sigma_f

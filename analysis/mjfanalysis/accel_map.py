@@ -17,7 +17,7 @@ from .io import load_sweep
 from .leaders import mean_ci
 
 REACHED_TOLERANCE_M = 1.0   # "reached": every follower within 1 m of its slot at the end
-GOAL_DISTANCE_M = 15.0      # issue goal: no follower farther than this after t = 5 s
+GOAL_DISTANCE_M = 15.0      # the study's goal: no follower farther than this after t = 5 s
 NAN = float("nan")
 FOLDER_RE = re.compile(r"^(?P<exp>[a-z0-9_]+?)__(?P<vehicle>[a-z_]+)__(?P<law>paper|constrained)$")
 LIMIT_RE = re.compile(r"pointmass_lim([0-9.]+)\.xml")

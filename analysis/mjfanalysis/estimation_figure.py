@@ -1,5 +1,5 @@
 # Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
-"""Estimate against truth (issue 18), for a run whose [estimator] is not passthrough: per
+"""Estimate against truth, for a run whose [estimator] is not passthrough: per
 follower the horizontal position error of the estimate (x and y, m) with the filter's own
 +/- 2 sigma band, and the NEES of the (p, v) estimate over time with the chi-square 95 % band
 of one sample (state dimension 6).

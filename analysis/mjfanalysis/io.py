@@ -16,6 +16,8 @@ from pathlib import Path
 
 import numpy as np
 
+from .varied import axis_value  # noqa: F401  (re-exported: callers read it from here)
+
 NAN = float("nan")
 
 
@@ -304,17 +306,6 @@ class Sweep:
         from .sweep_plot import plot_sweep
 
         return plot_sweep(self, metric, x=x, ax=ax, **kwargs)
-
-
-def axis_value(v):
-    """A varied value as written in sweep.json: numbers stay numbers; TOML text such as
-    '"none"' or '{preset = "typical"}' is decoded where it is JSON, else kept as text."""
-    if isinstance(v, str):
-        try:
-            return json.loads(v)
-        except ValueError:
-            return v
-    return v
 
 
 def _frame_row(entry: dict) -> dict:

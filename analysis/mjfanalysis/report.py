@@ -362,34 +362,25 @@ def _status_cell(run: Run) -> str:
     return f"**NO** ({run.status})"
 
 
-def write_report(results_dir, out_dir) -> Path:
-    """Writes out_dir/report.md (+ figures, snapshots). Raises FileNotFoundError when
-    results_dir holds no run directory."""
-    results_dir, out_dir = Path(results_dir), Path(out_dir)
-    runs = sorted((r for r in find_runs(results_dir)
-                   if r.path.resolve() != out_dir.resolve()), key=_sort_key)
-    if not runs:
-        raise FileNotFoundError(f"{results_dir}: no run directories (sub-folders with "
-                                "summary.json or timeseries.csv)")
-    out_dir.mkdir(parents=True, exist_ok=True)
-    fig_dir = out_dir / "figures"
-    rows = [analyse(r) for r in runs]
-    names = {r.name for r in runs}
-    L = []
-    L.append("# mjformation: distributed sliding-mode formation tracking, reproduction report")
-    L.append("")
-    L.append("Paper: J. Wang, L. Han, X. Dong et al., \"Distributed sliding mode control for "
-             "time-varying formation tracking of multi-UAV system with a dynamic leader\", "
-             "Aerospace Science and Technology 111 (2021) 106549, section 6 (Experiments 1-3, "
-             "Figs. 9-27, Table 1).")
-    L.append("")
-    L.append(f"Results folder: `{_rel(results_dir, out_dir)}` (relative to this report); "
-             f"{len(runs)} run director{'y' if len(runs) == 1 else 'ies'}.")
-    L.append("")
+def _header_lines(results_dir: Path, out_dir: Path, n_runs: int) -> list[str]:
+    return [
+        "# mjformation: distributed sliding-mode formation tracking, reproduction report",
+        "",
+        "Paper: J. Wang, L. Han, X. Dong et al., \"Distributed sliding mode control for "
+        "time-varying formation tracking of multi-UAV system with a dynamic leader\", "
+        "Aerospace Science and Technology 111 (2021) 106549, section 6 (Experiments 1-3, "
+        "Figs. 9-27, Table 1).",
+        "",
+        f"Results folder: `{_rel(results_dir, out_dir)}` (relative to this report); "
+        f"{n_runs} run director{'y' if n_runs == 1 else 'ies'}.",
+        "",
+    ]
 
-    # --- runs present / missing
-    L.append("## Runs")
-    L.append("")
+
+def _runs_lines(rows: list[Row]) -> list[str]:
+    """The runs present, and the expected ones missing."""
+    L = ["## Runs", ""]
+    names = {r.run.name for r in rows}
     for r in rows:
         extra = "" if r.run.complete else f" — {_esc(r.run.error or '')}"
         L.append(f"- `{r.run.name}`: {r.run.status}{extra}")
@@ -404,10 +395,27 @@ def write_report(results_dir, out_dir) -> Path:
     else:
         L.append("No expected run is missing.")
     L.append("")
+    return L
 
-    # --- Table 1
-    L.append("## Table 1, side by side with the paper")
-    L.append("")
+
+def _table1_cell(r: Row, notes: list[Row]) -> str:
+    """Our mean σ_f as Table 1 shows it: in parentheses when it is no result, marked when the
+    run had a safety event (its footnote appended to `notes`)."""
+    ours = fmt(r.sigma)
+    if not r.run.complete:
+        ours = f"({ours}) {r.run.status}" if ours != "—" else f"— ({r.run.status})"
+    elif r.crashed:
+        ours = f"({ours})"
+    elif not r.window_covered:
+        ours += " (window not covered)"
+    if r.run.event_count:
+        notes.append(r)
+        ours += f" {EVENT_MARK}{len(notes)}"
+    return ours
+
+
+def _table1_lines(rows: list[Row]) -> list[str]:
+    L = ["## Table 1, side by side with the paper", ""]
     L.append("Mean of σ_f(t), eq. (68), over the metric window (the paper's t ∈ [25, 40] s). "
              "Paper values: Gazebo, Table 1. Δ and the error bound are what the formation "
              "plugin reports (discrete protocol: quasi-sliding band, eq. (49), and bound (47)). "
@@ -419,16 +427,7 @@ def write_report(results_dir, out_dir) -> Path:
     L.append("|---|---|---|---|---|---|---|---|---|---|---|")
     notes = []  # footnotes of the runs with safety events
     for r in rows:
-        ours = fmt(r.sigma)
-        if not r.run.complete:
-            ours = f"({ours}) {r.run.status}" if ours != "—" else f"— ({r.run.status})"
-        elif r.crashed:
-            ours = f"({ours})"
-        elif not r.window_covered:
-            ours += " (window not covered)"
-        if r.run.event_count:
-            notes.append(r)
-            ours += f" {EVENT_MARK}{len(notes)}"
+        ours = _table1_cell(r, notes)
         L.append("| " + " | ".join([
             f"`{r.run.name}`",
             str(r.exp) if r.exp else "—",
@@ -448,10 +447,11 @@ def write_report(results_dir, out_dir) -> Path:
     L.append("Paper protocols: " + "; ".join(f"Exp. {k}: {v}" for k, v in
                                               sorted(M.PAPER_PROTOCOL.items())) + ".")
     L.append("")
+    return L
 
-    # --- cross-check
-    L.append("### Cross-check of the runner's σ_f")
-    L.append("")
+
+def _crosscheck_lines(rows: list[Row]) -> list[str]:
+    L = ["### Cross-check of the runner's σ_f", ""]
     L.append("The runner's online mean (summary.json), the mean of the CSV's `sigma_f` column and "
              "σ_f recomputed here from the recorded states and slots (f_iv = ω J f_ip for the "
              "circle shape, else the numerical derivative of f_ip), each over the window.")
@@ -468,34 +468,28 @@ def write_report(results_dir, out_dir) -> Path:
         L.append(f"| `{r.run.name}` | [{r.window[0]:g}, {r.window[1]:g}] | {fmt(r.sigma_summary)} "
                  f"| {fmt(r.sigma_csv)} | {fmt(r.sigma_states)} | {agree} |")
     L.append("")
+    return L
 
-    # --- inner-loop motion (tilt, oscillation, thrust variation in the window)
-    motion = motion_lines(rows)
-    if motion:
-        L.extend(motion)
-    L.extend(transient_lines(rows))
+
+def _robustness_lines(results_dir: Path) -> list[str]:
+    """The robustness map of scripts/robustness_map.sh, when it was run."""
     robustness_md = results_dir / "robustness" / "map.md"
-    if robustness_md.is_file():
-        L.append("## Robustness map (experiment × tilt_max × vehicle × formation law)")
-        L.append("")
-        L.append("From `scripts/robustness_map.sh` (each attitude plugin at its default gains; "
-                 "\"reached\": every follower within 1 m of its slot at the end; mean ± 95 % "
-                 "CI half-width over the seeds):")
-        L.append("")
-        L.append(robustness_md.read_text().rstrip("\n"))
-        L.append("")
+    if not robustness_md.is_file():
+        return []
+    return [
+        "## Robustness map (experiment × tilt_max × vehicle × formation law)",
+        "",
+        "From `scripts/robustness_map.sh` (each attitude plugin at its default gains; "
+        "\"reached\": every follower within 1 m of its slot at the end; mean ± 95 % "
+        "CI half-width over the seeds):",
+        "",
+        robustness_md.read_text().rstrip("\n"),
+        "",
+    ]
 
-    # --- comparison figure
-    comp = plots.fig_sigma_comparison(runs, fig_dir / "sigma_f_all_runs.png",
-                                      rows[0].window if rows else M.DEFAULT_WINDOW)
-    L.append("## σ_f(t) of all runs")
-    L.append("")
-    L.append(f"![sigma_f of all runs, log scale]({_rel(comp, out_dir)})")
-    L.append("")
 
-    # --- topology
-    L.append("## Interaction topology")
-    L.append("")
+def _topology_lines(runs: list[Run]) -> list[str]:
+    L = ["## Interaction topology", ""]
     L.append("The paper's Fig. 8 gives the follower-follower edges only in the figure, not in the "
              "text (the text says only that follower 1 alone receives the leader). The graph "
              "actually used, read from each run's `config.toml` `[topology]` section:")
@@ -506,12 +500,11 @@ def write_report(results_dir, out_dir) -> Path:
     for text, members in groups.items():
         L.append(f"- {', '.join(f'`{m}`' for m in members)}: {text}")
     L.append("")
+    return L
 
-    # --- discussion
-    L.append("## Discussion")
-    L.append("")
-    L.append("Generated from the data:")
-    L.append("")
+
+def _discussion_lines(rows: list[Row], results_dir: Path) -> list[str]:
+    L = ["## Discussion", "", "Generated from the data:", ""]
     L.extend(discussion(rows))
     L.append("")
     disc = results_dir / "discussion.md"
@@ -520,72 +513,110 @@ def write_report(results_dir, out_dir) -> Path:
         L.append("")
         L.append(disc.read_text().rstrip("\n"))
         L.append("")
+    return L
 
-    # --- non-cooperative leaders (scripts/leader_study.sh), when they were run
-    L.extend(leaders.section(results_dir, out_dir))
 
-    # --- per run
-    L.append("## Runs in detail")
+def _run_summary_lines(r: Row) -> list[str]:
+    """A run's status, safety events and numbers, at the top of its section."""
+    run = r.run
+    L = [f"### `{run.name}`", ""]
+    if not run.complete:
+        L.append(f"> **{run.status.upper()}** — not a result. {_esc(run.error or '')} "
+                 f"(recorded up to t = {fmt(r.t_end, 2)} s)")
+        L.append("")
+    if run.event_count:
+        shown = run.events[:5]
+        more = run.event_count - len(shown)
+        L.append(f"> **{run.event_count} SAFETY EVENT{'S' if run.event_count > 1 else ''}**"
+                 + (" — σ_f is not a result" if r.crashed else "") + ": "
+                 + "; ".join(_esc(describe_event(e)) for e in shown)
+                 + (f"; {more} more in summary.json" if more > 0 else "") + ".")
+        L.append("")
+    L.append(f"- experiment: {_esc(run.label)}; paper experiment: {r.exp or '—'}; "
+             f"vehicle model: {_esc(run.vehicle_model)}")
+    L.append(f"- protocol: {_esc(M.protocol_description(run.summary, run.config))}"
+             f"{_esc(network.protocol_suffix(run.summary))}")
+    L.append(f"- mean σ_f on [{r.window[0]:g}, {r.window[1]:g}] s: {fmt(r.sigma)}; "
+             f"σ_f(0) = {fmt(run.metric('sigma_f_initial'))}; "
+             f"σ_f(end) = {fmt(run.metric('sigma_f_final'))}")
+    L.append(f"- max final slot error: {fmt(r.max_slot_error, 3)} m; min separation: "
+             f"{fmt(run.metric('min_separation_m'), 3)} m; reaching time: "
+             f"{fmt(run.metric('reaching_time_s'), 2)} s; actuator saturation time: "
+             f"{fmt(run.metric('saturation_time_s'), 3)} s")
+    L.extend(network.lines(run.summary))
     L.append("")
+    return L
+
+
+def _run_figure_lines(run: Run, fig_dir: Path, out_dir: Path) -> list[str]:
+    """A run's figures (network, estimate, time series), snapshots and video, written or copied
+    under out_dir."""
+    # Imported here only: a report whose runs have no estimator never needs it.
+    from . import estimation_figure as EF
+
+    L = []
+    net_fig = network.figure(run, fig_dir / run.name / network.FIGURE_NAME)
+    if net_fig is not None:
+        L.append(f"![{run.name} network]({_rel(net_fig, out_dir)})")
+        L.append("")
+    est_fig = EF.figure(run, fig_dir / run.name / EF.FIGURE_NAME)
+    if est_fig is not None:  # an [estimator] other than passthrough
+        L.append(f"![{run.name} estimate against truth]({_rel(est_fig, out_dir)})")
+        L.append("")
+    if run.timeseries is not None:
+        figs = plots.run_figures(run, fig_dir / run.name)
+        for key, path in figs.items():
+            L.append(f"![{run.name} {key}]({_rel(path, out_dir)})")
+            L.append("")
+    else:
+        L.append(f"No figures: {_esc(run.ts_error or 'no timeseries.csv')}.")
+        L.append("")
+    snaps = run.snapshots()
+    if snaps:
+        L.append("Snapshots (offscreen renders):")
+        L.append("")
+        for s in snaps:
+            dst = _copy(s, out_dir / "snapshots" / run.name / s.name)
+            m = re.match(r"t(\d+(?:\.\d+)?)\.png$", s.name)
+            cap = f"t = {float(m.group(1)):g} s" if m else s.name
+            L.append(f"![{run.name} snapshot {cap}]({_rel(dst, out_dir)})")
+            L.append("")
+    if run.video is not None:
+        L.append(f"Video: [{run.name}/video.mp4]({_rel(run.video, out_dir)})")
+        L.append("")
+    return L
+
+
+def write_report(results_dir, out_dir) -> Path:
+    """Writes out_dir/report.md (+ figures, snapshots). Raises FileNotFoundError when
+    results_dir holds no run directory."""
+    results_dir, out_dir = Path(results_dir), Path(out_dir)
+    runs = sorted((r for r in find_runs(results_dir)
+                   if r.path.resolve() != out_dir.resolve()), key=_sort_key)
+    if not runs:
+        raise FileNotFoundError(f"{results_dir}: no run directories (sub-folders with "
+                                "summary.json or timeseries.csv)")
+    out_dir.mkdir(parents=True, exist_ok=True)
+    fig_dir = out_dir / "figures"
+    rows = [analyse(r) for r in runs]
+    L = _header_lines(results_dir, out_dir, len(runs))
+    L += _runs_lines(rows)
+    L += _table1_lines(rows)
+    L += _crosscheck_lines(rows)
+    L += motion_lines(rows)  # inner-loop motion: tilt, oscillation, thrust variation
+    L += transient_lines(rows)
+    L += _robustness_lines(results_dir)
+    comp = plots.fig_sigma_comparison(runs, fig_dir / "sigma_f_all_runs.png",
+                                      rows[0].window if rows else M.DEFAULT_WINDOW)
+    L += ["## σ_f(t) of all runs", "", f"![sigma_f of all runs, log scale]({_rel(comp, out_dir)})",
+          ""]
+    L += _topology_lines(runs)
+    L += _discussion_lines(rows, results_dir)
+    L += leaders.section(results_dir, out_dir)  # non-cooperative leaders, when they were run
+    L += ["## Runs in detail", ""]
     for r in rows:
-        run = r.run
-        L.append(f"### `{run.name}`")
-        L.append("")
-        if not run.complete:
-            L.append(f"> **{run.status.upper()}** — not a result. {_esc(run.error or '')} "
-                     f"(recorded up to t = {fmt(r.t_end, 2)} s)")
-            L.append("")
-        if run.event_count:
-            shown = run.events[:5]
-            more = run.event_count - len(shown)
-            L.append(f"> **{run.event_count} SAFETY EVENT{'S' if run.event_count > 1 else ''}**"
-                     + (" — σ_f is not a result" if r.crashed else "") + ": "
-                     + "; ".join(_esc(describe_event(e)) for e in shown)
-                     + (f"; {more} more in summary.json" if more > 0 else "") + ".")
-            L.append("")
-        L.append(f"- experiment: {_esc(run.label)}; paper experiment: {r.exp or '—'}; "
-                 f"vehicle model: {_esc(run.vehicle_model)}")
-        L.append(f"- protocol: {_esc(M.protocol_description(run.summary, run.config))}"
-                 f"{_esc(network.protocol_suffix(run.summary))}")
-        L.append(f"- mean σ_f on [{r.window[0]:g}, {r.window[1]:g}] s: {fmt(r.sigma)}; "
-                 f"σ_f(0) = {fmt(run.metric('sigma_f_initial'))}; "
-                 f"σ_f(end) = {fmt(run.metric('sigma_f_final'))}")
-        L.append(f"- max final slot error: {fmt(r.max_slot_error, 3)} m; min separation: "
-                 f"{fmt(run.metric('min_separation_m'), 3)} m; reaching time: "
-                 f"{fmt(run.metric('reaching_time_s'), 2)} s; actuator saturation time: "
-                 f"{fmt(run.metric('saturation_time_s'), 3)} s")
-        L.extend(network.lines(run.summary))
-        L.append("")
-        net_fig = network.figure(run, fig_dir / run.name / network.FIGURE_NAME)
-        if net_fig is not None:
-            L.append(f"![{run.name} network]({_rel(net_fig, out_dir)})")
-            L.append("")
-        from . import estimation_figure as EF  # issue 18's hook, kept in one place
-        est_fig = EF.figure(run, fig_dir / run.name / EF.FIGURE_NAME)
-        if est_fig is not None:  # an [estimator] other than passthrough
-            L.append(f"![{run.name} estimate against truth]({_rel(est_fig, out_dir)})")
-            L.append("")
-        if run.timeseries is not None:
-            figs = plots.run_figures(run, fig_dir / run.name)
-            for key, path in figs.items():
-                L.append(f"![{run.name} {key}]({_rel(path, out_dir)})")
-                L.append("")
-        else:
-            L.append(f"No figures: {_esc(run.ts_error or 'no timeseries.csv')}.")
-            L.append("")
-        snaps = run.snapshots()
-        if snaps:
-            L.append("Snapshots (offscreen renders):")
-            L.append("")
-            for s in snaps:
-                dst = _copy(s, out_dir / "snapshots" / run.name / s.name)
-                m = re.match(r"t(\d+(?:\.\d+)?)\.png$", s.name)
-                cap = f"t = {float(m.group(1)):g} s" if m else s.name
-                L.append(f"![{run.name} snapshot {cap}]({_rel(dst, out_dir)})")
-                L.append("")
-        if run.video is not None:
-            L.append(f"Video: [{run.name}/video.mp4]({_rel(run.video, out_dir)})")
-            L.append("")
+        L += _run_summary_lines(r)
+        L += _run_figure_lines(r.run, fig_dir, out_dir)
     path = out_dir / "report.md"
     path.write_text("\n".join(L).rstrip("\n") + "\n")
     return path

@@ -14,7 +14,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-from .io import Sweep, axis_value
+from .varied import axis_value
 
 
 @dataclass
@@ -71,7 +71,7 @@ def _cell_key(entry: dict, keys: list[str]) -> tuple:
     return tuple(str(entry.get(k)) for k in keys)
 
 
-def _run_values(sweep: Sweep, metric: str, keys: list[str], event_free: bool) -> dict:
+def _run_values(sweep, metric: str, keys: list[str], event_free: bool) -> dict:
     """{cell key: (metric of each run in the statistics, of each run left out, how many were
     left out)} from sweep.json's runs: the complete ones, without a safety event if event_free."""
     values = {}
@@ -96,9 +96,11 @@ def _point(cell: dict, metric: str, x: str, runs: tuple, event_free: bool) -> Po
                  _number(high), int(stats.get("n") or 0), left_out, kept, dropped)
 
 
-def sweep_lines(sweep: Sweep, metric: str = "sigma_f_mean", x: str | None = None,
+def sweep_lines(sweep, metric: str = "sigma_f_mean", x: str | None = None,
                 event_free: bool = True) -> tuple[str, list[Line]]:
-    """(x, the lines) of the sweep plot. Raises ValueError for a sweep without cells (no --seeds),
+    """(x, the lines) of the sweep plot of `sweep` (a mjfanalysis.io.Sweep: its path, varied,
+    runs and cells are read; not imported here, so that io.py may import this module). Raises
+    ValueError for a sweep without cells (no --seeds),
     one that varies nothing, an unknown x or a metric no cell has."""
     keys = sweep.varied
     if not sweep.cells:
@@ -151,7 +153,7 @@ def _draw_line(ax, line: Line, positions: dict, color, event_free: bool, dx: flo
             ax.plot([xp], [p.mean], "o", mfc="white", color=color)
 
 
-def plot_sweep(sweep: Sweep, metric: str = "sigma_f_mean", x: str | None = None, ax=None,
+def plot_sweep(sweep, metric: str = "sigma_f_mean", x: str | None = None, ax=None,
                event_free: bool = True, title: str | None = None):
     """Draws the sweep plot on `ax` (a new figure when None) and returns the axes. event_free:
     leave out (and count) the runs with a safety event; False: every complete run."""

@@ -132,10 +132,11 @@ typedef struct mjfShape_ {
   const void* self;
   /* Fills out[6*i + k] for follower i, k = (px, py, vx, vy, ax, ay) at time t. */
   void (*evaluate)(const void* self, double t, double* out);
-  /* Appended in this wave (issue 10), still version 2: fills out[0..5] for one follower with
-   * what evaluate() writes at out[6*follower ..], bit for bit, at a cost independent of
-   * n_followers, so a per-agent instance evaluates only itself and its neighbours (per-agent
-   * cost linear in N). The host always sets it; a shape from elsewhere may leave it NULL. */
+  /* Appended at the end (still version 2, so older plugins keep their layout): fills out[0..5] for
+   * one follower with what evaluate() writes at out[6*follower ..], bit for bit, at a cost
+   * independent of n_followers, so a per-agent instance evaluates only itself and its neighbours
+   * (per-agent cost linear in N). The host always sets it; a shape from elsewhere may leave it
+   * NULL. */
   void (*evaluate_one)(const void* self, double t, int follower, double* out);
 } mjfShape;
 
@@ -177,10 +178,11 @@ typedef struct mjfAgentInput_ {
   mjfMessage* outgoing;     /* what this follower broadcasts next: the host fills sender,
                                time, state and input (from the setpoint written); the plugin
                                may fill round-specific payload */
-  /* Added at the end in this wave (issue 10): with [execution] coupling = "central_solve", in
-   * the last round of a sample the host's exact solve of L_H W = R for this follower (W_i for
-   * x and y, where R_i is what the plugin published in outgoing->payload[2..3] in round 0; see
-   * docs/NETWORK.md); NULL otherwise. The ideal-network reference, not a distributed scheme. */
+  /* Added at the end (older plugins keep their layout): with [execution] coupling =
+   * "central_solve", in the last round of a sample the host's exact solve of L_H W = R for this
+   * follower (W_i for x and y, where R_i is what the plugin published in outgoing->payload[2..3] in
+   * round 0; see docs/NETWORK.md); NULL otherwise. The ideal-network reference, not a distributed
+   * scheme. */
   const double* solved;
 } mjfAgentInput;
 

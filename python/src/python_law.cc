@@ -13,6 +13,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <mjformation/plugin_contract.hpp>
+#include <mjformation/time_steps.hpp>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -29,7 +31,7 @@ constexpr int kPayloadUsed = 8;
 
 const mjfAttribute kAttributes[] = {
     {"law", nullptr, "key of the Python callable (set by mjformation.run; names it)"},
-    {"period", "0", "sample period T of the law, s (0: every physics step)"},
+    {mjf::plugin::contract::kPeriod, "0", "sample period T of the law, s (0: every physics step)"},
 };
 
 std::string Attribute(const mjfCreateContext* ctx, const char* key) {
@@ -41,14 +43,15 @@ std::string Attribute(const mjfCreateContext* ctx, const char* key) {
 
 // Physics steps per sample: period 0 is every step; else a whole number of steps.
 int64_t StepsPerSample(const mjfCreateContext* ctx) {
-  const double period = std::stod(Attribute(ctx, "period"));
+  const double period = std::stod(Attribute(ctx, plugin::contract::kPeriod));
   if (period == 0.0) return 1;
-  const double steps = period / ctx->timestep;
-  if (!(period > 0.0) || std::fabs(steps - std::round(steps)) > 1e-9 * steps || steps < 1) {
-    throw std::invalid_argument("attribute 'period': T = " + Attribute(ctx, "period") +
-                                " s must be a positive whole number of physics steps");
+  const int64_t steps = WholeSteps(period, ctx->timestep);
+  if (!(period > 0.0) || steps < 1) {
+    throw std::invalid_argument(
+        "attribute 'period': T = " + Attribute(ctx, plugin::contract::kPeriod) +
+        " s must be a positive whole number of physics steps");
   }
-  return std::llround(steps);
+  return steps;
 }
 
 // "ZeroDivisionError: division by zero": the last line of the traceback Python would print.
@@ -210,7 +213,7 @@ void DestroyCentral(void* instance) {
 }
 
 void Report(int64_t calls, double period, int64_t steps, mjfReportFn emit, void* user) {
-  emit(user, "period", period);
+  emit(user, plugin::contract::kPeriod, period);
   emit(user, "steps_per_sample", static_cast<double>(steps));
   emit(user, "python_calls", static_cast<double>(calls));
 }

@@ -64,6 +64,18 @@ err = math.hypot(x - ex, y - ey)
 assert err < 0.3, f"leader at ({x:.2f}, {y:.2f}), orbit reference ({ex:.2f}, {ey:.2f})"
 print(f"example_orbit: leader {err:.3f} m from its reference after 4 s")
 PY
+# The example formation law declares the contract's period and q (docs/PLUGINS.md): the runner
+# reads them back into summary.json's plugin report.
+test -f "$work/example-build/libexample_sampled_law.so"
+"$bin" run "$work/exp.toml" --out "$work/run_law" --plugin-path "$work/example-build" --no-render \
+  -q --set formation.plugin='"example_sampled_law"' \
+  --set 'formation.shape={type="circle",radius=3.0,omega=0.3}'
+grep -q '"complete": true' "$work/run_law/summary.json"
+python3 - "$work/run_law/summary.json" <<'PY'
+import json, sys
+report = json.load(open(sys.argv[1]))["plugin_report"]
+assert report == {"period": 0.02, "q": 5.0}, report
+PY
 # Installed into the same (moved) prefix, the runner finds it with no --plugin-path.
 cmake --install "$work/example-build" --prefix "$work/moved" >/dev/null
 "$bin" plugins > "$work/plugins.txt"

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <mjformation/plugin_contract.hpp>
 #include <mjformation/plugin_util.hpp>
 #include <string>
 
@@ -72,7 +73,7 @@ std::array<mjf::attitude::RotorGeometry, Mixer::kRotors> ToRotors(const mjfVehic
 // ---------------------------------------------------------------------------------------------
 // pd_cascade
 
-constexpr const char* kTiltMax = "tilt_max";
+constexpr const char* kTiltMax = mjf::plugin::contract::kTiltMax;
 constexpr const char* kKpAtt = "kp_att";
 constexpr const char* kKdAtt = "kd_att";
 constexpr const char* kKpYaw = "kp_yaw";
@@ -192,9 +193,9 @@ void CascadeReport(void* instance, mjfReportFn emit, void* user) {
   const PdCascade::Gains& g = c.gains();
   emit(user, "kp_att", g.kp_att);
   emit(user, "kd_att", g.kd_att);
-  emit(user, "att_bw", g.kp_att / g.kd_att);
-  emit(user, "att_bw_unlimited", c.unlimited_att_bw());
-  emit(user, "tilt_max", g.tilt_max);
+  emit(user, mjf::plugin::contract::kAttBw, g.kp_att / g.kd_att);
+  emit(user, mjf::plugin::contract::kAttBwUnlimited, c.unlimited_att_bw());
+  emit(user, kTiltMax, g.tilt_max);
 }
 
 const mjfPlugin kPdCascade = {
@@ -216,7 +217,7 @@ const mjfPlugin kPdCascade = {
 // geometric
 
 constexpr const char* kRateBw = "rate_bw";
-constexpr const char* kAttBw = "att_bw";
+constexpr const char* kAttBw = mjf::plugin::contract::kAttBw;
 constexpr const char* kYawBw = "yaw_bw";
 constexpr const char* kZBw = "z_bw";
 constexpr const char* kRateKi = "rate_ki";
@@ -281,11 +282,11 @@ void GeometricReport(void* instance, mjfReportFn emit, void* user) {
   const Geometric& c = static_cast<RotorInstance<Geometric>*>(instance)->controller;
   const Geometric::Gains& g = c.gains();
   emit(user, "rate_bw", g.rate_bw);
-  emit(user, "att_bw", g.att_bw);
-  emit(user, "att_bw_unlimited", c.unlimited_att_bw());
+  emit(user, kAttBw, g.att_bw);
+  emit(user, mjf::plugin::contract::kAttBwUnlimited, c.unlimited_att_bw());
   emit(user, "yaw_bw", g.yaw_bw);
   emit(user, "z_bw", g.z_bw);
-  emit(user, "tilt_max", g.tilt_max);
+  emit(user, kTiltMax, g.tilt_max);
 }
 
 const mjfPlugin kGeometric = {

@@ -50,7 +50,7 @@ core::SlidingGains ParseGains(const plugin::Attributes& attributes) {
 double ParseAccelLimit(const plugin::Attributes& attributes) {
   const std::string text = attributes.String(kKeyAccelLimit);
   if (text == "none") return std::numeric_limits<double>::infinity();
-  if (text == "vehicle") {
+  if (text == plugin::contract::kFromVehicle) {
     throw std::invalid_argument(
         "attribute 'accel_limit': \"vehicle\" must be resolved by the host from the followers' "
         "vehicle info (this host did not)");

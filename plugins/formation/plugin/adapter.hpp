@@ -13,6 +13,7 @@
 #include <mjformation/core/linear_consensus.hpp>
 #include <mjformation/core/shape.hpp>
 #include <mjformation/core/sliding.hpp>
+#include <mjformation/plugin_contract.hpp>
 #include <mjformation/plugin_util.hpp>
 #include <vector>
 
@@ -22,10 +23,11 @@ namespace mjf::formation {
 inline constexpr char kKeyGains[] = "k";
 inline constexpr char kKeyRho[] = "rho";
 inline constexpr char kKeyEps[] = "eps";
-inline constexpr char kKeyQ[] = "q";
-inline constexpr char kKeyPeriod[] = "period";
-inline constexpr char kKeyUMin[] = "u_min";
-inline constexpr char kKeyUMax[] = "u_max";
+// The ones the runner reads are the contract's (mjformation/plugin_contract.hpp).
+inline constexpr const char* kKeyQ = plugin::contract::kQ;
+inline constexpr const char* kKeyPeriod = plugin::contract::kPeriod;
+inline constexpr const char* kKeyUMin = plugin::contract::kUMin;
+inline constexpr const char* kKeyUMax = plugin::contract::kUMax;
 inline constexpr char kKeyCompensation[] = "compensation";
 inline constexpr char kKeyReaching[] = "reaching";
 inline constexpr char kKeySign[] = "sign";
@@ -33,7 +35,7 @@ inline constexpr char kKeyBoundaryLayer[] = "boundary_layer";
 inline constexpr char kKeyEta0[] = "eta0";
 inline constexpr char kKeyKp[] = "kp";
 inline constexpr char kKeyKv[] = "kv";
-inline constexpr char kKeyAccelLimit[] = "accel_limit";
+inline constexpr const char* kKeyAccelLimit = plugin::contract::kAccelLimit;
 inline constexpr char kKeyReachAccel[] = "reach_accel";
 
 // 'accel_limit': "none" (+infinity: the paper's law) or a number in m/s^2. "vehicle" is

@@ -55,8 +55,8 @@ struct Agent {
   double horizon;
   bool has_sample = false;
   // Sample k is due when the step the follower's clock reads enters a new period (step / steps
-  // per sample changes; the host hands the clock's step, issue 19): decided in round 0; the
-  // later rounds of that sample take it again (last_round below).
+  // per sample changes; the host hands the step the follower's own clock reads): decided in round
+  // 0; the later rounds of that sample take it again (last_round below).
   int64_t due_index = -1;
   bool sample_due = false;
   // The last exchange round computed for the current sample (-1: none, the sample was not
@@ -260,10 +260,12 @@ void Destroy(void* instance) {
 
 void ReportDiscrete(void* instance, mjfReportFn emit, void* user) {
   const auto& a = *static_cast<const Agent<core::DiscreteSmcAgent>*>(instance);
-  emit(user, "delta", a.core.delta());  // the host reports the largest over the followers
-  emit(user, "period", a.core.params().period);
+  emit(user, plugin::contract::kDelta,
+       a.core.delta());  // the host reports the largest over the followers
+  emit(user, plugin::contract::kPeriod, a.core.params().period);
   emit(user, "steps_per_sample", static_cast<double>(a.steps_per_sample));
-  emit(user, "q", a.core.params().q);  // for the predicted delay margin (docs/NETWORK.md)
+  emit(user, plugin::contract::kQ,
+       a.core.params().q);  // for the predicted delay margin (docs/NETWORK.md)
 }
 
 template <typename Law>

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <mjformation/core/discrete_smc.hpp>
+#include <mjformation/time_steps.hpp>
 #include <sstream>
 #include <stdexcept>
 
@@ -57,9 +58,8 @@ int64_t StepsPerSample(double period, double timestep) {
   if (!(timestep > 0.0) || !std::isfinite(timestep)) {
     throw std::invalid_argument("smc_discrete: the physics timestep must be > 0");
   }
-  const double ratio = period / timestep;
-  const int64_t steps = std::llround(ratio);
-  if (steps < 1 || std::abs(ratio - static_cast<double>(steps)) > 1e-6 * ratio) {
+  const int64_t steps = WholeSteps(period, timestep);
+  if (steps < 1) {
     std::ostringstream out;
     out << "attribute 'period': T = " << period
         << " s is not an integer multiple of the physics timestep " << timestep
@@ -123,17 +123,17 @@ void Report(void* instance, mjfReportFn emit, void* user) {
     delta1 = std::max(delta1, c.delta1(i));
     delta2 = std::max(delta2, c.delta2(i));
   }
-  emit(user, "delta", c.delta());
+  emit(user, plugin::contract::kDelta, c.delta());
   emit(user, "delta1", delta1);
   emit(user, "delta2", delta2);
   emit(user, "error_bound", c.error_bound());
   emit(user, "error_bound_rederived", c.ultimate_error_bound());
   emit(user, "norm_inv_lh", c.norm_inv_lh());
-  emit(user, "period", c.params().period);
+  emit(user, plugin::contract::kPeriod, c.params().period);
   emit(user, "steps_per_sample", static_cast<double>(self->steps_per_sample));
   if (!c.constrained()) return;  // the paper's law reports what it always did
   const core::DiscreteSmc::ConstraintStats& stats = c.constraint_stats();
-  emit(user, "accel_limit", c.params().accel_limit);
+  emit(user, plugin::contract::kAccelLimit, c.params().accel_limit);
   emit(user, "constraint_samples", static_cast<double>(stats.samples));
   emit(user, "constraint_paper_samples", static_cast<double>(stats.paper));
   emit(user, "constraint_follower_samples", static_cast<double>(stats.constrained));

@@ -11,6 +11,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <mjformation/plugin_contract.hpp>
 #include <mjformation/plugin_util.hpp>
 #include <string>
 
@@ -30,8 +31,8 @@ constexpr const char* kPosition = "position";
 constexpr const char* kYaw = "yaw";
 constexpr const char* kKp = "kp";
 constexpr const char* kKd = "kd";
-constexpr const char* kAMin = "a_min";
-constexpr const char* kAMax = "a_max";
+constexpr const char* kAMin = plugin::contract::kAMin;  // the runner reads both
+constexpr const char* kAMax = plugin::contract::kAMax;
 constexpr const char* kSeed = "seed";
 constexpr const char* kSpeedMax = "speed_max";
 constexpr const char* kArea = "area";

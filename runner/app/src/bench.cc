@@ -380,7 +380,7 @@ Json BenchMemory(const ExperimentConfig& base, int n, const std::string& scratch
           {"ratio", rb / ra}};
 }
 
-// The estimator's cost (issue 18), two ways. (1) The same run with the configured estimator and
+// The estimator's cost, two ways. (1) The same run with the configured estimator and
 // with passthrough (the same sensor suite), each the best of up to kRepeats, alternating: ratio
 // = steps/s with the estimator / steps/s with passthrough. The two fly different trajectories
 // (passthrough hands the controllers the raw samples), so the ratio also holds what the flights
@@ -424,7 +424,7 @@ Json BenchEstimator(const ExperimentConfig& base, int n, const std::string& scra
           {"sensor_models_share_of_run", models_share}};
 }
 
-// Per-agent execution's cost (issue 19): the same run with the configured per-agent execution
+// Per-agent execution's cost: the same run with the configured per-agent execution
 // (its coupling, prediction, clocks and network) and in central mode (one formation plugin that
 // sees every state, no network), each the best of up to kRepeats, alternating: ratio = wall
 // time per step per-agent / central. The two fly slightly different trajectories unless the

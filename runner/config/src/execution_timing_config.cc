@@ -1,9 +1,10 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
-// [execution] predict / clock_offset / clock_drift_ppm / clock_sync, and the whole-step latency
-// rule (issue 19, docs/NETWORK.md): the timing of per-agent execution as a swarm has it. Every
-// value is checked here, before anything runs.
+// [execution] predict / clock_offset / clock_drift_ppm / clock_sync (docs/NETWORK.md): the
+// timing of per-agent execution as a swarm has it. Every value is checked here, before anything
+// runs.
 #include <cmath>
+#include <mjformation/plugin_contract.hpp>
 #include <sstream>
 
 #include "mjformation/config/source_location.hpp"
@@ -18,7 +19,7 @@ constexpr double kMaxDriftPpm = 1e4;
 // The sample period a follower's clock offset is bounded by: [formation] period when the file
 // gives it (the discrete law's T), else the physics step (laws that sample every step).
 double SamplePeriod(const ExperimentConfig& c) {
-  const auto it = c.formation.attributes.find("period");
+  const auto it = c.formation.attributes.find(plugin::contract::kPeriod);
   if (it == c.formation.attributes.end()) return c.timestep;
   char* end = nullptr;
   const double period = std::strtod(it->second.text.c_str(), &end);
@@ -122,19 +123,6 @@ void ParseExchangeRounds(SectionReader& keys, ExperimentConfig& c) {
   if (!worst_link) keys.Fail("latency", out.str());
   SourceLocation{c.source_path, worst_link->line, SectionKey("network.link", "latency")}.Fail(
       out.str());
-}
-
-// The network delivers at physics steps: a latency that is not a whole number of steps would
-// be rounded up without saying so (0.5 ms behaving as 1 ms), so it is refused.
-void RequireWholeStepLatency(const SectionReader& keys, double latency, double timestep) {
-  const double steps = latency / timestep;
-  if (std::abs(steps - std::round(steps)) <= 1e-6 * std::max(1.0, steps)) return;
-  std::ostringstream out;
-  out << "latency " << latency << " s is not a whole number of physics steps (timestep " << timestep
-      << " s): messages are delivered at steps, so it would be rounded up to "
-      << std::ceil(steps - 1e-9) * timestep << " s; use a multiple of the timestep or a smaller "
-      << "timestep";
-  keys.Fail("latency", out.str());
 }
 
 }  // namespace mjf::runner

@@ -10,6 +10,7 @@
 #include <set>
 #include <sstream>
 
+#include "mjformation/time_steps.hpp"
 #include "section_reader.hpp"
 
 namespace mjf::runner {
@@ -23,6 +24,18 @@ void Know(SectionReader& keys, const std::set<std::string>& known) {
   for (const auto& k : known) keys.MarkUsed(k);
 }
 
+// The network delivers at physics steps: a latency that is not a whole number of steps would
+// be rounded up without saying so (0.5 ms behaving as 1 ms), so it is refused.
+void RequireWholeStepLatency(const SectionReader& keys, double latency, double timestep) {
+  if (WholeSteps(latency, timestep) >= 0) return;
+  std::ostringstream out;
+  out << "latency " << latency << " s is not a whole number of physics steps (timestep " << timestep
+      << " s): messages are delivered at steps, so it would be rounded up to "
+      << StepsAtOrAfter(latency, timestep) * timestep
+      << " s; use a multiple of the timestep or a smaller timestep";
+  keys.Fail("latency", out.str());
+}
+
 // The link keys of the section on top of `base`; every value checked.
 network::LinkParams ReadLinkParams(SectionReader& keys, const network::LinkParams& base,
                                    double timestep, double duration) {
@@ -30,9 +43,8 @@ network::LinkParams ReadLinkParams(SectionReader& keys, const network::LinkParam
   if (const toml::node* node = keys.Node("rate")) {
     const double rate = keys.Number("rate", 0.0);
     if (!(rate > 0.0)) keys.FailAt(node, "rate", "must be > 0 Hz");
-    const double period_steps = 1.0 / (rate * timestep);
-    const auto steps = static_cast<int64_t>(std::llround(period_steps));
-    if (steps < 1 || std::abs(period_steps - static_cast<double>(steps)) > 1e-6 * period_steps) {
+    const int64_t steps = WholeSteps(1.0 / rate, timestep);
+    if (steps < 1) {
       std::ostringstream out;
       out << "a broadcast every 1/" << rate << " s is not a whole number of physics steps ("
           << timestep << " s): use 1/(n * timestep) Hz, e.g. " << 1.0 / timestep << " or "

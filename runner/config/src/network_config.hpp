@@ -14,14 +14,12 @@ namespace mjf::runner {
 void ParseNetworkSections(const toml::table& root, ExperimentConfig& c);
 
 class SectionReader;
-// execution_timing_config.cc (issue 19): [execution] predict, clock_offset, clock_drift_ppm
+// execution_timing_config.cc: [execution] predict, clock_offset, clock_drift_ppm
 // (c: [run] and [formation] parsed already; n.execution read already).
 void ParseExecutionTiming(SectionReader& keys, const ExperimentConfig& c, NetworkConfig& n);
-// [network] rounds, round_timeout (issue 19): exchange rounds over the links; refuses a
+// [network] rounds, round_timeout: exchange rounds over the links; refuses a
 // latency with which not one round fits a sample (c.network's links parsed already).
 void ParseExchangeRounds(SectionReader& keys, ExperimentConfig& c);
-// Refuses a link latency that is not a whole number of physics steps (it would be rounded).
-void RequireWholeStepLatency(const SectionReader& keys, double latency, double timestep);
 
 }  // namespace mjf::runner
 

@@ -7,6 +7,7 @@
 #include <set>
 #include <sstream>
 
+#include "mjformation/time_steps.hpp"
 #include "section_reader.hpp"
 
 namespace mjf::runner {
@@ -103,9 +104,7 @@ TurbulenceKeys ReadTurbulenceKeys(SectionReader& keys, const ExperimentConfig& c
   // Taylor's frozen turbulence is carried past a hovering vehicle by the mean wind; 1 m/s floor.
   t.airspeed = keys.Number("airspeed", std::max(1.0, horizontal));
   p.turbulence_rate_hz = keys.Number("turbulence_rate", p.turbulence_rate_hz);
-  const double steps = 1.0 / (p.turbulence_rate_hz * c.timestep);
-  if (!(p.turbulence_rate_hz > 0) || steps < 1 - 1e-9 ||
-      std::abs(steps - std::round(steps)) > 1e-6 * steps) {
+  if (!(p.turbulence_rate_hz > 0) || WholeSteps(1.0 / p.turbulence_rate_hz, c.timestep) < 1) {
     keys.Fail("turbulence_rate", "1 / rate must be a whole number (>= 1) of physics steps");
   }
   p.turbulence_correlation = keys.Number("turbulence_correlation", 0.0);
@@ -246,7 +245,7 @@ void AddRealismSummary(const ExperimentConfig& c, nlohmann::ordered_json* summar
           {"bias_walk", n.bias_walk},
           {"rate_hz", n.rate_hz},
           {"latency_s", n.latency_s}};
-      // Issue 18's keys only when used, so earlier configurations keep their summary bytes.
+      // The wander keys only when used, so configurations without them keep their summary bytes.
       if (n.wander_sigma > 0) {
         auto& ch = channels[realism::ChannelName(static_cast<realism::Channel>(k))];
         ch["wander"] = n.wander_sigma;

@@ -165,7 +165,7 @@ const mjfAgentInput& AgentChannel::Input(int follower, int round) {
 }
 
 // Each message carried from the time its state refers to up to this follower's sample time,
-// both read on the clocks that stamped them: tau = c_i(now) - c_j(send time) (issue 19); with
+// both read on the clocks that stamped them: tau = c_i(now) - c_j(send time) (no common clock); with
 // synchronised clocks both read the common time and tau is the message's true age.
 void AgentChannel::PredictInbox(int follower, const mjfMessage* leader) {
   const double now = clocks_.Reading(follower + 1, time_);

@@ -1,6 +1,6 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
-// Exchange rounds carried over the links ([network] rounds = "over_links", issue 19; the policy
+// Exchange rounds carried over the links ([network] rounds = "over_links"; the policy
 // is in docs/NETWORK.md, "Exchange rounds over the links"):
 //   - Jacobi: follower i's round r iterate w_i (payload[0..1]) goes to each out-neighbour over
 //     the follower link, with its latency, jitter and loss. Round r + 1 of follower i runs when
@@ -26,6 +26,7 @@
 
 #include "mjformation/control/agent_channel.hpp"
 #include "mjformation/control/errors.hpp"
+#include "mjformation/time_steps.hpp"
 
 namespace mjf::runner {
 namespace {
@@ -46,14 +47,12 @@ std::string PolicyText(RoundPolicy policy) {
 void AgentChannel::SetUpRoundsOverLinks(uint64_t seed) {
   over_links_ = config_.rounds == ExchangeRounds::kOverLinks && n_rounds_ > 1;
   if (!over_links_) return;
-  // The first step at or after the timeout (the 1e-9 as in Link::Transmit).
   timeout_steps_ =
       config_.round_timeout > 0.0
-          ? std::max<int64_t>(1, static_cast<int64_t>(
-                                     std::ceil(config_.round_timeout / network_.timestep() - 1e-9)))
+          ? std::max<int64_t>(1, StepsAtOrAfter(config_.round_timeout, network_.timestep()))
           : 0;
-  steps_per_sample_ =
-      std::max<int64_t>(1, std::llround(config_.sample_period / network_.timestep()));
+  // The sample period was checked to be a whole number of steps where the law was made.
+  steps_per_sample_ = NearestSteps(config_.sample_period, network_.timestep());
   held_acc_.assign(n_followers_, {0.0, 0.0});
   call_time_.assign(n_followers_, 0.0);
   call_step_.assign(n_followers_, 0);

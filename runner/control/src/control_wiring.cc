@@ -16,6 +16,7 @@
 #include "mjformation/control/vehicle_accel_limit.hpp"
 #include "mjformation/core/graph.hpp"
 #include "mjformation/core/shape.hpp"
+#include "mjformation/plugin_contract.hpp"
 
 namespace mjf::runner {
 namespace {
@@ -140,7 +141,7 @@ std::unique_ptr<AgentChannel> ControlWiring::MakeChannel() const {
 // "<name>_agent" (so that --set execution.mode="per_agent" switches an experiment over).
 const LoadedPlugin& ControlWiring::FindAgentPlugin(const LoadedPlugin& named) const {
   if (named.descriptor->kind == MJF_KIND_FORMATION_AGENT) return named;
-  const std::string agent_name = config_.formation.plugin + "_agent";
+  const std::string agent_name = plugin::contract::AgentName(config_.formation.plugin);
   for (const LoadedPlugin& p : registry_.plugins()) {
     if (p.descriptor->name == agent_name && p.descriptor->kind == MJF_KIND_FORMATION_AGENT) {
       return p;
@@ -202,21 +203,24 @@ std::unique_ptr<PluginInstance> ControlWiring::CreateFormation(const LoadedPlugi
 
 PluginSection ControlWiring::FormationSection(const LoadedPlugin& attitude) const {
   PluginSection section = config_.formation;
-  auto limit = section.attributes.find("accel_limit");
-  if (limit == section.attributes.end() || limit->second.text != "vehicle") return section;
+  namespace contract = plugin::contract;
+  auto limit = section.attributes.find(contract::kAccelLimit);
+  if (limit == section.attributes.end() || limit->second.text != contract::kFromVehicle) {
+    return section;
+  }
   // The attitude plugin's tilt limit, as it will resolve it: configured, else its default.
   const mjfPlugin& plugin = *attitude.descriptor;
   bool has_tilt = false;
   std::string tilt_text;
   for (int k = 0; k < plugin.n_attributes; ++k) {
-    if (std::string(plugin.attributes[k].key) != "tilt_max") continue;
+    if (std::string(plugin.attributes[k].key) != contract::kTiltMax) continue;
     has_tilt = true;
-    auto it = config_.attitude.attributes.find("tilt_max");
+    auto it = config_.attitude.attributes.find(contract::kTiltMax);
     tilt_text = it != config_.attitude.attributes.end() ? it->second.text
                                                         : plugin.attributes[k].default_value;
   }
   const SourceLocation where{config_.source_path, limit->second.line,
-                             SectionKey("formation", "accel_limit")};
+                             SectionKey("formation", contract::kAccelLimit)};
   char* end = nullptr;
   const double tilt = has_tilt ? std::strtod(tilt_text.c_str(), &end) : 0.0;
   if (has_tilt && (end == tilt_text.c_str() || !(tilt > 0.0 && tilt < M_PI / 2))) {

@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "mjformation/time_steps.hpp"
+
 namespace mjf::network {
 namespace {
 
@@ -29,16 +31,6 @@ uint64_t LinkSeed(uint64_t run_seed, uint64_t link_index) {
   return mix(mix(run_seed) ^ (link_index + 1));
 }
 
-namespace {
-
-// First step at or after send time + delay; the 1e-9 guards a delay that is an exact multiple of
-// dt against rounding up one step (0.02 / 0.001 = 20.000000000000004).
-int64_t DelaySteps(double delay, double timestep) {
-  return std::max<int64_t>(static_cast<int64_t>(std::ceil(delay / timestep - 1e-9)), 0);
-}
-
-}  // namespace
-
 Link::Link(const LinkParams& params, double timestep, uint64_t seed)
     : params_(params),
       timestep_(timestep),
@@ -55,7 +47,7 @@ Link::Link(const LinkParams& params, double timestep, uint64_t seed)
               IsProbability(params.burst_loss),
           "burst parameters must be probabilities");
   Require(params.range >= 0.0 && std::isfinite(params.range), "range must be >= 0");
-  fixed_delay_steps_ = DelaySteps(params.latency, timestep);
+  fixed_delay_steps_ = StepsAtOrAfter(params.latency, timestep);
 }
 
 bool Link::DrawLoss() {
@@ -79,7 +71,8 @@ std::optional<int64_t> Link::Transmit(int64_t send_step) {
 
 int64_t Link::ArrivalStep(int64_t send_step) {
   if (!(params_.jitter > 0.0)) return send_step + fixed_delay_steps_;
-  return send_step + DelaySteps(params_.latency + params_.jitter * random_.Uniform(), timestep_);
+  return send_step +
+         StepsAtOrAfter(params_.latency + params_.jitter * random_.Uniform(), timestep_);
 }
 
 bool Link::TransmitRound() {

@@ -7,16 +7,10 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "mjformation/time_steps.hpp"
+
 namespace mjf::realism {
 namespace {
-
-// Steps of `seconds` at `timestep`, or -1 when it is not a whole number of steps.
-int64_t WholeSteps(double seconds, double timestep) {
-  const double steps = seconds / timestep;
-  const double rounded = std::round(steps);
-  return std::abs(steps - rounded) <= 1e-6 * std::max(1.0, rounded) ? static_cast<int64_t>(rounded)
-                                                                    : -1;
-}
 
 // q (w x y z) rotated by the small body-axes rotation vector e: q * exp(e / 2).
 void Perturb(const double q[4], const double e[3], double out[4]) {
@@ -67,7 +61,7 @@ SensorParams SensorParams::Typical() {
   return p;
 }
 
-// Issue 18 suites. Attitude and body rate: the attitude channel as in Typical (an autopilot's
+// The GNSS-class suites. Attitude and body rate: the attitude channel as in Typical (an autopilot's
 // attitude estimate), the gyro of the ICM-42688 class. Accelerometer: ImuGrade("icm42688").
 //  ConsumerGnss  u-blox NEO-M8N data sheet (UBX-15031086): 2.5 m CEP horizontal, 0.05 m/s
 //                velocity (50 %), up to 10 Hz. The CEP is taken as mostly wander: for a circular

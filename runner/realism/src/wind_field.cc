@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mjformation/time_steps.hpp"
+
 namespace mjf::realism {
 
 bool WindParams::IsCalm() const {
@@ -17,8 +19,8 @@ WindField::WindField(const WindParams& params, int n_vehicles, double timestep, 
                ? std::array<double, 2>{params.mean[0] / horizontal, params.mean[1] / horizontal}
                : std::array<double, 2>{1.0, 0.0};
   if (params.turbulence) {
-    turbulence_period_ =
-        std::max<int64_t>(1, std::llround(1.0 / (params.turbulence_rate_hz * timestep)));
+    // Validated as a whole number of steps (>= 1).
+    turbulence_period_ = NearestSteps(1.0 / params.turbulence_rate_hz, timestep);
     turbulence_.reserve(n_vehicles);
     for (int i = 0; i < n_vehicles; ++i) {
       turbulence_.emplace_back(params.dryden, turbulence_period_ * timestep,

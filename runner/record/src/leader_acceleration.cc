@@ -12,19 +12,6 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-// The value of a plugin attribute as a finite number, if it is one.
-bool FindNumber(const PluginInstance& plugin, const char* key, double* value) {
-  for (const auto& [k, v] : plugin.attributes()) {
-    if (k != key) continue;
-    char* end = nullptr;
-    const double x = std::strtod(v.c_str(), &end);
-    if (end == v.c_str() || *end != '\0' || !std::isfinite(x)) return false;
-    *value = x;
-    return true;
-  }
-  return false;
-}
-
 }  // namespace
 
 LeaderAccelerationMonitor::LeaderAccelerationMonitor(const Simulation& sim)
@@ -32,12 +19,15 @@ LeaderAccelerationMonitor::LeaderAccelerationMonitor(const Simulation& sim)
       current_{kNaN, kNaN},
       min_{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()},
       max_{-std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()} {
-  if (sim.formation_plugin() && FindNumber(*sim.formation_plugin(), "u_min", &u_min_) &&
-      FindNumber(*sim.formation_plugin(), "u_max", &u_max_)) {
+  const auto& contracts = sim.contracts();
+  if (contracts.law.HasInputBounds()) {
+    u_min_ = contracts.law.u_min;
+    u_max_ = contracts.law.u_max;
     have_bounds_ = true;
     bounds_source_ = "formation";
-  } else if (FindNumber(sim.leader_plugin(), "a_min", &u_min_) &&
-             FindNumber(sim.leader_plugin(), "a_max", &u_max_)) {
+  } else if (contracts.leader.HasBounds()) {
+    u_min_ = contracts.leader.a_min;
+    u_max_ = contracts.leader.a_max;
     have_bounds_ = true;
     bounds_source_ = "leader";
   }

@@ -46,9 +46,8 @@ OnlineMetrics::OnlineMetrics(const Simulation& sim)
   band_ = sim.config().reaching_band;
   if (band_ <= 0) {
     band_ = kDefaultReachingBand;
-    for (const auto& [k, v] : sim.FormationReport()) {
-      if (k == "delta" && std::isfinite(v) && v > 0) band_ = v;
-    }
+    const double delta = sim.contracts().law.delta;  // the law's band, eq. (49)
+    if (std::isfinite(delta) && delta > 0) band_ = delta;
   }
   const int nf = sim.n_followers();
   follower_pv_.resize(4 * static_cast<size_t>(nf));

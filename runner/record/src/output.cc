@@ -204,7 +204,8 @@ TimeseriesWriter::TimeseriesWriter(const std::string& path, int n_vehicles, bool
   for (int i = 0; i < n_vehicles; ++i) {
     for (const char* c : kColumns) fmt::format_to(std::back_inserter(buffer_), ",uav{}_{}", i, c);
   }
-  // Issue 11: what the controllers measured, and the wind, after every usual column.
+  // What the controllers measured, and the wind, after every usual column (so that the columns
+  // of a run without sensors or wind keep their places).
   static const char* const kMeasured[] = {"px", "py",   "pz",    "vx", "vy",
                                           "vz", "roll", "pitch", "yaw"};
   for (int i = 0; measured_ && i < n_vehicles; ++i) {
@@ -212,7 +213,7 @@ TimeseriesWriter::TimeseriesWriter(const std::string& path, int n_vehicles, bool
       fmt::format_to(std::back_inserter(buffer_), ",uav{}_{}_meas", i, c);
     }
   }
-  // Issue 18: the estimate and its 1-sigma per axis, next to what the controllers saw.
+  // With an estimator: the estimate and its 1-sigma per axis, next to what the controllers saw.
   static const char* const kEstimated[] = {"px", "py", "pz", "vx", "vy", "vz"};
   for (int i = 0; estimated_ && i < n_vehicles; ++i) {
     for (const char* suffix : {"est", "std"}) {

@@ -15,12 +15,9 @@
 #include "mjformation/record/safety_events.hpp"
 #include "mjformation/render.hpp"
 #include "mjformation/sim/simulation.hpp"
+#include "mjformation/time_steps.hpp"
 
 namespace mjf::runner {
-
-int64_t StepsPer(double period, double timestep) {
-  return std::max<int64_t>(1, std::llround(period / timestep));
-}
 
 namespace {
 
@@ -52,7 +49,7 @@ class TimeseriesRecorder final : public Recorder {
                 leader ? std::vector<std::string>{"leader_ax", "leader_ay"}
                        : std::vector<std::string>{},
                 sim.estimation() != nullptr),
-        every_(StepsPer(1.0 / sim.config().record_rate, sim.config().timestep)),
+        every_(NearestSteps(1.0 / sim.config().record_rate, sim.config().timestep)),
         last_(sim.total_steps()) {}
   bool Wants(int64_t step) const override { return step % every_ == 0 || step == last_; }
   void Record(const Frame& f) override {
@@ -82,7 +79,7 @@ using EventMarks = std::vector<render::EventMark>;
 class Scenery {
  public:
   Scenery(const Simulation& sim, std::shared_ptr<const EventMarks> events)
-      : every_(StepsPer(0.1, sim.config().timestep)),
+      : every_(NearestSteps(0.1, sim.config().timestep)),
         trails_(sim.n_vehicles(), sim.config().render.trail_seconds,
                 every_ * sim.config().timestep),
         bodies_(VehicleBodies(sim.model(), sim.n_vehicles())),
@@ -170,7 +167,7 @@ class VideoRecorder final : public Recorder {
                   sim.config().render.video_shadows),
         writer_(dir.Path("video.mp4"), sim.config().render.video_width,
                 sim.config().render.video_height, sim.config().render.video_fps),
-        every_(StepsPer(1.0 / sim.config().render.video_fps, sim.config().timestep)) {}
+        every_(NearestSteps(1.0 / sim.config().render.video_fps, sim.config().timestep)) {}
   bool Wants(int64_t step) const override {
     return step % every_ == 0 || step % scenery_->every() == 0;
   }
@@ -282,7 +279,7 @@ std::vector<double> VehicleRadii(const Simulation& sim) {
 
 namespace {
 
-// summary.json "estimation" (issue 18), with an [estimator] other than passthrough: the
+// summary.json "estimation", with an [estimator] other than passthrough: the
 // estimate against the truth on the record ticks of the metric window (the rows of
 // timeseries.csv there), and the estimator plugin's fused / gated / too-old counts.
 class EstimationRecorder final : public Recorder {
@@ -291,7 +288,7 @@ class EstimationRecorder final : public Recorder {
       : sim_(sim),
         metrics_(sim.n_vehicles()),
         window_(sim.config().metric_window),
-        every_(StepsPer(1.0 / sim.config().record_rate, sim.config().timestep)),
+        every_(NearestSteps(1.0 / sim.config().record_rate, sim.config().timestep)),
         last_(sim.total_steps()) {}
   void OnStep(const Simulation& sim) override {
     const int64_t step = sim.step_index();

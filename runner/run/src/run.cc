@@ -21,6 +21,7 @@
 #include "mjformation/run/interrupt.hpp"
 #include "mjformation/run/summary.hpp"
 #include "mjformation/sim/simulation.hpp"
+#include "mjformation/time_steps.hpp"
 
 #ifndef MJF_VERSION
 #define MJF_VERSION "0.0.0"
@@ -65,7 +66,7 @@ std::string SignalName(int signal) {
 // whatever a step or a recorder throws; stops early (returns) on an interrupt request.
 void StepLoop(Simulation& sim, std::vector<std::unique_ptr<Recorder>>& recorders,
               OnlineMetrics& metrics, ProgressLine& progress, RunResult* result) {
-  const int64_t record_every = StepsPer(1.0 / sim.config().record_rate, sim.config().timestep);
+  const int64_t record_every = NearestSteps(1.0 / sim.config().record_rate, sim.config().timestep);
   std::vector<double> slots(2 * static_cast<size_t>(sim.n_vehicles()));
   const auto start = Clock::now();
   for (int64_t step = 0; step <= sim.total_steps(); ++step) {

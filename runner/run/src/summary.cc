@@ -54,17 +54,14 @@ void DescribeExperiment(const Simulation& sim, Json& s) {
 // "network", with the predicted delay margin when the law reports its T and q (eq. (48)).
 void AddNetworkSummary(const Simulation& sim, Json& s) {
   s["network"] = sim.channel()->Summary();
-  double period = 0.0, q = 0.0;
-  for (const auto& [k, v] : sim.FormationReport()) {
-    if (k == "period") period = v;
-    if (k == "q") q = v;
-  }
   // The margin is law (48)'s (T and q); other laws (e.g. consensus_linear) get none.
-  if (period > 0.0 && q > 0.0)
-    s["network"]["delay_margin"] = sim.channel()->DelayMarginSummary(period, q);
+  const plugin::contract::Law& law = sim.contracts().law;
+  if (law.HasDelayMargin()) {
+    s["network"]["delay_margin"] = sim.channel()->DelayMarginSummary(law.period, law.q);
+  }
 }
 
-// Issue 18: the followers' estimation accuracy among the metrics too, so a sweep's tables carry
+// The followers' estimation accuracy among the metrics too, so a sweep's tables carry
 // it (mean and 95 % interval over seeds: the Monte Carlo NEES check); only with an estimator.
 void AddEstimationMetrics(const Json& estimation, Json* metrics) {
   if (!metrics->is_object() || !estimation.contains("followers")) return;
@@ -93,7 +90,7 @@ Json BuildSummary(const Simulation& sim, const RunResult& result, const Json& re
   s["metrics"] = recorded.contains("metrics") ? recorded["metrics"] : Json(nullptr);
   if (recorded.contains("estimation")) AddEstimationMetrics(recorded["estimation"], &s["metrics"]);
   s["plugin_report"] = ReportJson(sim.FormationReport());
-  // The attitude plugin's report (issue 21: e.g. the bandwidths a small vehicle flew with); only
+  // The attitude plugin's report (e.g. the bandwidths a small vehicle flew with); only
   // for plugins that report, so other runs' summaries stay as they were.
   const auto attitude_report = sim.AttitudeReport();
   if (!attitude_report.empty()) s["attitude_report"] = ReportJson(attitude_report);
@@ -110,7 +107,7 @@ Json BuildSummary(const Simulation& sim, const RunResult& result, const Json& re
                  {"real_time_factor", wall > 0 ? result.sim_time_s / wall : 0.0},
                  {"steps_per_second", wall > 0 ? result.steps / wall : 0.0}};
   if (sim.threads() > 1) s["timing"]["threads"] = sim.threads();  // partitioned physics
-  // The sensor stage with its estimator plugins (issue 18; only with an estimator, so other
+  // The sensor stage with its estimator plugins (only with an estimator, so other
   // runs' timing keys stay as they were).
   if (const auto* e = sim.estimation()) {
     s["timing"]["estimator_wall_s"] = e->wall_seconds();  // both below

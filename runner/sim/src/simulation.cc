@@ -78,7 +78,29 @@ Simulation::Simulation(const ExperimentConfig& config) : config_(config) {
   force_stages_ = MakeForceStages(config_);
   external_force_.assign(3 * truth_.size(), 0.0);
   MakePartitions(*attitude.descriptor);
+  ReadContracts();
   CheckTorqueAuthority();
+}
+
+// The contract's values: the formation law's report (the largest over the followers in
+// per-agent execution) and input bounds, the leader's acceleration bounds, the attitude report.
+// The law's bounds are read only of a central formation plugin: with per-agent execution the
+// leader's bounds are the ones checked, as they always were.
+void Simulation::ReadContracts() {
+  for (const auto& [key, value] : FormationReport()) {
+    plugin::contract::SetReported(contracts_.law, key.c_str(), value);
+  }
+  if (const PluginInstance* formation = formation_plugin()) {
+    for (const auto& [key, text] : formation->attributes()) {
+      plugin::contract::SetAttribute(contracts_.law, key.c_str(), text.c_str());
+    }
+  }
+  for (const auto& [key, text] : leader_plugin().attributes()) {
+    plugin::contract::SetAttribute(contracts_.leader, key.c_str(), text.c_str());
+  }
+  for (const auto& [key, value] : AttitudeReport()) {
+    plugin::contract::SetReported(contracts_.attitude, key.c_str(), value);
+  }
 }
 
 // Every vehicle is a copy of one model, so the first follower's info (the leader's when there
@@ -87,13 +109,12 @@ Simulation::Simulation(const ExperimentConfig& config) : config_(config) {
 void Simulation::CheckTorqueAuthority() {
   const int vehicle = n_vehicles() > 1 ? 1 : 0;
   authority_ = ComputeTorqueAuthority(bindings_.vehicles[vehicle].info);
-  AttitudeDemand demand;
-  for (const auto& [key, value] : AttitudeReport()) {
-    if (key == "att_bw") demand.att_bw = value;
-    if (key == "att_bw_unlimited") demand.att_bw_unlimited = value;
-    if (key == "tilt_max") demand.tilt_max = value;
-  }
-  demand_ = demand;
+  // A value the plugin does not report is 0 to the check: nothing judged.
+  const auto or_zero = [](double v) { return std::isnan(v) ? 0.0 : v; };
+  const plugin::contract::Attitude& a = contracts_.attitude;
+  demand_.att_bw = or_zero(a.att_bw);
+  demand_.att_bw_unlimited = or_zero(a.att_bw_unlimited);
+  demand_.tilt_max = or_zero(a.tilt_max);
   std::string name = "vehicle model " + config_.model_path;
   if (!config_.vehicle_body.empty()) name += " (body '" + config_.vehicle_body + "')";
   warnings_ = AuthorityWarnings(authority_, demand_, name);

@@ -24,15 +24,6 @@ using mjf::testing::ReadFile;
 using mjf::testing::TempDir;
 using ::testing::HasSubstr;
 
-TEST(RecordersTest, StepsPerRoundsAndNeverGivesZero) {
-  EXPECT_EQ(StepsPer(0.01, 0.001), 10);  // 100 Hz at 1 kHz
-  EXPECT_EQ(StepsPer(0.1, 0.001), 100);  // rounded, not truncated
-  EXPECT_EQ(StepsPer(1.0 / 30, 0.001), 33);
-  EXPECT_EQ(StepsPer(0.0001, 0.001), 1);  // faster than the physics: every step
-  EXPECT_EQ(StepsPer(0.375, 0.25), 2);    // exactly 1.5: rounds away from zero
-  EXPECT_EQ(StepsPer(0.25, 0.375), 1);    // 0.67
-}
-
 TEST(RecordersTest, WhatAnExperimentGets) {
   Simulation sim(Parse(PointMassExperiment(-2, 0, 2, 0)));
   EXPECT_TRUE(MakeRecorders(sim, nullptr, {}).empty());  // no directory: nothing kept

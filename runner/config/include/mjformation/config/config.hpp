@@ -45,14 +45,14 @@ enum class Execution { kCentral, kPerAgent };
 enum class Coupling { kLastInput, kJacobi, kCentralSolve };
 const char* ToString(Execution value);
 const char* ToString(Coupling value);
-// [execution] predict (issue 19): how a receiver carries a neighbour's or the leader's message
+// [execution] predict: how a receiver carries a neighbour's or the leader's message
 // from the time its state refers to up to its own sample time, before the law sees it.
 // kNone: as received (the default); kInput: model (40) under zero-order hold with the sender's
 // input u_j; kAttitude: with the horizontal acceleration implied by the sender's tilt at hover
 // thrust (vehicles whose attitude loop lags the command).
 enum class Predict { kNone, kInput, kAttitude };
 const char* ToString(Predict value);
-// [network] rounds (issue 19): how the exchange rounds inside one sample (Jacobi iterates w_j,
+// [network] rounds: how the exchange rounds inside one sample (Jacobi iterates w_j,
 // the central solve's R_i and W_i) travel. kInstantaneous: they take no time (loss only; the
 // central solve at once: an oracle, the default); kOverLinks: over the links with their latency,
 // jitter and loss, a round starting only when the previous one has arrived (docs/NETWORK.md).
@@ -78,7 +78,7 @@ struct NetworkConfig {
     network::LinkParams params;
   };
   std::vector<LinkOverride> links;  // [[network.link]]
-  // Issue 19 ([execution] keys, execution_timing_config.cc): receiver-side prediction, and the
+  // [execution] timing keys (execution_timing_config.cc): receiver-side prediction, and the
   // followers' clocks: follower i's clock reads (1 + drift_i) t + offset_i, with offset_i drawn
   // uniformly in [0, clock_offset] and drift_i in [-clock_drift_ppm, clock_drift_ppm] 1e-6
   // (seeded by the run's seed). All zero: every follower samples in phase with the leader.
@@ -90,7 +90,7 @@ struct NetworkConfig {
   // samples, while its time stamps, its formation reference h_i(t) and its prediction read the
   // common time. false (default): each follower reads its own free-running clock for all of it.
   bool clock_sync = false;
-  // Issue 19 ([network] rounds, round_timeout): exchange rounds carried over the links.
+  // [network] rounds, round_timeout: exchange rounds carried over the links.
   ExchangeRounds rounds = ExchangeRounds::kInstantaneous;
   // s, over_links: a follower waiting longer than this for a round's messages runs the next
   // round with what it has (0: no timeout, it waits until its next sample).
@@ -246,7 +246,7 @@ struct ExperimentConfig {
   PluginSection leader;
   PluginSection formation;
   PluginSection attitude;
-  PluginSection estimator;  // [estimator] (issue 18): per vehicle, default "passthrough"
+  PluginSection estimator;  // [estimator]: per vehicle, default "passthrough"
   ShapeConfig shape;
   RenderConfig render;
   SensorsConfig sensors;  // [sensors] (realism_config.hpp)

@@ -1,6 +1,6 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
-// The followers' clocks (issue 19, [execution] clock_offset / clock_drift_ppm): follower i's
+// The followers' clocks ([execution] clock_offset / clock_drift_ppm): follower i's
 // clock reads c_i(t) = (1 + d_i) t + o_i, with o_i uniform in [0, clock_offset] and d_i uniform
 // in [-clock_drift_ppm, clock_drift_ppm] 1e-6, drawn once from the run's seed. The leader's clock
 // is the reference (c_0(t) = t). A follower's instance is handed its own clock's time and the

@@ -58,7 +58,7 @@ class ControlWiring {
   ControlPlugins CreatePlugins(const LoadedPlugin& attitude, const AgentChannel* channel) const;
   // Before the first tick every vehicle holds its initial position at the altitude.
   std::vector<mjfSetpoint> InitialSetpoints() const;
-  // What the controllers see (issue 18): the [sensors] stage, and behind it, when [estimator]
+  // What the controllers see: the [sensors] stage, and behind it, when [estimator]
   // names a plugin other than "passthrough", one estimator instance per vehicle.
   std::unique_ptr<SensorStage> MakeSensors() const;
 

@@ -1,7 +1,7 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
 // The predicted delay margin of the per-agent discrete protocol (48) over links with latency L
-// (issue 19, docs/NETWORK.md "Delay margin"). At the default broadcast rate (a message every
+// (docs/NETWORK.md "Delay margin"). At the default broadcast rate (a message every
 // step) a follower's neighbour data is L old; used as if current, the s_i it computes differs
 // from the true one by L sum_j a_ij (k1 v_j + k2 u_j). The k2 u_j part closes the sample-level
 // loop dU(k) = (1 - qT) (L / T) M dU(k-1), M = L_H^-1 A, which is stable iff

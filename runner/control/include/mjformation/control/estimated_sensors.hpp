@@ -1,6 +1,6 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
-// The sensor stage with a state estimator behind it (issue 18, [estimator] plugin other than
+// The sensor stage with a state estimator behind it ([estimator] plugin other than
 // "passthrough"): per vehicle, the sensor model measures (runner/realism), the accelerometer
 // sample and the aiding samples that became available this step (stamped with the time they
 // were taken) are handed to that vehicle's estimator plugin, and what the controllers see is its

@@ -1,6 +1,6 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
-// Receiver-side prediction (issue 19, [execution] predict, docs/NETWORK.md): a received message
+// Receiver-side prediction ([execution] predict, docs/NETWORK.md): a received message
 // carries the sender's state at the time it was measured; the receiver carries it over the
 // message's age tau up to its own sample time before the law sees it, so that f_j, evaluated
 // at the receiver's time, and the neighbour's state refer to the same instant.

@@ -1,6 +1,6 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
-// Exchange-round messages in flight ([network] rounds = "over_links", issue 19): a Jacobi
+// Exchange-round messages in flight ([network] rounds = "over_links"): a Jacobi
 // iterate w_j, a central solve's R_i on its way to the solver or W_i on its way back, each
 // handed to a Link at a physics step and collected at the step it arrives (latency + jitter,
 // loss, as a state message). Unlike state messages, nothing is held per link and no newer round

@@ -24,7 +24,7 @@ struct ChannelNoise {
   double bias_walk = 0.0;  // random-walk intensity of the bias, unit/sqrt(s): var(b(t)) = q^2 t
   double rate_hz = 0.0;    // samples per second, held in between; 0: every physics step
   double latency_s = 0.0;  // age of the truth a sample reports, s (a whole number of steps)
-  // Issue 18: a first-order Gauss-Markov wander added to each sample, stationary from the start:
+  // GNSS-like error: a first-order Gauss-Markov wander added to each sample, stationary from the start:
   // w+ = phi w + sigma sqrt(1 - phi^2) n, phi = exp(-T / tau). The part shared by every vehicle
   // (the same satellites and atmosphere) has weight sqrt(correlation), the vehicle's own
   // sqrt(1 - correlation): each vehicle's wander has variance sigma^2, pairwise correlation rho.
@@ -33,7 +33,7 @@ struct ChannelNoise {
   double correlation = 0.0;   // in [0, 1]: the common fraction of the wander's variance
 };
 
-// The accelerometer channel (issue 18): specific force f = R^T (a - g) in body axes (for the
+// The accelerometer channel (for an estimator to integrate): specific force f = R^T (a - g) in body axes (for the
 // point mass, whose body never rotates, that is the world frame), with white noise of density
 // `noise_density` and a bias random walk; every physics step, no latency.
 struct AccelNoise {
@@ -48,7 +48,7 @@ const char* ChannelName(Channel c);  // "position", "velocity", "attitude", "bod
 
 struct SensorParams {
   std::array<ChannelNoise, kChannels> channel;
-  AccelNoise accel;  // issue 18; off unless a suite or the accel_* keys switch it on
+  AccelNoise accel;  // for estimators; off unless a suite or the accel_* keys switch it on
 
   ChannelNoise& operator[](Channel c) { return channel[static_cast<int>(c)]; }
   const ChannelNoise& operator[](Channel c) const { return channel[static_cast<int>(c)]; }
@@ -58,7 +58,7 @@ struct SensorParams {
   // A small UAV with a GNSS receiver, an attitude estimate and a MEMS gyro; sources in
   // sensor_model.cc and docs/REALISM.md.
   static SensorParams Typical();
-  // Issue 18 suites, named for real sensor classes (numbers and sources in sensor_model.cc and
+  // GNSS-class suites, named for real sensor classes (numbers and sources in sensor_model.cc and
   // docs/REALISM.md); each comes with an accelerometer of the ICM-42688 class.
   static SensorParams ConsumerGnss();   // u-blox M8N class
   static SensorParams Rtk();            // u-blox ZED-F9P class
@@ -134,7 +134,7 @@ class SensorModel {
   Gaussian normal_;
   std::array<ChannelState, kChannels> channels_;
   int64_t next_step_ = 0;
-  Gaussian own_normal_, common_normal_;  // wander and accelerometer streams (issue 18)
+  Gaussian own_normal_, common_normal_;  // wander and accelerometer streams
   std::vector<Fresh> fresh_;
   AccelNoise accel_;
   std::array<double, 3> accel_bias_{};

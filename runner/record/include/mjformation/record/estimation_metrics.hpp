@@ -1,6 +1,6 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
-// How good an estimator plugin's estimate was (issue 18, summary.json "estimation"): per
+// How good an estimator plugin's estimate was (summary.json "estimation"): per
 // vehicle, over the metric window, the RMS position and velocity error against the truth and
 // the normalised estimation error squared (NEES) of the 6-dimensional (p, v) estimate, with the
 // chi-square 95 % bands it is judged against. Plain arrays, no MuJoCo: tested alone.

@@ -56,9 +56,6 @@ std::vector<std::unique_ptr<Recorder>> MakeRecorders(const Simulation& sim, cons
 // from the model's geometry.
 std::vector<double> VehicleRadii(const Simulation& sim);
 
-// Step indices at which something happens every `period` seconds.
-int64_t StepsPer(double period, double timestep);
-
 }  // namespace mjf::runner
 
 #endif  // MJFORMATION_RECORD_RECORDERS_HPP_

@@ -13,6 +13,7 @@
 
 #include <array>
 #include <memory>
+#include <mjformation/plugin_contract.hpp>
 #include <string>
 #include <vector>
 
@@ -80,7 +81,7 @@ class Simulation {
   const std::vector<mjfVehicleState>& measured_states() const { return measured(); }
   // The wind at each vehicle this step (m/s, world); empty when [wind] is calm.
   const std::vector<std::array<double, 3>>& wind() const;
-  // The estimator stage (issue 18: [estimator] plugin other than "passthrough"): each vehicle's
+  // The estimator stage ([estimator] plugin other than "passthrough"): each vehicle's
   // estimate and covariance of the last ComputeControls, its plugin instances; else nullptr.
   const EstimatedSensors* estimation() const;
   const std::vector<mjfSetpoint>& setpoints() const { return tick_->setpoints(); }
@@ -97,6 +98,14 @@ class Simulation {
     return *tick_->plugins().attitude[vehicle];
   }
   const PluginRegistry& registry() const { return *registry_; }
+  // What the runner reads of its plugins (include/mjformation/plugin_contract.hpp), read once
+  // after they were created: the only place that looks a contract key up.
+  struct PluginContracts {
+    plugin::contract::Law law;          // the formation law (input bounds: central mode only)
+    plugin::contract::Guidance leader;  // the leader's guidance plugin
+    plugin::contract::Attitude attitude;
+  };
+  const PluginContracts& contracts() const { return contracts_; }
   // The formation plugin's scalar report ("delta", "error_bound", ...), if any.
   std::vector<std::pair<std::string, double>> FormationReport() const;
   // The attitude plugin's report() (e.g. geometric's resolved bandwidths): each key's largest
@@ -117,6 +126,7 @@ class Simulation {
 
  private:
   void AdaptForeignVehicle(const mjfPlugin& attitude);
+  void ReadContracts();
   void CheckTorqueAuthority();
   void ComputeForces();
   void ApplyForces();
@@ -138,6 +148,7 @@ class Simulation {
   std::vector<std::string> vehicle_notes_;
   TorqueAuthority authority_;
   AttitudeDemand demand_;
+  PluginContracts contracts_;
   std::vector<std::string> warnings_;
   // Freed in reverse order: the tick (plugins may hold pointers into the model) goes first.
   std::unique_ptr<mjModel, ModelDeleter> model_;

@@ -1,0 +1,50 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// The one rule that turns a time in seconds into physics steps. Everything the simulation does
+// happens at a step (a message is delivered, a law samples, a sensor reports), so a time the user
+// gives must be a whole number of steps or it would be rounded without saying so. Header-only
+// and plain C++, so the runner's stages and the plugins share the rule (and its tolerance).
+#ifndef MJFORMATION_TIME_STEPS_HPP_
+#define MJFORMATION_TIME_STEPS_HPP_
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+namespace mjf {
+
+// How far seconds / timestep may sit from a whole number and still count as that number,
+// relative to the count (at least 1): far above the round-off of the division
+// (0.02 / 0.001 = 20.000000000000004) and far below any time a user means.
+inline constexpr double kWholeStepTolerance = 1e-9;
+
+// seconds / timestep as a whole number of steps, or -1 when it is not one (within the
+// tolerance), the timestep is not > 0 or either is not finite. 0 s is 0 steps.
+inline int64_t WholeSteps(double seconds, double timestep) {
+  if (!(timestep > 0.0) || !std::isfinite(timestep) || !std::isfinite(seconds)) return -1;
+  const double steps = seconds / timestep;
+  const double rounded = std::round(steps);
+  if (!(std::abs(steps - rounded) <= kWholeStepTolerance * std::max(1.0, std::abs(steps)))) {
+    return -1;
+  }
+  return static_cast<int64_t>(rounded);
+}
+
+// The first step at or after `seconds` (>= 0): seconds / timestep rounded up, except that a
+// count within the tolerance of a whole number is that number (a delay of exactly 20 steps is
+// not 21).
+inline int64_t StepsAtOrAfter(double seconds, double timestep) {
+  const double steps = seconds / timestep;
+  return std::max<int64_t>(
+      0, static_cast<int64_t>(std::ceil(steps - kWholeStepTolerance * std::max(1.0, steps))));
+}
+
+// The nearest whole number of steps (at least 1) of a period that need not be whole, such as an
+// output's frame rate: it is sampled as closely as the physics steps allow.
+inline int64_t NearestSteps(double seconds, double timestep) {
+  return std::max<int64_t>(1, std::llround(seconds / timestep));
+}
+
+}  // namespace mjf
+
+#endif  // MJFORMATION_TIME_STEPS_HPP_
