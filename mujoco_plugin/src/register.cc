@@ -4,7 +4,7 @@
 #include <mujoco/mjplugin.h>
 
 namespace mjf::native {
-void RegisterSwarmPlugin();
+void RegisterPlugins();
 }  // namespace mjf::native
 
-mjPLUGIN_LIB_INIT(mjformation) { mjf::native::RegisterSwarmPlugin(); }
+mjPLUGIN_LIB_INIT(mjformation) { mjf::native::RegisterPlugins(); }
