@@ -211,5 +211,61 @@ TEST(NativeConfig, UnknownConfigKeyIsRefusedByMuJoCo) {
   EXPECT_NE(error.find("leeder"), std::string::npos) << error;
 }
 
+// Export refuses, naming file, section and key, what the native path cannot carry; the message
+// is the user's only notice, so each is checked.
+std::string ExportRefusal(const std::string& append, const std::string& after = "") {
+  Scratch dir("export_refusal");
+  std::string text = ReadText(Variant("exp2.toml", "", "", dir));
+  if (after.empty()) {
+    text += append;
+  } else {
+    text.insert(text.find(after) + after.size(), append);
+  }
+  std::ofstream(dir / "experiment.toml") << text;
+  try {
+    ExportExperiment(dir / "experiment.toml", dir / "out", false);
+  } catch (const ExportError& e) {
+    EXPECT_FALSE(fs::exists(dir / "out")) << "nothing is written on a refusal";
+    return e.what();
+  }
+  ADD_FAILURE() << "exported: " << append;
+  return "";
+}
+
+TEST(NativeExport, RefusesPerAgentExecution) {
+  const std::string e = ExportRefusal("\n[execution]\nmode = \"per_agent\"\n");
+  EXPECT_NE(e.find("experiment.toml:"), std::string::npos) << e;
+  EXPECT_NE(e.find("[execution]: the native MuJoCo plugins cannot carry"), std::string::npos) << e;
+}
+
+TEST(NativeExport, RefusesSensorNoise) {
+  const std::string e = ExportRefusal("\n[sensors]\nposition_noise = 0.1\n");
+  EXPECT_NE(e.find("[sensors]: the native MuJoCo plugins cannot carry"), std::string::npos) << e;
+}
+
+TEST(NativeExport, RefusesTheWrenchRotorModel) {
+  const std::string e = ExportRefusal("\nrotor_model = \"wrench\"", "followers = 6");
+  EXPECT_NE(e.find("[vehicles] rotor_model: not carried"), std::string::npos) << e;
+}
+
+TEST(NativeExport, NeverWritesIntoAUsersDirectory) {
+  Scratch dir("export_owned");
+  const std::string experiment = Variant("exp2.toml", "", "", dir);
+  fs::create_directories(dir / "out");
+  std::ofstream(dir / "out/mine.txt") << "mine";
+  try {
+    ExportExperiment(experiment, dir / "out", false);
+    ADD_FAILURE() << "wrote into a non-empty directory";
+  } catch (const ExportError& e) {
+    EXPECT_NE(std::string(e.what()).find("exists and is not empty; pass --overwrite"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_FALSE(fs::exists(dir / "out/scene.xml"));
+  ExportExperiment(experiment, dir / "out", true);
+  EXPECT_TRUE(fs::exists(dir / "out/scene.xml"));
+  EXPECT_EQ(ReadText(dir / "out/mine.txt"), "mine");
+}
+
 }  // namespace
 }  // namespace mjf::runner
