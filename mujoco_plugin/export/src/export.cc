@@ -4,7 +4,11 @@
 #include <sys/stat.h>
 #include <toml++/toml.h>
 
+#include <cctype>
 #include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -47,30 +51,68 @@ const std::set<std::string>& OutputOnlySections() {
   return kOutput;
 }
 
-// Flags every table inline, so a section prints as one line.
-void MakeInline(toml::table& table) {
-  table.is_inline(true);
-  for (auto&& [key, node] : table) {
-    if (toml::table* sub = node.as_table()) MakeInline(*sub);
+std::string Quoted(std::string_view text) {
+  std::string out = "\"";
+  for (char c : text) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char escape[8];
+      std::snprintf(escape, sizeof(escape), "\\u%04x", c);
+      out += escape;
+    } else {
+      out += c;
+    }
   }
+  return out + "\"";
+}
+
+std::string Key(std::string_view key) {
+  bool bare = !key.empty();
+  for (char c : key)
+    bare = bare && (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-');
+  return bare ? std::string(key) : Quoted(key);
+}
+
+// One TOML value on one line, floats in their shortest form that reads back to the same double.
+std::string Value(const toml::node& node) {
+  if (const toml::table* t = node.as_table()) {
+    std::string out = "{";
+    for (auto&& [key, value] : *t) {
+      out += (out.size() > 1 ? ", " : " ") + Key(key.str()) + " = " + Value(value);
+    }
+    return out + (out.size() > 1 ? " }" : "}");
+  }
+  if (const toml::array* a = node.as_array()) {
+    std::string out = "[";
+    for (size_t i = 0; i < a->size(); ++i) out += (i ? ", " : "") + Value(*a->get(i));
+    return out + "]";
+  }
+  if (auto v = node.value_exact<std::string>()) return Quoted(*v);
+  if (auto v = node.value_exact<int64_t>()) return std::to_string(*v);
+  if (auto v = node.value_exact<bool>()) return *v ? "true" : "false";
+  if (auto v = node.value_exact<double>()) {
+    if (std::isnan(*v)) return "nan";
+    if (std::isinf(*v)) return *v > 0 ? "inf" : "-inf";
+    char buffer[64];
+    const auto [end, ec] = std::to_chars(buffer, buffer + sizeof(buffer), *v);
+    std::string text(buffer, ec == std::errc() ? end : buffer);
+    if (text.find_first_of(".eE") == std::string::npos) text += ".0";  // stays a float
+    return text;
+  }
+  // Dates and times: no experiment key takes one, and the parser names it.
+  throw ExportError("a date or time value where the experiment file takes none (line " +
+                    std::to_string(node.source().begin.line) + ")");
 }
 
 // The section as the body of a TOML inline table: `radius = 20.0, omega = 0.157`.
 std::string InlineBody(const toml::table& section) {
-  toml::table copy = section;
-  MakeInline(copy);
-  std::ostringstream out;
-  out << toml::toml_formatter(copy, toml::format_flags::none);
-  std::string text = out.str();
-  for (char& ch : text) ch = ch == '\n' ? ' ' : ch;  // one line: XML would fold it anyway
-  // The formatter writes `{ ... }`; the braces are the plugin's to add.
-  const size_t open = text.find('{');
-  const size_t close = text.rfind('}');
-  if (open == std::string::npos || close == std::string::npos || close < open) return text;
-  std::string body = text.substr(open + 1, close - open - 1);
-  while (!body.empty() && body.front() == ' ') body.erase(body.begin());
-  while (!body.empty() && body.back() == ' ') body.pop_back();
-  return body;
+  std::string out;
+  for (auto&& [key, value] : section) {
+    out += (out.empty() ? "" : ", ") + Key(key.str()) + " = " + Value(value);
+  }
+  return out;
 }
 
 std::string XmlEscape(const std::string& text) {
@@ -114,7 +156,21 @@ std::string Where(const std::string& file, const toml::node& node, const std::st
 }
 
 // Reads the experiment file's sections, refusing what the native path cannot carry.
+// Paths are written resolved (the runner reads them relative to the experiment file; the
+// native plugin has no file to be relative to). `config` is null for the refusal pass.
+void ResolvePaths(toml::table& doc, const ExperimentConfig& config) {
+  if (toml::table* run = doc["run"].as_table(); run && run->contains("plugin_path")) {
+    toml::array folders;
+    for (const std::string& folder : config.plugin_path) folders.push_back(folder);
+    run->insert_or_assign("plugin_path", std::move(folders));
+  }
+  if (toml::table* vehicles = doc["vehicles"].as_table(); vehicles && vehicles->contains("model")) {
+    vehicles->insert_or_assign("model", config.model_path);
+  }
+}
+
 std::vector<std::pair<std::string, std::string>> CarriedPairs(const std::string& file,
+                                                              const ExperimentConfig* config,
                                                               std::vector<std::string>* notes) {
   toml::table doc;
   try {
@@ -122,12 +178,14 @@ std::vector<std::pair<std::string, std::string>> CarriedPairs(const std::string&
   } catch (const toml::parse_error& e) {
     throw ConfigError(file + ": " + std::string(e.description()));
   }
+  if (config) ResolvePaths(doc, *config);
   std::vector<std::pair<std::string, std::string>> pairs;
   for (auto&& [key, node] : doc) {
     const std::string section(key.str());
     if (OutputOnlySections().count(section)) {
-      notes->push_back("[" + section + "] is not carried: it shapes the runner's images, not " +
-                       "the flight (MuJoCo's own viewer renders the exported scene)");
+      if (notes)
+        notes->push_back("[" + section + "] is not carried: it shapes the runner's images, not " +
+                         "the flight (MuJoCo's own viewer renders the exported scene)");
       continue;
     }
     bool known = false;
@@ -166,9 +224,11 @@ bool NonEmptyDirectory(const std::string& dir) {
 }  // namespace
 
 std::string ExportedSceneXml(const std::string& experiment, std::vector<std::string>* notes) {
-  std::vector<std::pair<std::string, std::string>> pairs = CarriedPairs(experiment, notes);
+  CarriedPairs(experiment, nullptr, nullptr);  // refusals first: they name what to remove
   const ExperimentConfig config =
       LoadExperiment(experiment, {}, ExperimentChecks::Rendering(false));
+  const std::vector<std::pair<std::string, std::string>> pairs =
+      CarriedPairs(experiment, &config, notes);
   // The scene the runner composes for this experiment, vehicles, leader and all.
   Simulation simulation(config);
   std::string xml = simulation.scene_xml();
