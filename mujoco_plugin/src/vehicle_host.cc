@@ -36,6 +36,37 @@ runner::ExperimentConfig Sections(const VehicleHostConfig& c) {
   return runner::ParseExperiment(toml, c.where);
 }
 
+// What the runner's vehicle binding reads of each driven actuator (gear, control range, motor
+// lag, site relative to the centre of mass in body axes), from the compiled model.
+void ReadActuators(const mjModel* m, const std::string& where, int body,
+                   const std::vector<std::string>& names, std::vector<int>* ids,
+                   std::vector<mjfActuatorInfo>* infos) {
+  for (const std::string& name : names) {
+    const int a = mj_name2id(m, mjOBJ_ACTUATOR, name.c_str());
+    if (a < 0) {
+      throw std::runtime_error(where + ": <config key=\"actuators\">: no actuator named '" + name +
+                               "' in this model");
+    }
+    ids->push_back(a);
+    mjfActuatorInfo info{};
+    std::memcpy(info.gear, m->actuator_gear + 6 * a, sizeof(info.gear));
+    info.ctrl_min = m->actuator_ctrllimited[a] ? m->actuator_ctrlrange[2 * a]
+                                               : -std::numeric_limits<double>::infinity();
+    info.ctrl_max = m->actuator_ctrllimited[a] ? m->actuator_ctrlrange[2 * a + 1]
+                                               : std::numeric_limits<double>::infinity();
+    info.time_constant =
+        m->actuator_dyntype[a] == mjDYN_FILTER ? m->actuator_dynprm[mjNDYN * a] : 0;
+    if (m->actuator_trntype[a] == mjTRN_SITE) {
+      // Site relative to the centre of mass, body axes (the site's body is the vehicle's).
+      const int site = m->actuator_trnid[2 * a];
+      for (int k = 0; k < 3; ++k) {
+        info.site_pos[k] = m->site_pos[3 * site + k] - m->body_ipos[3 * body + k];
+      }
+    }
+    infos->push_back(info);
+  }
+}
+
 }  // namespace
 
 const std::vector<const char*>& VehicleAttributes() {
@@ -114,30 +145,7 @@ VehicleHost::VehicleHost(const mjModel* m, VehicleHostConfig config)
                              "' drives " + std::to_string(d.n_actuators) + " actuators (" + names +
                              "); name this model's, in that order");
   }
-  for (const std::string& name : s.config.actuators) {
-    const int a = mj_name2id(m, mjOBJ_ACTUATOR, name.c_str());
-    if (a < 0) {
-      throw std::runtime_error(where + ": <config key=\"actuators\">: no actuator named '" + name +
-                               "' in this model");
-    }
-    s.actuators.push_back(a);
-    mjfActuatorInfo info{};
-    std::memcpy(info.gear, m->actuator_gear + 6 * a, sizeof(info.gear));
-    info.ctrl_min = m->actuator_ctrllimited[a] ? m->actuator_ctrlrange[2 * a]
-                                               : -std::numeric_limits<double>::infinity();
-    info.ctrl_max = m->actuator_ctrllimited[a] ? m->actuator_ctrlrange[2 * a + 1]
-                                               : std::numeric_limits<double>::infinity();
-    info.time_constant =
-        m->actuator_dyntype[a] == mjDYN_FILTER ? m->actuator_dynprm[mjNDYN * a] : 0;
-    if (m->actuator_trntype[a] == mjTRN_SITE) {
-      // Site relative to the centre of mass, body axes (the site's body is the vehicle's).
-      const int site = m->actuator_trnid[2 * a];
-      for (int k = 0; k < 3; ++k) {
-        info.site_pos[k] = m->site_pos[3 * site + k] - m->body_ipos[3 * s.body + k];
-      }
-    }
-    s.actuator_info.push_back(info);
-  }
+  ReadActuators(m, where, s.body, s.config.actuators, &s.actuators, &s.actuator_info);
   s.info.mass = m->body_subtreemass[s.body];
   std::memcpy(s.info.inertia, m->body_inertia + 3 * s.body, sizeof(s.info.inertia));
   s.info.gravity = std::sqrt(mju_dot3(m->opt.gravity, m->opt.gravity));
