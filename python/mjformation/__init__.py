@@ -13,6 +13,7 @@ import json
 import os
 import shutil
 import signal
+import sys
 import tempfile
 import weakref
 from dataclasses import dataclass
@@ -237,6 +238,21 @@ def check(experiment, set=None, formation=None, plugin_path=None) -> dict:
     with _LawInUse(formation, experiment) as law_overrides:
         return _core.check(str(experiment), law_overrides + _overrides(set),
                            _plugin_path(plugin_path))
+
+
+def export(experiment, out, overwrite=False) -> Path:
+    """Writes OUT/scene.xml: the experiment as a MuJoCo scene whose controllers are the native
+    plugins of native_plugin_library() (docs/PLUGINS.md). What the native path cannot carry is
+    refused naming the key; notes on what is not carried (e.g. [render]) go to stderr."""
+    scene, notes = _core.export(str(experiment), str(out), bool(overwrite))
+    for note in notes:
+        print(f"note: {note}", file=sys.stderr)
+    return Path(scene)
+
+
+def native_plugin_library() -> str:
+    """libmjformation_mujoco.so, for mujoco.mj_loadPluginLibrary before loading an export."""
+    return _core.native_plugin_library()
 
 
 def plugins(plugin_path=None) -> list[dict]:

@@ -22,6 +22,7 @@
 #include "mjformation/config/config.hpp"
 #include "mjformation/config/paths.hpp"
 #include "mjformation/control/plugin_host.hpp"
+#include "mjformation/export/export.hpp"
 #include "mjformation/record/engine_identity.hpp"
 #include "mjformation/record/output.hpp"
 #include "mjformation/run/interrupt.hpp"
@@ -323,6 +324,8 @@ void RegisterExceptions(py::module_& m) {
       PyErr_SetString(PyExc_ValueError, e.what());
     } catch (const rn::PluginError& e) {
       PyErr_SetString(PyExc_ValueError, e.what());
+    } catch (const rn::ExportError& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
     } catch (const rn::SceneError& e) {
       PyErr_SetString(PyExc_ValueError, e.what());
     } catch (const rn::OutputError& e) {
@@ -343,6 +346,14 @@ PYBIND11_MODULE(_core, m) {
   m.def("run", &Run, py::arg("experiment"), py::arg("overrides"), py::arg("plugin_path"),
         py::arg("out"), py::arg("overwrite"), py::arg("render"), py::arg("record"));
   m.def("command_line", &CommandLine, py::arg("args"));
+  m.def(
+      "export",
+      [](const std::string& experiment, const std::string& out, bool overwrite) {
+        const rn::ExportResult r = rn::ExportExperiment(experiment, out, overwrite);
+        return py::make_tuple(r.scene_path, r.notes);
+      },
+      py::arg("experiment"), py::arg("out"), py::arg("overwrite"));
+  m.def("native_plugin_library", [] { return std::string(MJF_NATIVE_PLUGIN_LIBRARY); });
   m.def("check", &Check, py::arg("experiment"), py::arg("overrides"), py::arg("plugin_path"));
   m.def("plugins", &Plugins, py::arg("plugin_path"));
   m.def("read_csv", &ReadCsv, py::arg("path"));

@@ -71,4 +71,33 @@ sed -n '/^estimator plugins:/,$p' "$work/plugins.txt" | grep -q "oot_estimator" 
     --plugin-path "$work/plugins" --no-render -q
 grep -q '"complete": true' "$work/run/summary.json"
 grep -q '"name": "oot_hold"' "$work/run/summary.json"
+# The same plugin through the native MuJoCo plugins' bridge: the experiment exported (its
+# [run] plugin_path names the plugin's folder), loaded by MuJoCo's own Python bindings with the
+# installed libmjformation_mujoco.so, flies the leader where the runner flew it.
+python_env=$(sed -n 's/^MJF_PYTHON_ENV:[A-Z]*=//p' "$build/CMakeCache.txt")
+if [ -x "$python_env/bin/python" ]; then
+  sed "s|^duration = 1.0|duration = 1.0\nplugin_path = [\"$work/plugins\"]|" "$work/exp.toml" \
+    > "$work/exp_native.toml"
+  "$work/prefix/bin/mjformation" export "$work/exp_native.toml" -o "$work/native" 2>/dev/null
+  "$python_env/bin/python" - "$work/prefix/lib/libmjformation_mujoco.so" \
+      "$work/native/scene.xml" "$work/run/timeseries.csv" <<'PY'
+import csv, sys
+import mujoco
+mujoco.mj_loadPluginLibrary(sys.argv[1])
+m = mujoco.MjModel.from_xml_path(sys.argv[2])
+d = mujoco.MjData(m)
+while d.time < 1.0 - 1e-9:
+    mujoco.mj_step(m, d)
+mujoco.mj_forward(m, d)
+rows = list(csv.DictReader(open(sys.argv[3])))
+last = rows[-1]
+adr = m.sensor("uav0_pos").adr[0]
+x, y = d.sensordata[adr], d.sensordata[adr + 1]
+assert abs(float(last["t"]) - d.time) < 1e-9, (last["t"], d.time)
+# The CSV keeps 9 significant digits; the C++ test compares the bits (mujoco_plugin_test).
+for axis, value in (("px", x), ("py", y)):
+    assert abs(float(last["uav0_" + axis]) - value) < 1e-6, (axis, last["uav0_" + axis], value)
+print(f"native: the out-of-tree plugin flew the leader to ({x:.9g}, {y:.9g}), as the runner did")
+PY
+fi
 echo "out-of-tree plugin: built against $work/prefix/include, loaded and run: OK"

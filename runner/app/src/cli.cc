@@ -14,6 +14,7 @@
 #include "mjformation/config/paths.hpp"
 #include "mjformation/config/source_location.hpp"
 #include "mjformation/control/plugin_host.hpp"
+#include "mjformation/export/export.hpp"
 #include "mjformation/record/engine_identity.hpp"
 #include "mjformation/record/output.hpp"
 #include "mjformation/run/run.hpp"
@@ -208,6 +209,24 @@ CLI::Validator IntegerOption(long long min, long long max) {
       what);
 }
 
+int ExportCommand(const CliCommands& c) {
+  const ExportResult result = ExportExperiment(c.experiment, c.out, c.overwrite);
+  for (const std::string& note : result.notes) std::fprintf(stderr, "note: %s\n", note.c_str());
+  std::printf("%s\n", result.scene_path.c_str());
+  return 0;
+}
+
+void AddExportCommand(CLI::App& app, CliCommands* c) {
+  c->export_scene =
+      app.add_subcommand("export",
+                         "Write the experiment as a MuJoCo scene flown by the native plugins "
+                         "(libmjformation_mujoco.so; docs/PLUGINS.md)");
+  c->export_scene->add_option("experiment", c->experiment, "experiment file (TOML)")->required();
+  c->export_scene->add_option("--out,-o", c->out, "output directory (gets scene.xml)")->required();
+  c->export_scene->add_flag("--overwrite", c->overwrite,
+                            "write into an existing non-empty directory");
+}
+
 void AddCommands(CLI::App& app, CliCommands* c) {
   app.set_version_flag("--version", VersionText);
   app.require_subcommand(1);
@@ -241,6 +260,7 @@ void AddCommands(CLI::App& app, CliCommands* c) {
   AddSweepCommand(app, c);
   AddReplayCommand(app, c);
   AddViewCommand(app, c);
+  AddExportCommand(app, c);
 }
 
 int Dispatch(const CLI::App& app, const CliCommands& c) {
@@ -253,6 +273,7 @@ int Dispatch(const CLI::App& app, const CliCommands& c) {
     if (c.sweep->parsed()) return SweepCommand(c);
     if (c.replay && c.replay->parsed()) return ReplayCommand(c);
     if (c.view && c.view->parsed()) return ViewCommand(c);
+    if (c.export_scene->parsed()) return ExportCommand(c);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "mjformation: error: %s\n", EscapeControl(e.what()).c_str());
     return 1;

@@ -37,6 +37,7 @@ struct CliCommands {
   // replay (replay.cc) and view (viewer_cli.cc)
   CLI::App* replay = nullptr;
   CLI::App* view = nullptr;
+  CLI::App* export_scene = nullptr;  // `export`: a scene flown by the native MuJoCo plugins
   std::string replay_dir, replay_video, replay_out;
   std::string replay_video_size;  // --video-size WxH; empty: the run's snapshot size
   std::vector<double> replay_snapshots;

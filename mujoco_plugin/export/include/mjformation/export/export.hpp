@@ -1,0 +1,35 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// `mjformation export`: an experiment as a self-contained MuJoCo scene whose controllers are
+// declared as native engine plugins (libmjformation_mujoco.so, docs/PLUGINS.md).
+#ifndef MJFORMATION_EXPORT_EXPORT_HPP_
+#define MJFORMATION_EXPORT_EXPORT_HPP_
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace mjf::runner {
+
+class ExportError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct ExportResult {
+  std::string scene_path;          // DIR/scene.xml
+  std::vector<std::string> notes;  // what was not carried because it does not shape the flight
+};
+
+// Writes DIR/scene.xml for the experiment file. Refuses, naming the file and the key, whatever
+// the native path cannot carry (see the list in export.cc), and refuses to write into an
+// existing non-empty DIR unless `overwrite`. Throws ExportError or ConfigError.
+ExportResult ExportExperiment(const std::string& experiment, const std::string& out_dir,
+                              bool overwrite);
+
+// The scene text alone (what ExportExperiment writes), for the Python module and the tests.
+std::string ExportedSceneXml(const std::string& experiment, std::vector<std::string>* notes);
+
+}  // namespace mjf::runner
+
+#endif  // MJFORMATION_EXPORT_EXPORT_HPP_

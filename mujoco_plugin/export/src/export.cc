@@ -1,0 +1,260 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+#include "mjformation/export/export.hpp"
+
+#include <sys/stat.h>
+#include <toml++/toml.h>
+
+#include <cctype>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "mjformation/config/config.hpp"
+#include "mjformation/sim/simulation.hpp"
+
+namespace mjf::runner {
+namespace {
+
+namespace fs = std::filesystem;
+
+// What the native plugin carries: these sections (each as one <config> key, see
+// mujoco_plugin/src/swarm_host.hpp), each without the keys listed against it.
+struct Carried {
+  const char* section;
+  std::set<std::string> refused;  // keys the native path cannot carry
+  const char* why;
+};
+
+const std::vector<Carried>& CarriedSections() {
+  static const std::vector<Carried> kCarried = {
+      {"run", {}, ""},
+      {"vehicles",
+       {"rotor_model", "body", "rotors", "thrust", "moments", "actuation"},
+       "the native plugin drives the vehicle model's own MuJoCo actuators, as written"},
+      {"topology", {}, ""},
+      {"leader", {}, ""},
+      {"formation", {}, ""},
+      {"attitude", {}, ""},
+  };
+  return kCarried;
+}
+
+// Sections that change what is recorded or drawn, never the flight: not carried, and said so.
+const std::set<std::string>& OutputOnlySections() {
+  static const std::set<std::string> kOutput = {"render"};
+  return kOutput;
+}
+
+std::string Quoted(std::string_view text) {
+  std::string out = "\"";
+  for (char c : text) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char escape[8];
+      std::snprintf(escape, sizeof(escape), "\\u%04x", c);
+      out += escape;
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+
+std::string Key(std::string_view key) {
+  bool bare = !key.empty();
+  for (char c : key)
+    bare = bare && (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-');
+  return bare ? std::string(key) : Quoted(key);
+}
+
+// One TOML value on one line, floats in their shortest form that reads back to the same double.
+std::string Value(const toml::node& node) {
+  if (const toml::table* t = node.as_table()) {
+    std::string out = "{";
+    for (auto&& [key, value] : *t) {
+      out += (out.size() > 1 ? ", " : " ") + Key(key.str()) + " = " + Value(value);
+    }
+    return out + (out.size() > 1 ? " }" : "}");
+  }
+  if (const toml::array* a = node.as_array()) {
+    std::string out = "[";
+    for (size_t i = 0; i < a->size(); ++i) out += (i ? ", " : "") + Value(*a->get(i));
+    return out + "]";
+  }
+  if (auto v = node.value_exact<std::string>()) return Quoted(*v);
+  if (auto v = node.value_exact<int64_t>()) return std::to_string(*v);
+  if (auto v = node.value_exact<bool>()) return *v ? "true" : "false";
+  if (auto v = node.value_exact<double>()) {
+    if (std::isnan(*v)) return "nan";
+    if (std::isinf(*v)) return *v > 0 ? "inf" : "-inf";
+    char buffer[64];
+    const auto [end, ec] = std::to_chars(buffer, buffer + sizeof(buffer), *v);
+    std::string text(buffer, ec == std::errc() ? end : buffer);
+    if (text.find_first_of(".eE") == std::string::npos) text += ".0";  // stays a float
+    return text;
+  }
+  // Dates and times: no experiment key takes one, and the parser names it.
+  throw ExportError("a date or time value where the experiment file takes none (line " +
+                    std::to_string(node.source().begin.line) + ")");
+}
+
+// The section as the body of a TOML inline table: `radius = 20.0, omega = 0.157`.
+std::string InlineBody(const toml::table& section) {
+  std::string out;
+  for (auto&& [key, value] : section) {
+    out += (out.empty() ? "" : ", ") + Key(key.str()) + " = " + Value(value);
+  }
+  return out;
+}
+
+std::string XmlEscape(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    switch (c) {
+      case '"':
+        out += "&quot;";
+        break;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      default:
+        out += c;
+    }
+  }
+  return out;
+}
+
+// The plugin declaration: one instance flies every vehicle of the scene.
+std::string ExtensionBlock(const std::vector<std::pair<std::string, std::string>>& pairs) {
+  std::string xml =
+      "  <extension>\n    <plugin plugin=\"mjformation.swarm\">\n"
+      "      <instance name=\"swarm\">\n";
+  for (const auto& [key, value] : pairs) {
+    xml += "        <config key=\"" + key + "\" value=\"" + XmlEscape(value) + "\"/>\n";
+  }
+  xml += "      </instance>\n    </plugin>\n  </extension>\n";
+  return xml;
+}
+
+std::string Where(const std::string& file, const toml::node& node, const std::string& key) {
+  const toml::source_region& r = node.source();
+  return file + ":" + std::to_string(r.begin.line) + ": [" + key + "]";
+}
+
+// Reads the experiment file's sections, refusing what the native path cannot carry.
+// Paths are written resolved (the runner reads them relative to the experiment file; the
+// native plugin has no file to be relative to). `config` is null for the refusal pass.
+void ResolvePaths(toml::table& doc, const ExperimentConfig& config) {
+  if (toml::table* run = doc["run"].as_table(); run && run->contains("plugin_path")) {
+    toml::array folders;
+    for (const std::string& folder : config.plugin_path) folders.push_back(folder);
+    run->insert_or_assign("plugin_path", std::move(folders));
+  }
+  if (toml::table* vehicles = doc["vehicles"].as_table(); vehicles && vehicles->contains("model")) {
+    vehicles->insert_or_assign("model", config.model_path);
+  }
+}
+
+std::vector<std::pair<std::string, std::string>> CarriedPairs(const std::string& file,
+                                                              const ExperimentConfig* config,
+                                                              std::vector<std::string>* notes) {
+  toml::table doc;
+  try {
+    doc = toml::parse_file(file);
+  } catch (const toml::parse_error& e) {
+    throw ConfigError(file + ": " + std::string(e.description()));
+  }
+  if (config) ResolvePaths(doc, *config);
+  std::vector<std::pair<std::string, std::string>> pairs;
+  for (auto&& [key, node] : doc) {
+    const std::string section(key.str());
+    if (OutputOnlySections().count(section)) {
+      if (notes)
+        notes->push_back("[" + section + "] is not carried: it shapes the runner's images, not " +
+                         "the flight (MuJoCo's own viewer renders the exported scene)");
+      continue;
+    }
+    bool known = false;
+    for (const Carried& c : CarriedSections()) known = known || section == c.section;
+    if (!known) {
+      throw ExportError(Where(file, node, section) +
+                        ": the native MuJoCo plugins cannot carry this section (they fly the " +
+                        "ideal configuration: central execution, true sensor values, no " +
+                        "estimator, no wind or disturbance); run it with `mjformation run`");
+    }
+  }
+  for (const Carried& c : CarriedSections()) {
+    const toml::table* section = doc[c.section].as_table();
+    if (!section) {
+      pairs.emplace_back(c.section, "");
+      continue;
+    }
+    for (auto&& [key, node] : *section) {
+      if (c.refused.count(std::string(key.str()))) {
+        throw ExportError(Where(file, node, std::string(c.section)) + " " + std::string(key.str()) +
+                          ": not carried by the native MuJoCo " + "plugins (" + c.why + ")");
+      }
+    }
+    pairs.emplace_back(c.section, InlineBody(*section));
+  }
+  return pairs;
+}
+
+bool NonEmptyDirectory(const std::string& dir) {
+  std::error_code ec;
+  if (!fs::exists(dir, ec)) return false;
+  if (!fs::is_directory(dir, ec)) return true;
+  return fs::directory_iterator(dir, ec) != fs::directory_iterator();
+}
+
+}  // namespace
+
+std::string ExportedSceneXml(const std::string& experiment, std::vector<std::string>* notes) {
+  CarriedPairs(experiment, nullptr, nullptr);  // refusals first: they name what to remove
+  const ExperimentConfig config =
+      LoadExperiment(experiment, {}, ExperimentChecks::Rendering(false));
+  const std::vector<std::pair<std::string, std::string>> pairs =
+      CarriedPairs(experiment, &config, notes);
+  // The scene the runner composes for this experiment, vehicles, leader and all.
+  Simulation simulation(config);
+  std::string xml = simulation.scene_xml();
+  const size_t open = xml.find("<mujoco");
+  const size_t end = open == std::string::npos ? open : xml.find('>', open);
+  if (end == std::string::npos) throw ExportError("the composed scene has no <mujoco> element");
+  xml.insert(end + 2, ExtensionBlock(pairs));
+  return xml;
+}
+
+ExportResult ExportExperiment(const std::string& experiment, const std::string& out_dir,
+                              bool overwrite) {
+  if (NonEmptyDirectory(out_dir) && !overwrite) {
+    throw ExportError(out_dir + ": exists and is not empty; pass --overwrite to replace " +
+                      "scene.xml in it");
+  }
+  ExportResult result;
+  const std::string xml = ExportedSceneXml(experiment, &result.notes);
+  std::error_code ec;
+  fs::create_directories(out_dir, ec);
+  if (ec) throw ExportError(out_dir + ": cannot create it: " + ec.message());
+  result.scene_path = (fs::path(out_dir) / "scene.xml").string();
+  std::ofstream out(result.scene_path, std::ios::binary);
+  out << xml;
+  if (!out) throw ExportError(result.scene_path + ": cannot write it: " + std::strerror(errno));
+  return result;
+}
+
+}  // namespace mjf::runner

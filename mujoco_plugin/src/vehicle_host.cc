@@ -1,0 +1,210 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+#include "vehicle_host.hpp"
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+#include "mjformation/config/config.hpp"
+#include "mjformation/config/paths.hpp"
+#include "mjformation/control/control_wiring.hpp"
+#include "mjformation/control/plugin_host.hpp"
+
+namespace mjf::native {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+std::vector<std::string> Words(const std::string& text) {
+  std::istringstream in(text);
+  std::vector<std::string> out;
+  for (std::string w; in >> w;) out.push_back(w);
+  return out;
+}
+
+// The two sections through the experiment parser (its names, defaults, checks and messages),
+// inside the smallest experiment it accepts; only [leader] (the guidance) and [attitude] are
+// used.
+runner::ExperimentConfig Sections(const VehicleHostConfig& c) {
+  std::string toml = "leader = {" + (c.guidance.empty() ? "plugin = \"hover\"" : c.guidance) +
+                     "}\nattitude = {" + c.attitude + "}\n" +
+                     "formation = {plugin = \"hover\"}\nvehicles = {followers = 1}\n" +
+                     "topology = {leader_links = [1]}\n";
+  if (!c.plugin_path.empty()) toml += "run = {plugin_path = [\"" + c.plugin_path + "\"]}\n";
+  return runner::ParseExperiment(toml, c.where);
+}
+
+// What the runner's vehicle binding reads of each driven actuator (gear, control range, motor
+// lag, site relative to the centre of mass in body axes), from the compiled model.
+void ReadActuators(const mjModel* m, const std::string& where, int body,
+                   const std::vector<std::string>& names, std::vector<int>* ids,
+                   std::vector<mjfActuatorInfo>* infos) {
+  for (const std::string& name : names) {
+    const int a = mj_name2id(m, mjOBJ_ACTUATOR, name.c_str());
+    if (a < 0) {
+      throw std::runtime_error(where + ": <config key=\"actuators\">: no actuator named '" + name +
+                               "' in this model");
+    }
+    ids->push_back(a);
+    mjfActuatorInfo info{};
+    std::memcpy(info.gear, m->actuator_gear + 6 * a, sizeof(info.gear));
+    info.ctrl_min = m->actuator_ctrllimited[a] ? m->actuator_ctrlrange[2 * a]
+                                               : -std::numeric_limits<double>::infinity();
+    info.ctrl_max = m->actuator_ctrllimited[a] ? m->actuator_ctrlrange[2 * a + 1]
+                                               : std::numeric_limits<double>::infinity();
+    info.time_constant =
+        m->actuator_dyntype[a] == mjDYN_FILTER ? m->actuator_dynprm[mjNDYN * a] : 0;
+    if (m->actuator_trntype[a] == mjTRN_SITE) {
+      // Site relative to the centre of mass, body axes (the site's body is the vehicle's).
+      const int site = m->actuator_trnid[2 * a];
+      for (int k = 0; k < 3; ++k) {
+        info.site_pos[k] = m->site_pos[3 * site + k] - m->body_ipos[3 * body + k];
+      }
+    }
+    infos->push_back(info);
+  }
+}
+
+}  // namespace
+
+const std::vector<const char*>& VehicleAttributes() {
+  static const std::vector<const char*> kNames = {"attitude", "guidance", "body", "actuators",
+                                                  "plugin_path"};
+  return kNames;
+}
+
+VehicleHostConfig VehicleConfigFromModel(const mjModel* m, int instance, const char* plugin_name) {
+  VehicleHostConfig c;
+  const char* name = mj_id2name(m, mjOBJ_PLUGIN, instance);
+  c.where = std::string("MJCF plugin '") + plugin_name + "' instance '" +
+            (name && name[0] ? name : std::to_string(instance)) + "'";
+  auto get = [&](const char* key) {
+    const char* v = mj_getPluginConfig(m, instance, key);
+    return std::string(v ? v : "");
+  };
+  c.attitude = get("attitude");
+  c.guidance = get("guidance");
+  c.body = get("body");
+  c.actuators = Words(get("actuators"));
+  c.plugin_path = get("plugin_path");
+  if (c.attitude.empty()) {
+    throw std::runtime_error(c.where +
+                             ": <config key=\"attitude\">: missing: name the plugin, "
+                             "e.g. value=\"plugin = 'geometric'\"");
+  }
+  if (c.body.empty()) {
+    throw std::runtime_error(c.where + ": <config key=\"body\">: missing: the vehicle's body");
+  }
+  return c;
+}
+
+struct VehicleHost::Impl {
+  VehicleHostConfig config;
+  runner::ExperimentConfig sections;
+  std::unique_ptr<runner::PluginRegistry> registry;
+  int body = -1;
+  std::vector<int> actuators;
+  std::vector<mjfActuatorInfo> actuator_info;
+  mjfVehicleInfo info{};
+  double initial_pos[3] = {0, 0, 0};
+  std::unique_ptr<runner::PluginInstance> guidance;
+  std::unique_ptr<runner::PluginInstance> attitude;
+  mjfSetpoint setpoint{};
+  std::vector<double> controls;
+  char error[512] = {0};
+};
+
+// What the runner's vehicle binding reads of a vehicle model (mass, principal inertia, actuator
+// geometry), read here from the compiled model's own fields: the model is the user's scene.
+VehicleHost::VehicleHost(const mjModel* m, VehicleHostConfig config)
+    : impl_(std::make_unique<Impl>()) {
+  Impl& s = *impl_;
+  s.config = std::move(config);
+  const std::string& where = s.config.where;
+  s.sections = Sections(s.config);
+  s.registry =
+      std::make_unique<runner::PluginRegistry>(runner::PluginSearchPath(s.sections.plugin_path));
+  const runner::LoadedPlugin& attitude =
+      runner::FindPlugin(*s.registry, s.sections, s.sections.attitude, {MJF_KIND_ATTITUDE},
+                         "this key needs an attitude plugin");
+  const runner::LoadedPlugin& guidance =
+      runner::FindPlugin(*s.registry, s.sections, s.sections.leader, {MJF_KIND_GUIDANCE},
+                         "this key needs a guidance plugin");
+  s.body = mj_name2id(m, mjOBJ_BODY, s.config.body.c_str());
+  if (s.body <= 0) {
+    throw std::runtime_error(where + ": <config key=\"body\">: no body named '" + s.config.body +
+                             "' in this model");
+  }
+  const mjfPlugin& d = *attitude.descriptor;
+  if (static_cast<int>(s.config.actuators.size()) != d.n_actuators) {
+    std::string names;
+    for (int k = 0; k < d.n_actuators; ++k) names += (k ? ", " : "") + std::string(d.actuators[k]);
+    throw std::runtime_error(where + ": <config key=\"actuators\">: attitude plugin '" + d.name +
+                             "' drives " + std::to_string(d.n_actuators) + " actuators (" + names +
+                             "); name this model's, in that order");
+  }
+  ReadActuators(m, where, s.body, s.config.actuators, &s.actuators, &s.actuator_info);
+  s.info.mass = m->body_subtreemass[s.body];
+  std::memcpy(s.info.inertia, m->body_inertia + 3 * s.body, sizeof(s.info.inertia));
+  s.info.gravity = std::sqrt(mju_dot3(m->opt.gravity, m->opt.gravity));
+  s.info.n_actuators = d.n_actuators;
+  s.info.actuators = s.actuator_info.data();
+  s.info.actuation = MJF_ACTUATION_ROTORS;
+  std::memcpy(s.initial_pos, m->body_pos + 3 * s.body, sizeof(s.initial_pos));
+
+  mjfCreateContext ctx{};
+  ctx.timestep = m->opt.timestep;
+  ctx.vehicle = 0;
+  ctx.n_vehicles = 1;
+  ctx.vehicle_info = &s.info;
+  ctx.initial_pos = s.initial_pos;
+  ctx.model = reinterpret_cast<const struct mjModel_*>(m);
+  s.guidance = std::make_unique<runner::PluginInstance>(guidance, s.sections.leader, where, ctx);
+  s.attitude = std::make_unique<runner::PluginInstance>(attitude, s.sections.attitude, where, ctx);
+  s.setpoint.sliding[0] = s.setpoint.sliding[1] = kNaN;
+  for (int k = 0; k < 3; ++k) s.setpoint.pos[k] = s.initial_pos[k];
+  s.controls.assign(d.n_actuators, 0.0);
+}
+
+VehicleHost::~VehicleHost() = default;
+
+const std::vector<int>& VehicleHost::actuator_ids() const { return impl_->actuators; }
+
+void VehicleHost::Tick(int64_t step, const mjModel* m, const mjData* d, double* controls) {
+  Impl& s = *impl_;
+  // The body's state as the vehicle contract's sensors report it: position and world velocity
+  // of the body frame, attitude, body-frame rates.
+  mjfVehicleState state{};
+  std::memcpy(state.pos, d->xpos + 3 * s.body, sizeof(state.pos));
+  std::memcpy(state.quat, d->xquat + 4 * s.body, sizeof(state.quat));
+  mjtNum world[6], local[6];
+  mj_objectVelocity(m, d, mjOBJ_BODY, s.body, world, 0);
+  mj_objectVelocity(m, d, mjOBJ_BODY, s.body, local, 1);
+  std::memcpy(state.vel, world + 3, sizeof(state.vel));
+  std::memcpy(state.gyro, local, sizeof(state.gyro));
+  mjfStepContext ctx{};
+  ctx.time = d->time;
+  ctx.step = step;
+  ctx.timestep = m->opt.timestep;
+  ctx.n_vehicles = 1;
+  ctx.states = &state;
+  ctx.setpoints = &s.setpoint;
+  ctx.model = reinterpret_cast<const struct mjModel_*>(m);
+  ctx.data = reinterpret_cast<const struct mjData_*>(d);
+  ctx.error = s.error;
+  ctx.error_size = sizeof(s.error);
+  for (runner::PluginInstance* p : {s.guidance.get(), s.attitude.get()}) {
+    s.error[0] = '\0';
+    ctx.controls = p == s.attitude.get() ? s.controls.data() : nullptr;
+    if (p->Compute(ctx) != 0) {
+      throw std::runtime_error(s.config.where + ": plugin '" + p->descriptor().name +
+                               "' failed at t = " + std::to_string(d->time) +
+                               " s: " + (s.error[0] ? s.error : "no reason given"));
+    }
+  }
+  for (size_t k = 0; k < s.actuators.size(); ++k) controls[s.actuators[k]] = s.controls[k];
+}
+
+}  // namespace mjf::native

@@ -1,0 +1,271 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// The exported scene, loaded with libmujoco and libmjformation_mujoco.so alone, flies the
+// runner's trajectory: the native side below uses only MuJoCo's C API (mj_loadPluginLibrary,
+// mj_loadXML, mj_step); the reference is the runner's own Simulation in the same process.
+#include <gtest/gtest.h>
+#include <mujoco/mujoco.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "mjformation/config/config.hpp"
+#include "mjformation/export/export.hpp"
+#include "mjformation/sim/simulation.hpp"
+
+namespace mjf::runner {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string ReadText(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+void LoadPluginLibraryOnce() {
+  static const bool loaded = [] {
+    mj_loadPluginLibrary(MJF_NATIVE_PLUGIN_LIBRARY);
+    return true;
+  }();
+  (void)loaded;
+}
+
+// A scratch folder per test, removed at the end.
+class Scratch {
+ public:
+  explicit Scratch(const std::string& name)
+      : path_(fs::temp_directory_path() / ("mjf_native_" + name + "_" + std::to_string(getpid()))) {
+    fs::remove_all(path_);
+    fs::create_directories(path_);
+  }
+  ~Scratch() { fs::remove_all(path_); }
+  std::string operator/(const std::string& leaf) const { return (path_ / leaf).string(); }
+
+ private:
+  fs::path path_;
+};
+
+// The experiment file, with [vehicles] model and [attitude] plugin changed when asked and
+// [render] removed (the runner would render; the export notes it).
+std::string Variant(const std::string& experiment, const std::string& model,
+                    const std::string& attitude, const Scratch& dir) {
+  std::string text = ReadText(std::string(MJF_SOURCE_DIR) + "/experiments/" + experiment);
+  text = text.substr(0, text.find("\n[render]"));
+  if (!model.empty()) {
+    text = std::regex_replace(text, std::regex("\nmodel = \"quadrotor\""),
+                              "\nmodel = \"" + model + "\"");
+  }
+  if (!attitude.empty()) {
+    text = std::regex_replace(text, std::regex("\\[attitude\\][^\\[]*"),
+                              "[attitude]\nplugin = \"" + attitude + "\"\n\n");
+  }
+  const std::string path = dir / "experiment.toml";
+  std::ofstream(path) << text;
+  return path;
+}
+
+mjModel* LoadNative(const std::string& scene, std::string* error_text = nullptr) {
+  LoadPluginLibraryOnce();
+  char error[2048] = {0};
+  mjModel* m = mj_loadXML(scene.c_str(), nullptr, error, sizeof(error));
+  if (error_text) *error_text = error;
+  return m;
+}
+
+struct Comparison {
+  double max_diff = 0;  // m, largest |qpos difference| over every step
+  bool bitwise = true;  // every qpos, qvel and act identical at every step
+  int64_t steps = 0;
+  double moved = 0;  // m, largest change of a qpos entry over the flight (it did fly)
+};
+
+// Steps the runner's Simulation and the exported scene side by side for `seconds`.
+Comparison FlyBoth(const std::string& experiment, double seconds, int pause_every = 0) {
+  ExperimentConfig config = LoadExperiment(experiment, {}, ExperimentChecks::Rendering(false));
+  Simulation runner(config);
+  Scratch out("scene");
+  ExportExperiment(experiment, out / "export", false);
+  mjModel* m = LoadNative(out / "export/scene.xml");
+  EXPECT_NE(m, nullptr);
+  Comparison c;
+  if (!m) return c;
+  mjData* d = mj_makeData(m);
+  const mjData* r = runner.data();
+  EXPECT_EQ(m->nq, runner.model()->nq);
+  const int64_t steps = std::llround(seconds / config.timestep);
+  const std::vector<mjtNum> start(d->qpos, d->qpos + m->nq);
+  for (int64_t k = 0; k < steps; ++k) {
+    runner.ComputeControls();
+    runner.Integrate();
+    if (pause_every > 0 && k % pause_every == 7) {
+      // A paused viewer: mj_forward again and again without stepping.
+      for (int i = 0; i < 3; ++i) mj_forward(m, d);
+    }
+    mj_step(m, d);
+    for (int i = 0; i < m->nq; ++i) {
+      c.max_diff = std::max(c.max_diff, std::fabs(d->qpos[i] - r->qpos[i]));
+    }
+    c.bitwise = c.bitwise && !std::memcmp(d->qpos, r->qpos, sizeof(mjtNum) * m->nq) &&
+                !std::memcmp(d->qvel, r->qvel, sizeof(mjtNum) * m->nv) &&
+                !std::memcmp(d->act, r->act, sizeof(mjtNum) * m->na);
+    ++c.steps;
+  }
+  for (int i = 0; i < m->nq; ++i) c.moved = std::max(c.moved, std::fabs(d->qpos[i] - start[i]));
+  mj_deleteData(d);
+  mj_deleteModel(m);
+  return c;
+}
+
+void ExpectSameFlight(const std::string& experiment, const std::string& model,
+                      const std::string& attitude) {
+  Scratch dir("flight");
+  const Comparison c = FlyBoth(Variant(experiment, model, attitude, dir), 40.0);
+  EXPECT_EQ(c.steps, 40000);
+  EXPECT_TRUE(c.bitwise) << "largest qpos difference " << c.max_diff << " m";
+  EXPECT_LE(c.max_diff, 1e-9);
+  EXPECT_GT(c.moved, 10.0);  // the leader flies a 20 m circle: the comparison is not of rest
+}
+
+TEST(NativeFlight, Exp2QuadrotorIsTheRunnersTrajectory) { ExpectSameFlight("exp2.toml", "", ""); }
+TEST(NativeFlight, Exp2PointMassIsTheRunnersTrajectory) {
+  ExpectSameFlight("exp2.toml", "pointmass", "pointmass_direct");
+}
+TEST(NativeFlight, Exp3QuadrotorIsTheRunnersTrajectory) { ExpectSameFlight("exp3.toml", "", ""); }
+TEST(NativeFlight, Exp3PointMassIsTheRunnersTrajectory) {
+  ExpectSameFlight("exp3.toml", "pointmass", "pointmass_direct");
+}
+
+// Repeated mj_forward between steps (a paused viewer) leaves the held commands as they were:
+// the flight that follows is still the runner's, bit for bit.
+TEST(NativeFlight, PausedViewerLeavesHeldCommands) {
+  Scratch dir("paused");
+  const std::string experiment = Variant("exp2.toml", "", "", dir);
+  Scratch out("paused_scene");
+  ExportExperiment(experiment, out / "export", false);
+  mjModel* m = LoadNative(out / "export/scene.xml");
+  ASSERT_NE(m, nullptr);
+  mjData* d = mj_makeData(m);
+  for (int k = 0; k < 1234; ++k) mj_step(m, d);
+  mj_forward(m, d);
+  const std::vector<mjtNum> state(d->plugin_state, d->plugin_state + m->npluginstate);
+  const std::vector<mjtNum> force(d->actuator_force, d->actuator_force + m->nu);
+  const std::vector<mjtNum> act_dot(d->act_dot, d->act_dot + m->na);
+  for (int i = 0; i < 20; ++i) mj_forward(m, d);
+  EXPECT_EQ(state, std::vector<mjtNum>(d->plugin_state, d->plugin_state + m->npluginstate));
+  EXPECT_EQ(force, std::vector<mjtNum>(d->actuator_force, d->actuator_force + m->nu));
+  EXPECT_EQ(act_dot, std::vector<mjtNum>(d->act_dot, d->act_dot + m->na));
+  mj_deleteData(d);
+  mj_deleteModel(m);
+  const Comparison c = FlyBoth(experiment, 5.0, 50);
+  EXPECT_TRUE(c.bitwise) << "largest qpos difference " << c.max_diff << " m";
+}
+
+// A bad key or value is refused when the model compiles, naming plugin, instance and key.
+std::string CompileWith(const std::string& key, const std::string& from, const std::string& to) {
+  Scratch dir("refusal");
+  const std::string experiment = Variant("exp2.toml", "", "", dir);
+  std::vector<std::string> notes;
+  std::string xml = ExportedSceneXml(experiment, &notes);
+  const std::string anchor = "<config key=\"" + key + "\" value=\"";
+  const size_t at = xml.find(anchor);
+  EXPECT_NE(at, std::string::npos) << key;
+  const size_t value = at + anchor.size();
+  const size_t found = xml.find(from, at);
+  EXPECT_LT(found, xml.find('"', value)) << from;
+  xml.replace(found, from.size(), to);
+  const std::string path = dir / "scene.xml";
+  std::ofstream(path) << xml;
+  std::string error;
+  mjModel* m = LoadNative(path, &error);
+  EXPECT_EQ(m, nullptr);
+  if (m) mj_deleteModel(m);
+  return error;
+}
+
+TEST(NativeConfig, BadValueIsRefusedAtCompile) {
+  const std::string error = CompileWith("formation", "q = 4.5", "q = -4.5");
+  EXPECT_NE(error.find("mjformation.swarm"), std::string::npos) << error;
+  EXPECT_NE(error.find("instance 'swarm'"), std::string::npos) << error;
+  EXPECT_NE(error.find("[formation] q:"), std::string::npos) << error;
+}
+
+TEST(NativeConfig, UnknownKeyIsRefusedAtCompile) {
+  const std::string error = CompileWith("leader", "radius = 20.0", "radius = 20.0, radios = 3.0");
+  EXPECT_NE(error.find("mjformation.swarm"), std::string::npos) << error;
+  EXPECT_NE(error.find("instance 'swarm'"), std::string::npos) << error;
+  EXPECT_NE(error.find("radios"), std::string::npos) << error;
+}
+
+TEST(NativeConfig, UnknownConfigKeyIsRefusedByMuJoCo) {
+  const std::string error =
+      CompileWith("leader", "<config key=\"leader\"", "<config key=\"leeder\"");
+  EXPECT_NE(error.find("leeder"), std::string::npos) << error;
+}
+
+// Export refuses, naming file, section and key, what the native path cannot carry; the message
+// is the user's only notice, so each is checked.
+std::string ExportRefusal(const std::string& append, const std::string& after = "") {
+  Scratch dir("export_refusal");
+  std::string text = ReadText(Variant("exp2.toml", "", "", dir));
+  if (after.empty()) {
+    text += append;
+  } else {
+    text.insert(text.find(after) + after.size(), append);
+  }
+  std::ofstream(dir / "experiment.toml") << text;
+  try {
+    ExportExperiment(dir / "experiment.toml", dir / "out", false);
+  } catch (const ExportError& e) {
+    EXPECT_FALSE(fs::exists(dir / "out")) << "nothing is written on a refusal";
+    return e.what();
+  }
+  ADD_FAILURE() << "exported: " << append;
+  return "";
+}
+
+TEST(NativeExport, RefusesPerAgentExecution) {
+  const std::string e = ExportRefusal("\n[execution]\nmode = \"per_agent\"\n");
+  EXPECT_NE(e.find("experiment.toml:"), std::string::npos) << e;
+  EXPECT_NE(e.find("[execution]: the native MuJoCo plugins cannot carry"), std::string::npos) << e;
+}
+
+TEST(NativeExport, RefusesSensorNoise) {
+  const std::string e = ExportRefusal("\n[sensors]\nposition_noise = 0.1\n");
+  EXPECT_NE(e.find("[sensors]: the native MuJoCo plugins cannot carry"), std::string::npos) << e;
+}
+
+TEST(NativeExport, RefusesTheWrenchRotorModel) {
+  const std::string e = ExportRefusal("\nrotor_model = \"wrench\"", "followers = 6");
+  EXPECT_NE(e.find("[vehicles] rotor_model: not carried"), std::string::npos) << e;
+}
+
+TEST(NativeExport, NeverWritesIntoAUsersDirectory) {
+  Scratch dir("export_owned");
+  const std::string experiment = Variant("exp2.toml", "", "", dir);
+  fs::create_directories(dir / "out");
+  std::ofstream(dir / "out/mine.txt") << "mine";
+  try {
+    ExportExperiment(experiment, dir / "out", false);
+    ADD_FAILURE() << "wrote into a non-empty directory";
+  } catch (const ExportError& e) {
+    EXPECT_NE(std::string(e.what()).find("exists and is not empty; pass --overwrite"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_FALSE(fs::exists(dir / "out/scene.xml"));
+  ExportExperiment(experiment, dir / "out", true);
+  EXPECT_TRUE(fs::exists(dir / "out/scene.xml"));
+  EXPECT_EQ(ReadText(dir / "out/mine.txt"), "mine");
+}
+
+}  // namespace
+}  // namespace mjf::runner

@@ -1,0 +1,98 @@
+# Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+"""An exported experiment flown through MuJoCo's own Python bindings (the `mujoco` package, the
+native plugins loaded with mujoco.mj_loadPluginLibrary) flies the runner's trajectory."""
+
+import mujoco
+import numpy as np
+import pytest
+
+import mjformation
+
+
+@pytest.fixture(scope="module")
+def native_library() -> str:
+    path = mjformation.native_plugin_library()
+    mujoco.mj_loadPluginLibrary(path)
+    return path
+
+
+def sensor_block(model, data, name: str) -> np.ndarray:
+    sensor = model.sensor(name)
+    return data.sensordata[sensor.adr[0]:sensor.adr[0] + sensor.dim[0]].copy()
+
+
+def test_exported_exp2_flies_the_runners_trajectory(exp2, tmp_path, native_library):
+    scene = mjformation.export(exp2, tmp_path / "exp2")
+    model = mujoco.MjModel.from_xml_path(str(scene))
+    data = mujoco.MjData(model)
+    sim = mjformation.Simulation(exp2)  # the runner, at its tick of t = 0
+    n = sim.n_vehicles
+    names = [(f"uav{i}_pos", f"uav{i}_vel") for i in range(n)]
+    start = None
+    for k in range(40000):
+        if k % 500 == 0 or k == 39999:
+            # mj_forward: the sensors of this step (the plugin's tick for it, held for mj_step)
+            mujoco.mj_forward(model, data)
+            native = np.array([np.concatenate([sensor_block(model, data, p),
+                                               sensor_block(model, data, v)])
+                               for p, v in names])
+            runner = sim.states[:, 0:6]
+            assert np.array_equal(native, runner), (k, np.abs(native - runner).max())
+            start = native if start is None else start
+        mujoco.mj_step(model, data)
+        sim.step(1)
+    assert data.time == pytest.approx(40.0)
+    assert np.abs(native[:, 0:2] - start[:, 0:2]).max() > 10.0  # it flew
+
+
+def test_export_refuses_what_the_native_path_cannot_carry(source, tmp_path):
+    experiment = tmp_path / "windy.toml"
+    experiment.write_text((source / "experiments/exp2.toml").read_text()
+                          + "\n[wind]\nmean = [1.0, 0.0, 0.0]\n")
+    with pytest.raises(ValueError, match=r"windy.toml:\d+: \[wind\].*cannot carry"):
+        mjformation.export(experiment, tmp_path / "out")
+    assert not (tmp_path / "out").exists()
+
+
+def test_export_never_replaces_a_users_directory(exp2, tmp_path):
+    out = tmp_path / "mine"
+    out.mkdir()
+    (out / "notes.txt").write_text("mine")
+    with pytest.raises(ValueError, match="exists and is not empty; pass --overwrite"):
+        mjformation.export(exp2, out)
+    assert sorted(p.name for p in out.iterdir()) == ["notes.txt"]
+    mjformation.export(exp2, out, overwrite=True)
+    assert (out / "notes.txt").read_text() == "mine"
+    assert (out / "scene.xml").is_file()
+
+
+def run_example(source, name: str, *args) -> str:
+    import subprocess
+    import sys
+    done = subprocess.run([sys.executable, str(source / "examples/mujoco_native" / name), *args],
+                          capture_output=True, text=True, timeout=600)
+    assert done.returncode == 0, done.stdout + done.stderr
+    return done.stdout
+
+
+def test_geometric_controller_flies_a_users_own_drone(source):
+    # my_drone.xml: its own names, mjformation.attitude with geometric + hover; the script
+    # exits 1 unless the drone holds the named point within 1 cm.
+    assert "from the held point" in run_example(source, "fly_my_drone.py")
+
+
+def test_sigma_f_from_mjdata_alone_is_the_runners(source, exp2, tmp_path):
+    import sys
+    sys.path.insert(0, str(source / "examples/mujoco_native"))
+    import fly_exported
+    scene = mjformation.export(exp2, tmp_path / "exp2")
+    times, sigma = fly_exported.fly(str(scene), 5.0)
+    run = mjformation.run(exp2, set={"run.duration": 5.0, "run.metric_window": [0.0, 5.0],
+                                     "render.snapshots": []}, out=tmp_path / "run")
+    recorded = np.loadtxt(tmp_path / "run/timeseries.csv", delimiter=",", skiprows=1,
+                          usecols=(0, 1))
+    for t, s in zip(times, sigma):
+        row = recorded[np.argmin(np.abs(recorded[:, 0] - t))]
+        assert abs(row[0] - t) < 1e-9
+        assert s == pytest.approx(row[1], rel=1e-8), t  # the CSV keeps 9 significant digits
+    assert sigma[0] == pytest.approx(53.8, abs=0.05)  # exp2.toml: sigma_f(0) = 53.8
