@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "mjformation/config/paths.hpp"
 #include "mjformation/config/source_location.hpp"
@@ -58,6 +59,7 @@ Simulation::Simulation(const ExperimentConfig& config) : config_(config) {
       ComposeScene(MakeSceneRequest(config_, initial_positions, vehicle_xml_, vehicle_notes_),
                    "composed scene of " + config_.model_path);
   scene_xml_ = std::move(scene.xml);
+  if (vehicle_xml_.empty()) vehicle_notes_ = std::move(scene.notes);
   model_.reset(scene.model.release());
   data_.reset(mj_makeData(model_.get()));
   total_steps_ = std::llround(config_.duration / config_.timestep);
@@ -79,6 +81,7 @@ Simulation::Simulation(const ExperimentConfig& config) : config_(config) {
   external_force_.assign(3 * truth_.size(), 0.0);
   MakePartitions(*attitude.descriptor);
   CheckTorqueAuthority();
+  CheckImuSite();
 }
 
 // Every vehicle is a copy of one model, so the first follower's info (the leader's when there
@@ -112,6 +115,41 @@ void Simulation::MakePartitions(const mjfPlugin& attitude) {
 }
 
 Simulation::~Simulation() = default;
+
+// The controllers take what the sensors read at the site 'imu' for the centre of mass's position
+// and velocity (the paper's double integrator, eq. (1)); a site off the centre of mass adds the
+// lever arm's motion (omega x r) to them, and the formation flies differently. The adapter puts
+// its site at the centre of mass; a contract-form model's own site is checked here, on vehicle 0
+// (every vehicle is a copy), and a warning says where it is and where it belongs.
+void Simulation::CheckImuSite() {
+  const VehicleBinding& v = bindings_.vehicles[0];
+  const int site = mj_name2id(model_.get(), mjOBJ_SITE, (VehiclePrefix(0) + "imu").c_str());
+  if (site < 0) return;
+  std::unique_ptr<mjData, DataDeleter> d(mj_makeData(model_.get()));
+  mj_kinematics(model_.get(), d.get());
+  mj_comPos(model_.get(), d.get());
+  const int b = v.body;
+  double rel_site[3], rel_com[3], site_body[3], com_body[3];
+  mju_sub3(rel_site, d->site_xpos + 3 * site, d->xpos + 3 * b);
+  mju_sub3(rel_com, d->subtree_com + 3 * b, d->xpos + 3 * b);
+  mju_mulMatTVec(site_body, d->xmat + 9 * b, rel_site, 3, 3);  // world -> body axes: R^T x
+  mju_mulMatTVec(com_body, d->xmat + 9 * b, rel_com, 3, 3);
+  double offset[3];
+  mju_sub3(offset, site_body, com_body);
+  const double distance = mju_norm3(offset);
+  if (distance <= kImuOffsetTolerance) return;
+  char text[600];
+  std::snprintf(text, sizeof(text),
+                "vehicle model %s: the site 'imu' (at %.6g %.6g %.6g in the body's axes) is %.4g m "
+                "from the centre of mass (%.6g %.6g %.6g): the sensors pos and vel read the "
+                "site, which the controllers take for the centre of mass, so every rotation "
+                "shows as a position and velocity error and the formation flies differently; "
+                "put <site name=\"imu\"> at pos=\"%.6g %.6g %.6g\" unless the offset is what "
+                "you study (docs/VEHICLES.md, \"The imu site\")",
+                config_.model_path.c_str(), site_body[0], site_body[1], site_body[2], distance,
+                com_body[0], com_body[1], com_body[2], com_body[0], com_body[1], com_body[2]);
+  warnings_.push_back(text);
+}
 
 void Simulation::AdaptForeignVehicle(const mjfPlugin& attitude) {
   if (config_.vehicle_body.empty() && config_.vehicle_rotors.empty()) return;

@@ -231,6 +231,42 @@ TEST(SimulationTest, StepsClockAndWhatItExposes) {
   EXPECT_EQ(sim.setpoints().size(), 3u);
 }
 
+// A contract-form vehicle (no adapter) whose sensor site is off the centre of mass: warned with
+// the offset and the position that fixes it; its <option> changes are listed as vehicle notes.
+// The same model with the site at the centre of mass gets neither.
+TEST(SimulationTest, ContractFormModelWithImuOffTheCentreOfMassIsWarned) {
+  const std::string dir = mjf::testing::TempDir("imuoffset");
+  std::string xml = mjf::testing::ReadFile(std::string(MJF_SOURCE_DIR) + "/mjcf/pointmass.xml");
+  ASSERT_NE(xml.find("<site name=\"imu\" pos=\"0 0 0\""), std::string::npos);
+  const std::string at_com = xml;
+  xml.replace(xml.find("<site name=\"imu\" pos=\"0 0 0\""), 30,
+              "<site name=\"imu\" pos=\"0 0 0.034\"");
+  xml.replace(xml.find("<option timestep=\"0.001\""), 25,
+              "<option timestep=\"0.01\" density=\"1.225\"");
+  mjf::testing::WriteFile(dir + "/offset.xml", xml);
+  mjf::testing::WriteFile(dir + "/centred.xml", at_com);
+  std::string text = mjf::testing::PointMassExperiment(-2, 1, 2, 1, 0.03);
+  text.replace(text.find("model = \"pointmass\""), 19, "model = \"offset.xml\"");
+  ExperimentConfig c = mjf::runner::LoadExperiment(mjf::testing::WriteFile(dir + "/e.toml", text));
+  c.plugin_path.push_back(MJF_TEST_PLUGIN_DIR);
+  Simulation sim(c);
+  ASSERT_EQ(sim.warnings().size(), 1u);
+  EXPECT_THAT(sim.warnings()[0],
+              AllOf(HasSubstr("offset.xml"), HasSubstr("site 'imu'"), HasSubstr("0.034 m"),
+                    HasSubstr("centre of mass"), HasSubstr("pos=\"0 0 0\"")));
+  EXPECT_THAT(sim.vehicle_notes(),
+              ::testing::ElementsAre(HasSubstr("<option timestep=\"0.01\"> is replaced"),
+                                     HasSubstr("<option density=\"1.225\">")));
+
+  text.replace(text.find("offset.xml"), 10, "centred.xml");
+  ExperimentConfig centred =
+      mjf::runner::LoadExperiment(mjf::testing::WriteFile(dir + "/e2.toml", text));
+  centred.plugin_path.push_back(MJF_TEST_PLUGIN_DIR);
+  Simulation plain(centred);
+  EXPECT_TRUE(plain.warnings().empty());
+  EXPECT_TRUE(plain.vehicle_notes().empty());
+}
+
 TEST(SimulationTest, ANonFiniteSetpointStopsBeforeTheStep) {
   // test_nan commands NaN from t = 0.005 s on: the step that would use it is never taken.
   std::string text = PointMassExperiment(-2, 1, 2, 1, 0.05);
