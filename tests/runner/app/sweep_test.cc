@@ -11,6 +11,7 @@
 
 #include "mjformation/app/cli.hpp"
 #include "mjformation/app/sweep_stats.hpp"
+#include "../../../runner/app/src/sweep.hpp"  // private to the app stage: the tables' functions
 #include "mjformation/run/interrupt.hpp"
 #include "test_util.hpp"
 
@@ -95,6 +96,58 @@ TEST(SweepSeeds, PerCellStatisticsOverSeeds) {
   // --seeds 0 is refused before anything runs (a usage error: out of [1, 100000]).
   EXPECT_EQ(Cli({"sweep", exp, "--seeds", "0", "--out", dir + "/zero"}), 2);  // usage
   EXPECT_EQ(Cli({"sweep", exp, "--out", dir + "/nothing"}), 1);  // neither --vary nor --seeds
+}
+
+// A flip, ground impact or collision leaves a run out of the cell statistics; a near miss (Exp 2's
+// start ring under turbulence gives every run one) is reported and kept. Three runs of one cell:
+// sigma_f 1 (no event), 2 (a near miss), 10 (a flip): the valid statistics are over 1 and 2, and
+// the tables and the summary say that one run was left out and why.
+TEST(SweepSeeds, NearMissesAreKeptAndFlipsLeftOut) {
+  sweep::SweepPlan plan;
+  plan.out = TempDir("valid");
+  plan.axes.push_back({"formation.q", {"1.0"}});
+  plan.cells = {{0}};
+  plan.seeds = 3;
+  std::vector<sweep::RunOutcome> outcomes(3);
+  const double sigma[] = {1.0, 2.0, 10.0};
+  const char* kind[] = {"", "near_miss", "flip"};
+  for (int k = 0; k < 3; ++k) {
+    sweep::RunSpec run;
+    run.cell = 0;
+    run.seed = 1 + k;
+    run.name = "q=1.0,seed=" + std::to_string(1 + k);
+    plan.runs.push_back(run);
+    outcomes[k].state = sweep::RunOutcome::kFinished;
+    outcomes[k].summary = {{"complete", true}, {"metrics", {{"sigma_f_mean", sigma[k]}}}};
+    if (*kind[k]) {
+      sweep::Json by_kind = {{"flip", 0}, {"ground_impact", 0}, {"collision", 0},
+                             {"near_miss", 0}, {"left_region", 0}};
+      by_kind[kind[k]] = 1;
+      outcomes[k].summary["events"] = {
+          {"count", 1},
+          {"by_kind", by_kind},
+          {"list", {{{"kind", kind[k]}, {"what", std::string("follower 1 ") + kind[k]}}}}};
+    }
+  }
+  sweep::WriteTables(plan, outcomes);
+  const auto json = nlohmann::json::parse(ReadFile(plan.out + "/sweep.json"));
+  const auto& cell = json["cells"][0];
+  EXPECT_EQ(cell["runs_with_safety_events"], 2);
+  EXPECT_EQ(cell["runs_left_out"], 1);
+  EXPECT_EQ(cell["valid_complete_runs"], 2);
+  EXPECT_EQ(cell["metrics_valid"]["sigma_f_mean"]["n"], 2);
+  EXPECT_DOUBLE_EQ(cell["metrics_valid"]["sigma_f_mean"]["mean"].get<double>(), 1.5);
+  EXPECT_EQ(cell["metrics"]["sigma_f_mean"]["n"], 3);
+  EXPECT_EQ(json["left_out_events"], nlohmann::json({"flip", "ground_impact", "collision"}));
+  EXPECT_EQ(json["runs"][1]["invalidating_events"], 0);
+  EXPECT_EQ(json["runs"][2]["invalidating_events"], 1);
+  const std::string csv = ReadFile(plan.out + "/sweep.csv");
+  EXPECT_THAT(csv, HasSubstr("seeds,runs_with_safety_events,runs_left_out,statistics_over,runs,"));
+  EXPECT_THAT(csv, HasSubstr("1.0,3,2,1,valid_runs,2,1.5,"));
+  const std::string text = sweep::SummaryText(plan, outcomes);
+  EXPECT_THAT(text, HasSubstr("sigma_f_mean 1.5, 95 % CI"));
+  EXPECT_THAT(text, HasSubstr("1 of 3 complete runs left out (a flip, ground impact or collision"));
+  EXPECT_THAT(text, HasSubstr("1 runs with near misses or region exits only (reported, kept)"));
 }
 
 // Values with commas inside [], {} or quotes are one value; the CSV quotes them.
