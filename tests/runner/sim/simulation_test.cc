@@ -239,10 +239,10 @@ TEST(SimulationTest, ContractFormModelWithImuOffTheCentreOfMassIsWarned) {
   std::string xml = mjf::testing::ReadFile(std::string(MJF_SOURCE_DIR) + "/mjcf/pointmass.xml");
   ASSERT_NE(xml.find("<site name=\"imu\" pos=\"0 0 0\""), std::string::npos);
   const std::string at_com = xml;
-  xml.replace(xml.find("<site name=\"imu\" pos=\"0 0 0\""), 30,
-              "<site name=\"imu\" pos=\"0 0 0.034\"");
-  xml.replace(xml.find("<option timestep=\"0.001\""), 25,
-              "<option timestep=\"0.01\" density=\"1.225\"");
+  const std::string site = "<site name=\"imu\" pos=\"0 0 0\"";
+  const std::string option = "<option timestep=\"0.001\"";
+  xml.replace(xml.find(site), site.size(), "<site name=\"imu\" pos=\"0 0 0.034\"");
+  xml.replace(xml.find(option), option.size(), "<option timestep=\"0.01\" density=\"1.225\"");
   mjf::testing::WriteFile(dir + "/offset.xml", xml);
   mjf::testing::WriteFile(dir + "/centred.xml", at_com);
   std::string text = mjf::testing::PointMassExperiment(-2, 1, 2, 1, 0.03);
