@@ -213,7 +213,7 @@ nlohmann::ordered_json OnlineMetrics::Summary(const Simulation& sim) const {
   // Reached (docs/ARCHITECTURE.md, "reaching_time_s"): |s| stays within the band from then to
   // the end. The band is the protocol's (Theorem 2's delta for the discrete protocol) when the
   // run holds it over the metric window; a vehicle with attitude dynamics holds a wider one (Exp
-  // 2's quadrotors: |s| about 0.2-0.8 against delta 0.1025, formation within 0.1 m), and then
+  // 2's quadrotors: |s| up to 1.4 over the window against delta 0.1025, formation within 0.1 m), and then
   // the band is the smallest delta 2^k holding |s| over the window, provided it is at most a
   // tenth of the run's largest |s| (a sliding variable that never came down a decade has
   // reached nothing). A band given in [run] reaching_band is never widened.
