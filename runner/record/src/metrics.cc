@@ -213,10 +213,10 @@ nlohmann::ordered_json OnlineMetrics::Summary(const Simulation& sim) const {
   // Reached (docs/ARCHITECTURE.md, "reaching_time_s"): |s| stays within the band from then to
   // the end. The band is the protocol's (Theorem 2's delta for the discrete protocol) when the
   // run holds it over the metric window; a vehicle with attitude dynamics holds a wider one (Exp
-  // 2's quadrotors: |s| up to 1.4 over the window against delta 0.1025, formation within 0.1 m), and then
-  // the band is the smallest delta 2^k holding |s| over the window, provided it is at most a
-  // tenth of the run's largest |s| (a sliding variable that never came down a decade has
-  // reached nothing). A band given in [run] reaching_band is never widened.
+  // 2's quadrotors: |s| up to 1.4 over the window against delta 0.1025, formation within 0.1 m),
+  // and then the band is the smallest delta 2^k holding |s| over the window, provided it is at most
+  // a tenth of the run's largest |s| (a sliding variable that never came down a decade has reached
+  // nothing). A band given in [run] reaching_band is never widened.
   int k = 0;
   double band = band_;
   while (!band_given_ && k + 1 < kBands && max_abs_s_in_window_ > band) {
@@ -227,8 +227,9 @@ nlohmann::ordered_json OnlineMetrics::Summary(const Simulation& sim) const {
   m["reaching_band"] = band;
   if (widened) m["reaching_band_widened_from"] = band_;
   if (have_sliding_) {
-    const bool reached = last_violation_time_[k] < last_time_ &&
-                         (!widened || (max_abs_s_in_window_ <= band && band <= 0.1 * max_abs_s_ever_));
+    const bool reached =
+        last_violation_time_[k] < last_time_ &&
+        (!widened || (max_abs_s_in_window_ <= band && band <= 0.1 * max_abs_s_ever_));
     const double time = last_violation_time_[k];
     m["reaching_time_s"] = reached ? JsonNumber(time < 0 ? 0.0 : time + sample_period_)
                                    : nlohmann::ordered_json(nullptr);

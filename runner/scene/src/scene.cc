@@ -184,8 +184,9 @@ std::vector<std::string> ContractOptionNotes(const mjOption& v, const mjOption& 
   }
   auto vec3 = [&](const char* name, const mjtNum* from, const mjtNum* fallback) {
     if (std::memcmp(from, fallback, 3 * sizeof(mjtNum)) == 0) return;
-    std::snprintf(text, sizeof(text), "kept the model's <option %s=\"%g %g %g\"> for the whole scene",
-                  name, from[0], from[1], from[2]);
+    std::snprintf(text, sizeof(text),
+                  "kept the model's <option %s=\"%g %g %g\"> for the whole scene", name, from[0],
+                  from[1], from[2]);
     notes.push_back(text);
   };
   vec3("gravity", v.gravity, d.gravity);

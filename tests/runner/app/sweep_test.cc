@@ -1,6 +1,8 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
 // Monte Carlo sweeps: --seeds statistics, interrupted sweeps, --resume.
+#include "../../../runner/app/src/sweep.hpp"  // private to the app stage: the tables' functions
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <sys/stat.h>
@@ -11,7 +13,6 @@
 
 #include "mjformation/app/cli.hpp"
 #include "mjformation/app/sweep_stats.hpp"
-#include "../../../runner/app/src/sweep.hpp"  // private to the app stage: the tables' functions
 #include "mjformation/run/interrupt.hpp"
 #include "test_util.hpp"
 
@@ -120,8 +121,11 @@ TEST(SweepSeeds, NearMissesAreKeptAndFlipsLeftOut) {
     outcomes[k].state = sweep::RunOutcome::kFinished;
     outcomes[k].summary = {{"complete", true}, {"metrics", {{"sigma_f_mean", sigma[k]}}}};
     if (*kind[k]) {
-      sweep::Json by_kind = {{"flip", 0}, {"ground_impact", 0}, {"collision", 0},
-                             {"near_miss", 0}, {"left_region", 0}};
+      sweep::Json by_kind = {{"flip", 0},
+                             {"ground_impact", 0},
+                             {"collision", 0},
+                             {"near_miss", 0},
+                             {"left_region", 0}};
       by_kind[kind[k]] = 1;
       outcomes[k].summary["events"] = {
           {"count", 1},
@@ -161,10 +165,9 @@ TEST(SweepSeeds, TableAndArrayValuesOnAnAxis) {
   const std::string csv = ReadFile(dir + "/s/sweep.csv");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 4);
   EXPECT_THAT(csv, HasSubstr("\n\"[2.0,0.0,0.0]\",\"{preset=\"\"typical\"\", scale=3.0}\",2,2,"));
-  const auto summary =
-      nlohmann::json::parse(ReadFile(
-          dir + "/s/mean=%5B2.0%2C0.0%2C0.0%5D,sensors={preset=typical%2Cscale=3.0},seed=2/"
-                "summary.json"));
+  const auto summary = nlohmann::json::parse(
+      ReadFile(dir + "/s/mean=%5B2.0%2C0.0%2C0.0%5D,sensors={preset=typical%2Cscale=3.0},seed=2/"
+                     "summary.json"));
   EXPECT_EQ(summary["sensors"]["scale"], 3.0);
   EXPECT_EQ(summary["wind"]["mean"][0], 2.0);
   EXPECT_EQ(Cli({"sweep", exp, "--vary", "wind.mean=[1.0,0.0", "--out", dir + "/bad"}), 1);

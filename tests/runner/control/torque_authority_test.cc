@@ -137,8 +137,8 @@ TEST(TorqueAuthority, WarnsWhenTheLoopAsksForMoreThanTheVehicleHas) {
                                     "follows, 0.00256 rad, leaves the formation too little"));
   // The published cf2 with its derived defaults: att_bw lowered to 3.0 rad/s (tilt 0.0464) flies
   // the scaled Exp 2 without an event (docs/VEHICLES.md): no flips foretold, no tilt advice.
-  const TorqueAuthority cf2 = ComputeTorqueAuthority(Vehicle(0.027, {2.4e-5, 2.4e-5, 3e-5},
-                                                             ThrustMoments(1e-5, 0.5e-5, 1e-5)));
+  const TorqueAuthority cf2 = ComputeTorqueAuthority(
+      Vehicle(0.027, {2.4e-5, 2.4e-5, 3e-5}, ThrustMoments(1e-5, 0.5e-5, 1e-5)));
   AttitudeDemand derived;
   derived.att_bw = 3.0;
   derived.att_bw_unlimited = 12.5;

@@ -53,9 +53,10 @@ TEST(SetupErrorTest, AbiMismatchIsNamed) {
   std::string text = HoverExperiment();
   text.replace(text.find("[leader]\nplugin = \"hover\""), 25, "[leader]\nplugin = \"future_abi\"");
   ExperimentConfig c = Parse(text);
-  EXPECT_THAT(ErrorOf([&] { Simulation sim(c); }),
-              AllOf(HasSubstr("future_abi"), HasSubstr("libmjf_test_badabi.so"),
-                    HasSubstr("ABI 99"), HasSubstr("speaks ABI " + std::to_string(MJF_ABI_VERSION))));
+  EXPECT_THAT(
+      ErrorOf([&] { Simulation sim(c); }),
+      AllOf(HasSubstr("future_abi"), HasSubstr("libmjf_test_badabi.so"), HasSubstr("ABI 99"),
+            HasSubstr("speaks ABI " + std::to_string(MJF_ABI_VERSION))));
 }
 
 TEST(SetupErrorTest, MissingRequiredAttribute) {
