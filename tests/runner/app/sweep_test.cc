@@ -9,6 +9,7 @@
 
 #include <csignal>
 #include <cstdio>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 
 #include "mjformation/app/cli.hpp"
@@ -165,11 +166,29 @@ TEST(SweepSeeds, TableAndArrayValuesOnAnAxis) {
   const std::string csv = ReadFile(dir + "/s/sweep.csv");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 4);
   EXPECT_THAT(csv, HasSubstr("\n\"[2.0,0.0,0.0]\",\"{preset=\"\"typical\"\", scale=3.0}\",2,2,"));
-  const auto summary = nlohmann::json::parse(
-      ReadFile(dir + "/s/mean=%5B2.0%2C0.0%2C0.0%5D,sensors={preset=typical%2Cscale=3.0},seed=2/"
-                     "summary.json"));
+  // Readable and shell-safe folder names: no brackets, commas inside values written '_'.
+  const std::string name = "mean=2.0_0.0_0.0,sensors={preset=typical_scale=3.0},seed=2";
+  const auto summary = nlohmann::json::parse(ReadFile(dir + "/s/" + name + "/summary.json"));
   EXPECT_EQ(summary["sensors"]["scale"], 3.0);
   EXPECT_EQ(summary["wind"]["mean"][0], 2.0);
+  // A sweep written with the older %XX names resumes: its finished runs are found, not rerun.
+  std::filesystem::rename(
+      dir + "/s/" + name,
+      dir + "/s/mean=%5B2.0%2C0.0%2C0.0%5D,sensors={preset=typical%2Cscale=3.0},seed=2");
+  const auto before = ReadFile(dir +
+                               "/s/mean=%5B2.0%2C0.0%2C0.0%5D,sensors={preset=typical%2C"
+                               "scale=3.0},seed=2/summary.json");
+  ::testing::internal::CaptureStderr();
+  ASSERT_EQ(Cli({"sweep", exp, "--vary", "wind.mean=[0.0,0.0,0.0],[2.0,0.0,0.0]", "--vary",
+                 "sensors={preset=\"ideal\"},{preset=\"typical\", scale=3.0}", "--seeds", "2",
+                 "--out", dir + "/s", "--no-render", "--resume"}),
+            0);
+  const std::string err = ::testing::internal::GetCapturedStderr();
+  EXPECT_THAT(err, HasSubstr("resuming, 8 of 8 runs done before")) << err;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/s/" + name));
+  EXPECT_EQ(ReadFile(dir + "/s/mean=%5B2.0%2C0.0%2C0.0%5D,sensors={preset=typical%2Cscale=3.0},"
+                           "seed=2/summary.json"),
+            before);
   EXPECT_EQ(Cli({"sweep", exp, "--vary", "wind.mean=[1.0,0.0", "--out", dir + "/bad"}), 1);
 }
 
