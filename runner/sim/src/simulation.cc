@@ -72,7 +72,7 @@ Simulation::Simulation(const ExperimentConfig& config) : config_(config) {
   contexts.model = reinterpret_cast<const struct mjModel_*>(model_.get());
   wiring_ = std::make_unique<ControlWiring>(config_, *registry_, std::move(contexts));
   std::unique_ptr<AgentChannel> channel = wiring_->MakeChannel();  // per-agent execution only
-  ControlPlugins plugins = wiring_->CreatePlugins(attitude, channel.get());
+  ControlPlugins plugins = CreatePluginsNamingRotors(attitude, channel.get());
   tick_ = std::make_unique<ControlTick>(
       std::move(plugins), wiring_->MakeSensors(), wiring_->InitialSetpoints(),
       bindings_.actuators_per_vehicle, config_.altitude, config_.timestep, std::move(channel));
@@ -149,6 +149,35 @@ void Simulation::CheckImuSite() {
                 config_.model_path.c_str(), site_body[0], site_body[1], site_body[2], distance,
                 com_body[0], com_body[1], com_body[2], com_body[0], com_body[1], com_body[2]);
   warnings_.push_back(text);
+}
+
+// A rotor layout the attitude plugin refuses is a property of the model and its [vehicles]
+// rotors mapping, not of [attitude]: the refusal is pointed there, with the model's own rotor
+// names in place of the plugin's rotor<k>.
+ControlPlugins Simulation::CreatePluginsNamingRotors(const LoadedPlugin& attitude,
+                                                     AgentChannel* channel) {
+  try {
+    return wiring_->CreatePlugins(attitude, channel);
+  } catch (const PluginError& e) {
+    std::string text = e.what();
+    const size_t at = text.find("refused its configuration: the rotor");
+    if (config_.vehicle_rotors.empty() || at == std::string::npos) throw;
+    std::string reason = text.substr(text.find(": the rotor", at) + 2);
+    for (size_t k = 0; k < config_.vehicle_rotors.size(); ++k) {
+      const std::string plugin_name = "rotor" + std::to_string(k) + " (";
+      const std::string model_name =
+          "'" + config_.vehicle_rotors[k] + "' (rotor" + std::to_string(k) + ", ";
+      for (size_t p = 0; (p = reason.find(plugin_name, p)) != std::string::npos;
+           p += model_name.size()) {
+        reason.replace(p, plugin_name.size(), model_name);
+      }
+    }
+    throw PluginError(OriginLocation(config_.source_path, config_.vehicle_rotors_origin,
+                                     SectionKey("vehicles", "rotors"))
+                          .Prefix() +
+                      ": the attitude plugin '" + config_.attitude.plugin +
+                      "' cannot fly this rotor layout: " + reason);
+  }
 }
 
 void Simulation::AdaptForeignVehicle(const mjfPlugin& attitude) {

@@ -268,6 +268,41 @@ TEST(SimulationTest, ContractFormModelWithImuOffTheCentreOfMassIsWarned) {
   EXPECT_TRUE(plain.vehicle_notes().empty());
 }
 
+// A rotor layout the attitude plugin refuses (the two +y rotors share a yaw gear sign, as in
+// Menagerie's Skydio X2) is pointed at [vehicles] rotors, names the model's own rotors and the
+// documented fix, and gives a readable condition number.
+TEST(SetupErrorTest, ASingularRotorLayoutNamesTheModelsRotors) {
+  const std::string dir = mjf::testing::TempDir("x2like");
+  std::string xml =
+      "<mujoco><worldbody><body name=\"quad\"><freejoint/>"
+      "<geom type=\"sphere\" size=\"0.1\" mass=\"1\"/>";
+  const char* sites[] = {"0.1 0.1 0", "-0.1 0.1 0", "-0.1 -0.1 0", "0.1 -0.1 0"};
+  for (int k = 0; k < 4; ++k) {
+    xml += "<site name=\"s" + std::to_string(k) + "\" pos=\"" + sites[k] + "\"/>";
+  }
+  xml += "</body></worldbody><actuator>";
+  const char* yaw[] = {"0.01", "0.01", "-0.01", "-0.01"};
+  for (int k = 0; k < 4; ++k) {
+    xml += "<general name=\"prop" + std::to_string(k + 1) + "\" site=\"s" + std::to_string(k) +
+           "\" gear=\"0 0 1 0 0 " + yaw[k] + "\" ctrlrange=\"0 10\" ctrllimited=\"true\"/>";
+  }
+  xml += "</actuator></mujoco>";
+  mjf::testing::WriteFile(dir + "/x2like.xml", xml);
+  std::string text = HoverExperiment();
+  text.replace(text.find("model = \"quadrotor\""), 19,
+               "model = \"x2like.xml\"\nbody = \"quad\"\n"
+               "rotors = [\"prop1\", \"prop2\", \"prop3\", \"prop4\"]");
+  ExperimentConfig c = mjf::runner::LoadExperiment(mjf::testing::WriteFile(dir + "/e.toml", text));
+  c.plugin_path.push_back(MJF_TEST_PLUGIN_DIR);
+  const std::string error = ErrorOf([&] { Simulation sim(c); });
+  EXPECT_THAT(error, AllOf(HasSubstr("e.toml:"), HasSubstr("[vehicles] rotors: the attitude "
+                                                           "plugin 'pd_cascade' cannot fly"),
+                           HasSubstr("'prop1' (rotor0, "), HasSubstr("'prop4' (rotor3, "),
+                           HasSubstr("docs/VEHICLES.md")));
+  EXPECT_THAT(error, ::testing::Not(HasSubstr("[attitude]")));
+  EXPECT_THAT(error, ::testing::ContainsRegex("condition number [0-9.]+e\\+[0-9]+\\)"));
+}
+
 TEST(SimulationTest, ANonFiniteSetpointStopsBeforeTheStep) {
   // test_nan commands NaN from t = 0.005 s on: the step that would use it is never taken.
   std::string text = PointMassExperiment(-2, 1, 2, 1, 0.05);

@@ -121,6 +121,7 @@ class Simulation {
 
  private:
   void AdaptForeignVehicle(const mjfPlugin& attitude);
+  ControlPlugins CreatePluginsNamingRotors(const LoadedPlugin& attitude, AgentChannel* channel);
   void CheckTorqueAuthority();
   void CheckImuSite();
   void ComputeForces();
