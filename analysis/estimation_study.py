@@ -3,7 +3,8 @@
 """The estimation study's table (scripts/study_estimation.sh): for every sweep under OUT
 (OUT/<experiment>/<vehicle>[_ideal]) one row per cell: the varied values, complete runs out of
 seeds, runs with safety events, and mean sigma_f with its 95 % confidence interval over the
-complete runs (and over the event-free ones when some run had an event). Prints Markdown;
+complete runs (and over the valid ones, without a flip, ground impact or collision, when some
+run had an event; a sweep.json from before that rule: without any event). Prints Markdown;
 --out FILE writes it too."""
 import argparse
 import sys
@@ -38,11 +39,12 @@ def table(out: Path) -> str:
                      f"{'' if sweep.complete else '; INCOMPLETE'})\n")
         keys = sweep.varied
         lines.append("| " + " | ".join(keys) + " | complete | with events | sigma_f_mean [95 % CI] "
-                     "| event-free |")
+                     "| valid runs |")
         lines.append("|" + "---|" * (len(keys) + 4))
         for cell in sweep.cells:
             events = cell.get("runs_with_safety_events", 0)
-            free = _interval(cell.get("metrics_event_free")) if events else "="
+            free = _interval(cell.get("metrics_valid", cell.get("metrics_event_free"))) \
+                if events else "="
             lines.append("| " + " | ".join(_label(cell[k]) for k in keys) +
                          f" | {cell['complete_runs']}/{cell['seeds']} | {events} | "
                          f"{_interval(cell.get('metrics'))} | {free} |")

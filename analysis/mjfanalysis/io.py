@@ -244,7 +244,7 @@ def finite(x) -> bool:
 
 # What sweep.json says of every run besides its varied keys (runner/app/src/sweep_tables.cc).
 _RUN_ENTRY_KEYS = ("seed", "complete", "finished", "run", "error", "safety_events",
-                   "first_safety_event", "metrics")
+                   "first_safety_event", "invalidating_events", "metrics")
 
 
 class Sweep:
@@ -252,7 +252,9 @@ class Sweep:
     written. `runs`: one dict per run (the varied keys, seed, complete, finished, run = its
     folder, error, safety_events, metrics); `cells` (with --seeds): one dict per grid cell, whose
     `metrics[key]` holds n, mean, std, ci95 over the cell's complete runs and, when some run had a
-    safety event, `metrics_event_free[key]` the same over the runs without one."""
+    safety event, `metrics_valid[key]` the same over the runs without a flip, ground impact or
+    collision (`left_out_events`; a sweep.json from before: `metrics_event_free`, over the runs
+    without any event)."""
 
     def __init__(self, path, table: dict):
         self.path = Path(path)

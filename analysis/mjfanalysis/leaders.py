@@ -48,7 +48,7 @@ def mean_ci(values) -> tuple[float, float]:
 
 @dataclass
 class SlidingStats:
-    reaching_time: float = NAN  # s: the runner's (after it every |s_i| stays in its band)
+    reaching_time: float = NAN  # s: the runner's (after it every |s_i| stays in reaching_band)
     max_window: float = NAN     # max |s_i| over followers, axes and the metric window (m/s)
     ratio: float = NAN          # max_window / Delta, Delta the largest band (plugin's report)
     ratio_own: float = NAN      # max over followers of max |s_i| / Delta_i (own band each)
@@ -417,8 +417,9 @@ def section(results_dir: Path, out_dir: Path) -> list[str]:
         L.append("Seeded leaders (`random_accel`, `bang_bang`) run with seeds 1-5: mean ± "
                  "95 % Student-t CI over seeds; the others are deterministic (one run). "
                  "Reaching time: the runner's (`reaching_time_s`: from then on every |s_i| "
-                 "stays inside Δ for the discrete protocol, 0.1 for the others; 'never' when it "
-                 "does not). The band is tested on the window [25, 40] s, long after any "
+                 "stays inside its `reaching_band`: Δ for the discrete protocol, 0.1 for the "
+                 "others, widened to the smallest Δ 2^k that holds |s| over the metric window "
+                 "when that is at most a tenth of the largest |s|; 'never' when it does not). The band is tested on the window [25, 40] s, long after any "
                  "reaching phase: max |s_i| there over every follower and axis, and its ratio "
                  "to Δ (the plugin's, the largest over followers) and to each follower's own "
                  "Δ_i (eqs. (49)-(50) recomputed from config.toml: followers without a leader "

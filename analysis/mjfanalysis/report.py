@@ -71,6 +71,19 @@ class Row:
         return self.run.complete and self.max_slot_error < FORMATION_TOLERANCE_M
 
 
+def assumption1_line(summary: dict | None) -> str:
+    """A report line when the leader's measured acceleration left Assumption 1's bounds
+    (summary.json leader_acceleration.assumption1_holds false), else ""."""
+    a = (summary or {}).get("leader_acceleration") or {}
+    if a.get("assumption1_holds") is not False:
+        return ""
+    bounds = a.get("bounds") or [math.nan, math.nan]
+    return (f"- **Assumption 1 does not hold**: the leader's measured acceleration left "
+            f"[{bounds[0]:g}, {bounds[1]:g}] m/s² on {100 * (a.get('fraction_outside') or 0):.3g} % "
+            f"of the steps, first at t = {fmt(a.get('first_violation_time_s'), 3)} s, by up to "
+            f"{fmt(a.get('max_excess'), 3)} m/s²: Theorem 2's band is not guaranteed")
+
+
 def _sort_key(run: Run):
     name = run.name
     pm = name.endswith(POINTMASS_SUFFIX)
@@ -543,6 +556,9 @@ def _run_summary_lines(r: Row) -> list[str]:
              f"{fmt(run.metric('min_separation_m'), 3)} m; reaching time: "
              f"{fmt(run.metric('reaching_time_s'), 2)} s; actuator saturation time: "
              f"{fmt(run.metric('saturation_time_s'), 3)} s")
+    assumption = assumption1_line(run.summary)
+    if assumption:
+        L.append(assumption)
     L.extend(network.lines(run.summary))
     L.append("")
     return L

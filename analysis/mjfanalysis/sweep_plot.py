@@ -3,10 +3,13 @@
 grid cell the mean with its 95 % Student-t confidence interval (the runner's, sweep.json), one
 line per value of the other varied parameters.
 
-Runs with a safety event (summary.json "events") are left out by default and counted: the cell's
-statistics are then sweep.json's `metrics_event_free` (the sweep.csv rows with `statistics_over =
-event_free_runs`). A cell whose runs all gave the same value (std 0), or that has a single run,
-has no interval: it is drawn as an open marker, never as a zero-width bar.
+Runs with an invalidating safety event (a flip, ground impact or collision: sweep.json's
+`left_out_events`) are left out by default and counted; near misses and region exits are only
+reported and the runs kept. The cell's statistics are then sweep.json's `metrics_valid` (the
+sweep.csv rows with `statistics_over = valid_runs`). A sweep.json written before that distinction
+(no `left_out_events`) left out every run with any event (`metrics_event_free`), and is read so,
+and the caption says so. A cell whose runs all gave the same value (std 0), or that has a single
+run, has no interval: it is drawn as an open marker, never as a zero-width bar.
 """
 
 from __future__ import annotations
@@ -26,7 +29,7 @@ class Point:
     low: float
     high: float
     n: int
-    left_out: int  # complete runs with a safety event, not in the statistics
+    left_out: int  # complete runs with an invalidating event, not in the statistics
     runs: list = field(default_factory=list)  # the metric of each run in the statistics
     left_out_runs: list = field(default_factory=list)  # the metric of each run left out
 
@@ -71,24 +74,33 @@ def _cell_key(entry: dict, keys: list[str]) -> tuple:
     return tuple(str(entry.get(k)) for k in keys)
 
 
-def _run_values(sweep, metric: str, keys: list[str], event_free: bool) -> dict:
+def _invalidating(entry: dict) -> int:
+    """A run's flips, ground impacts and collisions; an older sweep.json (without the count)
+    left out a run for any event."""
+    if "invalidating_events" in entry:
+        return int(entry.get("invalidating_events") or 0)
+    return int(entry.get("safety_events") or 0)
+
+
+def _run_values(sweep, metric: str, keys: list[str], valid_only: bool) -> dict:
     """{cell key: (metric of each run in the statistics, of each run left out, how many were
-    left out)} from sweep.json's runs: the complete ones, without a safety event if event_free."""
+    left out)} from sweep.json's runs: the complete ones, without an invalidating event if
+    valid_only."""
     values = {}
     for entry in sweep.runs:
         kept, dropped, count = values.setdefault(_cell_key(entry, keys), ([], [], [0]))
         if not entry.get("complete"):
             continue
         v = (entry.get("metrics") or {}).get(metric)
-        left_out = event_free and (entry.get("safety_events") or 0) > 0
+        left_out = valid_only and _invalidating(entry) > 0
         count[0] += left_out
         if _finite(v):
             (dropped if left_out else kept).append(float(v))
     return {k: (kept, dropped, count[0]) for k, (kept, dropped, count) in values.items()}
 
 
-def _point(cell: dict, metric: str, x: str, runs: tuple, event_free: bool) -> Point:
-    table = cell.get("metrics_event_free") if event_free else None
+def _point(cell: dict, metric: str, x: str, runs: tuple, valid_only: bool) -> Point:
+    table = cell.get("metrics_valid", cell.get("metrics_event_free")) if valid_only else None
     stats = (table if table is not None else cell.get("metrics") or {}).get(metric) or {}
     low, high = (stats.get("ci95") or [None, None])[:2]
     kept, dropped, left_out = runs
@@ -97,10 +109,9 @@ def _point(cell: dict, metric: str, x: str, runs: tuple, event_free: bool) -> Po
 
 
 def sweep_lines(sweep, metric: str = "sigma_f_mean", x: str | None = None,
-                event_free: bool = True) -> tuple[str, list[Line]]:
+                valid_only: bool = True) -> tuple[str, list[Line]]:
     """(x, the lines) of the sweep plot of `sweep` (a mjfanalysis.io.Sweep: its path, varied,
-    runs and cells are read; not imported here, so that io.py may import this module). Raises
-    ValueError for a sweep without cells (no --seeds),
+    runs and cells are read; not imported here, so that io.py may import this module). Raises ValueError for a sweep without cells (no --seeds),
     one that varies nothing, an unknown x or a metric no cell has."""
     keys = sweep.varied
     if not sweep.cells:
@@ -114,13 +125,13 @@ def sweep_lines(sweep, metric: str = "sigma_f_mean", x: str | None = None,
     if metric not in known:
         raise ValueError(f"{sweep.path}: no metric '{metric}' (metrics: {', '.join(known)})")
     others = [k for k in keys if k != x]
-    runs = _run_values(sweep, metric, keys, event_free)
+    runs = _run_values(sweep, metric, keys, valid_only)
     lines = {}
     for cell in sweep.cells:
         label = ", ".join(f"{k}={_text(cell.get(k))}" for k in others)
         line = lines.setdefault(label, Line(label))
         line.points.append(_point(cell, metric, x, runs.get(_cell_key(cell, keys), ([], [], 0)),
-                                  event_free))
+                                  valid_only))
     return x, list(lines.values())
 
 
@@ -134,14 +145,14 @@ def _positions(lines: list[Line]) -> tuple[dict, bool]:
     return {v: float(order.index(str(v))) for v in values}, False
 
 
-def _draw_line(ax, line: Line, positions: dict, color, event_free: bool, dx: float) -> None:
+def _draw_line(ax, line: Line, positions: dict, color, valid_only: bool, dx: float) -> None:
     """The means joined, the 95 % CI bars (open markers where there is none), and beside them
     (dx to the right, not hidden by the bar) each run: dots, an x for each run left out."""
     pts = sorted(line.points, key=lambda p: positions[p.x])
     xs = [positions[p.x] for p in pts]
     label = line.label or "mean"
-    if event_free and line.left_out:
-        label += f" ({line.left_out} run(s) with safety events left out)"
+    if valid_only and line.left_out:
+        label += f" ({line.left_out} run(s) left out)"
     ax.plot(xs, [p.mean for p in pts], "-", color=color, label=label)
     for p, xp in zip(pts, xs):
         ax.plot([xp + dx] * len(p.runs), p.runs, ".", color=color, alpha=0.5, ms=4)
@@ -154,27 +165,28 @@ def _draw_line(ax, line: Line, positions: dict, color, event_free: bool, dx: flo
 
 
 def plot_sweep(sweep, metric: str = "sigma_f_mean", x: str | None = None, ax=None,
-               event_free: bool = True, title: str | None = None):
-    """Draws the sweep plot on `ax` (a new figure when None) and returns the axes. event_free:
-    leave out (and count) the runs with a safety event; False: every complete run."""
+               valid_only: bool = True, title: str | None = None):
+    """Draws the sweep plot on `ax` (a new figure when None) and returns the axes. valid_only:
+    leave out (and count) the runs with a flip, ground impact or collision; False: every
+    complete run."""
     import matplotlib.pyplot as plt
 
-    x, lines = sweep_lines(sweep, metric, x, event_free)
+    x, lines = sweep_lines(sweep, metric, x, valid_only)
     ax = ax or plt.subplots(figsize=(7.0, 4.2))[1]
     positions, numeric = _positions(lines)
     colors = plt.get_cmap("tab10")
     span = max(positions.values()) - min(positions.values())
     for i, line in enumerate(lines):
-        _draw_line(ax, line, positions, colors(i % 10), event_free, 0.015 * (span or 1.0))
+        _draw_line(ax, line, positions, colors(i % 10), valid_only, 0.015 * (span or 1.0))
     if not numeric:
         ax.set_xticks(sorted(set(positions.values())),
                       list(dict.fromkeys(str(v) for v in positions)))
-    if not all(p.has_interval for line in lines for p in line.points):
+    if not all(p.has_interval for line in lines for p in line.points if p.n > 0):
         ax.plot([], [], "o", mfc="white", color="grey", label="no interval (constant or one run)")
     left_out = sum(line.left_out for line in lines)
     if left_out:
-        ax.plot([], [], "x", color="grey", label="run with a safety event (left out)")
-    which = f"event-free runs ({left_out} with safety events left out)" if event_free else \
+        ax.plot([], [], "x", color="grey", label=f"run left out ({left_out_reason(sweep)})")
+    which = f"valid runs ({left_out} left out: {left_out_reason(sweep)})" if valid_only else \
         "all complete runs (safety events or not)"
     ax.set(xlabel=x, ylabel=metric,
            title=title or f"{metric}: mean and 95 % CI per cell ({sweep.seeds} seeds)\n"
@@ -185,13 +197,28 @@ def plot_sweep(sweep, metric: str = "sigma_f_mean", x: str | None = None, ax=Non
     return ax
 
 
-def markdown_table(x: str, lines: list[Line], metric: str) -> str:
-    """The plotted numbers: one row per cell (line, x, n, mean, 95 % CI, runs left out)."""
-    rows = [f"| line | {x} | n | {metric} mean | 95 % CI | left out (safety events) |",
+def left_out_reason(sweep) -> str:
+    """Why runs leave the statistics: the kinds sweep.json names, or (an older sweep.json) any
+    safety event."""
+    kinds = sweep.table.get("left_out_events")
+    if kinds is None:
+        return "any safety event (a sweep.json from before near misses were kept)"
+    names = [k.replace("_", " ") for k in kinds]
+    return "a " + (", ".join(names[:-1]) + " or " + names[-1] if len(names) > 1 else names[0])
+
+
+def markdown_table(x: str, lines: list[Line], metric: str, reason: str = "") -> str:
+    """The plotted numbers: one row per cell (line, x, n, mean, 95 % CI, runs left out), and
+    under them why runs were left out (`reason`, left_out_reason)."""
+    rows = [f"| line | {x} | n | {metric} mean | 95 % CI | left out |",
             "|---|---|---|---|---|---|"]
     for line in lines:
         for p in line.points:
-            ci = f"[{p.low:.4g}, {p.high:.4g}]" if p.has_interval else "none (constant or one run)"
+            ci = (f"[{p.low:.4g}, {p.high:.4g}]" if p.has_interval else
+                  "none (no run left)" if p.n == 0 else "none (constant or one run)")
             rows.append(f"| {line.label or '-'} | {_text(p.x)} | {p.n} | {p.mean:.4g} | {ci} | "
                         f"{p.left_out} |")
+    left_out = sum(line.left_out for line in lines)
+    if left_out and reason:
+        rows.append(f"\n{left_out} complete run(s) left out: {reason}.")
     return "\n".join(rows)

@@ -44,6 +44,16 @@ extern "C" {
 /* Name of the exported entry point: const mjfPlugin* const* mjf_plugin_entry(int* count). */
 #define MJF_ENTRY_SYMBOL "mjf_plugin_entry"
 
+/* Marks the entry point exported whatever the build hides (-fvisibility=hidden, which
+   mjformation_add_plugin and most CMake projects set): write
+     MJF_PLUGIN_EXPORT const mjfPlugin* const* mjf_plugin_entry(int* count) { ... }
+   in C (C++: MJF_EXPORT_PLUGINS of plugin_util.hpp does it). */
+#if defined(_WIN32)
+#define MJF_PLUGIN_EXPORT __declspec(dllexport)
+#else
+#define MJF_PLUGIN_EXPORT __attribute__((visibility("default")))
+#endif
+
 struct mjModel_;
 struct mjData_;
 

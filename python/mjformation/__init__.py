@@ -15,6 +15,7 @@ import shutil
 import signal
 import sys
 import tempfile
+import warnings
 import weakref
 from dataclasses import dataclass
 from pathlib import Path
@@ -42,7 +43,7 @@ from ._core import SimulationError  # noqa: E402,F401
 
 __all__ = [
     "run", "load", "load_sweep", "sweep", "plugins", "check", "Run", "Sweep", "Simulation", "FormationLaw",
-    "AgentLaw", "Graph", "Neighbourhood", "SimulationError", "version",
+    "AgentLaw", "Graph", "Neighbourhood", "SimulationError", "RunFailed", "version",
 ]
 
 STATE_COLUMNS = ("px", "py", "pz", "vx", "vy", "vz", "qw", "qx", "qy", "qz", "gx", "gy", "gz")
@@ -204,8 +205,17 @@ def _annotate_agent_summary(run_path: Path, key: str, law) -> None:
     tmp.replace(path)
 
 
+class RunFailed(RuntimeError):
+    """A run that stopped early (run(..., raise_on_failure=True)): `run` is its Run (what was
+    recorded is kept), the message its summary's error."""
+
+    def __init__(self, message: str, run):
+        super().__init__(message)
+        self.run = run
+
+
 def run(experiment, set=None, out=None, render=False, formation=None, overwrite=False,
-        record=True, plugin_path=None) -> Run:
+        record=True, plugin_path=None, raise_on_failure=False) -> Run:
     """Runs an experiment (the GIL released while it simulates) and returns its Run.
 
     set: overrides as {"section.key": value} or ["section.key=value", ...] (the CLI's --set);
@@ -214,6 +224,11 @@ def run(experiment, set=None, out=None, render=False, formation=None, overwrite=
     formation: a Python formation law (callable, FormationLaw or AgentLaw) flown in place of
     the experiment's [formation] plugin. A bad configuration raises ValueError (FILE:LINE:
     [section] key: reason); Ctrl-C ends the run, marked incomplete, and raises KeyboardInterrupt.
+    A run that stops early (a plugin or law error, a non-finite state, [run] stop_on) returns
+    its Run with complete False and warns (RuntimeWarning, with the reason); with
+    raise_on_failure=True it raises RunFailed instead.
+    render=False (the default) renders nothing and skips [render]'s checks (snapshot times
+    inside the duration), as the CLI's --no-render.
     """
     temporary = out is None
     out = Path(tempfile.mkdtemp(prefix="mjformation_")) / "run" if temporary else Path(out)
@@ -230,6 +245,13 @@ def run(experiment, set=None, out=None, render=False, formation=None, overwrite=
     r.result = result
     if temporary:
         weakref.finalize(r, shutil.rmtree, out.parent, ignore_errors=True)
+    if not result["complete"]:
+        message = (f"mjformation.run: {experiment}: the run stopped early at t = "
+                   f"{result['summary'].get('sim_time_s', float('nan')):g} s: "
+                   f"{result['error'] or result['summary'].get('error')}")
+        if raise_on_failure:
+            raise RunFailed(message, r)
+        warnings.warn(message, RuntimeWarning, stacklevel=2)
     return r
 
 

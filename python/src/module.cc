@@ -65,9 +65,12 @@ class SignalScope {
   static inline int active_ = 0;
   static inline struct sigaction old_int_ { }, old_term_{}, old_xfsz_{}; };
 
+// `render`: whether [render]'s snapshot times and sizes are checked; a run that renders nothing
+// skips them, as the CLI's --no-render does (a short run needs no snapshot-time override).
 rn::ExperimentConfig Load(const std::string& path, const std::vector<std::string>& overrides,
-                          const std::vector<std::string>& plugin_path) {
-  rn::ExperimentConfig config = rn::LoadExperiment(path, overrides);
+                          const std::vector<std::string>& plugin_path, bool render = true) {
+  rn::ExperimentConfig config =
+      rn::LoadExperiment(path, overrides, rn::ExperimentChecks::Rendering(render));
   for (const auto& p : plugin_path) config.plugin_path.push_back(p);
   return config;
 }
@@ -88,7 +91,7 @@ py::dict RunResultDict(const rn::RunResult& r) {
 py::dict Run(const std::string& path, const std::vector<std::string>& overrides,
              const std::vector<std::string>& plugin_path, const std::string& out, bool overwrite,
              bool render, bool record) {
-  const rn::ExperimentConfig config = Load(path, overrides, plugin_path);
+  const rn::ExperimentConfig config = Load(path, overrides, plugin_path, render);
   rn::RunOptions options;
   options.out_dir = out;
   options.overwrite = overwrite;
@@ -284,7 +287,8 @@ void BindSimulation(py::module_& m) {
   py::class_<rn::Simulation>(m, "Simulation")
       .def(py::init([](const std::string& path, const std::vector<std::string>& overrides,
                        const std::vector<std::string>& plugin_path) {
-             const rn::ExperimentConfig config = Load(path, overrides, plugin_path);
+             const rn::ExperimentConfig config =
+                 Load(path, overrides, plugin_path, /*render=*/false);  // it renders nothing
              py::gil_scoped_release nogil;
              auto sim = std::make_unique<rn::Simulation>(config);
              sim->ComputeControls();  // the tick at t = 0

@@ -117,10 +117,20 @@ void ReadInput(const py::object& result, const std::vector<py::ssize_t>& shape, 
       u && u.ndim() == static_cast<py::ssize_t>(shape.size()) &&
       std::equal(shape.begin(), shape.end(), u.shape(), [](auto a, auto b) { return a == b; });
   if (!same_shape) {
-    throw std::runtime_error(
-        std::string("the formation law returned ") +
-        std::string(py::str(py::repr(result)).cast<std::string>()).substr(0, 80) + "; expected " +
-        expected);
+    // The shapes first: a truncated repr of a large array does not show them.
+    auto text = [](const std::vector<py::ssize_t>& dims) {
+      std::string t = "(";
+      for (size_t k = 0; k < dims.size(); ++k) {
+        t += (k ? ", " : "") + std::to_string(dims[k]);
+      }
+      return t + (dims.size() == 1 ? ",)" : ")");
+    };
+    const std::string got =
+        u ? "an array of shape " + text(std::vector<py::ssize_t>(u.shape(), u.shape() + u.ndim()))
+          : std::string(py::str(py::type::of(result).attr("__name__")).cast<std::string>()) +
+                " (not convertible to an array of numbers)";
+    throw std::runtime_error("the formation law returned " + got + ", expected " + text(shape) +
+                             ": " + expected);
   }
   std::memcpy(out, u.data(), static_cast<size_t>(u.size()) * sizeof(double));
 }

@@ -210,6 +210,7 @@ struct Options {
   std::string screenshot;     // test hook: PNG of the window at --screenshot-at
   double screenshot_at = -1;  // s of simulated time
   double speed = 1.0;         // simulated seconds per wall second
+  bool keep_open = false;     // after --screenshot: keep the window open (else it closes)
   int width = 1280, height = 720;
 };
 
@@ -267,6 +268,9 @@ class Viewer {
           (src_->time() >= opt_.screenshot_at - 1e-9 || src_->finished())) {
         if (!Screenshot()) return 1;
         shot_taken_ = true;
+        // A screenshot is the job of a script: the window closes once it is saved, unless the
+        // user asked to keep it (--keep-open, e.g. to send it keys afterwards).
+        if (!opt_.keep_open) return 0;
       }
       glfwSwapBuffers(window_);
       glfwPollEvents();
@@ -499,9 +503,11 @@ int Main(int argc, char** argv) {
   app.add_option("--plugin-path", o.plugin_path, "extra folder to search for plugins");
   app.add_option("--speed", o.speed, "simulated seconds per second (default 1)")
       ->check(CLI::Range(1e-3, 1e3));
-  app.add_option("--screenshot", o.screenshot, "save the window to this PNG (tests)");
+  app.add_option("--screenshot", o.screenshot,
+                 "save the window to this PNG, then close it (see --keep-open)");
   app.add_option("--screenshot-at", o.screenshot_at, "... at this simulated time, s")
       ->check(CLI::Range(0.0, 1e7));
+  app.add_flag("--keep-open", o.keep_open, "after --screenshot, keep the window open");
   app.add_option("--size", o.width, "window width in pixels (height: 9/16 of it)")
       ->check(CLI::Range(160, 7680));
   try {

@@ -176,3 +176,25 @@ def test_per_agent_run_gets_its_network_lines_and_figure(tmp_path):
     assert not (tmp_path / "out" / "figures" / "exp2" / "network.png").exists()
     # The paper's orderings compare its protocols as run centrally, not a networked variant.
     assert "σ_f(`exp2_network`)" not in text and "(`exp2_network`):" not in text
+
+
+def test_a_violated_assumption_1_is_a_line_of_the_run(tmp_path):
+    """Stock Exp 2's leader leaves Assumption 1's bounds in its start transient: the run's section
+    says so with summary.json's own numbers; a run whose assumption holds gets no such line."""
+    import json
+
+    res = tmp_path / "results"
+    make_run(res, "exp2", exp=2, c=0.3)
+    make_run(res, "exp1_printed", exp=1, c=0.3)
+    summary_path = res / "exp2" / "summary.json"
+    summary = json.loads(summary_path.read_text())
+    summary["leader_acceleration"] = {"bounds": [-1.0, 1.0], "fraction_outside": 0.023575,
+                                      "first_violation_time_s": 0.073, "max_excess": 4.927,
+                                      "assumption1_holds": False}
+    summary_path.write_text(json.dumps(summary))
+    r = _report(res, tmp_path / "out")
+    assert r.returncode == 0, r.stderr
+    text = (tmp_path / "out" / "report.md").read_text()
+    assert text.count("**Assumption 1 does not hold**") == 1
+    assert ("the leader's measured acceleration left [-1, 1] m/s² on 2.36 % of the steps, first "
+            "at t = 0.073 s, by up to 4.927 m/s²: Theorem 2's band is not guaranteed") in text

@@ -88,10 +88,12 @@ def test_an_exception_in_the_law_ends_the_run_incomplete_with_its_last_line(exp2
 
 
 def test_a_law_returning_the_wrong_shape_is_reported(exp2, tmp_path):
-    run = mjformation.run(exp2, set=short(0.5), formation=lambda t, s, f, g: np.zeros(3),
+    run = mjformation.run(exp2, set=short(0.5), formation=lambda t, s, f, g: np.zeros((6, 3)),
                           out=tmp_path / "r")
     assert not run.complete
-    assert "expected an (n_followers, 2) array" in run.summary["error"]
+    # The shapes, not a truncated repr of the array
+    assert ("the formation law returned an array of shape (6, 3), expected (6, 2): an "
+            "(n_followers, 2) array") in run.summary["error"]
 
 
 def test_a_nan_input_is_the_runners_non_finite_setpoint_failure(exp2, tmp_path):
@@ -105,14 +107,15 @@ def test_a_law_returning_the_transposed_shape_is_reported(exp2, tmp_path):
     run = mjformation.run(exp2, set=short(0.5), formation=lambda t, s, f, g: np.zeros((2, 6)),
                           out=tmp_path / "r")
     assert not run.complete
-    assert "expected an (n_followers, 2) array" in run.summary["error"]
+    assert "returned an array of shape (2, 6), expected (6, 2)" in run.summary["error"]
 
 
 def test_an_agent_law_returning_a_column_is_reported(exp2, tmp_path):
     run = mjformation.run(exp2, set=short(0.5), out=tmp_path / "r",
                           formation=mjformation.AgentLaw(lambda hood: lambda *a: np.zeros((2, 1))))
     assert not run.complete
-    assert "expected a (2,) array of accelerations" in run.summary["error"]
+    assert "returned an array of shape (2, 1), expected (2,): a (2,) array of accelerations" in \
+        run.summary["error"]
 
 
 def test_step_refuses_a_negative_count_and_stays_stopped_after_a_failure(exp2):
@@ -133,3 +136,28 @@ def test_step_refuses_a_negative_count_and_stays_stopped_after_a_failure(exp2):
         with pytest.raises(mjformation.SimulationError, match="stopped at t = 0.010 s"):
             sim.step(5)
     assert sim.step_index == stopped_at
+
+
+def test_a_failed_run_warns_by_default_and_raises_when_asked(exp2, tmp_path):
+    """A run that stops early is hard to miss: a RuntimeWarning with the reason, or RunFailed
+    (with the Run, what was recorded kept) under raise_on_failure=True."""
+    def bad(t, s, f, g):
+        return np.zeros((6, 3))
+
+    with pytest.warns(RuntimeWarning, match=r"stopped early at t = 0 s: .*shape \(6, 3\)"):
+        run = mjformation.run(exp2, set=short(0.5), formation=bad, out=tmp_path / "w")
+    assert not run.complete
+    with pytest.raises(mjformation.RunFailed, match=r"expected \(6, 2\)") as failed:
+        mjformation.run(exp2, set=short(0.5), formation=bad, out=tmp_path / "r",
+                        raise_on_failure=True)
+    assert failed.value.run.complete is False and (tmp_path / "r" / "summary.json").is_file()
+
+
+def test_a_short_run_without_render_needs_no_snapshot_override(exp2):
+    """render=False (the default) skips [render]'s checks, as the CLI's --no-render: exp2's
+    snapshot times lie beyond a 0.2 s run, and only the duration is overridden."""
+    run = mjformation.run(exp2, set={"run.duration": 0.2, "run.metric_window": [0.0, 0.2]})
+    assert run.complete
+    with pytest.raises(ValueError, match="snapshots"):
+        mjformation.run(exp2, set={"run.duration": 0.2, "run.metric_window": [0.0, 0.2]},
+                        render=True)

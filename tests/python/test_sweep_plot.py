@@ -35,20 +35,20 @@ def sweep_dir(cli, exp2, tmp_path_factory):
 def test_the_sweep_has_safety_events_in_some_runs_only(sweep_dir):
     sweep = load_sweep(sweep_dir)
     assert [c["runs_with_safety_events"] for c in sweep.cells] == [1, 1]
-    assert all(c["event_free_complete_runs"] == 2 for c in sweep.cells)
+    assert all(c["valid_complete_runs"] == 2 for c in sweep.cells)
     assert "statistics_over" in (sweep_dir / "sweep.csv").read_text().splitlines()[0]
 
 
-def test_lines_are_the_event_free_cells_and_count_what_is_left_out(sweep_dir):
+def test_lines_are_the_valid_cells_and_count_what_is_left_out(sweep_dir):
     sweep = load_sweep(sweep_dir)
     x, (line,) = sweep_lines(sweep, "sigma_f_mean")
     assert x == "formation.q" and line.label == "" and line.left_out == 2
     for point, cell in zip(line.points, sweep.cells):
-        free = cell["metrics_event_free"]["sigma_f_mean"]
+        free = cell["metrics_valid"]["sigma_f_mean"]
         assert (point.n, point.mean, [point.low, point.high]) == (2, free["mean"], free["ci95"])
         assert point.left_out == 1 and len(point.runs) == 2 and len(point.left_out_runs) == 1
         assert point.has_interval
-    _, (every,) = sweep_lines(sweep, "sigma_f_mean", event_free=False)
+    _, (every,) = sweep_lines(sweep, "sigma_f_mean", valid_only=False)
     assert [p.n for p in every.points] == [3, 3] and every.left_out == 0
     assert [p.mean for p in every.points] == [c["metrics"]["sigma_f_mean"]["mean"]
                                               for c in sweep.cells]

@@ -264,9 +264,9 @@ case="a sweep separates runs with events"
 "$bin" sweep e.toml --vary 'vehicles.follower_start=[[0.0, 0.0], [0.2, 0.0]],[[0.0, 0.0], [3.0, 0.0]]' \
   --seeds 2 -o swev --no-render >/dev/null 2>&1; code=$?
 rows=$(cut -d, -f1-8 swev/sweep.csv | tr -d '"' | tr '\n' '|')
-[ $code = 0 ] && head -1 swev/sweep.csv | grep -qF "seeds,runs_with_safety_events,statistics_over,runs" &&
-  [ "$(grep -c ',all_complete_runs,' swev/sweep.csv)" = 2 ] && [ "$(grep -c ',event_free_runs,' swev/sweep.csv)" = 2 ] &&
-  grep -qF ',2,2,event_free_runs,0,' swev/sweep.csv && grep -qF ',2,0,event_free_runs,2,' swev/sweep.csv &&
+[ $code = 0 ] && head -1 swev/sweep.csv | grep -qF "seeds,runs_with_safety_events,runs_left_out,statistics_over,runs" &&
+  [ "$(grep -c ',all_complete_runs,' swev/sweep.csv)" = 2 ] && [ "$(grep -c ',valid_runs,' swev/sweep.csv)" = 2 ] &&
+  grep -qF ',2,2,2,valid_runs,0,' swev/sweep.csv && grep -qF ',2,0,0,valid_runs,2,' swev/sweep.csv &&
   head -1 swev/sweep_runs.csv | grep -qF "safety_events,first_safety_event" &&
   ok || fail "exit $code: $rows"
 

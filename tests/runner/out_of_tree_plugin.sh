@@ -100,4 +100,34 @@ for axis, value in (("px", x), ("py", y)):
 print(f"native: the out-of-tree plugin flew the leader to ({x:.9g}, {y:.9g}), as the runner did")
 PY
 fi
+# The same plain-C plugin through the CMake route (find_package + mjformation_add_plugin): the
+# helper hides C++ symbols, yet the entry point of a C source, written with or without
+# MJF_PLUGIN_EXPORT, is exported, and it is the only exported symbol.
+for variant in plain macro; do
+  mkdir -p "$work/cmake_$variant"
+  if [ $variant = macro ]; then
+    sed 's/^const mjfPlugin\* const\* mjf_plugin_entry/MJF_PLUGIN_EXPORT &/' "$work/oot_hold.c" \
+      > "$work/cmake_$variant/oot_hold.c"
+    grep -q "^MJF_PLUGIN_EXPORT const mjfPlugin" "$work/cmake_$variant/oot_hold.c"
+  else
+    cp "$work/oot_hold.c" "$work/cmake_$variant/oot_hold.c"
+  fi
+  cat > "$work/cmake_$variant/CMakeLists.txt" <<'CM'
+cmake_minimum_required(VERSION 3.22)
+project(oot_c C CXX)
+find_package(mjformation REQUIRED)
+add_compile_options(-Wall -Wextra -Werror)
+mjformation_add_plugin(oot_hold_cmake SOURCES oot_hold.c NO_INSTALL)
+CM
+  cmake -S "$work/cmake_$variant" -B "$work/cmake_$variant/build" \
+    -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
+  cmake --build "$work/cmake_$variant/build" >/dev/null
+  lib="$work/cmake_$variant/build/liboot_hold_cmake.so"
+  exported=$(nm -D --defined-only "$lib" | awk '$2 == "T" || $2 == "D" || $2 == "R" {print $3}')
+  [ "$exported" = "mjf_plugin_entry" ] || { echo "$variant: exported: $exported"; false; }
+  "$work/prefix/bin/mjformation" plugins --plugin-path "$work/cmake_$variant/build" \
+    > "$work/cmake_$variant/plugins.txt"
+  grep -q "oot_hold" "$work/cmake_$variant/plugins.txt" \
+    || { cat "$work/cmake_$variant/plugins.txt"; false; }
+done
 echo "out-of-tree plugin: built against $work/prefix/include, loaded and run: OK"

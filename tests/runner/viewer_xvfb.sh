@@ -77,7 +77,7 @@ trap 'kill $xvfb 2>/dev/null || true' EXIT
 for _ in $(seq 50); do [ -s "$work/display.txt" ] && break; sleep 0.1; done
 export DISPLAY=":$(head -1 "$work/display.txt")"
 shot="$work/view.png"
-"$bin" "${exp[@]}" --screenshot "$shot" --screenshot-at 2.0 > "$work/view.log" 2>&1 &
+"$bin" "${exp[@]}" --screenshot "$shot" --screenshot-at 2.0 --keep-open > "$work/view.log" 2>&1 &
 viewer=$!
 for _ in $(seq 300); do [ -s "$shot.json" ] && break; sleep 0.2; done
 [ -s "$shot.json" ] || { cat "$work/view.log"; false; }
@@ -133,10 +133,14 @@ rshot="$work/replay.png"
 replay=$!
 for _ in $(seq 300); do [ -s "$rshot.json" ] && break; sleep 0.2; done
 [ -s "$rshot.json" ] || { cat "$work/replay.log"; false; }
-win=$(xdotool search --sync --name "mjformation-view: exp2" | head -1)
-xdotool key --window "$win" Escape
+# Without --keep-open the window closes by itself once the screenshot is saved.
 for _ in $(seq 100); do kill -0 $replay 2>/dev/null || break; sleep 0.1; done
-if kill -0 $replay 2>/dev/null; then kill $replay; echo "replay did not close on Escape"; false; fi
+if kill -0 $replay 2>/dev/null; then kill $replay; echo "the window stayed open after --screenshot"; false; fi
 wait $replay
+# `mjformation view --help` is mjformation-view's own help: every option is listed.
+"$bin" view --help > "$work/view_help.txt"
+for option in --screenshot --screenshot-at --keep-open --speed --replay --size --set --plugin-path; do
+  grep -q -- "$option" "$work/view_help.txt" || { cat "$work/view_help.txt"; false; }
+done
 /usr/bin/python3 "$work/check_screenshot.py" "$rshot"
 echo "viewer under Xvfb: OK"

@@ -53,8 +53,8 @@ std::string Dependence(const Eigen::JacobiSVD<Eigen::Matrix4d>& svd) {
     for (int i : axes) out += std::string(" ") + kAxes[i] + " (" + Number(c[i]) + ")";
     out += " is the same for every rotor";
   }
-  out += "; rotors";
-  for (int k : rotors) out += " " + std::to_string(k) + " (" + Number(v[k]) + ")";
+  out += ";";
+  for (int k : rotors) out += " rotor" + std::to_string(k) + " (" + Number(v[k]) + ")";
   return out + " in that proportion change nothing";
 }
 
@@ -83,8 +83,9 @@ Mixer::Mixer(const std::array<RotorGeometry, kRotors>& rotors) {
     throw std::invalid_argument(
         "the rotor allocation matrix (thrust, torques vs rotor thrusts) is singular or "
         "ill-conditioned (condition number " +
-        std::to_string(condition_) + "): " + Dependence(svd) +
-        "; check rotor site positions and gears");
+        Number(condition_) + "): " + Dependence(svd) +
+        "; check rotor site positions and gears (a yaw gear of the wrong sign, as in Menagerie's "
+        "Skydio X2: docs/VEHICLES.md, \"Menagerie's Crazyflie 2 and Skydio X2\")");
   }
   inverse_ = allocation_.inverse();
 }

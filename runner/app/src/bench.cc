@@ -302,7 +302,7 @@ Json PointRow(const ExperimentConfig& config, int n, const nlohmann::json& bare,
   // What the pipeline (sensors, network, controllers, recording) adds to a bare step, per
   // follower: constant in n when its cost is linear in the number of followers.
   const double per_follower_us = (full_wall - bare_wall) / steps / n * 1e6;
-  std::printf("%9d %9.0f %14.0f %14.0f %15.3f %9.2f %9.2f %10.1f %5d %13.3f", n, steps,
+  std::printf("%9d %9.0f %14.0f %14.0f %15.3f %9.2f %9.2f %10.1f %7d %21.3f", n, steps,
               steps / bare_wall, steps / full_wall, ratio, config.duration / bare_wall,
               config.duration / full_wall, full["peak_rss_mib"].get<double>(), repeats,
               per_follower_us);
@@ -503,15 +503,30 @@ int BenchCommand(const CliCommands& c) {
   report["record_rate_hz"] = base.record_rate;
   report["rotor_model"] = ToString(base.rotor_model);
   report["version"] = VersionString();
-  std::printf("%s: %.1f s at %g s steps, rotor model %s, recording at %g Hz\n",
-              c.experiment.c_str(), base.duration, base.timestep, ToString(base.rotor_model),
-              base.record_rate);
+  // The settings that change the cost, echoed so that two tables can be told apart.
+  report["contacts"] = base.contacts;
+  std::printf(
+      "%s: %.1f s at %g s steps, rotor model %s, recording at %g Hz, contacts=%s, sensors=%s, "
+      "wind=%s, estimator=%s, execution=%s\n",
+      c.experiment.c_str(), base.duration, base.timestep, ToString(base.rotor_model),
+      base.record_rate, base.contacts ? "true" : "false", base.sensors.enabled() ? "on" : "ideal",
+      base.wind.enabled() ? "on" : "calm", base.estimator.plugin.c_str(),
+      base.network.execution == Execution::kPerAgent ? "per_agent" : "central");
+  std::printf(
+      "  bare: MuJoCo alone stepping the composed scene; full: the whole pipeline (plugins, "
+      "sensors, wind, recording)\n"
+      "  steps/s: physics steps per wall second; wall full/bare: full's wall time over bare's "
+      "(1: no overhead)\n"
+      "  RTF: real-time factor, simulated s per wall s; peak MiB: the full run's peak memory; "
+      "best of: runs per point, fastest kept\n"
+      "  overhead us/foll/step: (full - bare wall time) / steps / followers, what the pipeline "
+      "adds per follower and step\n");
   std::vector<int> threads = c.bench_threads;
   if (threads.empty()) threads.push_back(base.threads);
   const bool with_threads = threads.size() > 1 || threads[0] != base.threads;
-  std::printf("%9s %9s %14s %14s %12s %9s %9s %10s %5s %13s", "followers", "steps", "bare steps/s",
-              "full steps/s", "ratio full/bare", "RTF bare", "RTF full", "peak MiB", "runs",
-              "us/foll/step");
+  std::printf("%9s %9s %14s %14s %15s %9s %9s %10s %7s %21s", "followers", "steps", "bare steps/s",
+              "full steps/s", "wall full/bare", "RTF bare", "RTF full", "peak MiB", "best of",
+              "overhead us/foll/step");
   if (with_threads) std::printf(" %7s %8s", "threads", "speed-up");
   std::printf("\n");
   for (int n : sizes) {

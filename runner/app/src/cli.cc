@@ -18,6 +18,7 @@
 #include "mjformation/record/engine_identity.hpp"
 #include "mjformation/record/output.hpp"
 #include "mjformation/run/run.hpp"
+#include "mjformation/run/summary.hpp"
 #include "mjformation/scene/scene.hpp"
 #include "mjformation/sim/simulation.hpp"
 
@@ -96,6 +97,8 @@ int RunCommand(const CliCommands& c) {
         config.name.c_str(), EventsText(r.summary).c_str(), r.sim_time_s, r.wall_time_s,
         r.wall_time_s > 0 ? r.sim_time_s / r.wall_time_s : 0.0, config.metric_window[0],
         config.metric_window[1], sigma.c_str(), options.out_dir.c_str());
+    const std::string assumption = Assumption1Text(r.summary);
+    if (!assumption.empty()) std::printf("  note: %s\n", assumption.c_str());
   }
   return 0;
 }

@@ -227,6 +227,9 @@ void AddViewCommand(CLI::App& app, CliCommands* c) {
                          "+/- speed, backspace reset, c camera, esc quit)");
   c->view->allow_extras();
   c->view->prefix_command();  // everything after `view` goes to mjformation-view as is
+  // --help too: the window's options (--screenshot, --speed, --replay, --size, ...) are
+  // mjformation-view's, so its help is the one that lists them.
+  c->view->set_help_flag();
 }
 
 int ViewCommand(const CliCommands& c) {

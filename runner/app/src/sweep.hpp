@@ -56,8 +56,10 @@ Axis ParseAxis(const std::string& text);
 std::vector<Axis> ParseAxes(const std::vector<std::string>& texts);
 
 // The run directory name of a grid point (`index`: a value index per axis), e.g.
-// "altitude=3.0,turbulence=none": no value can add a separator or a path component.
-std::string PointName(const std::vector<Axis>& axes, const std::vector<size_t>& index);
+// "altitude=3.0,turbulence=none", "mean=6.0_0.0_0.0": no value can add a separator, a path
+// component or a shell metacharacter. `legacy`: the older %XX form of brackets and commas.
+std::string PointName(const std::vector<Axis>& axes, const std::vector<size_t>& index,
+                      bool legacy = false);
 
 // Every run's configuration, parsed and checked before anything runs.
 SweepPlan PlanSweep(const CliCommands& c);

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <set>
 
+#include "mjformation/config/paths.hpp"
 #include "mjformation/sim/simulation.hpp"
 #include "sweep.hpp"
 
@@ -88,15 +89,22 @@ std::string EscapeForName(const std::string& text) {
 }  // namespace
 
 // A name for a point's run directory: "key=value" pairs joined by ','. The value is shown plain
-// (DisplayValue; quotes and spaces of tables and arrays dropped: the run's config.toml holds the
-// exact value), then escaped: altitude=3.0,turbulence=none,seed=2.
-std::string PointName(const std::vector<Axis>& axes, const std::vector<size_t>& index) {
+// (DisplayValue; quotes and spaces dropped: the run's config.toml and sweep.json hold the exact
+// value); an array's or a table's brackets are dropped and its commas written '_', so
+// wind.mean=[6.0,0.0,0.0] reads mean=6.0_0.0_0.0 and {preset="typical",scale=3.0} reads
+// {preset=typical_scale=3.0} (no comma, so no shell brace expansion); any other byte outside
+// EscapeForName's set is %XX. Values that would share a name are refused by PlanSweep.
+// `legacy`: the name sweeps wrote before (brackets and commas as %XX), for --resume.
+std::string PointName(const std::vector<Axis>& axes, const std::vector<size_t>& index,
+                      bool legacy) {
   std::string name;
   for (size_t a = 0; a < axes.size(); ++a) {
     const std::string key = axes[a].key.substr(axes[a].key.rfind('.') + 1);
     std::string value;
     for (const char ch : DisplayValue(axes[a].values[index[a]])) {
-      if (ch != '"' && ch != ' ') value += ch;
+      if (ch == '"' || ch == ' ') continue;
+      if (!legacy && (ch == '[' || ch == ']')) continue;
+      value += !legacy && ch == ',' ? '_' : ch;
     }
     name += (a ? "," : "") + EscapeForName(key) + "=" + EscapeForName(value);
   }
@@ -218,6 +226,7 @@ SweepPlan PlanSweep(const CliCommands& c) {
         LoadExperiment(c.experiment, overrides, ExperimentChecks::Rendering(!c.no_render));
     if (cell == 0 && plan.seeds > 0) WarnPinnedSeeds(base);
     const std::string point = PointName(plan.axes, plan.cells[cell]);
+    const std::string legacy_point = PointName(plan.axes, plan.cells[cell], /*legacy=*/true);
     for (int k = 0; k < std::max(1, plan.seeds); ++k) {
       RunSpec run;
       run.cell = cell;
@@ -231,6 +240,17 @@ SweepPlan PlanSweep(const CliCommands& c) {
         run.config =
             LoadExperiment(c.experiment, seeded, ExperimentChecks::Rendering(!c.no_render));
         run.name = (point.empty() ? "" : point + ",") + "seed=" + std::to_string(run.seed);
+      }
+      // --resume of a sweep written with the older names: its finished runs keep their folders.
+      if (c.sweep_resume && !c.out.empty()) {
+        const std::string legacy = plan.seeds == 0
+                                       ? legacy_point
+                                       : (legacy_point.empty() ? "" : legacy_point + ",") +
+                                             "seed=" + std::to_string(run.seed);
+        if (legacy != run.name && !IsDirectory(c.out + "/" + run.name) &&
+            IsDirectory(c.out + "/" + legacy)) {
+          run.name = legacy;
+        }
       }
       for (const auto& path : c.plugin_path) run.config.plugin_path.push_back(path);
       plan.runs.push_back(std::move(run));

@@ -49,6 +49,22 @@ std::string FirstEvent(const Json& s) {
   if (EventCount(s) == 0 || s["events"]["list"].empty()) return "";
   return s["events"]["list"][0]["what"].get<std::string>();
 }
+// A flip, a ground impact or a collision makes a run another experiment (a vehicle crashed or
+// hit another), so the cell statistics leave such runs out; a near miss or a region exit is only
+// reported (Exp 2's followers start 1.5 m apart, inside the near-miss distance of 1.25 m between
+// centres, so any turbulence gives every run one: leaving those out would empty a study).
+const char* const kInvalidatingKinds[] = {"flip", "ground_impact", "collision"};
+
+int64_t InvalidatingCount(const Json& s) {
+  if (EventCount(s) == 0 || !s["events"].contains("by_kind")) return 0;
+  int64_t n = 0;
+  for (const char* kind : kInvalidatingKinds) {
+    const Json& by_kind = s["events"]["by_kind"];
+    if (by_kind.contains(kind)) n += by_kind[kind].get<int64_t>();
+  }
+  return n;
+}
+
 // The tables gain their event columns only when some run had an event: the tables of a sweep
 // without one keep their bytes.
 bool AnyEvents(const std::vector<RunOutcome>& outcomes) {
@@ -101,13 +117,13 @@ std::vector<std::string> MetricKeys(const std::vector<RunOutcome>& outcomes) {
 std::vector<std::vector<SampleStats>> CellStats(const SweepPlan& plan,
                                                 const std::vector<RunOutcome>& outcomes,
                                                 const std::vector<std::string>& keys,
-                                                std::vector<int>* completed, bool event_free_only) {
+                                                std::vector<int>* completed, bool valid_only) {
   std::vector<std::vector<std::vector<double>>> samples(
       plan.cells.size(), std::vector<std::vector<double>>(keys.size()));
   completed->assign(plan.cells.size(), 0);
   for (size_t i = 0; i < plan.runs.size(); ++i) {
     if (!outcomes[i].complete()) continue;
-    if (event_free_only && EventCount(outcomes[i].summary) > 0) continue;
+    if (valid_only && InvalidatingCount(outcomes[i].summary) > 0) continue;
     const size_t cell = plan.runs[i].cell;
     ++(*completed)[cell];
     const Json& metrics = outcomes[i].summary["metrics"];
@@ -141,7 +157,10 @@ Json RunsJson(const SweepPlan& plan, const std::vector<RunOutcome>& outcomes, bo
     entry["run"] = run.name;
     entry["error"] = o.complete() ? Json(nullptr) : Json(RunStatus(o));
     entry["safety_events"] = EventCount(o.summary);
-    if (EventCount(o.summary) > 0) entry["first_safety_event"] = FirstEvent(o.summary);
+    if (EventCount(o.summary) > 0) {
+      entry["first_safety_event"] = FirstEvent(o.summary);
+      entry["invalidating_events"] = InvalidatingCount(o.summary);
+    }
     entry["metrics"] = o.summary.is_object() && o.summary.contains("metrics") ? o.summary["metrics"]
                                                                               : Json(nullptr);
     runs.push_back(entry);
@@ -174,18 +193,31 @@ std::vector<int> RunsWithEvents(const SweepPlan& plan, const std::vector<RunOutc
   return count;
 }
 
+// Complete runs of each cell that the statistics leave out (a flip, ground impact or collision).
+std::vector<int> RunsLeftOut(const SweepPlan& plan, const std::vector<RunOutcome>& outcomes) {
+  std::vector<int> count(plan.cells.size(), 0);
+  for (size_t i = 0; i < plan.runs.size(); ++i) {
+    count[plan.runs[i].cell] +=
+        outcomes[i].complete() && InvalidatingCount(outcomes[i].summary) > 0;
+  }
+  return count;
+}
+
 // With --seeds: the per-cell statistics as sweep.csv's text (`csv`) and sweep.json's "cells".
 // When some run had a safety event, each cell has two rows, said apart by `statistics_over`:
-// over all complete runs, and over the complete runs without a safety event.
+// over all complete runs, and over the valid ones (no flip, ground impact or collision; near
+// misses and region exits are kept), with how many complete runs that row left out.
 Json CellsTable(const SweepPlan& plan, const std::vector<RunOutcome>& outcomes, std::string* csv) {
   const std::vector<std::string> keys = MetricKeys(outcomes);
   const bool events = AnyEvents(outcomes);
-  std::vector<int> completed, event_free;
+  std::vector<int> completed, valid;
   const auto stats = CellStats(plan, outcomes, keys, &completed, false);
-  const auto free_stats = CellStats(plan, outcomes, keys, &event_free, true);
+  const auto valid_stats = CellStats(plan, outcomes, keys, &valid, true);
   const std::vector<int> with_events = RunsWithEvents(plan, outcomes);
+  const std::vector<int> left_out = RunsLeftOut(plan, outcomes);
   for (const Axis& axis : plan.axes) *csv += axis.key + ",";
-  *csv += events ? "seeds,runs_with_safety_events,statistics_over,runs" : "seeds,complete_runs";
+  *csv += events ? "seeds,runs_with_safety_events,runs_left_out,statistics_over,runs"
+                 : "seeds,complete_runs";
   for (const auto& k : keys) *csv += fmt::format(",{0}_mean,{0}_std,{0}_ci95_low,{0}_ci95_high", k);
   *csv += "\n";
   Json cells = Json::array();
@@ -199,19 +231,20 @@ Json CellsTable(const SweepPlan& plan, const std::vector<RunOutcome>& outcomes, 
     entry["seeds"] = plan.seeds;
     entry["complete_runs"] = completed[cell];
     entry["runs_with_safety_events"] = with_events[cell];
-    entry["event_free_complete_runs"] = event_free[cell];
+    entry["runs_left_out"] = left_out[cell];  // complete, with a flip, ground impact or collision
+    entry["valid_complete_runs"] = valid[cell];
     if (!events) {
       *csv += values + fmt::format("{},{}", plan.seeds, completed[cell]);
       entry["metrics"] = StatsRow(keys, stats[cell], csv);
       *csv += "\n";
     } else {
-      *csv += values + fmt::format("{},{},all_complete_runs,{}", plan.seeds, with_events[cell],
+      *csv += values + fmt::format("{},{},0,all_complete_runs,{}", plan.seeds, with_events[cell],
                                    completed[cell]);
       entry["metrics"] = StatsRow(keys, stats[cell], csv);
-      *csv +=
-          "\n" + values +
-          fmt::format("{},{},event_free_runs,{}", plan.seeds, with_events[cell], event_free[cell]);
-      entry["metrics_event_free"] = StatsRow(keys, free_stats[cell], csv);
+      *csv += "\n" + values +
+              fmt::format("{},{},{},valid_runs,{}", plan.seeds, with_events[cell], left_out[cell],
+                          valid[cell]);
+      entry["metrics_valid"] = StatsRow(keys, valid_stats[cell], csv);
       *csv += "\n";
     }
     cells.push_back(entry);
@@ -248,18 +281,32 @@ std::string SummaryText(const SweepPlan& plan, const std::vector<RunOutcome>& ou
   size_t lines = 0;
   if (plan.seeds) {
     const std::vector<std::string> keys = {kMetric};
-    std::vector<int> completed, event_free;
+    std::vector<int> completed, valid;
     const auto stats = CellStats(plan, outcomes, keys, &completed, false);
-    const auto free_stats = CellStats(plan, outcomes, keys, &event_free, true);
+    const auto valid_stats = CellStats(plan, outcomes, keys, &valid, true);
     const std::vector<int> with_events = RunsWithEvents(plan, outcomes);
+    const std::vector<int> left_out = RunsLeftOut(plan, outcomes);
+    std::vector<int> reported_only(plan.cells.size(), 0);
+    for (size_t i = 0; i < plan.runs.size(); ++i) {
+      reported_only[plan.runs[i].cell] +=
+          EventCount(outcomes[i].summary) > 0 && InvalidatingCount(outcomes[i].summary) == 0;
+    }
     for (size_t cell = 0; cell < plan.cells.size() && lines < kMaxLines; ++cell, ++lines) {
-      text += fmt::format("  {}: {} {}", CellLabel(plan, cell), kMetric, MeanText(stats[cell][0]));
+      // With runs left out, the statistics over the valid runs come first: they are the study's.
+      text += fmt::format("  {}: {} {}", CellLabel(plan, cell), kMetric,
+                          MeanText(left_out[cell] > 0 ? valid_stats[cell][0] : stats[cell][0]));
       if (completed[cell] < plan.seeds) {
         text += fmt::format("; {} of {} runs incomplete", plan.seeds - completed[cell], plan.seeds);
       }
-      if (with_events[cell] > 0) {
-        text += fmt::format("; {} runs with safety events (without them: {})", with_events[cell],
-                            MeanText(free_stats[cell][0]));
+      if (left_out[cell] > 0) {
+        text += fmt::format(
+            "; {} of {} complete runs left out (a flip, ground impact or collision; with them: "
+            "{})",
+            left_out[cell], completed[cell], MeanText(stats[cell][0]));
+      }
+      if (reported_only[cell] > 0) {
+        text += fmt::format("; {} runs with near misses or region exits only (reported, kept)",
+                            reported_only[cell]);
       }
       text += "\n";
     }
@@ -284,6 +331,11 @@ void WriteTables(const SweepPlan& plan, const std::vector<RunOutcome>& outcomes)
   bool complete = true;
   Json runs = RunsJson(plan, outcomes, &complete);
   Json table = {{"complete", complete}, {"seeds", plan.seeds}, {"runs", runs}};
+  if (AnyEvents(outcomes)) {
+    Json kinds = Json::array();
+    for (const char* kind : kInvalidatingKinds) kinds.push_back(kind);
+    table["left_out_events"] = kinds;  // what makes a run leave the cell statistics
+  }
   const std::string runs_csv = RunsCsv(plan, outcomes);
   if (!plan.seeds) {
     WriteTextFile(plan.out + "/sweep.csv", runs_csv);

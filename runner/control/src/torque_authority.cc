@@ -77,6 +77,12 @@ std::string AuthorityText(const TorqueAuthority& a) {
   return text;
 }
 
+// The slowest attitude loop the stock outer loops sit on (rad/s) and the smallest tilt limit
+// that leaves the formation acceleration for its reaching phase (rad, g tan 0.03 = 0.29 m/s^2):
+// both measured on Menagerie's cf2 (docs/VEHICLES.md; the attitude plugins' kMinAttitudeBandwidth).
+constexpr double kMinOuterLoopBandwidth = 3.0;
+constexpr double kMinFormationTilt = 0.03;
+
 std::vector<std::string> AuthorityWarnings(const TorqueAuthority& a, const AttitudeDemand& d,
                                            const std::string& vehicle) {
   std::vector<std::string> out;
@@ -108,10 +114,33 @@ std::vector<std::string> AuthorityWarnings(const TorqueAuthority& a, const Attit
           "and the formation and guidance loops above, tuned for {:.3g} rad/s, may outrun it",
           d.att_bw, bw);
     }
-    text += fmt::format(
-        ". Expect rocking or flips: raise the moment ctrlrange (or the rotors' range and arms) "
-        "{:.3g}x, or lower tilt_max to {:.3g} rad",
-        demand / alpha, alpha / (bw * bw));
+    // What happens: a loop the plugin slowed to the authority but kept at or above the slowest
+    // one the stock outer loops sit on flies (the published cf2: att_bw 3.0 rad/s, no event, a
+    // less precise formation); a slower one, or a loop the authority cannot follow, rocks or flips.
+    if (lowered && d.att_bw >= kMinOuterLoopBandwidth - 1e-9) {
+      text += fmt::format(
+          ". At {:.3g} rad/s it is still fast enough for the stock outer loops (from about {:g} "
+          "rad/s, docs/VEHICLES.md): expect a less precise formation, not flips. For the loop the "
+          "experiment was tuned with, raise the moment ctrlrange (or the rotors' range and arms) "
+          "{:.3g}x",
+          d.att_bw, kMinOuterLoopBandwidth, demand / alpha);
+    } else {
+      text += fmt::format(
+          ". Expect rocking or flips: raise the moment ctrlrange (or the rotors' range and arms) "
+          "{:.3g}x",
+          demand / alpha);
+    }
+    // The tilt limit this authority follows at this bandwidth, advised only where the formation
+    // keeps enough horizontal acceleration (g tan tilt) for its reaching phase.
+    const double tilt = alpha / (bw * bw);
+    if (tilt >= kMinFormationTilt) {
+      text += fmt::format(", or lower tilt_max to {:.3g} rad", tilt);
+    } else {
+      text += fmt::format(
+          " (no tilt limit helps at {:.3g} rad/s: the one this authority follows, {:.3g} rad, "
+          "leaves the formation too little acceleration, below about {:g} rad)",
+          bw, tilt, kMinFormationTilt);
+    }
     if (!lowered) {
       text += fmt::format(", or the attitude gains to att_bw {:.3g} rad/s",
                           std::sqrt(alpha / d.tilt_max));

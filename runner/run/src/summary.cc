@@ -1,6 +1,9 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 #include "mjformation/run/summary.hpp"
 
+#include <cmath>
+#include <cstdio>
+
 #include "mjformation/config/realism_config.hpp"
 #include "mjformation/record/engine_identity.hpp"
 #include "mjformation/record/output.hpp"
@@ -115,6 +118,28 @@ Json BuildSummary(const Simulation& sim, const RunResult& result, const Json& re
     s["timing"]["estimator_plugins_wall_s"] = e->estimator_seconds();
   }
   return s;
+}
+
+std::string Assumption1Text(const nlohmann::ordered_json& summary) {
+  if (!summary.contains("leader_acceleration")) return "";
+  const auto& a = summary["leader_acceleration"];
+  if (!a.contains("assumption1_holds") || !a["assumption1_holds"].is_boolean() ||
+      a["assumption1_holds"].get<bool>()) {
+    return "";
+  }
+  auto number = [&](const char* key) {
+    return a.contains(key) && a[key].is_number() ? a[key].get<double>() : std::nan("");
+  };
+  char text[512];
+  std::snprintf(text, sizeof(text),
+                "Assumption 1 does not hold: the leader's measured acceleration left the bounds "
+                "[%g, %g] m/s^2 (%s) on %.3g %% of the steps, first at t = %.3f s, by up to %.3g "
+                "m/s^2; Theorem 2's band is not guaranteed (summary.json leader_acceleration)",
+                a["bounds"][0].get<double>(), a["bounds"][1].get<double>(),
+                a["bounds_source"].is_string() ? a["bounds_source"].get<std::string>().c_str() : "",
+                100 * number("fraction_outside"), number("first_violation_time_s"),
+                number("max_excess"));
+  return text;
 }
 
 }  // namespace mjf::runner

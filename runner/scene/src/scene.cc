@@ -10,6 +10,7 @@
 #include <mujoco/mujoco.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cstring>
 
 #include "mjcf_util.hpp"
@@ -168,6 +169,51 @@ void AttachCopies(mjSpec* scene, mjSpec* vehicle, mjsBody* body, const SceneRequ
   ShareVehicleAssets(scene, assets, prefixes);
 }
 
+// What composition changes of a contract-form model's <option> (an adapted model's notes say it
+// from the MJCF, NoteModelOptions): the time step and integrator are the experiment's; the
+// physics settings the vehicle sets (they differ from MuJoCo's defaults) hold for the whole
+// scene, every vehicle alike.
+std::vector<std::string> ContractOptionNotes(const mjOption& v, const mjOption& d,
+                                             const SceneRequest& request) {
+  std::vector<std::string> notes;
+  char text[200];
+  if (v.timestep != d.timestep && v.timestep != request.timestep) {
+    std::snprintf(text, sizeof(text),
+                  "the model's <option timestep=\"%g\"> is replaced by the experiment's ([run] "
+                  "timestep = %g)",
+                  v.timestep, request.timestep);
+    notes.push_back(text);
+  }
+  if (v.integrator != mjINT_EULER) {
+    notes.push_back(
+        "the model's <option integrator> is replaced by Euler (the runner's mj_step1/mj_step2 "
+        "split cannot run RK4)");
+  }
+  auto vec3 = [&](const char* name, const mjtNum* from, const mjtNum* fallback) {
+    if (std::memcmp(from, fallback, 3 * sizeof(mjtNum)) == 0) return;
+    std::snprintf(text, sizeof(text),
+                  "kept the model's <option %s=\"%g %g %g\"> for the whole scene", name, from[0],
+                  from[1], from[2]);
+    notes.push_back(text);
+  };
+  vec3("gravity", v.gravity, d.gravity);
+  vec3("wind", v.wind, d.wind);
+  auto scalar = [&](const char* name, mjtNum from, mjtNum fallback) {
+    if (from == fallback) return;
+    std::snprintf(text, sizeof(text),
+                  "kept the model's <option %s=\"%g\"> for the whole scene: MuJoCo's fluid "
+                  "forces act on every vehicle alike",
+                  name, from);
+    notes.push_back(text);
+  };
+  scalar("density", v.density, d.density);
+  scalar("viscosity", v.viscosity, d.viscosity);
+  if (v.disableflags != d.disableflags || v.enableflags != d.enableflags) {
+    notes.push_back("kept the model's <option><flag ...> settings for the whole scene");
+  }
+  return notes;
+}
+
 std::string Header(const SceneRequest& request) {
   return std::string("<!-- Composed by mjformation from ") + request.scene_path + " and " +
          std::to_string(request.positions.size()) + " copies of " + request.vehicle_path +
@@ -191,9 +237,13 @@ ComposedScene ComposeScene(const SceneRequest& request, const std::string& name)
   spec::DeleteAll(vehicle.get(), mjOBJ_KEY);  // a vehicle's keyframes do not fit the swarm
   PrepareVehicleAssets(vehicle.get(), body, mjcf::ModelDirectory(request.vehicle_path));
   mjs_setString(scene->modelname, "mjformation");
+  ComposedScene out;
+  if (!adapted) {
+    const SpecPtr defaults(mj_makeSpec());
+    out.notes = ContractOptionNotes(vehicle->option, defaults->option, request);
+  }
   SetGlobals(scene.get(), vehicle.get(), request);
   AttachCopies(scene.get(), vehicle.get(), body, request);
-  ComposedScene out;
   out.model.reset(mj_compile(scene.get(), nullptr));
   if (!out.model) {
     throw SceneError(name + ": MuJoCo cannot load the model: " + mjs_getError(scene.get()));

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "mjformation/config/paths.hpp"
 #include "mjformation/config/source_location.hpp"
@@ -58,6 +59,7 @@ Simulation::Simulation(const ExperimentConfig& config) : config_(config) {
       ComposeScene(MakeSceneRequest(config_, initial_positions, vehicle_xml_, vehicle_notes_),
                    "composed scene of " + config_.model_path);
   scene_xml_ = std::move(scene.xml);
+  if (vehicle_xml_.empty()) vehicle_notes_ = std::move(scene.notes);
   model_.reset(scene.model.release());
   data_.reset(mj_makeData(model_.get()));
   total_steps_ = std::llround(config_.duration / config_.timestep);
@@ -70,7 +72,7 @@ Simulation::Simulation(const ExperimentConfig& config) : config_(config) {
   contexts.model = reinterpret_cast<const struct mjModel_*>(model_.get());
   wiring_ = std::make_unique<ControlWiring>(config_, *registry_, std::move(contexts));
   std::unique_ptr<AgentChannel> channel = wiring_->MakeChannel();  // per-agent execution only
-  ControlPlugins plugins = wiring_->CreatePlugins(attitude, channel.get());
+  ControlPlugins plugins = CreatePluginsNamingRotors(attitude, channel.get());
   tick_ = std::make_unique<ControlTick>(
       std::move(plugins), wiring_->MakeSensors(), wiring_->InitialSetpoints(),
       bindings_.actuators_per_vehicle, config_.altitude, config_.timestep, std::move(channel));
@@ -80,6 +82,7 @@ Simulation::Simulation(const ExperimentConfig& config) : config_(config) {
   MakePartitions(*attitude.descriptor);
   ReadContracts();
   CheckTorqueAuthority();
+  CheckImuSite();
 }
 
 // The contract's values: the formation law's report (the largest over the followers in
@@ -133,6 +136,70 @@ void Simulation::MakePartitions(const mjfPlugin& attitude) {
 }
 
 Simulation::~Simulation() = default;
+
+// The controllers take what the sensors read at the site 'imu' for the centre of mass's position
+// and velocity (the paper's double integrator, eq. (1)); a site off the centre of mass adds the
+// lever arm's motion (omega x r) to them, and the formation flies differently. The adapter puts
+// its site at the centre of mass; a contract-form model's own site is checked here, on vehicle 0
+// (every vehicle is a copy), and a warning says where it is and where it belongs.
+void Simulation::CheckImuSite() {
+  const VehicleBinding& v = bindings_.vehicles[0];
+  const int site = mj_name2id(model_.get(), mjOBJ_SITE, (VehiclePrefix(0) + "imu").c_str());
+  if (site < 0) return;
+  std::unique_ptr<mjData, DataDeleter> d(mj_makeData(model_.get()));
+  mj_kinematics(model_.get(), d.get());
+  mj_comPos(model_.get(), d.get());
+  const int b = v.body;
+  double rel_site[3], rel_com[3], site_body[3], com_body[3];
+  mju_sub3(rel_site, d->site_xpos + 3 * site, d->xpos + 3 * b);
+  mju_sub3(rel_com, d->subtree_com + 3 * b, d->xpos + 3 * b);
+  mju_mulMatTVec(site_body, d->xmat + 9 * b, rel_site, 3, 3);  // world -> body axes: R^T x
+  mju_mulMatTVec(com_body, d->xmat + 9 * b, rel_com, 3, 3);
+  double offset[3];
+  mju_sub3(offset, site_body, com_body);
+  const double distance = mju_norm3(offset);
+  if (distance <= kImuOffsetTolerance) return;
+  char text[600];
+  std::snprintf(text, sizeof(text),
+                "vehicle model %s: the site 'imu' (at %.6g %.6g %.6g in the body's axes) is %.4g m "
+                "from the centre of mass (%.6g %.6g %.6g): the sensors pos and vel read the "
+                "site, which the controllers take for the centre of mass, so every rotation "
+                "shows as a position and velocity error and the formation flies differently; "
+                "put <site name=\"imu\"> at pos=\"%.6g %.6g %.6g\" unless the offset is what "
+                "you study (docs/VEHICLES.md, \"The imu site\")",
+                config_.model_path.c_str(), site_body[0], site_body[1], site_body[2], distance,
+                com_body[0], com_body[1], com_body[2], com_body[0], com_body[1], com_body[2]);
+  warnings_.push_back(text);
+}
+
+// A rotor layout the attitude plugin refuses is a property of the model and its [vehicles]
+// rotors mapping, not of [attitude]: the refusal is pointed there, with the model's own rotor
+// names in place of the plugin's rotor<k>.
+ControlPlugins Simulation::CreatePluginsNamingRotors(const LoadedPlugin& attitude,
+                                                     AgentChannel* channel) {
+  try {
+    return wiring_->CreatePlugins(attitude, channel);
+  } catch (const PluginError& e) {
+    std::string text = e.what();
+    const size_t at = text.find("refused its configuration: the rotor");
+    if (config_.vehicle_rotors.empty() || at == std::string::npos) throw;
+    std::string reason = text.substr(text.find(": the rotor", at) + 2);
+    for (size_t k = 0; k < config_.vehicle_rotors.size(); ++k) {
+      const std::string plugin_name = "rotor" + std::to_string(k) + " (";
+      const std::string model_name =
+          "'" + config_.vehicle_rotors[k] + "' (rotor" + std::to_string(k) + ", ";
+      for (size_t p = 0; (p = reason.find(plugin_name, p)) != std::string::npos;
+           p += model_name.size()) {
+        reason.replace(p, plugin_name.size(), model_name);
+      }
+    }
+    throw PluginError(OriginLocation(config_.source_path, config_.vehicle_rotors_origin,
+                                     SectionKey("vehicles", "rotors"))
+                          .Prefix() +
+                      ": the attitude plugin '" + config_.attitude.plugin +
+                      "' cannot fly this rotor layout: " + reason);
+  }
+}
 
 void Simulation::AdaptForeignVehicle(const mjfPlugin& attitude) {
   if (config_.vehicle_body.empty() && config_.vehicle_rotors.empty()) return;

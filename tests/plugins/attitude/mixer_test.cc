@@ -52,7 +52,10 @@ TEST(MixerTest, YawSingularLayoutNamesTheDependentAxesAndRotors) {
   EXPECT_NE(e.find("yaw torque is proportional to roll torque (yaw torque = 0.141 x roll torque"),
             std::string::npos)
       << e;
-  EXPECT_NE(e.find("rotors 0 ("), std::string::npos) << e;
+  EXPECT_NE(e.find("; rotor0 ("), std::string::npos) << e;
+  // A readable condition number and the way to the documented fix.
+  EXPECT_NE(e.find("(condition number 2.26e+18)"), std::string::npos) << e;
+  EXPECT_NE(e.find("docs/VEHICLES.md"), std::string::npos) << e;
   EXPECT_EQ(ErrorOf(XQuad({1, -1, 1, -1})), "(no error)");
 }
 

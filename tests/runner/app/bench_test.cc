@@ -2,6 +2,7 @@
 //
 // runner/app/src/bench.cc: `mjformation bench` on a tiny experiment: the JSON report's sizes, step
 // counts and the arithmetic of its ratios; bad input is exit code 1 before anything runs.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -24,8 +25,20 @@ TEST(BenchTest, ReportOfTwoSizes) {
   const std::string dir = TempDir("bench");
   const std::string text = HoverExperiment(1, 0.02);
   const std::string exp = WriteFile(dir + "/e.toml", text);
-  ASSERT_EQ(Cli({"bench", exp, "--followers", "1", "2", "--json", dir + "/b.json"}), 0);
+  ::testing::internal::CaptureStdout();
+  ASSERT_EQ(Cli({"bench", exp, "--followers", "1", "2", "--json", dir + "/b.json", "--set",
+                 "vehicles.contacts=false"}),
+            0);
+  const std::string out = ::testing::internal::GetCapturedStdout();
+  // The settings echoed, every column explained, headers that say what they are.
+  EXPECT_THAT(out, ::testing::HasSubstr("contacts=false, sensors=ideal, wind=calm"));
+  EXPECT_THAT(out, ::testing::HasSubstr("wall full/bare: full's wall time over bare's"));
+  EXPECT_THAT(out, ::testing::HasSubstr("RTF: real-time factor"));
+  EXPECT_THAT(out, ::testing::HasSubstr("best of: runs per point"));
+  EXPECT_THAT(out, ::testing::HasSubstr("overhead us/foll/step: (full - bare wall time)"));
+  EXPECT_THAT(out, ::testing::Not(::testing::HasSubstr("ratio full/bare")));
   const auto j = nlohmann::json::parse(ReadFile(dir + "/b.json"));
+  EXPECT_EQ(j["contacts"], false);
   EXPECT_EQ(j["experiment"], exp);
   EXPECT_EQ(j["duration_s"], 0.02);
   EXPECT_EQ(j["timestep_s"], 0.001);

@@ -1,12 +1,15 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
 // Monte Carlo sweeps: --seeds statistics, interrupted sweeps, --resume.
+#include "../../../runner/app/src/sweep.hpp"  // private to the app stage: the tables' functions
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 
 #include <csignal>
 #include <cstdio>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 
 #include "mjformation/app/cli.hpp"
@@ -97,6 +100,61 @@ TEST(SweepSeeds, PerCellStatisticsOverSeeds) {
   EXPECT_EQ(Cli({"sweep", exp, "--out", dir + "/nothing"}), 1);  // neither --vary nor --seeds
 }
 
+// A flip, ground impact or collision leaves a run out of the cell statistics; a near miss (Exp 2's
+// start ring under turbulence gives every run one) is reported and kept. Three runs of one cell:
+// sigma_f 1 (no event), 2 (a near miss), 10 (a flip): the valid statistics are over 1 and 2, and
+// the tables and the summary say that one run was left out and why.
+TEST(SweepSeeds, NearMissesAreKeptAndFlipsLeftOut) {
+  sweep::SweepPlan plan;
+  plan.out = TempDir("valid");
+  plan.axes.push_back({"formation.q", {"1.0"}});
+  plan.cells = {{0}};
+  plan.seeds = 3;
+  std::vector<sweep::RunOutcome> outcomes(3);
+  const double sigma[] = {1.0, 2.0, 10.0};
+  const char* kind[] = {"", "near_miss", "flip"};
+  for (int k = 0; k < 3; ++k) {
+    sweep::RunSpec run;
+    run.cell = 0;
+    run.seed = 1 + k;
+    run.name = "q=1.0,seed=" + std::to_string(1 + k);
+    plan.runs.push_back(run);
+    outcomes[k].state = sweep::RunOutcome::kFinished;
+    outcomes[k].summary = {{"complete", true}, {"metrics", {{"sigma_f_mean", sigma[k]}}}};
+    if (*kind[k]) {
+      sweep::Json by_kind = {{"flip", 0},
+                             {"ground_impact", 0},
+                             {"collision", 0},
+                             {"near_miss", 0},
+                             {"left_region", 0}};
+      by_kind[kind[k]] = 1;
+      outcomes[k].summary["events"] = {
+          {"count", 1},
+          {"by_kind", by_kind},
+          {"list", {{{"kind", kind[k]}, {"what", std::string("follower 1 ") + kind[k]}}}}};
+    }
+  }
+  sweep::WriteTables(plan, outcomes);
+  const auto json = nlohmann::json::parse(ReadFile(plan.out + "/sweep.json"));
+  const auto& cell = json["cells"][0];
+  EXPECT_EQ(cell["runs_with_safety_events"], 2);
+  EXPECT_EQ(cell["runs_left_out"], 1);
+  EXPECT_EQ(cell["valid_complete_runs"], 2);
+  EXPECT_EQ(cell["metrics_valid"]["sigma_f_mean"]["n"], 2);
+  EXPECT_DOUBLE_EQ(cell["metrics_valid"]["sigma_f_mean"]["mean"].get<double>(), 1.5);
+  EXPECT_EQ(cell["metrics"]["sigma_f_mean"]["n"], 3);
+  EXPECT_EQ(json["left_out_events"], nlohmann::json({"flip", "ground_impact", "collision"}));
+  EXPECT_EQ(json["runs"][1]["invalidating_events"], 0);
+  EXPECT_EQ(json["runs"][2]["invalidating_events"], 1);
+  const std::string csv = ReadFile(plan.out + "/sweep.csv");
+  EXPECT_THAT(csv, HasSubstr("seeds,runs_with_safety_events,runs_left_out,statistics_over,runs,"));
+  EXPECT_THAT(csv, HasSubstr("1.0,3,2,1,valid_runs,2,1.5,"));
+  const std::string text = sweep::SummaryText(plan, outcomes);
+  EXPECT_THAT(text, HasSubstr("sigma_f_mean 1.5, 95 % CI"));
+  EXPECT_THAT(text, HasSubstr("1 of 3 complete runs left out (a flip, ground impact or collision"));
+  EXPECT_THAT(text, HasSubstr("1 runs with near misses or region exits only (reported, kept)"));
+}
+
 // Values with commas inside [], {} or quotes are one value; the CSV quotes them.
 TEST(SweepSeeds, TableAndArrayValuesOnAnAxis) {
   const std::string dir = TempDir("axis");
@@ -108,12 +166,29 @@ TEST(SweepSeeds, TableAndArrayValuesOnAnAxis) {
   const std::string csv = ReadFile(dir + "/s/sweep.csv");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 4);
   EXPECT_THAT(csv, HasSubstr("\n\"[2.0,0.0,0.0]\",\"{preset=\"\"typical\"\", scale=3.0}\",2,2,"));
-  const auto summary =
-      nlohmann::json::parse(ReadFile(
-          dir + "/s/mean=%5B2.0%2C0.0%2C0.0%5D,sensors={preset=typical%2Cscale=3.0},seed=2/"
-                "summary.json"));
+  // Readable and shell-safe folder names: no brackets, commas inside values written '_'.
+  const std::string name = "mean=2.0_0.0_0.0,sensors={preset=typical_scale=3.0},seed=2";
+  const auto summary = nlohmann::json::parse(ReadFile(dir + "/s/" + name + "/summary.json"));
   EXPECT_EQ(summary["sensors"]["scale"], 3.0);
   EXPECT_EQ(summary["wind"]["mean"][0], 2.0);
+  // A sweep written with the older %XX names resumes: its finished runs are found, not rerun.
+  std::filesystem::rename(
+      dir + "/s/" + name,
+      dir + "/s/mean=%5B2.0%2C0.0%2C0.0%5D,sensors={preset=typical%2Cscale=3.0},seed=2");
+  const auto before = ReadFile(dir +
+                               "/s/mean=%5B2.0%2C0.0%2C0.0%5D,sensors={preset=typical%2C"
+                               "scale=3.0},seed=2/summary.json");
+  ::testing::internal::CaptureStderr();
+  ASSERT_EQ(Cli({"sweep", exp, "--vary", "wind.mean=[0.0,0.0,0.0],[2.0,0.0,0.0]", "--vary",
+                 "sensors={preset=\"ideal\"},{preset=\"typical\", scale=3.0}", "--seeds", "2",
+                 "--out", dir + "/s", "--no-render", "--resume"}),
+            0);
+  const std::string err = ::testing::internal::GetCapturedStderr();
+  EXPECT_THAT(err, HasSubstr("resuming, 8 of 8 runs done before")) << err;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/s/" + name));
+  EXPECT_EQ(ReadFile(dir + "/s/mean=%5B2.0%2C0.0%2C0.0%5D,sensors={preset=typical%2Cscale=3.0},"
+                           "seed=2/summary.json"),
+            before);
   EXPECT_EQ(Cli({"sweep", exp, "--vary", "wind.mean=[1.0,0.0", "--out", dir + "/bad"}), 1);
 }
 

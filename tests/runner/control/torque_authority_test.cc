@@ -130,6 +130,25 @@ TEST(TorqueAuthority, WarnsWhenTheLoopAsksForMoreThanTheVehicleHas) {
   ASSERT_EQ(lowered.size(), 2u);
   EXPECT_THAT(lowered[0], HasSubstr("lowered its default att_bw to 0.5 rad/s"));
   EXPECT_THAT(lowered[0], HasSubstr("tuned for 12.5 rad/s, may outrun it"));
+  EXPECT_THAT(lowered[0], HasSubstr("Expect rocking or flips"));  // 0.5 rad/s: below 3
+  // A tilt limit the formation cannot fly with is not advised: 0.4 / 12.5^2 = 0.00256 rad.
+  EXPECT_THAT(lowered[0], ::testing::Not(HasSubstr("lower tilt_max")));
+  EXPECT_THAT(lowered[0], HasSubstr("no tilt limit helps at 12.5 rad/s: the one this authority "
+                                    "follows, 0.00256 rad, leaves the formation too little"));
+  // The published cf2 with its derived defaults: att_bw lowered to 3.0 rad/s (tilt 0.0464) flies
+  // the scaled Exp 2 without an event (docs/VEHICLES.md): no flips foretold, no tilt advice.
+  const TorqueAuthority cf2 = ComputeTorqueAuthority(
+      Vehicle(0.027, {2.4e-5, 2.4e-5, 3e-5}, ThrustMoments(1e-5, 0.5e-5, 1e-5)));
+  AttitudeDemand derived;
+  derived.att_bw = 3.0;
+  derived.att_bw_unlimited = 12.5;
+  derived.tilt_max = 0.0464;
+  const auto flies = AuthorityWarnings(cf2, derived, "cf2.xml");
+  ASSERT_EQ(flies.size(), 1u);  // roll and pitch alike
+  EXPECT_THAT(flies[0], HasSubstr("At 3 rad/s it is still fast enough for the stock outer loops"));
+  EXPECT_THAT(flies[0], HasSubstr("expect a less precise formation, not flips"));
+  EXPECT_THAT(flies[0], ::testing::Not(HasSubstr("Expect rocking or flips")));
+  EXPECT_THAT(flies[0], ::testing::Not(HasSubstr("lower tilt_max")));
   // No loop reported (e.g. pointmass_direct): nothing judged.
   EXPECT_TRUE(AuthorityWarnings(a, AttitudeDemand{}, "v").empty());
 }

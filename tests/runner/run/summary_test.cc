@@ -32,6 +32,27 @@ class SummaryTest : public ::testing::Test {
   Simulation sim_;
 };
 
+// The closing line's note: nothing while Assumption 1 holds (or has no bounds); when it does not,
+// when, how often and by how much, from summary.json's own numbers (Exp 2's, stock).
+TEST(Assumption1TextTest, SaysWhenTheLeaderLeftTheBounds) {
+  Json s = {{"leader_acceleration",
+             {{"bounds", {-1.0, 1.0}},
+              {"bounds_source", "formation"},
+              {"fraction_outside", 0.023575},
+              {"first_violation_time_s", 0.073},
+              {"max_excess", 4.9274751488336275},
+              {"assumption1_holds", false}}}};
+  EXPECT_EQ(Assumption1Text(s),
+            "Assumption 1 does not hold: the leader's measured acceleration left the bounds [-1, "
+            "1] m/s^2 (formation) on 2.36 % of the steps, first at t = 0.073 s, by up to 4.93 "
+            "m/s^2; Theorem 2's band is not guaranteed (summary.json leader_acceleration)");
+  s["leader_acceleration"]["assumption1_holds"] = true;
+  EXPECT_EQ(Assumption1Text(s), "");
+  s["leader_acceleration"]["assumption1_holds"] = nullptr;  // no bounds to judge
+  EXPECT_EQ(Assumption1Text(s), "");
+  EXPECT_EQ(Assumption1Text(Json::object()), "");
+}
+
 TEST_F(SummaryTest, AnInterruptedRunSaysWhyAndWhere) {
   RunResult r;
   r.complete = false;

@@ -53,9 +53,10 @@ TEST(SetupErrorTest, AbiMismatchIsNamed) {
   std::string text = HoverExperiment();
   text.replace(text.find("[leader]\nplugin = \"hover\""), 25, "[leader]\nplugin = \"future_abi\"");
   ExperimentConfig c = Parse(text);
-  EXPECT_THAT(ErrorOf([&] { Simulation sim(c); }),
-              AllOf(HasSubstr("future_abi"), HasSubstr("libmjf_test_badabi.so"),
-                    HasSubstr("ABI 99"), HasSubstr("speaks ABI " + std::to_string(MJF_ABI_VERSION))));
+  EXPECT_THAT(
+      ErrorOf([&] { Simulation sim(c); }),
+      AllOf(HasSubstr("future_abi"), HasSubstr("libmjf_test_badabi.so"), HasSubstr("ABI 99"),
+            HasSubstr("speaks ABI " + std::to_string(MJF_ABI_VERSION))));
 }
 
 TEST(SetupErrorTest, MissingRequiredAttribute) {
@@ -229,6 +230,77 @@ TEST(SimulationTest, StepsClockAndWhatItExposes) {
   }
   EXPECT_EQ(sim.controls().size(), 9u);
   EXPECT_EQ(sim.setpoints().size(), 3u);
+}
+
+// A contract-form vehicle (no adapter) whose sensor site is off the centre of mass: warned with
+// the offset and the position that fixes it; its <option> changes are listed as vehicle notes.
+// The same model with the site at the centre of mass gets neither.
+TEST(SimulationTest, ContractFormModelWithImuOffTheCentreOfMassIsWarned) {
+  const std::string dir = mjf::testing::TempDir("imuoffset");
+  std::string xml = mjf::testing::ReadFile(std::string(MJF_SOURCE_DIR) + "/mjcf/pointmass.xml");
+  ASSERT_NE(xml.find("<site name=\"imu\" pos=\"0 0 0\""), std::string::npos);
+  const std::string at_com = xml;
+  const std::string site = "<site name=\"imu\" pos=\"0 0 0\"";
+  const std::string option = "<option timestep=\"0.001\"";
+  xml.replace(xml.find(site), site.size(), "<site name=\"imu\" pos=\"0 0 0.034\"");
+  xml.replace(xml.find(option), option.size(), "<option timestep=\"0.01\" density=\"1.225\"");
+  mjf::testing::WriteFile(dir + "/offset.xml", xml);
+  mjf::testing::WriteFile(dir + "/centred.xml", at_com);
+  std::string text = mjf::testing::PointMassExperiment(-2, 1, 2, 1, 0.03);
+  text.replace(text.find("model = \"pointmass\""), 19, "model = \"offset.xml\"");
+  ExperimentConfig c = mjf::runner::LoadExperiment(mjf::testing::WriteFile(dir + "/e.toml", text));
+  c.plugin_path.push_back(MJF_TEST_PLUGIN_DIR);
+  Simulation sim(c);
+  ASSERT_EQ(sim.warnings().size(), 1u);
+  EXPECT_THAT(sim.warnings()[0],
+              AllOf(HasSubstr("offset.xml"), HasSubstr("site 'imu'"), HasSubstr("0.034 m"),
+                    HasSubstr("centre of mass"), HasSubstr("pos=\"0 0 0\"")));
+  EXPECT_THAT(sim.vehicle_notes(),
+              ::testing::ElementsAre(HasSubstr("<option timestep=\"0.01\"> is replaced"),
+                                     HasSubstr("<option density=\"1.225\">")));
+
+  text.replace(text.find("offset.xml"), 10, "centred.xml");
+  ExperimentConfig centred =
+      mjf::runner::LoadExperiment(mjf::testing::WriteFile(dir + "/e2.toml", text));
+  centred.plugin_path.push_back(MJF_TEST_PLUGIN_DIR);
+  Simulation plain(centred);
+  EXPECT_TRUE(plain.warnings().empty());
+  EXPECT_TRUE(plain.vehicle_notes().empty());
+}
+
+// A rotor layout the attitude plugin refuses (the two +y rotors share a yaw gear sign, as in
+// Menagerie's Skydio X2) is pointed at [vehicles] rotors, names the model's own rotors and the
+// documented fix, and gives a readable condition number.
+TEST(SetupErrorTest, ASingularRotorLayoutNamesTheModelsRotors) {
+  const std::string dir = mjf::testing::TempDir("x2like");
+  std::string xml =
+      "<mujoco><worldbody><body name=\"quad\"><freejoint/>"
+      "<geom type=\"sphere\" size=\"0.1\" mass=\"1\"/>";
+  const char* sites[] = {"0.1 0.1 0", "-0.1 0.1 0", "-0.1 -0.1 0", "0.1 -0.1 0"};
+  for (int k = 0; k < 4; ++k) {
+    xml += "<site name=\"s" + std::to_string(k) + "\" pos=\"" + sites[k] + "\"/>";
+  }
+  xml += "</body></worldbody><actuator>";
+  const char* yaw[] = {"0.01", "0.01", "-0.01", "-0.01"};
+  for (int k = 0; k < 4; ++k) {
+    xml += "<general name=\"prop" + std::to_string(k + 1) + "\" site=\"s" + std::to_string(k) +
+           "\" gear=\"0 0 1 0 0 " + yaw[k] + "\" ctrlrange=\"0 10\" ctrllimited=\"true\"/>";
+  }
+  xml += "</actuator></mujoco>";
+  mjf::testing::WriteFile(dir + "/x2like.xml", xml);
+  std::string text = HoverExperiment();
+  text.replace(text.find("model = \"quadrotor\""), 19,
+               "model = \"x2like.xml\"\nbody = \"quad\"\n"
+               "rotors = [\"prop1\", \"prop2\", \"prop3\", \"prop4\"]");
+  ExperimentConfig c = mjf::runner::LoadExperiment(mjf::testing::WriteFile(dir + "/e.toml", text));
+  c.plugin_path.push_back(MJF_TEST_PLUGIN_DIR);
+  const std::string error = ErrorOf([&] { Simulation sim(c); });
+  EXPECT_THAT(error, AllOf(HasSubstr("e.toml:"), HasSubstr("[vehicles] rotors: the attitude "
+                                                           "plugin 'pd_cascade' cannot fly"),
+                           HasSubstr("'prop1' (rotor0, "), HasSubstr("'prop4' (rotor3, "),
+                           HasSubstr("docs/VEHICLES.md")));
+  EXPECT_THAT(error, ::testing::Not(HasSubstr("[attitude]")));
+  EXPECT_THAT(error, ::testing::ContainsRegex("condition number [0-9.]+e\\+[0-9]+\\)"));
 }
 
 TEST(SimulationTest, ANonFiniteSetpointStopsBeforeTheStep) {

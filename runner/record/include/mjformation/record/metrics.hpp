@@ -34,7 +34,8 @@ class OnlineMetrics {
   void AccumulateSample(const Simulation& sim);
 
   double window_[2];
-  double band_;  // |s| band defining "reached"
+  double band_;  // |s| band defining "reached": the plugin's delta, [run] reaching_band or 0.1
+  bool band_given_ = false;  // [run] reaching_band
   std::vector<double> follower_pv_, leader_pv_, shape_now_, sort_buffer_;
   std::vector<std::pair<double, int>> order_;
   double sigma_sum_ = 0;
@@ -44,9 +45,14 @@ class OnlineMetrics {
   double min_separation_;
   double last_time_ = 0, sample_period_ = 0;
   bool have_sliding_ = false;
-  double last_violation_time_ = -1;  // last sample with max |s_i| > band
-  double max_abs_s_since_violation_ = 0;
+  // Reaching is judged on the bands band_ 2^k, k = 0 .. kBands - 1 (Summary picks the smallest
+  // that holds |s| over the metric window): per band, the last sample with max |s_i| above it
+  // and the largest max |s_i| since then.
+  static constexpr int kBands = 48;
+  double last_violation_time_[kBands];
+  double max_abs_s_since_violation_[kBands];
   double max_abs_s_ever_ = 0;
+  double max_abs_s_in_window_ = -1;  // -1: no sliding sample in the window
   std::vector<double> final_errors_;
   // A control at or beyond these (ctrl_min + 1e-9, ctrl_max - 1e-9), [vehicle][actuator], counts
   // as saturated (StepControls).

@@ -5,6 +5,7 @@
 #define MJFORMATION_RUN_SUMMARY_HPP_
 
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "mjformation/run/run.hpp"
 
@@ -15,6 +16,11 @@ class Simulation;
 // `recorded`: what the recorders and metrics added ("metrics", "snapshots", ...).
 nlohmann::ordered_json BuildSummary(const Simulation& sim, const RunResult& result,
                                     const nlohmann::ordered_json& recorded);
+
+// One line for the run's closing output when the leader's measured acceleration left Assumption
+// 1's bounds (summary.json `leader_acceleration.assumption1_holds` false): when, how often, by how
+// much, and what it voids (Theorem 2's band). Empty when the assumption holds or has no bounds.
+std::string Assumption1Text(const nlohmann::ordered_json& summary);
 
 }  // namespace mjf::runner
 

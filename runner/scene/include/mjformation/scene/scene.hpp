@@ -47,6 +47,9 @@ struct ModelDeleter {
 struct ComposedScene {
   std::unique_ptr<mjModel_, ModelDeleter> model;  // compiled once, from the composed spec
   std::string xml;  // the same spec as MJCF (MuJoCo's writer), with a header comment
+  // A contract-form vehicle (no vehicle_xml): what composition changed or kept of its <option>
+  // (an adapted model's notes come from the adapter).
+  std::vector<std::string> notes;
 };
 
 // Throws SceneError naming the file (and XML line) on bad input, and `name` (the scene's name in

@@ -111,8 +111,9 @@ class Simulation {
   // The attitude plugin's report() (e.g. geometric's resolved bandwidths): each key's largest
   // value over the vehicles; empty when the plugin reports nothing.
   std::vector<std::pair<std::string, double>> AttitudeReport() const;
-  // Bring your own quadrotor: what adapting the model dropped, renamed and added (empty for a
-  // model that follows the vehicle contract).
+  // Bring your own quadrotor: what adapting the model dropped, renamed and added; for a model
+  // that follows the vehicle contract, what composition replaced or kept of its <option> (empty
+  // when it sets nothing that differs from the experiment and MuJoCo's defaults).
   const std::vector<std::string>& vehicle_notes() const { return vehicle_notes_; }
   // The follower's torque authority at hover per body axis (runner/control torque_authority.hpp)
   // and its one-line text, for `check`.
@@ -122,12 +123,17 @@ class Simulation {
   // What the torque-authority check found wrong (empty: nothing): the attitude loop, as its
   // plugin reports it (att_bw, att_bw_unlimited, tilt_max), asks for more angular acceleration
   // than the vehicle has. Warnings, not refusals (docs/VEHICLES.md).
+  // Also: a contract-form model whose site 'imu' is off the centre of mass (by more than
+  // kImuOffsetTolerance, m), with the position that fixes it.
   const std::vector<std::string>& warnings() const { return warnings_; }
+  static constexpr double kImuOffsetTolerance = 1e-6;
 
  private:
   void AdaptForeignVehicle(const mjfPlugin& attitude);
   void ReadContracts();
+  ControlPlugins CreatePluginsNamingRotors(const LoadedPlugin& attitude, AgentChannel* channel);
   void CheckTorqueAuthority();
+  void CheckImuSite();
   void ComputeForces();
   void ApplyForces();
   void MakePartitions(const mjfPlugin& attitude);
