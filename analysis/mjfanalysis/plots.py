@@ -323,13 +323,17 @@ def fig_sigma_f(run: Run, out_path) -> Path:
     exp = M.paper_experiment(run.summary, run.name)
     paper = M.PAPER_SIGMA_F.get(exp, float("nan"))
     with plt.rc_context(STYLE):
-        fig, ax = _new((8.0, 4.6))
         in_win = M.window_mask(t, w) & np.isfinite(s)
         zoom = bool(in_win.any()) and np.nanmax(s[in_win]) < 0.3 * np.nanmax(s)
-        axes = [ax]
         if zoom:
-            # The window detail is invisible at the scale of sigma_f(0): an inset zooms on it.
-            axes.append(ax.inset_axes([0.42, 0.38, 0.55, 0.55]))
+            # The window detail is invisible at the scale of sigma_f(0): a panel below zooms on
+            # it (an inset would cover part of the transient).
+            fig, axes = plt.subplots(2, 1, figsize=(8.0, 6.4), layout="constrained",
+                                     height_ratios=[3, 2])
+            ax, axes = axes[0], list(axes)
+        else:
+            fig, ax = _new((8.0, 4.6))
+            axes = [ax]
         for k, a in enumerate(axes):
             a.plot(t, s, lw=1.1, color="C0", label="σ_f(t)" if k == 0 else None)
             a.axvspan(w[0], w[1], color="gold", alpha=0.25,
@@ -350,9 +354,9 @@ def fig_sigma_f(run: Run, out_path) -> Path:
             ztop = np.nanmax(np.append(s[sel], [mean, paper if math.isfinite(paper) else 0.0]))
             z.set_xlim(lo, hi)
             z.set_ylim(0, 1.15 * ztop if ztop > 0 else 1.0)
-            z.set_title("zoom on the window", fontsize=8)
-            z.tick_params(labelsize=7)
-            z.set_facecolor("white")
+            z.set_title(f"zoom on the window [{w[0]:g}, {w[1]:g}] s", fontsize=9)
+            z.set_xlabel("t (s)")
+            z.set_ylabel("σ_f")
         if math.isfinite(mean):
             target = axes[-1]
             target.annotate(f"mean = {mean:.4f}", (0.5 * (w[0] + w[1]), mean),

@@ -50,3 +50,30 @@ def test_figures_cli_missing_dir(tmp_path):
     r = subprocess.run([sys.executable, str(ANALYSIS / "figures.py"), str(tmp_path / "nope")],
                        capture_output=True, text=True)
     assert r.returncode != 0
+
+
+def test_sigma_f_zoom_is_a_panel_that_covers_nothing(tmp_path, monkeypatch):
+    # sigma_f(0) some hundred times the window's: the window is zoomed on, in a panel of its
+    # own below the whole series, so that no part of the transient is hidden behind it.
+    d, _, _ = make_run(tmp_path, "exp2", exp=2, a=20.0, tau=4.0, c=0.05)
+    drawn = []
+    saved = plots.save_figure
+    monkeypatch.setattr(plots, "save_figure",
+                        lambda fig, path: drawn.append(fig) or saved(fig, path))
+    plots.fig_sigma_f(load_run(d), tmp_path / "sigma_f.png")
+    (fig,) = drawn
+    whole, zoom = fig.axes
+    assert zoom.get_title().startswith("zoom on the window")
+    a, b = whole.get_position(), zoom.get_position()
+    assert a.y0 > b.y1, (a, b)  # one above the other: nothing of `whole` is covered
+    assert zoom.get_xlim()[1] <= 40.0 + 1.0 and zoom.get_xlim()[0] > 20.0
+
+
+def test_sigma_f_without_a_transient_has_one_panel(tmp_path, monkeypatch):
+    d, _, _ = make_run(tmp_path, "exp2", exp=2, a=0.0, c=0.05)
+    drawn = []
+    saved = plots.save_figure
+    monkeypatch.setattr(plots, "save_figure",
+                        lambda fig, path: drawn.append(fig) or saved(fig, path))
+    plots.fig_sigma_f(load_run(d), tmp_path / "sigma_f.png")
+    assert len(drawn[0].axes) == 1

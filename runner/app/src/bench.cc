@@ -481,10 +481,8 @@ void WriteJson(const std::string& path, const Json& report) {
     throw OutputError(path + ": write failed: " + std::strerror(errno));
 }
 
-}  // namespace
-
-int BenchCommand(const CliCommands& c) {
-  if (!c.bench_json.empty()) RefuseExistingFiles({c.bench_json});
+// The experiment as benched: shortened by --duration, without snapshots or video.
+ExperimentConfig BenchedExperiment(const CliCommands& c) {
   ExperimentConfig base = LoadExperiment(c.experiment, c.overrides);
   if (c.bench_duration > 0) {
     base.duration = c.bench_duration;
@@ -492,10 +490,12 @@ int BenchCommand(const CliCommands& c) {
   }
   base.render.snapshots.clear();
   base.render.video = false;
-  std::vector<int> sizes = c.bench_followers;
-  if (sizes.empty()) sizes.push_back(base.followers);
-  const ScratchFolder folder;  // removed on return: a bench leaves nothing behind
-  const std::string scratch = folder.path() + "/run";
+  return base;
+}
+
+// The settings that change the cost, echoed so that two tables can be told apart, and a legend
+// of the columns.
+Json EchoSettings(const CliCommands& c, const ExperimentConfig& base) {
   Json report;
   report["experiment"] = c.experiment;
   report["duration_s"] = base.duration;
@@ -503,7 +503,6 @@ int BenchCommand(const CliCommands& c) {
   report["record_rate_hz"] = base.record_rate;
   report["rotor_model"] = ToString(base.rotor_model);
   report["version"] = VersionString();
-  // The settings that change the cost, echoed so that two tables can be told apart.
   report["contacts"] = base.contacts;
   std::printf(
       "%s: %.1f s at %g s steps, rotor model %s, recording at %g Hz, contacts=%s, sensors=%s, "
@@ -521,30 +520,51 @@ int BenchCommand(const CliCommands& c) {
       "best of: runs per point, fastest kept\n"
       "  overhead us/foll/step: (full - bare wall time) / steps / followers, what the pipeline "
       "adds per follower and step\n");
-  std::vector<int> threads = c.bench_threads;
-  if (threads.empty()) threads.push_back(base.threads);
-  const bool with_threads = threads.size() > 1 || threads[0] != base.threads;
+  return report;
+}
+
+void PrintTableHeader(bool with_threads) {
   std::printf("%9s %9s %14s %14s %15s %9s %9s %10s %7s %21s", "followers", "steps", "bare steps/s",
               "full steps/s", "wall full/bare", "RTF bare", "RTF full", "peak MiB", "best of",
               "overhead us/foll/step");
   if (with_threads) std::printf(" %7s %8s", "threads", "speed-up");
   std::printf("\n");
+}
+
+// Linear scaling: the largest size's per-follower pipeline cost against the smallest's, at the
+// first thread count (the rows of one size follow each other).
+double PrintScaling(const Json& points, size_t sizes, size_t threads) {
+  const Json& first = points.front();
+  const Json& last = points[(sizes - 1) * threads];
+  const double growth = last["pipeline_us_per_follower_step"].get<double>() /
+                        first["pipeline_us_per_follower_step"].get<double>();
+  std::printf(
+      "scaling: pipeline cost per follower and step at %d followers / at %d followers = %.2f "
+      "(1: linear in N; %d: quadratic)\n",
+      last["followers"].get<int>(), first["followers"].get<int>(), growth,
+      last["followers"].get<int>() / first["followers"].get<int>());
+  return growth;
+}
+
+}  // namespace
+
+int BenchCommand(const CliCommands& c) {
+  if (!c.bench_json.empty()) RefuseExistingFiles({c.bench_json});
+  const ExperimentConfig base = BenchedExperiment(c);
+  std::vector<int> sizes = c.bench_followers;
+  if (sizes.empty()) sizes.push_back(base.followers);
+  const ScratchFolder folder;  // removed on return: a bench leaves nothing behind
+  const std::string scratch = folder.path() + "/run";
+  Json report = EchoSettings(c, base);
+  std::vector<int> threads = c.bench_threads;
+  if (threads.empty()) threads.push_back(base.threads);
+  PrintTableHeader(threads.size() > 1 || threads[0] != base.threads);
   for (int n : sizes) {
     for (Json& row : BenchPoint(base, n, threads, scratch)) report["points"].push_back(row);
   }
   if (sizes.size() > 1) {
-    // Linear scaling: the largest size's per-follower pipeline cost against the smallest's.
-    // (at the first thread count: the rows of one size follow each other)
-    const Json& first = report["points"].front();
-    const Json& last = report["points"][(sizes.size() - 1) * threads.size()];
-    const double growth = last["pipeline_us_per_follower_step"].get<double>() /
-                          first["pipeline_us_per_follower_step"].get<double>();
-    std::printf(
-        "scaling: pipeline cost per follower and step at %d followers / at %d followers = %.2f "
-        "(1: linear in N; %d: quadratic)\n",
-        last["followers"].get<int>(), first["followers"].get<int>(), growth,
-        last["followers"].get<int>() / first["followers"].get<int>());
-    report["per_follower_cost_growth"] = growth;
+    report["per_follower_cost_growth"] =
+        PrintScaling(report["points"], sizes.size(), threads.size());
   }
   // With an estimator configured, what it costs against passthrough on the first size.
   if (base.estimator.plugin != "passthrough")

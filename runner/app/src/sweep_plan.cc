@@ -195,6 +195,65 @@ std::string CsvField(const std::string& v) {
   return out + "\"";
 }
 
+namespace {
+
+// Every combination of the axes' values, as value indices, the first axis slowest.
+std::vector<std::vector<size_t>> GridCells(const std::vector<Axis>& axes) {
+  std::vector<std::vector<size_t>> cells(1);
+  for (const Axis& axis : axes) {
+    std::vector<std::vector<size_t>> next;
+    for (const auto& p : cells) {
+      for (size_t k = 0; k < axis.values.size(); ++k) {
+        next.push_back(p);
+        next.back().push_back(k);
+      }
+    }
+    cells = std::move(next);
+  }
+  return cells;
+}
+
+// --resume of a sweep written with the older folder names: its finished runs keep their folders.
+std::string ResumedName(const CliCommands& c, const std::string& name, const std::string& legacy) {
+  if (!c.sweep_resume || c.out.empty() || legacy == name) return name;
+  if (!IsDirectory(c.out + "/" + name) && IsDirectory(c.out + "/" + legacy)) return legacy;
+  return name;
+}
+
+// The runs of one grid cell: one, or one per seed (base.seed, base.seed + 1, ...).
+void AddCellRuns(const CliCommands& c, SweepPlan& plan, size_t cell) {
+  std::vector<std::string> overrides = c.overrides;
+  for (size_t a = 0; a < plan.axes.size(); ++a) {
+    overrides.push_back(plan.axes[a].key + "=" + plan.axes[a].values[plan.cells[cell][a]]);
+  }
+  const auto checks = ExperimentChecks::Rendering(!c.no_render);
+  const ExperimentConfig base = LoadExperiment(c.experiment, overrides, checks);
+  if (cell == 0 && plan.seeds > 0) WarnPinnedSeeds(base);
+  const std::string point = PointName(plan.axes, plan.cells[cell]);
+  const std::string legacy_point = PointName(plan.axes, plan.cells[cell], /*legacy=*/true);
+  auto seeded_name = [](const std::string& p, int seed) {
+    return (p.empty() ? "" : p + ",") + "seed=" + std::to_string(seed);
+  };
+  for (int k = 0; k < std::max(1, plan.seeds); ++k) {
+    RunSpec run;
+    run.cell = cell;
+    run.seed = base.seed + k;  // recorded in the run's config.toml and summary.json
+    if (plan.seeds == 0) {
+      run.config = base;
+      run.name = ResumedName(c, point, legacy_point);
+    } else {
+      std::vector<std::string> seeded = overrides;
+      seeded.push_back("run.seed=" + std::to_string(run.seed));
+      run.config = LoadExperiment(c.experiment, seeded, checks);
+      run.name = ResumedName(c, seeded_name(point, run.seed), seeded_name(legacy_point, run.seed));
+    }
+    for (const auto& path : c.plugin_path) run.config.plugin_path.push_back(path);
+    plan.runs.push_back(std::move(run));
+  }
+}
+
+}  // namespace
+
 SweepPlan PlanSweep(const CliCommands& c) {
   SweepPlan plan;
   plan.axes = ParseAxes(c.sweep_vary);
@@ -206,56 +265,8 @@ SweepPlan PlanSweep(const CliCommands& c) {
     throw ConfigError("sweep: give --vary section.key=v1,v2,... and/or --seeds N");
   }
   CheckPlanSize(plan);
-  plan.cells.assign(1, {});
-  for (const Axis& axis : plan.axes) {
-    std::vector<std::vector<size_t>> next;
-    for (const auto& p : plan.cells) {
-      for (size_t k = 0; k < axis.values.size(); ++k) {
-        next.push_back(p);
-        next.back().push_back(k);
-      }
-    }
-    plan.cells = std::move(next);
-  }
-  for (size_t cell = 0; cell < plan.cells.size(); ++cell) {
-    std::vector<std::string> overrides = c.overrides;
-    for (size_t a = 0; a < plan.axes.size(); ++a) {
-      overrides.push_back(plan.axes[a].key + "=" + plan.axes[a].values[plan.cells[cell][a]]);
-    }
-    ExperimentConfig base =
-        LoadExperiment(c.experiment, overrides, ExperimentChecks::Rendering(!c.no_render));
-    if (cell == 0 && plan.seeds > 0) WarnPinnedSeeds(base);
-    const std::string point = PointName(plan.axes, plan.cells[cell]);
-    const std::string legacy_point = PointName(plan.axes, plan.cells[cell], /*legacy=*/true);
-    for (int k = 0; k < std::max(1, plan.seeds); ++k) {
-      RunSpec run;
-      run.cell = cell;
-      run.seed = base.seed + k;  // recorded in the run's config.toml and summary.json
-      if (plan.seeds == 0) {
-        run.config = base;
-        run.name = point;
-      } else {
-        std::vector<std::string> seeded = overrides;
-        seeded.push_back("run.seed=" + std::to_string(run.seed));
-        run.config =
-            LoadExperiment(c.experiment, seeded, ExperimentChecks::Rendering(!c.no_render));
-        run.name = (point.empty() ? "" : point + ",") + "seed=" + std::to_string(run.seed);
-      }
-      // --resume of a sweep written with the older names: its finished runs keep their folders.
-      if (c.sweep_resume && !c.out.empty()) {
-        const std::string legacy = plan.seeds == 0
-                                       ? legacy_point
-                                       : (legacy_point.empty() ? "" : legacy_point + ",") +
-                                             "seed=" + std::to_string(run.seed);
-        if (legacy != run.name && !IsDirectory(c.out + "/" + run.name) &&
-            IsDirectory(c.out + "/" + legacy)) {
-          run.name = legacy;
-        }
-      }
-      for (const auto& path : c.plugin_path) run.config.plugin_path.push_back(path);
-      plan.runs.push_back(std::move(run));
-    }
-  }
+  plan.cells = GridCells(plan.axes);
+  for (size_t cell = 0; cell < plan.cells.size(); ++cell) AddCellRuns(c, plan, cell);
   CheckCells(plan);
   std::set<std::string> names;
   for (const RunSpec& run : plan.runs) {

@@ -83,13 +83,70 @@ std::string AuthorityText(const TorqueAuthority& a) {
 constexpr double kMinOuterLoopBandwidth = 3.0;
 constexpr double kMinFormationTilt = 0.03;
 
+namespace {
+
+// The warning for one axis short of authority, with the ways out: a wider range, the tilt limit
+// this authority follows at this bandwidth, and the bandwidth it follows at this tilt limit.
+std::string ShortAxisWarning(const TorqueAuthority& a, const AttitudeDemand& d,
+                             const std::string& vehicle, int axis, bool alike) {
+  const double bw = d.Reference();
+  const double demand = DemandedTiltAcceleration(bw, d.tilt_max);
+  const bool lowered = d.att_bw_unlimited > d.att_bw;
+  const double alpha = a.accel[axis];
+  std::string text = fmt::format(
+      "{}: {} torque authority {:.3g} rad/s^2 ({:.3g} N m / {:.3g} kg m^2) is below the {:.3g} "
+      "rad/s^2 the attitude loop asks for (att_bw^2 x tilt_max = {:.3g}^2 x {:.3g}): the "
+      "vehicle cannot follow the demanded tilt",
+      vehicle, alike ? "roll and pitch" : kAxisNames[axis], alpha, a.torque[axis], a.inertia[axis],
+      demand, bw, d.tilt_max);
+  if (lowered) {
+    text += fmt::format(
+        "; the attitude plugin lowered its default att_bw to {:.3g} rad/s to stay within it, "
+        "and the formation and guidance loops above, tuned for {:.3g} rad/s, may outrun it",
+        d.att_bw, bw);
+  }
+  // What happens: a loop the plugin slowed to the authority but kept at or above the slowest
+  // one the stock outer loops sit on flies (the published cf2: att_bw 3.0 rad/s, no event, a
+  // less precise formation); a slower one, or a loop the authority cannot follow, rocks or flips.
+  if (lowered && d.att_bw >= kMinOuterLoopBandwidth - 1e-9) {
+    text += fmt::format(
+        ". At {:.3g} rad/s it is still fast enough for the stock outer loops (from about {:g} "
+        "rad/s, docs/VEHICLES.md): expect a less precise formation, not flips. For the loop the "
+        "experiment was tuned with, raise the moment ctrlrange (or the rotors' range and arms) "
+        "{:.3g}x",
+        d.att_bw, kMinOuterLoopBandwidth, demand / alpha);
+  } else {
+    text += fmt::format(
+        ". Expect rocking or flips: raise the moment ctrlrange (or the rotors' range and arms) "
+        "{:.3g}x",
+        demand / alpha);
+  }
+  // The tilt limit this authority follows at this bandwidth, advised only where the formation
+  // keeps enough horizontal acceleration (g tan tilt) for its reaching phase.
+  const double tilt = alpha / (bw * bw);
+  if (tilt >= kMinFormationTilt) {
+    text += fmt::format(", or lower tilt_max to {:.3g} rad", tilt);
+  } else {
+    text += fmt::format(
+        " (no tilt limit helps at {:.3g} rad/s: the one this authority follows, {:.3g} rad, "
+        "leaves the formation too little acceleration, below about {:g} rad)",
+        bw, tilt, kMinFormationTilt);
+  }
+  if (!lowered) {
+    text += fmt::format(", or the attitude gains to att_bw {:.3g} rad/s",
+                        std::sqrt(alpha / d.tilt_max));
+  }
+  return text;
+}
+
+}  // namespace
+
 std::vector<std::string> AuthorityWarnings(const TorqueAuthority& a, const AttitudeDemand& d,
                                            const std::string& vehicle) {
   std::vector<std::string> out;
   const double bw = d.Reference();
   const double demand = DemandedTiltAcceleration(bw, d.tilt_max);
   if (!a.known || !std::isfinite(demand) || !(demand > 0)) return out;
-  const bool lowered = d.att_bw_unlimited > d.att_bw;
   std::vector<int> short_axes;
   for (int axis = 0; axis < 2; ++axis) {
     if (a.accel[axis] < demand) short_axes.push_back(axis);
@@ -99,53 +156,7 @@ std::vector<std::string> AuthorityWarnings(const TorqueAuthority& a, const Attit
                      a.torque[0] == a.torque[1] && a.inertia[0] == a.inertia[1];
   if (alike) short_axes.pop_back();
   for (const int axis : short_axes) {
-    const double alpha = a.accel[axis];
-    // The two ways out besides a wider range: the tilt limit this authority follows at this
-    // bandwidth, and the bandwidth it follows at this tilt limit.
-    std::string text = fmt::format(
-        "{}: {} torque authority {:.3g} rad/s^2 ({:.3g} N m / {:.3g} kg m^2) is below the {:.3g} "
-        "rad/s^2 the attitude loop asks for (att_bw^2 x tilt_max = {:.3g}^2 x {:.3g}): the "
-        "vehicle cannot follow the demanded tilt",
-        vehicle, alike ? "roll and pitch" : kAxisNames[axis], alpha, a.torque[axis],
-        a.inertia[axis], demand, bw, d.tilt_max);
-    if (lowered) {
-      text += fmt::format(
-          "; the attitude plugin lowered its default att_bw to {:.3g} rad/s to stay within it, "
-          "and the formation and guidance loops above, tuned for {:.3g} rad/s, may outrun it",
-          d.att_bw, bw);
-    }
-    // What happens: a loop the plugin slowed to the authority but kept at or above the slowest
-    // one the stock outer loops sit on flies (the published cf2: att_bw 3.0 rad/s, no event, a
-    // less precise formation); a slower one, or a loop the authority cannot follow, rocks or flips.
-    if (lowered && d.att_bw >= kMinOuterLoopBandwidth - 1e-9) {
-      text += fmt::format(
-          ". At {:.3g} rad/s it is still fast enough for the stock outer loops (from about {:g} "
-          "rad/s, docs/VEHICLES.md): expect a less precise formation, not flips. For the loop the "
-          "experiment was tuned with, raise the moment ctrlrange (or the rotors' range and arms) "
-          "{:.3g}x",
-          d.att_bw, kMinOuterLoopBandwidth, demand / alpha);
-    } else {
-      text += fmt::format(
-          ". Expect rocking or flips: raise the moment ctrlrange (or the rotors' range and arms) "
-          "{:.3g}x",
-          demand / alpha);
-    }
-    // The tilt limit this authority follows at this bandwidth, advised only where the formation
-    // keeps enough horizontal acceleration (g tan tilt) for its reaching phase.
-    const double tilt = alpha / (bw * bw);
-    if (tilt >= kMinFormationTilt) {
-      text += fmt::format(", or lower tilt_max to {:.3g} rad", tilt);
-    } else {
-      text += fmt::format(
-          " (no tilt limit helps at {:.3g} rad/s: the one this authority follows, {:.3g} rad, "
-          "leaves the formation too little acceleration, below about {:g} rad)",
-          bw, tilt, kMinFormationTilt);
-    }
-    if (!lowered) {
-      text += fmt::format(", or the attitude gains to att_bw {:.3g} rad/s",
-                          std::sqrt(alpha / d.tilt_max));
-    }
-    out.push_back(text);
+    out.push_back(ShortAxisWarning(a, d, vehicle, axis, alike));
   }
   return out;
 }

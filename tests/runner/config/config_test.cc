@@ -36,6 +36,13 @@ TEST(ConfigTest, ValidFileParses) {
   EXPECT_EQ(c.name, "hover");
 }
 
+// At the experiments' 45 m a vehicle's shadow is a dark blob on the ground that reads as one
+// more object: snapshots are drawn without shadows unless a file asks for them.
+TEST(ConfigTest, SnapshotsHaveNoShadowsByDefault) {
+  EXPECT_FALSE(Parse(HoverExperiment()).render.shadows);
+  EXPECT_TRUE(Parse(HoverExperiment() + "[render]\nshadows = true\n").render.shadows);
+}
+
 TEST(ConfigTest, MissingFile) {
   EXPECT_THAT(ErrorOf([] { LoadExperiment("/nonexistent/exp.toml"); }),
               AllOf(HasSubstr("/nonexistent/exp.toml"), HasSubstr("cannot open")));

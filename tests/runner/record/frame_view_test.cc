@@ -84,8 +84,11 @@ TEST(FrameViewTest, OverlaySlotsRingAndLabel) {
     EXPECT_NEAR(std::hypot(q[0] - 5, q[1] - 5), 10.0, 1e-12);
     EXPECT_EQ(q[2], 2.5);
   }
-  EXPECT_EQ(o.label, "x");
-  EXPECT_TRUE(FrameOverlay(trails, positions, {}, 2.5, 0.0, "").ring_points.empty());
+  // The ring is the picture's scale: the label says what it is and how large.
+  EXPECT_EQ(o.label, "x   white ring: desired formation, radius 10 m");
+  const auto no_ring = FrameOverlay(trails, positions, {}, 2.5, 0.0, "x");
+  EXPECT_TRUE(no_ring.ring_points.empty());
+  EXPECT_EQ(no_ring.label, "x");
 }
 
 TEST(FrameViewTest, Label) {

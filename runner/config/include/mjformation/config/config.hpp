@@ -157,7 +157,9 @@ struct RenderConfig {
   double azimuth = 90.0;                    // deg
   double elevation = -55.0;                 // deg
   std::array<double, 3> lookat = {0, 0, 0};
-  bool shadows = true;
+  // Off by default: at the default 45 m a vehicle's shadow is a dark blob on the ground that
+  // reads as another object (docs/ARCHITECTURE.md, run directory).
+  bool shadows = false;
   double trail_seconds = 10.0;  // s of path drawn behind each vehicle
   bool video = false;
   double video_fps = 25.0;
