@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 #
-# The estimation study (issue 18): an experiment x sensor suite {motion capture, RTK, consumer
+# The estimation study: an experiment x sensor suite {motion capture, RTK, consumer
 # GNSS} x estimator {passthrough (raw held samples), kf_ins} x wind {calm, 6 m/s with moderate
 # Dryden turbulence}, with the ideal suite as the reference, on the quadrotor and the point
 # mass, N seeds per cell (the seed drives the sensor noise and the turbulence; the start layout

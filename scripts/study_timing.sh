@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 #
-# The timing study (issue 19; a reduced grid, docs/RESULTS.md "Timing" says what is left out):
+# The timing study (a reduced grid, docs/RESULTS.md "Timing" says what is left out):
 # Exp 2 (T = 0.05 s) and Exp 3 (T = 0.2 s), point mass and quadrotor (the files' pd_cascade),
 # per-agent smc_discrete_agent against central mode, link latency from 0 to just under T
 # (9 values), start positions jittered by 0.5 m per seed, N seeds per cell.

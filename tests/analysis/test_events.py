@@ -1,6 +1,6 @@
 # Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 """Safety events (summary.json "events") are marked in the figures and in Table 1: a crashed
-run's sigma_f is never shown as a plain result (issue 20, item 1)."""
+run's sigma_f is never shown as a plain result."""
 import matplotlib.image as mpimg
 import numpy as np
 from conftest import make_run

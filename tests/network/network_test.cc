@@ -44,7 +44,7 @@ TEST(LinkTest, DeliversExactlyTheConfiguredLatency) {
   }
 }
 
-// Exchange rounds over the links (issue 19): a round message handed to a follower link arrives
+// Exchange rounds over the links: a round message handed to a follower link arrives
 // exactly its latency later, measured on the steps' timestamps, tagged with its sample; it never
 // travels on the leader link (rounds are between followers) and is not held like a state.
 TEST(LinkTest, RoundOverALinkArrivesItsLatencyLater) {

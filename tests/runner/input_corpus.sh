@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Bad input, the overwrite contract, safety events and the random sources, tried as a user would
-# (issue 20; docs/ARCHITECTURE.md, "Failure contract"). Each bad input must exit non-zero with
+# (docs/ARCHITECTURE.md, "Failure contract"). Each bad input must exit non-zero with
 # a message that names its origin (FILE:LINE: [section] key, or "--set section.key=value"),
 # write nothing, and delete nothing of the user's. Usage: input_corpus.sh BUILD_DIR WORK_DIR
 set -uo pipefail
@@ -240,7 +240,7 @@ snap=(--set 'render.snapshots=[0.5, 5.0]')
   grep -qF "[render] snapshots: times must lie in [0, duration]" refused.txt &&
   ok "with rendering: exit $code_render: $(head -c 200 refused.txt)" ||
   fail "run $code_run, sweep $code_sweep, rendering $code_render: $(head -c 300 err.txt) $(head -c 300 refused.txt)"
-case="the stress experiment of issue 20 reports its flip, not the near miss before it"
+case="the stress experiment reports its flip, not the near miss before it"
 # Random-accel leader, typical sensors, 4 m/s wind with moderate turbulence and a gust, per-agent
 # Jacobi over a 20 ms bursty network; seed 2: near misses from 3 s, follower 1 flips at 36.71 s.
 "$bin" run "$source/experiments/leaders/exp2_random_accel.toml" -o stress --no-render --set run.seed=2 \

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The README's examples, run as a user would paste them (issue 20 item 5): every
+# The README's examples, run as a user would paste them: every
 # `build/runner/mjformation ...` and `PYTHONPATH=... python3 ...` command of its bash blocks, and
 # the inline `build/runner/mjformation run ...` ones, from a folder that looks like a checkout.
 # Shortened only where a user's patience is not the point: runs and sweeps end at 21 s (the

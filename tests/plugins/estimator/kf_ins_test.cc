@@ -287,8 +287,8 @@ TEST(KfIns, MeanNeesIsInsideTheChiSquareBandOverSeeds) {
 
 // The consumer-GNSS case: most of the position error is a Gauss-Markov wander (2.12 m, 100 s),
 // 0.3 m of white jitter on top. With the wander a state, the filter is consistent; fusing the
-// same samples as white noise of their whole stated accuracy (the wander taken as white, the
-// filter before issue 18's fix) is grossly overconfident.
+// same samples as white noise of their whole stated accuracy (the wander taken as white, as the
+// filter once did) is grossly overconfident.
 TEST(KfIns, MeanNeesWithGnssWanderIsInsideTheBandOnlyWithTheWanderAState) {
   Scenario s;
   s.noise = {0.05, 0.3, 0.05, 2.5 / 1.1774, 100.0};
@@ -316,7 +316,7 @@ TEST(KfIns, MeanNeesWithGnssWanderIsInsideTheBandOnlyWithTheWanderAState) {
   EXPECT_GT(white_sum / kSeeds, 3.0 * ChiSquareQuantile(0.975, dof) / kSeeds);
 }
 
-// Steady hover, white-noise part (issue 18's figures): the steady-state Riccati solution per axis
+// Steady hover, white-noise part: the steady-state Riccati solution per axis
 // for each suite, derived here from its own 3-state model (p, v, b; semi-implicit Euler), must
 // reach the targets, and the filter's covariance must converge to it.
 struct Suite {

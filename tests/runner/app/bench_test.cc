@@ -63,7 +63,7 @@ TEST(BenchTest, ReportOfTwoSizes) {
                        j["points"][0]["pipeline_us_per_follower_step"].get<double>());
 }
 
-// Issue 18: with an estimator configured, one line compares it with passthrough on the same
+// With an estimator configured, one line compares it with passthrough on the same
 // suite; its ratio is a positive finite number (no timing threshold: the machine is shared).
 TEST(BenchTest, EstimatorCostLine) {
   const std::string dir = TempDir("bench_est");
@@ -105,7 +105,7 @@ TEST(BenchTest, NoEstimatorLineWithPassthrough) {
   EXPECT_EQ(out.find("estimator:"), std::string::npos) << out;
 }
 
-// Issue 19: with per-agent execution configured, one line compares its cost per step with
+// With per-agent execution configured, one line compares its cost per step with
 // central mode's on the same experiment (no timing threshold: the machine is shared; the target
 // is printed beside the ratio), and both runs' sigma_f are kept.
 TEST(BenchTest, PerAgentExecutionCostLine) {

@@ -102,7 +102,7 @@ TEST(ConfigTest, OverridesApplyAndAreChecked) {
   EXPECT_THAT(ErrorOf([&] { LoadExperiment(path, {"run.duration=fast"}); }), HasSubstr("not TOML"));
 }
 
-// Issue 20: section={...} replaces the section's plain keys but keeps its sub-tables, so the
+// A `section={...}` override replaces the section's plain keys but keeps its sub-tables, so the
 // README's `--set 'formation={plugin="consensus_linear"}'` keeps exp2's [formation.shape].
 TEST(ConfigTest, ReplacingASectionKeepsItsSubTables) {
   const std::string dir = mjf::testing::TempDir("ovr_sub");

@@ -1,7 +1,7 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
-// [execution] predict / clock_offset / clock_drift_ppm and the whole-step latency rule
-// (issue 19): parsed, and every bad value refused with FILE:LINE: [section] key.
+// [execution] predict / clock_offset / clock_drift_ppm and the whole-step latency rule:
+// parsed, and every bad value refused with FILE:LINE: [section] key.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 

@@ -122,7 +122,7 @@ TEST(NetworkConfigTest, ExecutionKeysAreChecked) {
       AllOf(HasSubstr("net.toml:20: [execution] jacobi_rounds"), HasSubstr("[1, 64]")));
 }
 
-// [network] rounds (issue 19): the default is today's instantaneous rounds; an unknown value, a
+// [network] rounds: the default is today's instantaneous rounds; an unknown value, a
 // timeout without rounds over links, and a latency with which not one round fits a sample (the
 // test file's law samples every step: T = the 1 ms timestep) are refused at the key's line.
 TEST(NetworkConfigTest, ExchangeRoundsAreChecked) {

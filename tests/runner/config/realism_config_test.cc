@@ -37,7 +37,7 @@ std::string ErrorOf(const std::string& text) {
   return "";
 }
 
-// Issue 18's keys: each refused with FILE:LINE: [sensors] key and the reason.
+// The sensor and estimator keys: each refused with FILE:LINE: [sensors] key and the reason.
 TEST(RealismConfig, SensorSuiteKeysAreRangeChecked) {
   const std::string base = HoverExperiment(2, 2.0);  // 16 lines
   const std::pair<const char*, const char*> bad[] = {

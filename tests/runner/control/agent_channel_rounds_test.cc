@@ -1,6 +1,6 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
-// Exchange rounds carried over the links ([network] rounds = "over_links", issue 19): with no
+// Exchange rounds carried over the links ([network] rounds = "over_links"): with no
 // latency they are the instantaneous rounds to the bit; with latency L a round takes L (the
 // central solve's two hops 2L), measured on the steps at which the commands change and on the
 // summary's timestamps; a round not complete before the next sample is dropped and counted, and

@@ -1,6 +1,6 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
-// The followers' clocks (issue 19): drawn within the configured bounds, seeded, and the steps
+// The followers' clocks: drawn within the configured bounds, seeded, and the steps
 // they read produce the configured sample times.
 #include "mjformation/control/agent_clock.hpp"
 

@@ -1,6 +1,6 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
-// The predicted delay margin (issue 19): rho(L_H^-1 A) against a dense computation, and the
+// The predicted delay margin: rho(L_H^-1 A) against a dense computation, and the
 // margins' formulas on Exp 2's ring.
 #include "mjformation/control/delay_margin.hpp"
 

@@ -1,6 +1,6 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
-// Receiver-side prediction (issue 19): exact for a double integrator under zero-order hold, and
+// Receiver-side prediction: exact for a double integrator under zero-order hold, and
 // the attitude form reads the acceleration a tilt implies.
 #include "mjformation/control/message_prediction.hpp"
 

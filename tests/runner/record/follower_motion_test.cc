@@ -1,6 +1,7 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
-// FollowerMotion (RMS tilt, rocking frequency, thrust variation) on synthetic signals with known answers.
+// FollowerMotion (RMS tilt, rocking frequency, thrust variation) on synthetic signals with known
+// answers.
 #include "mjformation/record/follower_motion.hpp"
 
 #include <gtest/gtest.h>

@@ -246,7 +246,7 @@ TEST(OutputTest, TimeseriesHeaderColumns) {
   EXPECT_EQ(std::count(all.begin(), all.end(), ','), 1 + 2 * (15 + 9 + 3) + 2);
 }
 
-// Issue 18: the estimate columns come after every _meas column and before the wind.
+// The estimate columns come after every _meas column and before the wind.
 TEST(OutputTest, TimeseriesHeaderWithEstimateColumns) {
   const std::string dir = TempDir("out_header_est");
   {

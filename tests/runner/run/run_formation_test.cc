@@ -56,7 +56,7 @@ RunData RunExp2(const std::vector<std::string>& overrides) {
   return run;
 }
 
-// Issue 3: with the point-mass vehicle the discrete protocol's measured sigma_f stays below the
+// With the point-mass vehicle the discrete protocol's measured sigma_f stays below the
 // reported bound once the transient is over (Table 1's window, t >= 25 s). Both bounds the plugin
 // reports are checked: (47) as EQUATIONS.md reads it, and the re-derived ultimate bound
 // (plugins/core/README.md).
@@ -105,7 +105,7 @@ TEST(FormationInMujocoTest, PointMassDiscreteStaysWithinTheBound) {
   EXPECT_LT(last_outside, 20.0);
 }
 
-// Issue 3: with the quadrotor, Exp 2's parameters bring every follower within 1 m of its slot
+// With the quadrotor, Exp 2's parameters bring every follower within 1 m of its slot
 // by t = 30 s (and it stays there).
 TEST(FormationInMujocoTest, QuadrotorExp2ConvergesBy30s) {
   const RunData run = RunExp2({});
@@ -172,7 +172,7 @@ std::pair<double, double> WorstTiltAndSlotError(const RunData& run, double t_fro
   return {tilt, slot};
 }
 
-// Issue 12: at tilt_max 0.78 rad (PX4's 45 deg) pd_cascade flips a follower in Exp 2 (refused
+// At tilt_max 0.78 rad (PX4's 45 deg) pd_cascade flips a follower in Exp 2 (refused
 // now); with Euler-rate damping and roll/pitch-first allocation it does not, and the formation is
 // reached. geometric at its defaults neither flips nor exceeds the limit by more than 10 deg.
 TEST(FormationInMujocoTest, QuadrotorExp2AtTiltMax078DoesNotFlip) {

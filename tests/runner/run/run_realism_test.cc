@@ -87,7 +87,7 @@ TEST(RealismRun, ControllersSeeTheMeasurementAndBothAreRecorded) {
   EXPECT_THAT(ReadFile(dir + "/summary.json"), HasSubstr("\"preset\": \"typical\""));
 }
 
-// Issue 18: an estimator other than passthrough adds the estimate and its 1-sigma beside the
+// An estimator other than passthrough adds the estimate and its 1-sigma beside the
 // _meas columns and summary.json "estimation"; passthrough with the same suite adds neither.
 TEST(RealismRun, AnEstimatorRecordsItsEstimateAndItsAccuracy) {
   const std::string suite = "[sensors]\npreset = \"consumer_gnss\"\n";
@@ -146,7 +146,7 @@ TEST(RealismRun, AnEstimatorRecordsItsEstimateAndItsAccuracy) {
   EXPECT_FALSE(plain_summary["metrics"].contains("estimation_nees_mean"));
 }
 
-// Issue 18's closed-loop goal, flown as experiments/exp2.toml (40 s, metric window [25, 40] s) on
+// The closed-loop goal, flown as experiments/exp2.toml (40 s, metric window [25, 40] s) on
 // both vehicles: through kf_ins, position and velocity 110 ms late at 10 Hz and nothing else
 // keep the ideal sensors' sigma_f within 10 %; the consumer-GNSS suite completes without a
 // safety event. The references are flown here, not quoted.
