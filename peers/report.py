@@ -33,25 +33,88 @@ def _dyn(results, sim, bare=False):
     return None
 
 
-def summary(results):
-    """One line per peer: the range of 'mjformation x faster' over the cells, per N."""
+def ratios(results, cells=False):
+    """{peer: {N: [mjformation x faster, one per cell (W1, W2, every controller)]}}; with cells,
+    (workload, controller, ratio) per cell."""
     ours = {(c["workload"], c["n"]): speed_row(c["runs"], c.get("n_run", c["n"]))
             for c in results["speed"] if c["sim"] == "mjformation" and c.get("runs")}
-    out = []
+    out = {}
     for sim in ("rotorpy", "pyflyt", "crazyflow"):
-        parts = []
         for n in sorted({c["n"] for c in results["speed"]}):
-            rs = [ratio(ours[(c["workload"], n)]["vehicle_seconds_per_s"],
-                        speed_row(c["runs"], c["n"])["vehicle_seconds_per_s"])
+            rs = [(c["workload"], c["controller"], ratio(ours[(c["workload"], n)]["vehicle_seconds_per_s"],
+                                                         speed_row(c["runs"], c["n"])["vehicle_seconds_per_s"]))
                   for c in results["speed"] if c["sim"] == sim and c["n"] == n and c.get("runs")
                   and (c["workload"], n) in ours]
-            rs = [r for r in rs if not math.isnan(r)]
+            rs = [r for r in rs if not math.isnan(r[2])]
             if rs:
-                parts.append(f"N = {n}: {fmt(min(rs), 3)}-{fmt(max(rs), 3)}x")
-        if parts:
-            out.append(f"- mjformation against {NAMES[sim]}: " + "; ".join(parts) +
-                       " (below 1: the peer is faster).")
+                out.setdefault(sim, {})[n] = rs if cells else [r[2] for r in rs]
+    return out
+
+
+def summary(results):
+    """One line per peer: the range of 'mjformation x faster' over the cells, per N."""
+    out = []
+    for sim, per_n in ratios(results).items():
+        parts = [f"N = {n}: {fmt(min(rs), 3)}-{fmt(max(rs), 3)}x" for n, rs in per_n.items()]
+        out.append(f"- mjformation against {NAMES[sim]}: " + "; ".join(parts) +
+                   " (below 1: the peer is faster).")
     return "\n".join(out)
+
+
+def overtaking(results):
+    """Which peer, if any, is faster than mjformation's runner, and where: from the ratios."""
+    rs, cells = ratios(results), ratios(results, cells=True)
+    runner = "mjformation's runner (1 kHz, full pipeline, recording)"
+    out = ["Crazyflow steps all drones of a world as one JAX array; RotorPy and PyFlyt step vehicles one by one "
+           "in Python."]
+    faster = []
+    for sim in ("crazyflow", "rotorpy", "pyflyt"):
+        per_n = rs.get(sim, {})
+        over = [n for n in sorted(per_n) if min(per_n[n]) < 1]
+        if not over:
+            continue
+        n0 = over[0]
+        k, m = sum(r < 1 for r in per_n[n0]), len(per_n[n0])
+        if k == m:
+            faster.append(f"{NAMES[sim]} overtakes {runner} at {n0} vehicles (every cell there, "
+                          f"{fmt(1 / max(per_n[n0]), 2)}-{fmt(1 / min(per_n[n0]), 2)}x faster)")
+        else:
+            label = {"own": "its own controller", "smc": "the SMC law"}
+            cl = cells[sim][n0]
+            yes = [f"{w} with {label.get(c, c)} (mjformation {fmt(r, 3)}x)" for w, c, r in cl if r < 1]
+            no = [f"{w} with {label.get(c, c)} ({fmt(r, 3)}x)" for w, c, r in cl if r >= 1]
+            join = lambda xs, last: xs[0] if len(xs) == 1 else ", ".join(xs[:-1]) + f" {last} " + xs[-1]
+            faster.append(f"{NAMES[sim]} is faster than {runner} at {n0} vehicles in {k} of its {m} cells: "
+                          + join(yes, "and") + "; not in " + join(no, "or"))
+    if faster:
+        out.append("; ".join(faster) + ".")
+    elif rs:
+        sim, n, r = min(((sim, n, min(v)) for sim, per_n in rs.items() for n, v in per_n.items()),
+                        key=lambda x: x[2])
+        out.append(f"No peer is faster than {runner} at any size measured; the closest is {NAMES[sim]} at "
+                   f"{n} vehicles ({fmt(r, 3)}x).")
+    return " ".join(out)
+
+
+def open_loop_ranges(table):
+    """(min, max) time to 5 cm of the peers against mjformation with their terms on, and the
+    shortest with them off (None: none parted within the 4 s)."""
+    on = [t for a, b, t in (table or []) if a[0] == "mjformation" and not b[1] and t is not None]
+    off = [t for a, b, t in (table or []) if a[0] == "mjformation" and b[1]]
+    off_min = min((t for t in off if t is not None), default=None)
+    return (min(on) if on else None, max(on) if on else None), off_min, bool(off)
+
+
+def open_loop_text(table):
+    (lo, hi), off_min, any_off = open_loop_ranges(table)
+    if lo is None:
+        return "in open-loop flight no peer parted from mjformation by 5 cm within 4 s (tier (b))"
+    rng = fmt(lo, 2) if fmt(lo, 2) == fmt(hi, 2) else f"{fmt(lo, 2)}-{fmt(hi, 2)}"
+    txt = f"in open-loop flight the positions part by 5 cm after {rng} s with the terms on"
+    if any_off:
+        txt += (", and stay within 5 cm for the whole 4 s with them off" if off_min is None else
+                f", and stay within 5 cm for {fmt(off_min, 2)} s or more with them off")
+    return txt + " (tier (b))"
 
 
 def speed_section(results):
@@ -235,24 +298,87 @@ SPEED_NOTES = """Reading the table:
 - PyFlyt has no flight mode that takes an acceleration (mode 6 takes velocities, 7 positions), so the
   Python SMC law, whose output is an acceleration, is not flown there; its "own position controller" row
   gets positions only (no feed-forward), which is why it trails the turning slots.
-- RotorPy hovers (W1) at a lower real-time factor than it flies W2: each 10 ms step is a fresh
+{rotorpy_hover}: each 10 ms step is a fresh
   `solve_ivp` RK45 call, and at an exact equilibrium (W1 starts every vehicle at hover, rotors at hover
   speed, and RotorPy holds it to the last digit: error 0) scipy's initial-step rule takes h0 = 1e-6 s when
   the derivative is below 1e-5 and RK45 grows the step at most tenfold per step, so each call takes
   several more internal steps (consistent with the cost; the steps were not counted).
-- Crazyflow's own state controller (Mellinger, with its own mass 0.029 kg and gains) trails the turning
-  slots by tens of centimetres in W2; the same simulator under the SMC law keeps them to about 2 cm.
-- Crazyflow steps all drones of a world as one array: from N = 1 to 7 its vehicle-steps per second grow
-  almost sevenfold; its setup and JIT compilation (the "first period") cost seconds, once per Sim.
+{crazyflow_errors}
+- Crazyflow steps all drones of a world as one array: {crazyflow_growth}; its setup and JIT compilation
+  (the "first period") cost seconds, once per Sim.
 - mjformation's followers fly `pd_cascade`. With the `geometric` attitude plugin, whose loops are derived
   from the vehicle (rate_bw <= 1 / tau = 13.9 rad/s for the 72 ms motors, att_bw 3.0 rad/s, z_bw 1.2 rad/s),
   the discrete SMC law (T = 0.05 s, gain 1 / (k2 T) = 20 1/s on the velocity error) outruns the tilt loop on
   this slow-motor vehicle: in W2 at N = 7 the followers oscillate with tilts up to 0.72 rad, follower 5
   touches the ground at 3.6 s (15 safety events in all), and the slot error stays at 0.49 m on [25, 40] s
   against 0.008 m with `pd_cascade` (`mjformation run peers/out/W2_n7.toml --set
-  'attitude={plugin="geometric"}'` reproduces it). That is a finding about our stock plugin on a slow-motor vehicle,
+  'attitude={plugin="geometric"}'` reproduces it; one run, checked by hand on MuJoCo 4.0.1 on 2026-12-05, not
+  re-run by the harness). That is a finding about our stock plugin on a slow-motor vehicle,
   not a peer's. RotorPy's SE3 controller (kp_att 310, kd_att 57) carries the same law.
 """
+
+
+def _cell(results, sim, workload, n, ctrl):
+    for c in results["speed"]:
+        if (c["sim"], c["workload"], c["n"], c["controller"]) == (sim, workload, n, ctrl) and c.get("runs"):
+            return c
+    return None
+
+
+def speed_notes(results):
+    """SPEED_NOTES with its measured statements filled from this invocation's cells."""
+    sizes = sorted({c["n"] for c in results["speed"]})
+    # RotorPy: W1 against W2 real-time factor, own controller, per N
+    lower, higher = [], []
+    for n in sizes:
+        a, b = _cell(results, "rotorpy", "W1", n, "own"), _cell(results, "rotorpy", "W2", n, "own")
+        if a and b:
+            ra = speed_row(a["runs"], n)["rtf_median"]
+            rb = speed_row(b["runs"], n)["rtf_median"]
+            (lower if ra < rb else higher).append(f"N = {n}: {fmt(ra, 3)} against {fmt(rb, 3)}")
+    if lower and not higher:
+        rotorpy_hover = ("- RotorPy hovers (W1) at a lower real-time factor than it flies W2 at every N (" +
+                         "; ".join(lower) + ")")
+    elif lower:
+        rotorpy_hover = ("- RotorPy hovers (W1) at a lower real-time factor than it flies W2 at " +
+                         "; ".join(lower) + " (not at " + "; ".join(higher) + ")")
+    else:
+        rotorpy_hover = ("- RotorPy's W1 (hover) is not slower than its W2 in this invocation; where it is, the "
+                         "reason is this")
+    # Crazyflow: its own controller against the SMC law in W2
+    own, smc, own_n = [], [], []
+    for n in sizes:
+        for ctrl, acc in (("own", own), ("smc", smc)):
+            c = _cell(results, "crazyflow", "W2", n, ctrl)
+            if c:
+                e = [x["error_mean_25_40"] for x in c["runs"] if x.get("error_mean_25_40") is not None
+                     and not math.isnan(x["error_mean_25_40"])]
+                if e:
+                    acc.append(float(np.median(e)))
+                    if ctrl == "own":
+                        own_n.append(str(n))
+    if own and smc:
+        crazyflow_errors = (
+            "- Crazyflow's own state controller (Mellinger, with its own mass 0.029 kg and gains) trails the turning\n"
+            f"  slots by {fmt(min(own), 2)}-{fmt(max(own), 2)} m in W2 (N = {', '.join(own_n)}); "
+            f"the same simulator under the SMC law keeps them to {fmt(min(smc), 2)}-{fmt(max(smc), 2)} m.")
+    else:
+        crazyflow_errors = "- Crazyflow's W2 errors: not measured in this invocation."
+    # Crazyflow: vehicle-steps per second from the smallest N to 7 (or the next size)
+    growth = []
+    if len(sizes) > 1:
+        n0, n1 = sizes[0], (7 if 7 in sizes[1:] else sizes[1])
+        for w in ("W1", "W2"):
+            a, b = _cell(results, "crazyflow", w, n0, "own"), _cell(results, "crazyflow", w, n1, "own")
+            if a and b:
+                g = speed_row(b["runs"], n1)["vsteps_median"] / speed_row(a["runs"], n0)["vsteps_median"]
+                growth.append(f"{fmt(g, 2)}-fold in {w}")
+        crazyflow_growth = (f"from N = {n0} to {n1} ({n1 / n0:g} times the vehicles) its vehicle-steps per second grow "
+                            + " and ".join(growth)) if growth else "its cost per vehicle falls with N"
+    else:
+        crazyflow_growth = "its cost per vehicle falls with N (one size measured here)"
+    return (SPEED_NOTES.replace("{rotorpy_hover}", rotorpy_hover).replace("{crazyflow_errors}", crazyflow_errors)
+            .replace("{crazyflow_growth}", crazyflow_growth))
 
 
 def write(results, doc, out):
@@ -273,13 +399,11 @@ def write(results, doc, out):
              "ctest as `peers_pytest`.", "",
              "## In short", "",
              "How many times faster mjformation flies the same vehicle-seconds (W1 and W2, every controller), "
-             "measured in this invocation on a loaded machine (below):", "", summary(results), "",
-             "Crazyflow steps all drones of a world as one JAX array and overtakes mjformation's runner (1 kHz, "
-             "full pipeline, recording) at 49 vehicles; RotorPy and PyFlyt step vehicles one by one in Python. "
+             "measured in this invocation on a shared machine (its load average below):", "", summary(results), "",
+             overtaking(results) + " "
              "Accelerations agree to rounding once the peers' own aerodynamic and gyroscopic terms are switched "
              "off, and with them on every difference is accounted for by those terms to rounding (tier (a)); "
-             "in open-loop flight the positions part by 5 cm after 1.2-1.3 s with the terms on, and stay "
-             "within 5 cm for 3 s or more with them off (tier (b)).", "",
+             + open_loop_text(table) + ".", "",
              "## Machine, versions, load", "",
              f"- {m.get('cpu')}, {m.get('nproc')} cores shared with other work, {m.get('os')}, "
              f"Python {m.get('python')} (virtual environments made from /usr/bin/python3).",
@@ -325,7 +449,7 @@ def write(results, doc, out):
               f"{results['args']['wall_budget']:g} s of wall time stops there (\"budget\" in the sim-s column).", "",
               speed_section(results), "",
               batch_section(results),
-              SPEED_NOTES, "",
+              speed_notes(results), "",
               "## Dynamics cross-check", "",
               "mjformation's side is the `scene.xml` the runner composed for this vehicle, stepped by MuJoCo "
               f"{(results['dynamics'].get('mjformation') or {}).get('mujoco', '?')} from PyPI with the model's "
@@ -348,7 +472,12 @@ def write(results, doc, out):
               "Rotor r1's command steps from hover thrust to 1.3 x hover at t = 0 (the others stay at hover, the "
               "vehicle is free), and its thrust is read from the simulator's own motor state.", "",
               lag_section(results), ""]
-    doc.write_text("\n".join(lines) + "\n" + (EXPLAIN if EXPLAIN else ""))
+    (lo, hi), _, _ = open_loop_ranges(table)
+    import re
+    eng = re.search(r"\(MuJoCo ([^,)]+)", results.get("mjformation_version") or "")
+    doc.write_text("\n".join(lines) + "\n" + EXPLAIN.replace(
+        "{open_loop_on}", "-" if lo is None else (fmt(lo, 2) if fmt(lo, 2) == fmt(hi, 2) else f"{fmt(lo, 2)}-{fmt(hi, 2)}")
+    ).replace("{engine}", f"MuJoCo {eng.group(1)}" if eng else "see the version line"))
 
 
 EXPLAIN = """
@@ -379,7 +508,7 @@ terms, and the predicted terms' size with them (here up to 0.6 m/s^2 and 2.1 rad
 **(b) Open loop.** A hovering quadrotor is open-loop unstable: a small torque error tilts it, the tilt
 turns the thrust sideways and the position error grows as the second integral of the tilt, so any
 difference between two simulators grows in time and the time to 5 cm measures how early the models
-part. As modelled, the peers part from mjformation (and from each other) after 1.2-1.3 s: their drag
+part. As modelled, the peers part from mjformation (and from each other) after {open_loop_on} s: their drag
 terms act from the first instant the vehicle turns or moves (PyFlyt's rotational damping most, since it
 acts on the attitude, whose error is integrated twice into position). With the extra terms off, what is
 left is the integration of the same equations, and the table and figure show it is small:
@@ -409,6 +538,5 @@ first order; for large steps mjformation's thrust responds up to about 3 ms soon
   dependencies; the harness does not install it. Crazyflow's batch is measured on one size (8 worlds).
 - N = 1000: not attempted with the peers (RotorPy and PyFlyt step vehicles one by one in Python: a 40-s
   run would take hours); mjformation's own scaling to 1000 followers is in docs/PERFORMANCE.md.
-- The runner's figures are taken on the engine this build links (its version is in the header above);
-  rerun with `--build` on the MuJoCo 4.0.1 build for the new engine's figures.
+- The runner's figures are taken on the engine the timed build links: {engine} (the version line above).
 """

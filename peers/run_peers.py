@@ -3,7 +3,7 @@
 """The peers harness (issue 37, docs/PEERS.md): mjformation beside RotorPy, PyFlyt and Crazyflow.
 
   /usr/bin/python3 peers/run_peers.py --build build            # everything -> docs/PEERS.md
-  /usr/bin/python3 peers/run_peers.py --build /work/base/build --sizes 7 --repeats 3 --quick
+  /usr/bin/python3 peers/run_peers.py --build build --sizes 7 --repeats 3 --batch-worlds 0   # quicker
 
 Installs each peer into its own virtual environment (peers/.envs/NAME) from its pinned lock
 (peers/locks/NAME.txt), runs each in its own process (peers/workers/worker_NAME.py) with

@@ -234,6 +234,27 @@ def test_markdown_table():
         T.markdown(["a", "b"], [["x"]])
 
 
+
+def _cells(sim, n, wall, workloads=("W1", "W2")):
+    return [{"sim": sim, "workload": w, "n": n, "controller": "own", "n_run": max(n, 2) if sim == "mjformation" else n,
+             "runs": [{"sim_s": 40.0, "wall_s": wall, "physics_steps": 40000}]} for w in workloads]
+
+
+def test_summary_text_follows_the_numbers():
+    """The 'In short' prose is computed from the cells: who overtakes whom, and where."""
+    import report
+    speed = (_cells("mjformation", 1, 0.2) + _cells("mjformation", 49, 10.0)
+             + _cells("crazyflow", 1, 7.0) + _cells("crazyflow", 49, 20.0))
+    text = report.overtaking({"speed": speed})
+    assert "No peer is faster" in text and "the closest is Crazyflow at 49 vehicles (2.00x)" in text
+    speed = speed[:-2] + _cells("crazyflow", 49, 5.0)
+    text = report.overtaking({"speed": speed})
+    assert "Crazyflow overtakes" in text and "at 49 vehicles (every cell there, 2.0-2.0x faster)" in text
+    table = [(("mjformation", False), ("rotorpy", False), 1.25), (("mjformation", False), ("rotorpy", True), None),
+             (("mjformation", False), ("crazyflow", False), 1.3), (("mjformation", False), ("crazyflow", True), 3.34)]
+    assert "after 1.2-1.3 s with the terms on" in report.open_loop_text(table)
+    assert "for 3.3 s or more with them off" in report.open_loop_text(table)
+
 # ---- the experiment files, checked by the runner itself when it is there ------------------------
 @pytest.mark.parametrize("workload,n", [("W1", 1), ("W1", 7), ("W2", 7), ("W2", 49)])
 def test_experiment_files(tmp_path, workload, n):
