@@ -269,3 +269,12 @@ def test_experiment_files(tmp_path, workload, n):
         pytest.skip("MJF_CLI not set: the runner's check is skipped")
     r = subprocess.run([cli, "check", str(toml)], capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
+
+
+def test_the_regenerate_command_is_written_as_typed_in_a_checkout(tmp_path):
+    import report
+    root = PEERS.parent
+    command = f"peers/run_peers.py --build {root / 'build'} --sizes 1,7 --out {tmp_path}"
+    # A folder of the checkout becomes relative to it; one outside stays as given.
+    assert report.checkout_command(command) == (
+        f"peers/run_peers.py --build build --sizes 1,7 --out {tmp_path}")
