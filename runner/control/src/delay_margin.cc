@@ -48,4 +48,16 @@ DelayMargin PredictedDelayMargin(double period, double q, double rho) {
   return m;
 }
 
+nlohmann::json DelayMarginSummary(double period, double q, double rho) {
+  const DelayMargin m = PredictedDelayMargin(period, q, rho);
+  auto finite = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); };
+  return {{"coupling_spectral_radius", rho},
+          {"period_s", period},
+          {"q", q},
+          {"without_prediction_s", finite(m.without_prediction)},
+          {"with_prediction_s", finite(m.with_prediction)},
+          {"with_prediction_is_lower_bound", m.with_prediction_capped},
+          {"assumes", "a message every step, in-phase clocks, no loss (docs/NETWORK.md)"}};
+}
+
 }  // namespace mjf::runner

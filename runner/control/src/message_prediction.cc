@@ -33,4 +33,20 @@ void PredictMessage(Predict mode, double tau, mjfMessage* m) {
   }
 }
 
+// tau = c_i(now) - c_j(send time) (no common clock); with synchronised clocks both read the
+// common time and tau is the message's true age.
+const mjfMessage* InboxPrediction::PredictInbox(int follower, const AgentClocks& clocks,
+                                                double time, std::vector<mjfMessage>* inbox,
+                                                const mjfMessage* leader) {
+  if (mode_ == Predict::kNone) return leader;
+  const double now = clocks.Reading(follower + 1, time);
+  for (mjfMessage& m : *inbox) {
+    PredictMessage(mode_, now - clocks.Reading(m.sender, m.send_time), &m);
+  }
+  if (!leader) return nullptr;
+  leader_held_[follower] = *leader;
+  PredictMessage(mode_, now - leader->send_time, &leader_held_[follower]);
+  return &leader_held_[follower];
+}
+
 }  // namespace mjf::runner

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "mjformation/config/realism_config.hpp"
+#include "mjformation/control/delay_margin.hpp"
 #include "mjformation/record/engine_identity.hpp"
 #include "mjformation/record/output.hpp"
 #include "mjformation/sim/simulation.hpp"
@@ -60,7 +61,8 @@ void AddNetworkSummary(const Simulation& sim, Json& s) {
   // The margin is law (48)'s (T and q); other laws (e.g. consensus_linear) get none.
   const plugin::contract::Law& law = sim.contracts().law;
   if (law.HasDelayMargin()) {
-    s["network"]["delay_margin"] = sim.channel()->DelayMarginSummary(law.period, law.q);
+    s["network"]["delay_margin"] =
+        DelayMarginSummary(law.period, law.q, sim.channel()->coupling_radius());
   }
 }
 

@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
+#include "mjformation/control/delay_margin.hpp"
 #include "mjformation/core/graph.hpp"
 #include "mjformation/core/shape.hpp"
 #include "mjformation/run/run.hpp"
@@ -244,7 +245,7 @@ bool HoldsAt(double latency, const char* predict) {
 TEST(AgentChannelTest, PredictedDelayMarginMatchesDivergenceOnset) {
   Simulation probe(Exp2({"execution={mode=\"per_agent\", coupling=\"central_solve\"}"}));
   StepThrough(probe, 1);
-  const nlohmann::json margin = probe.channel()->DelayMarginSummary(0.05, 4.5);
+  const nlohmann::json margin = DelayMarginSummary(0.05, 4.5, probe.channel()->coupling_radius());
   struct Case {
     const char* predict;
     double predicted, first, grid;

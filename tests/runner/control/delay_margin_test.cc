@@ -49,5 +49,22 @@ TEST(DelayMarginTest, MarginsFollowTheLinearisation) {
   EXPECT_EQ(weak.with_prediction, 0.1);
 }
 
+// summary.json's network.delay_margin: the margins of PredictedDelayMargin for the law's T and
+// q beside rho; a loop that never closes (1 - qT <= 0) has no finite margin, written null.
+TEST(DelayMarginTest, SummaryWritesTheMarginsAndNullForNoLoop) {
+  const double rho = CouplingSpectralRadius(Ring());
+  const nlohmann::json s = DelayMarginSummary(0.05, 4.5, rho);
+  EXPECT_EQ(s["coupling_spectral_radius"].get<double>(), rho);
+  EXPECT_EQ(s["period_s"].get<double>(), 0.05);
+  EXPECT_EQ(s["q"].get<double>(), 4.5);
+  EXPECT_EQ(s["without_prediction_s"].get<double>(),
+            PredictedDelayMargin(0.05, 4.5, rho).without_prediction);
+  EXPECT_EQ(s["with_prediction_s"].get<double>(), 0.05);
+  EXPECT_FALSE(s["with_prediction_is_lower_bound"].get<bool>());
+  const nlohmann::json none = DelayMarginSummary(0.05, 20.0, rho);  // qT = 1
+  EXPECT_TRUE(none["without_prediction_s"].is_null());
+  EXPECT_TRUE(none["with_prediction_s"].is_null());
+}
+
 }  // namespace
 }  // namespace mjf::runner

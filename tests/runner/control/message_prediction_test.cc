@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 namespace mjf::runner {
 namespace {
@@ -66,6 +67,28 @@ TEST(MessagePredictionTest, AttitudeGivesTheTiltsAcceleration) {
   EXPECT_NEAR(acc[1], 0.0, 1e-12);
   PredictMessage(Predict::kAttitude, 0.1, &m);
   EXPECT_NEAR(m.state.vel[0], 0.1 * kPredictionGravity * std::tan(tilt), 1e-12);
+}
+
+// A follower's inbox is carried over each message's age on the clocks that stamped it, the
+// leader's into a copy (the network's stays as received); kNone hands everything on untouched.
+TEST(MessagePredictionTest, InboxPredictionCarriesTheInboxAndACopyOfTheLeaders) {
+  const AgentClocks clocks(2, 0.0, 0.0, 0.001, 1);  // in phase: the common time
+  std::vector<mjfMessage> inbox = {Sent(1.0, 2.0, 0.0)};
+  inbox[0].sender = 2;
+  inbox[0].send_time = 0.4;
+  mjfMessage leader = Sent(0.0, 1.0, 0.0);
+  leader.send_time = 0.3;
+  InboxPrediction none(Predict::kNone, 2);
+  EXPECT_EQ(none.PredictInbox(0, clocks, 0.5, &inbox, &leader), &leader);
+  EXPECT_EQ(inbox[0].state.pos[0], 1.0);
+  InboxPrediction input(Predict::kInput, 2);
+  const mjfMessage* held = input.PredictInbox(0, clocks, 0.5, &inbox, &leader);
+  EXPECT_DOUBLE_EQ(inbox[0].state.pos[0], 1.0 + 2.0 * 0.1);  // 0.1 s old at 2 m/s
+  ASSERT_NE(held, nullptr);
+  EXPECT_NE(held, &leader);
+  EXPECT_DOUBLE_EQ(held->state.pos[0], 0.2);  // 0.2 s old at 1 m/s
+  EXPECT_EQ(leader.state.pos[0], 0.0);
+  EXPECT_EQ(input.PredictInbox(1, clocks, 0.5, &inbox, nullptr), nullptr);
 }
 
 }  // namespace

@@ -18,6 +18,8 @@
 #ifndef MJFORMATION_CONTROL_DELAY_MARGIN_HPP_
 #define MJFORMATION_CONTROL_DELAY_MARGIN_HPP_
 
+#include <nlohmann/json.hpp>
+
 namespace mjf::core {
 class Graph;
 }  // namespace mjf::core
@@ -36,6 +38,10 @@ struct DelayMargin {
 
 // period T, q of (48), rho = rho(L_H^-1 A). 1 - qT <= 0 or rho = 0: no loop (infinite margin).
 DelayMargin PredictedDelayMargin(double period, double q, double rho);
+
+// summary.json "network.delay_margin" (docs/NETWORK.md): rho and the margins predicted for the
+// law's T and q, with and without prediction (an infinite margin is written as null).
+nlohmann::json DelayMarginSummary(double period, double q, double rho);
 
 }  // namespace mjf::runner
 

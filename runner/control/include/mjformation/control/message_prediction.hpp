@@ -10,7 +10,10 @@
 
 #include <mjformation/plugin.h>
 
+#include <vector>
+
 #include "mjformation/config/config.hpp"
+#include "mjformation/control/agent_clock.hpp"
 
 namespace mjf::runner {
 
@@ -26,6 +29,24 @@ void AttitudeAcceleration(const mjfVehicleState& state, double* acc);
 // integrator) under zero-order hold when a is constant over the gap. a: the sender's input
 // (kInput, NaN read as 0) or its attitude's acceleration (kAttitude). kNone: no change.
 void PredictMessage(Predict mode, double tau, mjfMessage* m);
+
+// A follower's inbox carried to its sample time before the law sees it; holds each follower's
+// copy of the leader's message as predicted (the network's own copy stays as received).
+class InboxPrediction {
+ public:
+  InboxPrediction(Predict mode, int n_followers) : mode_(mode), leader_held_(n_followers) {}
+
+  // Predicts every message of follower's inbox (in place) and the leader's (into a copy held
+  // here) over its age at time (s, the common time of the tick), read on the clocks that
+  // stamped them; returns the leader's message to hand the law (the copy, or `leader` itself
+  // when the mode is kNone; null stays null).
+  const mjfMessage* PredictInbox(int follower, const AgentClocks& clocks, double time,
+                                 std::vector<mjfMessage>* inbox, const mjfMessage* leader);
+
+ private:
+  Predict mode_;
+  std::vector<mjfMessage> leader_held_;  // [follower]
+};
 
 }  // namespace mjf::runner
 
