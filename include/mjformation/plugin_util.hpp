@@ -1,21 +1,25 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
 // Header-only C++ helpers for writing plugins against include/mjformation/plugin.h: typed
-// attribute parsing with messages that name the key, and a wrapper that turns C++ exceptions
-// thrown by a controller's constructor into the ABI's "NULL + error string" convention.
+// attribute parsing with messages that name the key, a wrapper that turns C++ exceptions
+// thrown by a controller's constructor into the ABI's "NULL + error string" convention, and what
+// every formation law reads of its input (the planar state, a per-agent law's inbox).
 #ifndef MJFORMATION_PLUGIN_UTIL_HPP_
 #define MJFORMATION_PLUGIN_UTIL_HPP_
 
 #include <mjformation/plugin.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <cstddef>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace mjf::plugin {
@@ -134,6 +138,73 @@ int ComputeOrExplain(const mjfStepContext* ctx, Step step) {
     return Fail(ctx, "unknown C++ exception");
   }
 }
+
+// The horizontal position and velocity a formation law reads of a vehicle: pv = (px, py, vx, vy).
+inline void ReadPlanarPv(const mjfVehicleState& state, double* pv) {
+  pv[0] = state.pos[0];
+  pv[1] = state.pos[1];
+  pv[2] = state.vel[0];
+  pv[3] = state.vel[1];
+}
+
+// The per-agent formation payload (mjfMessage.payload) every per-agent law sends: [0..3] the
+// law's own, [4..7] the leader's (px, py, vx, vy) as the sender knows it, relayed one hop per
+// sample for the followers without a leader link.
+inline constexpr int kPayloadLeader = 4;
+inline constexpr int kPayloadUsed = 8;
+
+// What a per-agent formation law has heard: each neighbour's message this call and the leader's
+// state (own link, else a neighbour's relay; kept from call to call once heard). Gather()
+// allocates nothing.
+class NeighbourInbox {
+ public:
+  NeighbourInbox() = default;
+  // neighbours: the follower indices j (0-based) whose messages the law needs.
+  explicit NeighbourInbox(std::vector<int> neighbours)
+      : neighbours_(std::move(neighbours)), found_(neighbours_.size(), nullptr) {}
+
+  // Finds each neighbour's message (sender j + 1) in `in` and the leader's state; false while
+  // something the law needs has not arrived: a neighbour's message, or the leader's own when
+  // leader_weight (a_i0) > 0 (otherwise the leader's state only feeds the reference slots).
+  bool Gather(const mjfAgentInput& in, double leader_weight) {
+    std::fill(found_.begin(), found_.end(), nullptr);
+    for (int k = 0; k < in.n_messages; ++k) {
+      for (size_t m = 0; m < neighbours_.size(); ++m) {
+        if (in.messages[k].sender == neighbours_[m] + 1) found_[m] = &in.messages[k];
+      }
+    }
+    if (in.leader) {
+      ReadPlanarPv(in.leader->state, leader_pv_);
+      knows_leader_ = true;
+    } else {
+      for (const mjfMessage* m : found_) {
+        if (m && m->n_payload >= kPayloadUsed) {
+          std::copy(m->payload + kPayloadLeader, m->payload + kPayloadUsed, leader_pv_);
+          knows_leader_ = true;
+          break;
+        }
+      }
+    }
+    for (const mjfMessage* m : found_) {
+      if (!m) return false;
+    }
+    return leader_weight <= 0.0 || in.leader != nullptr;
+  }
+
+  const std::vector<int>& neighbours() const { return neighbours_; }
+  // Neighbour m's message of the last Gather(), null when none came (all non-null after a
+  // Gather() that returned true).
+  const mjfMessage* message(size_t m) const { return found_[m]; }
+  bool knows_leader() const { return knows_leader_; }
+  // The leader's (px, py, vx, vy) last heard; zeros until knows_leader().
+  const double* leader_pv() const { return leader_pv_; }
+
+ private:
+  std::vector<int> neighbours_;
+  std::vector<const mjfMessage*> found_;  // [m]: neighbour m's message this call
+  double leader_pv_[4] = {0, 0, 0, 0};
+  bool knows_leader_ = false;
+};
 
 }  // namespace mjf::plugin
 

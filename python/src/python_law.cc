@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <cstring>
 #include <mjformation/plugin_contract.hpp>
+#include <mjformation/plugin_util.hpp>
 #include <mjformation/time_steps.hpp>
 #include <stdexcept>
 #include <string>
@@ -26,30 +27,23 @@ namespace {
 
 constexpr int kStateSize = 13;  // pos 3, vel 3, quat 4, gyro 3: mjfVehicleState, in order
 static_assert(sizeof(mjfVehicleState) == kStateSize * sizeof(double), "mjfVehicleState layout");
-constexpr int kPayloadLeader = 4;  // payload[4..7]: the leader's px, py, vx, vy, relayed
-constexpr int kPayloadUsed = 8;
+using plugin::kPayloadLeader;
+using plugin::kPayloadUsed;
 
 const mjfAttribute kAttributes[] = {
     {"law", nullptr, "key of the Python callable (set by mjformation.run; names it)"},
     {mjf::plugin::contract::kPeriod, "0", "sample period T of the law, s (0: every physics step)"},
 };
 
-std::string Attribute(const mjfCreateContext* ctx, const char* key) {
-  for (int i = 0; i < ctx->n_attributes; ++i) {
-    if (std::strcmp(ctx->keys[i], key) == 0) return ctx->values[i];
-  }
-  throw std::invalid_argument(std::string("attribute '") + key + "' missing");
-}
-
 // Physics steps per sample: period 0 is every step; else a whole number of steps.
 int64_t StepsPerSample(const mjfCreateContext* ctx) {
-  const double period = std::stod(Attribute(ctx, plugin::contract::kPeriod));
+  const std::string text = plugin::Attributes(ctx).String(plugin::contract::kPeriod);
+  const double period = std::stod(text);
   if (period == 0.0) return 1;
   const int64_t steps = WholeSteps(period, ctx->timestep);
   if (!(period > 0.0) || steps < 1) {
-    throw std::invalid_argument(
-        "attribute 'period': T = " + Attribute(ctx, plugin::contract::kPeriod) +
-        " s must be a positive whole number of physics steps");
+    throw std::invalid_argument("attribute 'period': T = " + text +
+                                " s must be a positive whole number of physics steps");
   }
   return steps;
 }
@@ -177,7 +171,7 @@ void* CreateCentral(const mjfCreateContext* ctx) {
     self->input.assign(2 * self->n, 0.0);
     py::tuple resolved =
         py::module_::import("mjformation._laws")
-            .attr("resolve_central")(Attribute(ctx, "law"), GraphInfo(*ctx->graph));
+            .attr("resolve_central")(plugin::Attributes(ctx).String("law"), GraphInfo(*ctx->graph));
     self->law = resolved[0];
     self->graph = resolved[1];
     return self.release();
@@ -240,16 +234,13 @@ struct Agent {
   mjfShape shape{};
   int follower = 0, n = 0;
   double leader_weight = 0;
-  std::vector<int> neighbours;
+  plugin::NeighbourInbox inbox;  // the neighbours' messages and the leader's state
   int64_t steps_per_sample = 1;
   double period = 0;
   int64_t calls = 0;
   bool has_sample = false;
-  bool knows_leader = false;
-  double leader_pv[4] = {0, 0, 0, 0};
   double input[2] = {0, 0};
   std::vector<double> offsets;
-  std::vector<const mjfMessage*> found;  // [m]: neighbour m's message this call
 };
 
 py::object NeighbourhoodInfo(const mjfNeighbourhood& h) {
@@ -276,56 +267,24 @@ void* CreateAgent(const mjfCreateContext* ctx) {
     self->follower = h.follower;
     self->n = h.n_followers;
     self->leader_weight = h.leader_weight;
-    self->neighbours.assign(h.neighbours, h.neighbours + h.n_neighbours);
-    self->found.resize(h.n_neighbours);
+    self->inbox =
+        plugin::NeighbourInbox(std::vector<int>(h.neighbours, h.neighbours + h.n_neighbours));
     self->offsets.assign(6 * self->n, 0.0);
     self->steps_per_sample = StepsPerSample(ctx);
     self->period = self->steps_per_sample * ctx->timestep;
-    self->law = py::module_::import("mjformation._laws")
-                    .attr("resolve_agent")(Attribute(ctx, "law"), NeighbourhoodInfo(h));
+    self->law =
+        py::module_::import("mjformation._laws")
+            .attr("resolve_agent")(plugin::Attributes(ctx).String("law"), NeighbourhoodInfo(h));
     return self.release();
   });
-}
-
-void ReadPv(const mjfVehicleState& s, double* pv) {
-  pv[0] = s.pos[0];
-  pv[1] = s.pos[1];
-  pv[2] = s.vel[0];
-  pv[3] = s.vel[1];
-}
-
-// Each neighbour's newest message and the leader's state (own link, else relayed); false while
-// one the law needs has not arrived (the C++ per-agent plugins' rule).
-bool Gather(Agent& a, const mjfAgentInput& in) {
-  std::fill(a.found.begin(), a.found.end(), nullptr);
-  for (int k = 0; k < in.n_messages; ++k) {
-    for (size_t m = 0; m < a.neighbours.size(); ++m) {
-      if (in.messages[k].sender == a.neighbours[m] + 1) a.found[m] = &in.messages[k];
-    }
-  }
-  if (in.leader) {
-    ReadPv(in.leader->state, a.leader_pv);
-    a.knows_leader = true;
-  } else {
-    for (const mjfMessage* m : a.found) {
-      if (m && m->n_payload >= kPayloadUsed) {
-        std::copy(m->payload + kPayloadLeader, m->payload + kPayloadUsed, a.leader_pv);
-        a.knows_leader = true;
-        break;
-      }
-    }
-  }
-  for (const mjfMessage* m : a.found) {
-    if (!m) return false;
-  }
-  return a.leader_weight <= 0.0 || in.leader != nullptr;
 }
 
 void CallAgent(Agent& a, const mjfStepContext* ctx) {
   const mjfAgentInput& in = *ctx->agent;
   py::dict messages;
-  for (size_t m = 0; m < a.neighbours.size(); ++m) {
-    messages[py::int_(a.neighbours[m])] = Copy(&a.found[m]->state.pos[0], {kStateSize});
+  for (size_t m = 0; m < a.inbox.neighbours().size(); ++m) {
+    messages[py::int_(a.inbox.neighbours()[m])] =
+        Copy(&a.inbox.message(m)->state.pos[0], {kStateSize});
   }
   py::object leader =
       in.leader ? py::object(Copy(&in.leader->state.pos[0], {kStateSize})) : py::object(py::none());
@@ -343,7 +302,8 @@ int ComputeAgent(void* instance, const mjfStepContext* ctx) {
     return 1;
   }
   const mjfAgentInput& in = *ctx->agent;
-  const bool ready = Gather(a, in);
+  // The C++ per-agent plugins' rule: the law is called once every message it needs has come.
+  const bool ready = a.inbox.Gather(in, a.leader_weight);
   if (!ready && !a.has_sample) return 0;  // nothing heard yet: the initial setpoint holds
   const bool sampled = ready && (!a.has_sample || ctx->step % a.steps_per_sample == 0);
   if (sampled) {
@@ -354,14 +314,15 @@ int ComputeAgent(void* instance, const mjfStepContext* ctx) {
   a.shape.evaluate_one(a.shape.self, ctx->time, a.follower, f);
   mjfSetpoint& sp = *ctx->setpoints;
   for (int axis = 0; axis < 2; ++axis) {
-    sp.pos[axis] = a.knows_leader ? a.leader_pv[axis] + f[axis] : in.self->pos[axis];
-    sp.vel[axis] = a.knows_leader ? a.leader_pv[2 + axis] + f[2 + axis] : in.self->vel[axis];
+    const double* leader = a.inbox.leader_pv();
+    sp.pos[axis] = a.inbox.knows_leader() ? leader[axis] + f[axis] : in.self->pos[axis];
+    sp.vel[axis] = a.inbox.knows_leader() ? leader[2 + axis] + f[2 + axis] : in.self->vel[axis];
     sp.acc[axis] = a.input[axis];
   }
   mjfMessage& out = *in.outgoing;  // relays the leader's state, as the C++ agents do
   out.n_payload = sampled ? kPayloadUsed : 0;
   std::fill(out.payload, out.payload + kPayloadLeader, 0.0);
-  std::copy(a.leader_pv, a.leader_pv + 4, out.payload + kPayloadLeader);
+  std::copy(a.inbox.leader_pv(), a.inbox.leader_pv() + 4, out.payload + kPayloadLeader);
   return 0;
 }
 

@@ -179,24 +179,12 @@ void KfInsReport(void* instance, mjfReportFn emit, void* user) {
   emit(user, "too_old", static_cast<double>(f.too_old()));
 }
 
-void KfInsDestroy(void* instance) { delete static_cast<KfInsInstance*>(instance); }
-
 }  // namespace
 
-const mjfPlugin kKfIns = {
-    MJF_ABI_VERSION,
+const mjfPlugin kKfIns = EstimatorPlugin<KfInsInstance>(
     "kf_ins",
-    MJF_KIND_ESTIMATOR,
     "world-frame Kalman filter (p, v, accel bias, GNSS wander), IMU input, delayed fusion, 5-sigma "
     "gate",
-    static_cast<int>(sizeof(kKfInsAttributes) / sizeof(kKfInsAttributes[0])),
-    kKfInsAttributes,
-    0,
-    nullptr,
-    KfInsCreate,
-    KfInsCompute,
-    nullptr,
-    KfInsDestroy,
-    KfInsReport};
+    kKfInsAttributes, KfInsCreate, KfInsCompute, KfInsReport);
 
 }  // namespace mjf::estimator::adapter

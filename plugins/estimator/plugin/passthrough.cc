@@ -23,22 +23,10 @@ int PassthroughCompute(void* instance, const mjfStepContext* ctx) {
   return 0;
 }
 
-void PassthroughDestroy(void* instance) { delete static_cast<Passthrough*>(instance); }
-
 }  // namespace
 
-const mjfPlugin kPassthrough = {MJF_ABI_VERSION,
-                                "passthrough",
-                                MJF_KIND_ESTIMATOR,
-                                "no estimator: the controllers see the held sensor samples",
-                                0,
-                                nullptr,
-                                0,
-                                nullptr,
-                                PassthroughCreate,
-                                PassthroughCompute,
-                                nullptr,
-                                PassthroughDestroy,
-                                nullptr};
+const mjfPlugin kPassthrough = EstimatorPlugin<Passthrough>(
+    "passthrough", "no estimator: the controllers see the held sensor samples", 0, nullptr,
+    PassthroughCreate, PassthroughCompute);
 
 }  // namespace mjf::estimator::adapter

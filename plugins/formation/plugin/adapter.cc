@@ -79,10 +79,7 @@ bool SwarmBuffers::Read(const mjfStepContext* ctx) {
   for (int vehicle = 0; vehicle <= n_; ++vehicle) {
     const mjfVehicleState& state = ctx->states[vehicle];
     double* pv = vehicle == 0 ? leader_pv.data() : follower_pv.data() + 4 * (vehicle - 1);
-    pv[0] = state.pos[0];
-    pv[1] = state.pos[1];
-    pv[2] = state.vel[0];
-    pv[3] = state.vel[1];
+    plugin::ReadPlanarPv(state, pv);
     for (int k = 0; k < 4; ++k) {
       if (!std::isfinite(pv[k])) return false;
     }

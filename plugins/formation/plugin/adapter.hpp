@@ -7,6 +7,7 @@
 
 #include <mjformation/plugin.h>
 
+#include <cstddef>
 #include <mjformation/core/continuous_smc.hpp>
 #include <mjformation/core/discrete_smc.hpp>
 #include <mjformation/core/graph.hpp>
@@ -89,6 +90,8 @@ struct SwarmInstance {
   template <typename Params>
   SwarmInstance(const SwarmSetup& setup, const Params& params)
       : shape(setup.shape), controller(setup.graph, params), buffers(setup.graph.num_followers()) {}
+  // A law evaluated every physics step updates on each; a sampled law hides this (SwarmPlugin).
+  void Sample(const mjfStepContext*) { controller.Update(buffers.Input()); }
   core::AbiShape shape;
   Controller controller;
   SwarmBuffers buffers;
@@ -100,6 +103,70 @@ void WriteSlots(const SwarmBuffers& buffers, mjfSetpoint* setpoints);
 // Writes acc[0..1] = acceleration[2i..2i+1] and, unless sliding is null, sliding[0..1].
 void WriteCommands(int n, const double* acceleration, const double* sliding,
                    mjfSetpoint* setpoints);
+
+// The create, compute, reset and destroy every swarm-level law shares; the law's own part is its
+// Instance (one file per law), a SwarmInstance<Controller> with:
+//   Config, static Config Configure(const mjfCreateContext*): its attributes, read and checked
+//     before the graph and shape are;
+//   Instance(const SwarmSetup&, const Config&);
+//   void Sample(const mjfStepContext*): updates the controller once F(t) is in buffers.shape_now
+//     (SwarmInstance's: every step);
+//   const double* sliding() const: the s_i to write, or nullptr for a law without one;
+//   void Reset(): back to the state before the first step.
+template <typename Instance>
+void* SwarmCreate(const mjfCreateContext* ctx) {
+  return plugin::CreateOrExplain(ctx, [&]() -> void* {
+    const typename Instance::Config config = Instance::Configure(ctx);
+    const SwarmSetup setup(ctx);
+    return new Instance(setup, config);
+  });
+}
+
+template <typename Instance>
+int SwarmCompute(void* instance, const mjfStepContext* ctx) {
+  auto* self = static_cast<Instance*>(instance);
+  SwarmBuffers& buffers = self->buffers;
+  if (!buffers.Read(ctx))
+    return mjf::plugin::Fail(
+        ctx, "the step does not carry 1 + n_followers vehicle states and setpoints");
+  self->shape.Evaluate(ctx->time, buffers.shape_now.data());
+  self->Sample(ctx);
+  WriteSlots(buffers, ctx->setpoints);
+  WriteCommands(buffers.n(), self->controller.acceleration().data(), self->sliding(),
+                ctx->setpoints);
+  return 0;
+}
+
+template <typename Instance>
+void SwarmReset(void* instance) {
+  static_cast<Instance*>(instance)->Reset();
+}
+
+template <typename Instance>
+void SwarmDestroy(void* instance) {
+  delete static_cast<Instance*>(instance);
+}
+
+// The descriptor of a swarm-level formation plugin whose instance is Instance (report: null for
+// a law with nothing to report).
+template <typename Instance, size_t kAttributes>
+constexpr mjfPlugin SwarmPlugin(const char* name, const char* doc,
+                                const mjfAttribute (&attributes)[kAttributes],
+                                void (*report)(void*, mjfReportFn, void*) = nullptr) {
+  return {MJF_ABI_VERSION,
+          name,
+          MJF_KIND_FORMATION,
+          doc,
+          static_cast<int>(kAttributes),
+          attributes,
+          0,
+          nullptr,
+          &SwarmCreate<Instance>,
+          &SwarmCompute<Instance>,
+          &SwarmReset<Instance>,
+          &SwarmDestroy<Instance>,
+          report};
+}
 
 }  // namespace mjf::formation
 

@@ -24,7 +24,7 @@
 namespace mjf::formation {
 namespace {
 
-constexpr int kPayloadUsed = 8;
+using plugin::kPayloadUsed;
 
 template <typename Law>
 struct Agent {
@@ -33,22 +33,21 @@ struct Agent {
   Agent(const mjfCreateContext* ctx, const Params& params, int64_t steps, double horizon_s)
       : follower(ctx->neighbourhood->follower),
         leader_weight(ctx->neighbourhood->leader_weight),
-        neighbours(ctx->neighbourhood->neighbours,
-                   ctx->neighbourhood->neighbours + ctx->neighbourhood->n_neighbours),
+        inbox(std::vector<int>(ctx->neighbourhood->neighbours,
+                               ctx->neighbourhood->neighbours + ctx->neighbourhood->n_neighbours)),
         core(params, ctx->neighbourhood->leader_weight,
              std::vector<double>(ctx->neighbourhood->weights,
                                  ctx->neighbourhood->weights + ctx->neighbourhood->n_neighbours)),
         shape(*ctx->shape),
         steps_per_sample(steps),
         horizon(horizon_s),
-        neighbour_pv(4 * neighbours.size()),
-        neighbour_f_now(6 * neighbours.size()),
-        neighbour_f_next(6 * neighbours.size()),
-        neighbour_w(2 * neighbours.size()),
-        found(neighbours.size()) {}
+        neighbour_pv(4 * inbox.neighbours().size()),
+        neighbour_f_now(6 * inbox.neighbours().size()),
+        neighbour_f_next(6 * inbox.neighbours().size()),
+        neighbour_w(2 * inbox.neighbours().size()) {}
   int follower;
-  double leader_weight;         // a_i0
-  std::vector<int> neighbours;  // follower indices j, 0-based
+  double leader_weight;          // a_i0
+  plugin::NeighbourInbox inbox;  // the neighbours' messages and the leader's state
   Law core;
   core::AbiShape shape;
   int64_t steps_per_sample;
@@ -64,15 +63,12 @@ struct Agent {
   // in the sample's period: rounds carried over links run at later ticks, with the sample's
   // time and step handed back by the host (docs/NETWORK.md); between samples round r > 0 holds.
   int last_round = -1;
-  double leader_pv[4] = {0, 0, 0, 0};
-  bool knows_leader = false;
   // f_i(t) and f_i(t + horizon) of this follower, and the same for each neighbour: evaluated
   // one follower at a time (mjfShape.evaluate_one), so the cost is O(degree), not O(N).
   double own_f_now[6] = {0, 0, 0, 0, 0, 0};
   double own_f_now_time = NAN;  // the time own_f_now was evaluated at (NaN: not yet)
   double own_f_next[6] = {0, 0, 0, 0, 0, 0};
   std::vector<double> neighbour_pv, neighbour_f_now, neighbour_f_next, neighbour_w;
-  std::vector<const mjfMessage*> found;  // [m] the message of neighbour m this call
 };
 
 void RequireNeighbourhood(const mjfCreateContext* ctx) {
@@ -115,47 +111,11 @@ void* CreateConsensus(const mjfCreateContext* ctx) {
   });
 }
 
-void ReadPv(const mjfVehicleState& s, double* pv) {
-  pv[0] = s.pos[0];
-  pv[1] = s.pos[1];
-  pv[2] = s.vel[0];
-  pv[3] = s.vel[1];
-}
-
-// Finds each neighbour's message and the leader's state (own link, else a neighbour's relay);
-// false while something the protocol needs has not arrived yet.
-template <typename Law>
-bool Gather(Agent<Law>& a, const mjfAgentInput& in) {
-  std::fill(a.found.begin(), a.found.end(), nullptr);
-  for (int k = 0; k < in.n_messages; ++k) {
-    for (size_t m = 0; m < a.neighbours.size(); ++m) {
-      if (in.messages[k].sender == a.neighbours[m] + 1) a.found[m] = &in.messages[k];
-    }
-  }
-  if (in.leader) {
-    ReadPv(in.leader->state, a.leader_pv);
-    a.knows_leader = true;
-  } else {
-    for (const mjfMessage* m : a.found) {
-      if (m && m->n_payload >= kPayloadUsed) {
-        std::copy(m->payload + 4, m->payload + 8, a.leader_pv);
-        a.knows_leader = true;
-        break;
-      }
-    }
-  }
-  for (const mjfMessage* m : a.found) {
-    if (!m) return false;
-  }
-  // a_i0 > 0: (48) needs the leader's own message; otherwise its state only feeds the slots.
-  return a.leader_weight <= 0.0 || in.leader != nullptr;
-}
-
 // w_j for every neighbour: this round's iterate when it got through, else from u_j.
 template <typename Law>
 void NeighbourCoupling(Agent<Law>& a, const mjfAgentInput& in) {
-  for (size_t m = 0; m < a.neighbours.size(); ++m) {
-    const mjfMessage& msg = *a.found[m];
+  for (size_t m = 0; m < a.inbox.neighbours().size(); ++m) {
+    const mjfMessage& msg = *a.inbox.message(m);
     // The host marks a neighbour's message with round r - 1 only when that round's message got
     // through this tick (its state part stays the newest one held, which may be older).
     const bool fresh_round = in.round > 0 && msg.round == in.round - 1 && msg.n_payload >= 2;
@@ -174,15 +134,15 @@ void Sample(Agent<Law>& a, const mjfStepContext& ctx) {
   const int i = a.follower;
   const double next = ctx.time + a.horizon;  // F(k+1) for the discrete law
   a.shape.EvaluateOne(next, i, a.own_f_next);
-  for (size_t m = 0; m < a.neighbours.size(); ++m) {
-    const int j = a.neighbours[m];
-    ReadPv(a.found[m]->state, &a.neighbour_pv[4 * m]);
+  for (size_t m = 0; m < a.inbox.neighbours().size(); ++m) {
+    const int j = a.inbox.neighbours()[m];
+    plugin::ReadPlanarPv(a.inbox.message(m)->state, &a.neighbour_pv[4 * m]);
     a.shape.EvaluateOne(ctx.time, j, &a.neighbour_f_now[6 * m]);
     a.shape.EvaluateOne(next, j, &a.neighbour_f_next[6 * m]);
   }
   double own_pv[4];
-  ReadPv(*in.self, own_pv);
-  a.core.Prepare(own_pv, a.leader_pv, a.own_f_now, a.own_f_next, a.neighbour_pv.data(),
+  plugin::ReadPlanarPv(*in.self, own_pv);
+  a.core.Prepare(own_pv, a.inbox.leader_pv(), a.own_f_now, a.own_f_next, a.neighbour_pv.data(),
                  a.neighbour_f_now.data(), a.neighbour_f_next.data());
   if (in.solved) {
     a.core.UseSolved(in.solved);
@@ -202,7 +162,7 @@ int Compute(void* instance, const mjfStepContext* ctx) {
                           "a per-agent formation plugin needs per-agent execution (ctx->agent)");
     }
     const mjfAgentInput& in = *ctx->agent;
-    const bool ready = Gather(a, in);
+    const bool ready = a.inbox.Gather(in, a.leader_weight);
     if (!ready && !a.has_sample) return 0;  // nothing heard yet: hold the initial setpoint
     // Every round of a tick runs at the same time: f_i(t) once per tick, not once per round.
     if (!(ctx->time == a.own_f_now_time)) {
@@ -230,8 +190,9 @@ int Compute(void* instance, const mjfStepContext* ctx) {
       // The reference slot x_0 + f_i (a diagnostic: attitude plugins use acc and pos[2]); the
       // own state until the leader's state has been heard or relayed.
       const double* f = a.own_f_now;
-      sp.pos[axis] = a.knows_leader ? a.leader_pv[axis] + f[axis] : in.self->pos[axis];
-      sp.vel[axis] = a.knows_leader ? a.leader_pv[2 + axis] + f[2 + axis] : in.self->vel[axis];
+      const double* leader = a.inbox.leader_pv();
+      sp.pos[axis] = a.inbox.knows_leader() ? leader[axis] + f[axis] : in.self->pos[axis];
+      sp.vel[axis] = a.inbox.knows_leader() ? leader[2 + axis] + f[2 + axis] : in.self->vel[axis];
       sp.acc[axis] = a.core.acceleration()[axis];  // zero-order hold between samples
       if (a.core.sliding()) sp.sliding[axis] = a.core.sliding()[axis];
     }
@@ -242,7 +203,7 @@ int Compute(void* instance, const mjfStepContext* ctx) {
     out.payload[1] = a.core.coupling()[1];
     out.payload[2] = a.core.rhs()[0];
     out.payload[3] = a.core.rhs()[1];
-    std::copy(a.leader_pv, a.leader_pv + 4, out.payload + 4);
+    std::copy(a.inbox.leader_pv(), a.inbox.leader_pv() + 4, out.payload + plugin::kPayloadLeader);
     return 0;
   });
 }

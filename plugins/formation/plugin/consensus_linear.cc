@@ -26,49 +26,20 @@ core::LinearConsensusParams ParseConsensusParams(const plugin::Attributes& attri
 
 namespace {
 
-using Instance = SwarmInstance<core::LinearConsensus>;
-
-void* Create(const mjfCreateContext* ctx) {
-  return plugin::CreateOrExplain(ctx, [&]() -> void* {
-    const core::LinearConsensusParams params = ParseConsensusParams(plugin::Attributes(ctx));
-    const SwarmSetup setup(ctx);
-    return new Instance(setup, params);
-  });
-}
-
-int Compute(void* instance, const mjfStepContext* ctx) {
-  auto* self = static_cast<Instance*>(instance);
-  SwarmBuffers& buffers = self->buffers;
-  if (!buffers.Read(ctx))
-    return mjf::plugin::Fail(
-        ctx, "the step does not carry 1 + n_followers vehicle states and setpoints");
-  self->shape.Evaluate(ctx->time, buffers.shape_now.data());
-  self->controller.Update(buffers.Input());
-  WriteSlots(buffers, ctx->setpoints);
-  WriteCommands(buffers.n(), self->controller.acceleration().data(), nullptr, ctx->setpoints);
-  return 0;
-}
-
-void Reset(void*) {}
-
-void Destroy(void* instance) { delete static_cast<Instance*>(instance); }
+struct Instance : SwarmInstance<core::LinearConsensus> {
+  using Config = core::LinearConsensusParams;
+  static Config Configure(const mjfCreateContext* ctx) {
+    return ParseConsensusParams(plugin::Attributes(ctx));
+  }
+  using SwarmInstance::SwarmInstance;
+  const double* sliding() const { return nullptr; }  // no sliding variable: it stays NaN
+  void Reset() {}
+};
 
 }  // namespace
 
-const mjfPlugin kConsensusLinear = {
-    MJF_ABI_VERSION,
-    "consensus_linear",
-    MJF_KIND_FORMATION,
-    "linear consensus-based time-varying formation tracking (baseline)",
-    static_cast<int>(sizeof(kConsensusAttributes) / sizeof(kConsensusAttributes[0])),
-    kConsensusAttributes,
-    0,
-    nullptr,
-    &Create,
-    &Compute,
-    &Reset,
-    &Destroy,
-    nullptr,
-};
+const mjfPlugin kConsensusLinear = SwarmPlugin<Instance>(
+    "consensus_linear", "linear consensus-based time-varying formation tracking (baseline)",
+    kConsensusAttributes);
 
 }  // namespace mjf::formation

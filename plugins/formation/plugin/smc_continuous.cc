@@ -42,33 +42,15 @@ core::ContinuousSmcParams ParseContinuousParams(const plugin::Attributes& attrib
 
 namespace {
 
-using Instance = SwarmInstance<core::ContinuousSmc>;
-
-void* Create(const mjfCreateContext* ctx) {
-  return plugin::CreateOrExplain(ctx, [&]() -> void* {
-    const core::ContinuousSmcParams params = ParseContinuousParams(plugin::Attributes(ctx));
-    const SwarmSetup setup(ctx);
-    return new Instance(setup, params);
-  });
-}
-
-int Compute(void* instance, const mjfStepContext* ctx) {
-  auto* self = static_cast<Instance*>(instance);
-  SwarmBuffers& buffers = self->buffers;
-  if (!buffers.Read(ctx))
-    return mjf::plugin::Fail(
-        ctx, "the step does not carry 1 + n_followers vehicle states and setpoints");
-  self->shape.Evaluate(ctx->time, buffers.shape_now.data());
-  self->controller.Update(buffers.Input());
-  WriteSlots(buffers, ctx->setpoints);
-  WriteCommands(buffers.n(), self->controller.acceleration().data(),
-                self->controller.sliding().data(), ctx->setpoints);
-  return 0;
-}
-
-void Reset(void* instance) { static_cast<Instance*>(instance)->controller.ResetReachingTime(); }
-
-void Destroy(void* instance) { delete static_cast<Instance*>(instance); }
+struct Instance : SwarmInstance<core::ContinuousSmc> {
+  using Config = core::ContinuousSmcParams;
+  static Config Configure(const mjfCreateContext* ctx) {
+    return ParseContinuousParams(plugin::Attributes(ctx));
+  }
+  using SwarmInstance::SwarmInstance;
+  const double* sliding() const { return controller.sliding().data(); }
+  void Reset() { controller.ResetReachingTime(); }
+};
 
 void Report(void* instance, mjfReportFn emit, void* user) {
   const auto* self = static_cast<const Instance*>(instance);
@@ -82,20 +64,8 @@ void Report(void* instance, mjfReportFn emit, void* user) {
 
 }  // namespace
 
-const mjfPlugin kSmcContinuous = {
-    MJF_ABI_VERSION,
-    "smc_continuous",
-    MJF_KIND_FORMATION,
-    "continuous sliding-mode formation tracking, eq. (30) via compact form (33)",
-    static_cast<int>(sizeof(kContinuousAttributes) / sizeof(kContinuousAttributes[0])),
-    kContinuousAttributes,
-    0,
-    nullptr,
-    &Create,
-    &Compute,
-    &Reset,
-    &Destroy,
-    &Report,
-};
+const mjfPlugin kSmcContinuous = SwarmPlugin<Instance>(
+    "smc_continuous", "continuous sliding-mode formation tracking, eq. (30) via compact form (33)",
+    kContinuousAttributes, &Report);
 
 }  // namespace mjf::formation

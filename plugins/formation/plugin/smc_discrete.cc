@@ -72,48 +72,34 @@ int64_t StepsPerSample(double period, double timestep) {
 namespace {
 
 struct Instance : SwarmInstance<core::DiscreteSmc> {
-  Instance(const SwarmSetup& setup, const core::DiscreteSmcParams& params, int64_t steps)
-      : SwarmInstance(setup, params), steps_per_sample(steps) {}
+  // The params and the physics steps per sample period T they imply.
+  struct Config {
+    core::DiscreteSmcParams params;
+    int64_t steps_per_sample;
+  };
+  static Config Configure(const mjfCreateContext* ctx) {
+    const core::DiscreteSmcParams params = ParseDiscreteParams(plugin::Attributes(ctx));
+    return {params, StepsPerSample(params.period, ctx->timestep)};
+  }
+  Instance(const SwarmSetup& setup, const Config& config)
+      : SwarmInstance(setup, config.params), steps_per_sample(config.steps_per_sample) {}
+  void Sample(const mjfStepContext* ctx) {
+    if (!has_sample || ctx->step % steps_per_sample == 0) {
+      // Sample k: F(k) at t, F(k+1) at t + T, eq. (53).
+      shape.Evaluate(ctx->time + controller.params().period, buffers.shape_next.data());
+      controller.Update(buffers.Input());
+      has_sample = true;
+    }
+  }
+  // Zero-order hold: the last sample's u_i and s_i until the next sample.
+  const double* sliding() const { return controller.sliding().data(); }
+  void Reset() {
+    has_sample = false;
+    controller.ResetConstraintStats();
+  }
   int64_t steps_per_sample;  // zero-order hold: physics steps per sample period T
   bool has_sample = false;
 };
-
-void* Create(const mjfCreateContext* ctx) {
-  return plugin::CreateOrExplain(ctx, [&]() -> void* {
-    const core::DiscreteSmcParams params = ParseDiscreteParams(plugin::Attributes(ctx));
-    const int64_t steps = StepsPerSample(params.period, ctx->timestep);
-    const SwarmSetup setup(ctx);
-    return new Instance(setup, params, steps);
-  });
-}
-
-int Compute(void* instance, const mjfStepContext* ctx) {
-  auto* self = static_cast<Instance*>(instance);
-  SwarmBuffers& buffers = self->buffers;
-  if (!buffers.Read(ctx))
-    return mjf::plugin::Fail(
-        ctx, "the step does not carry 1 + n_followers vehicle states and setpoints");
-  self->shape.Evaluate(ctx->time, buffers.shape_now.data());
-  if (!self->has_sample || ctx->step % self->steps_per_sample == 0) {
-    // Sample k: F(k) at t, F(k+1) at t + T, eq. (53).
-    self->shape.Evaluate(ctx->time + self->controller.params().period, buffers.shape_next.data());
-    self->controller.Update(buffers.Input());
-    self->has_sample = true;
-  }
-  WriteSlots(buffers, ctx->setpoints);
-  // Zero-order hold: the last sample's u_i and s_i until the next sample.
-  WriteCommands(buffers.n(), self->controller.acceleration().data(),
-                self->controller.sliding().data(), ctx->setpoints);
-  return 0;
-}
-
-void Reset(void* instance) {
-  auto* self = static_cast<Instance*>(instance);
-  self->has_sample = false;
-  self->controller.ResetConstraintStats();
-}
-
-void Destroy(void* instance) { delete static_cast<Instance*>(instance); }
 
 void Report(void* instance, mjfReportFn emit, void* user) {
   const auto* self = static_cast<const Instance*>(instance);
@@ -143,20 +129,9 @@ void Report(void* instance, mjfReportFn emit, void* user) {
 
 }  // namespace
 
-const mjfPlugin kSmcDiscrete = {
-    MJF_ABI_VERSION,
+const mjfPlugin kSmcDiscrete = SwarmPlugin<Instance>(
     "smc_discrete",
-    MJF_KIND_FORMATION,
     "discrete sliding-mode formation tracking, eq. (48) via compact form (53), zero-order hold",
-    static_cast<int>(sizeof(kDiscreteAttributes) / sizeof(kDiscreteAttributes[0])),
-    kDiscreteAttributes,
-    0,
-    nullptr,
-    &Create,
-    &Compute,
-    &Reset,
-    &Destroy,
-    &Report,
-};
+    kDiscreteAttributes, &Report);
 
 }  // namespace mjf::formation

@@ -24,11 +24,6 @@ const mjfAttribute kCircleAttributes[] = {
     rows::kKd,
 };
 
-struct CircleInstance {
-  int vehicle;
-  CircleGuidance guidance;
-};
-
 void* CircleCreate(const mjfCreateContext* ctx) {
   return mjf::plugin::CreateOrExplain(ctx, [ctx]() -> void* {
     const Attributes attributes(ctx);
@@ -42,37 +37,15 @@ void* CircleCreate(const mjfCreateContext* ctx) {
     config.altitude = attributes.Number(kAltitude);
     config.yaw = attributes.Number(kYaw);
     config.gains = ReadGains(attributes);
-    return new CircleInstance{CheckVehicle(ctx), CircleGuidance(config)};
+    return new LeaderInstance<CircleGuidance>{CheckVehicle(ctx), CircleGuidance(config)};
   });
 }
 
-int CircleCompute(void* instance, const mjfStepContext* ctx) {
-  auto* self = static_cast<CircleInstance*>(instance);
-  if (self->vehicle >= ctx->n_vehicles) {
-    return mjf::plugin::Fail(ctx, "called for a vehicle the step does not have");
-  }
-  const mjfVehicleState& s = ctx->states[self->vehicle];
-  Write(self->guidance.Update(ctx->time, Get(s.pos), Get(s.vel)), &ctx->setpoints[self->vehicle]);
-  return 0;
-}
-
-void CircleDestroy(void* instance) { delete static_cast<CircleInstance*>(instance); }
-
 }  // namespace
 
-const mjfPlugin kCircle = {
-    MJF_ABI_VERSION,
+const mjfPlugin kCircle = LeaderPlugin<CircleGuidance>(
     "circle",
-    MJF_KIND_GUIDANCE,
     "leader circle: a = a_ref + kp (p_ref - p) + kd (v_ref - v), constant altitude and yaw",
-    static_cast<int>(sizeof(kCircleAttributes) / sizeof(kCircleAttributes[0])),
-    kCircleAttributes,
-    0,
-    nullptr,
-    CircleCreate,
-    CircleCompute,
-    nullptr,
-    CircleDestroy,
-    nullptr};
+    kCircleAttributes, CircleCreate);
 
 }  // namespace mjf::guidance::adapter

@@ -21,8 +21,11 @@ const mjfAttribute kHoverAttributes[] = {
     {kKd, "2", "1/s: velocity gain"},
 };
 
-struct HoverInstance {
-  int vehicle;
+// HoverGuidance holds a point whatever the time: the family's Update(t, pos, vel) over it.
+struct HoverLaw {
+  GuidanceOutput Update(double /*t*/, const Vec3& pos, const Vec3& vel) const {
+    return guidance.Update(pos, vel);
+  }
   HoverGuidance guidance;
 };
 
@@ -42,37 +45,14 @@ void* HoverCreate(const mjfCreateContext* ctx) {
     if (!Blank(attributes.String(kAltitude))) config.position[2] = attributes.Number(kAltitude);
     config.yaw = attributes.Number(kYaw);
     config.gains = ReadGains(attributes);
-    return new HoverInstance{CheckVehicle(ctx), HoverGuidance(config)};
+    return new LeaderInstance<HoverLaw>{CheckVehicle(ctx), HoverLaw{HoverGuidance(config)}};
   });
 }
 
-int HoverCompute(void* instance, const mjfStepContext* ctx) {
-  auto* self = static_cast<HoverInstance*>(instance);
-  if (self->vehicle >= ctx->n_vehicles) {
-    return mjf::plugin::Fail(ctx, "called for a vehicle the step does not have");
-  }
-  const mjfVehicleState& s = ctx->states[self->vehicle];
-  Write(self->guidance.Update(Get(s.pos), Get(s.vel)), &ctx->setpoints[self->vehicle]);
-  return 0;
-}
-
-void HoverDestroy(void* instance) { delete static_cast<HoverInstance*>(instance); }
-
 }  // namespace
 
-const mjfPlugin kHover = {
-    MJF_ABI_VERSION,
-    "hover",
-    MJF_KIND_GUIDANCE,
-    "holds a point (default: the initial position): a = kp (p_ref - p) - kd v",
-    static_cast<int>(sizeof(kHoverAttributes) / sizeof(kHoverAttributes[0])),
-    kHoverAttributes,
-    0,
-    nullptr,
-    HoverCreate,
-    HoverCompute,
-    nullptr,
-    HoverDestroy,
-    nullptr};
+const mjfPlugin kHover = LeaderPlugin<HoverLaw>(
+    "hover", "holds a point (default: the initial position): a = kp (p_ref - p) - kd v",
+    kHoverAttributes, HoverCreate);
 
 }  // namespace mjf::guidance::adapter

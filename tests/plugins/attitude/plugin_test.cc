@@ -146,6 +146,47 @@ TEST(AttitudePluginTest, PointMassDirectGivesMassTimesCommand) {
   p->destroy(instance);
 }
 
+// The family's compute refuses a step it cannot fly: without controls (1) and with a setpoint
+// that is not finite (2), each with its message, the same before and after the family's layout.
+TEST(AttitudePluginTest, ComputeRefusesAStepItCannotFlyWithItsMessage) {
+  Library lib(MJF_ATTITUDE_PLUGIN);
+  const char* const kRotorSetpoint = "non-finite setpoint (acc, pos[2], vel[2] or yaw)";
+  const std::tuple<const char*, const char*, const char*> cases[] = {
+      {"pd_cascade", "quadrotor.xml", kRotorSetpoint},
+      {"geometric", "quadrotor.xml", kRotorSetpoint},
+      {"pointmass_direct", "pointmass.xml", "the setpoint is not finite"}};
+  for (const auto& [name, model, setpoint_message] : cases) {
+    SCOPED_TRACE(name);
+    const mjfPlugin* p = lib.Get(name);
+    ASSERT_TRUE(p);
+    VehicleInfo info(model, *p);
+    Context c(*p, {}, &info.vehicle, 0, nullptr);
+    void* instance = p->create(&c.ctx);
+    ASSERT_NE(instance, nullptr) << c.error;
+    mjfVehicleState state{};
+    state.quat[0] = 1;
+    mjfSetpoint sp = NaNSetpoint();
+    double controls[4] = {kNaN, kNaN, kNaN, kNaN};
+    char error[128] = "";
+    mjfStepContext step{};
+    step.timestep = 0.001;
+    step.n_vehicles = 1;
+    step.states = &state;
+    step.setpoints = &sp;
+    step.controls = controls;
+    step.error = error;
+    step.error_size = sizeof(error);
+    EXPECT_EQ(p->compute(instance, &step), 2);
+    EXPECT_STREQ(error, setpoint_message);
+    for (double u : controls) EXPECT_TRUE(std::isnan(u));  // nothing written
+    step.controls = nullptr;
+    EXPECT_EQ(p->compute(instance, &step), 1);
+    EXPECT_STREQ(error, "called for a vehicle the step does not have, or without controls");
+    p->reset(instance);
+    p->destroy(instance);
+  }
+}
+
 TEST(AttitudePluginTest, BadAttributesAreRefusedByName) {
   Library lib(MJF_ATTITUDE_PLUGIN);
   const mjfPlugin* p = lib.Get("pd_cascade");

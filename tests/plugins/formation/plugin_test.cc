@@ -251,6 +251,64 @@ TEST_F(FormationPluginTest, ConsensusConvergesWithDefaults) {
   p->destroy(instance);
 }
 
+// The swarm-level laws share one compute: a step that does not carry the swarm is refused with
+// the same message by each, and a law without a sliding variable leaves sliding NaN.
+TEST_F(FormationPluginTest, SwarmLawsRefuseAStepWithoutTheSwarm) {
+  for (const char* name : {"smc_continuous", "smc_discrete", "consensus_linear"}) {
+    SCOPED_TRACE(name);
+    const mjfPlugin* p = Plugin(name);
+    ASSERT_NE(p->reset, nullptr);
+    std::string create_error;
+    void* instance = Create(p, {}, &create_error);
+    ASSERT_NE(instance, nullptr) << create_error;
+    std::vector<mjfVehicleState> states(7);
+    std::vector<mjfSetpoint> setpoints(7);
+    char error[128] = "";
+    mjfStepContext ctx{};
+    ctx.timestep = 0.01;
+    ctx.n_vehicles = 6;  // one follower short
+    ctx.states = states.data();
+    ctx.setpoints = setpoints.data();
+    ctx.error = error;
+    ctx.error_size = sizeof(error);
+    EXPECT_EQ(p->compute(instance, &ctx), 1);
+    EXPECT_STREQ(error, "the step does not carry 1 + n_followers vehicle states and setpoints");
+    ctx.n_vehicles = 7;
+    for (auto& sp : setpoints) sp.sliding[0] = sp.sliding[1] = std::nan("");
+    ASSERT_EQ(p->compute(instance, &ctx), 0) << error;
+    EXPECT_EQ(std::isnan(setpoints[1].sliding[0]), std::string(name) == "consensus_linear");
+    p->reset(instance);
+    p->destroy(instance);
+  }
+}
+
+// Reset forgets the held sample: the next step samples again, whatever its step number.
+TEST_F(FormationPluginTest, DiscreteSamplesAgainAfterReset) {
+  const mjfPlugin* p = Plugin("smc_discrete");
+  std::string error;
+  void* instance = Create(p, {{"period", "0.05"}}, &error);  // 5 steps of 0.01 s
+  ASSERT_NE(instance, nullptr) << error;
+  std::vector<mjfVehicleState> states(7);
+  for (int i = 1; i <= 6; ++i) states[i].pos[0] = i;
+  std::vector<mjfSetpoint> setpoints(7);
+  mjfStepContext ctx{};
+  ctx.timestep = 0.01;
+  ctx.n_vehicles = 7;
+  ctx.states = states.data();
+  ctx.setpoints = setpoints.data();
+  ASSERT_EQ(p->compute(instance, &ctx), 0);  // step 0: the first sample
+  const double first = setpoints[1].acc[0];
+  states[1].pos[0] += 3.0;  // moved: a new sample would command something else
+  ctx.step = 2;
+  ctx.time = 0.02;
+  ASSERT_EQ(p->compute(instance, &ctx), 0);
+  EXPECT_EQ(setpoints[1].acc[0], first);  // held between samples
+  p->reset(instance);
+  ASSERT_EQ(p->compute(instance, &ctx), 0);
+  EXPECT_NE(setpoints[1].acc[0], first);  // sampled at step 2, the first after reset
+  p->destroy(instance);
+}
+
 TEST_F(FormationPluginTest, BadConfigurationGivesNullAndMessage) {
   struct Bad {
     const char* plugin;
