@@ -6,7 +6,8 @@
 // nearest a time, the trails at a frame, and the --snapshots times checked against it.
 #include "fuzz_util.hpp"
 #include "mjformation/app/replay.hpp"
-#include "mjformation/config/config.hpp"
+#include "mjformation/config/config_error.hpp"
+#include "mjformation/config/experiment.hpp"
 
 namespace {
 

@@ -14,7 +14,8 @@
 #include <vector>
 
 #include "mjformation/app/cli.hpp"
-#include "mjformation/config/config.hpp"
+#include "mjformation/config/config_error.hpp"
+#include "mjformation/config/experiment.hpp"
 
 namespace mjf::runner::sweep {
 

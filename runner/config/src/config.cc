@@ -376,9 +376,7 @@ void ParseVehiclesSection(const Reporter& reporter, SectionReader vehicles, cons
     }
   }
   c.start_jitter = vehicles.Number("start_jitter", 0.0);
-  c.rotor_model =
-      vehicles.Enum("rotor_model", c.rotor_model,
-                    {{"actuator", RotorModel::kActuator}, {"wrench", RotorModel::kWrench}});
+  c.rotor_model = vehicles.Enum("rotor_model", c.rotor_model, kRotorModelWords);
   c.contacts = vehicles.Bool("contacts", c.contacts);
   ParseVehicleMapping(vehicles, reporter, &c);
   vehicles.RejectUnknown();
@@ -444,15 +442,13 @@ void ReadLeaderLinks(const Reporter& reporter, SectionReader& topology, Experime
 
 void ParseTopologySection(const Reporter& reporter, SectionReader topology, ExperimentConfig& c) {
   ReadLeaderLinks(reporter, topology, c);
-  const std::string generator = topology.String("generate", "");
+  // Generated graphs for large N: "chain" (1 -> 2 -> ... -> N) or "ring" (chain + N -> 1).
+  static constexpr EnumWord<bool> kGeneratorWords[] = {{"chain", false}, {"ring", true}};
+  const bool ring = topology.Enum("generate", false, kGeneratorWords);
   c.edges = ReadEdges(reporter, topology, c.followers);
-  if (!generator.empty()) {
-    // Generated graphs for large N: "chain" (1 -> 2 -> ... -> N) or "ring" (chain + N -> 1).
-    if (generator != "chain" && generator != "ring") {
-      topology.Fail("generate", "must be \"chain\" or \"ring\"");
-    }
+  if (topology.Has("generate")) {
     if (!c.edges.empty()) topology.Fail("generate", "give either edges or generate, not both");
-    c.edges = GeneratedEdges(c.followers, generator == "ring");
+    c.edges = GeneratedEdges(c.followers, ring);
   }
   topology.RejectUnknown();
   if (!topology.table()) {
@@ -470,11 +466,8 @@ void ParseShapeSection(const Reporter& reporter, const toml::table* formation_ta
   }
   SectionReader shape(reporter.path(), shape_node ? shape_node->as_table() : nullptr,
                       "formation.shape");
-  c.shape.type = shape.Enum("type", shape_node ? ShapeType::kCircle : ShapeType::kNone,
-                            {{"circle", ShapeType::kCircle},
-                             {"offsets", ShapeType::kOffsets},
-                             {"table", ShapeType::kTable},
-                             {"none", ShapeType::kNone}});
+  c.shape.type =
+      shape.Enum("type", shape_node ? ShapeType::kCircle : ShapeType::kNone, kShapeTypeWords);
   c.shape.radius = shape.Number("radius", c.shape.radius);
   c.shape.omega = shape.Number("omega", c.shape.omega);
   c.shape.phase0 = shape.Number("phase0", c.shape.phase0);
@@ -510,10 +503,7 @@ void ReadRenderValues(SectionReader& render, RenderConfig& r) {
   r.snapshots = render.Numbers("snapshots", {});
   r.width = static_cast<int>(render.Integer("width", r.width));
   r.height = static_cast<int>(render.Integer("height", r.height));
-  r.camera = render.Enum("camera", r.camera,
-                         {{"follow", CameraMode::kFollow},
-                          {"leader", CameraMode::kLeader},
-                          {"fixed", CameraMode::kFixed}});
+  r.camera = render.Enum("camera", r.camera, kCameraModeWords);
   r.distance = render.Number("distance", r.distance);
   r.azimuth = render.Number("azimuth", r.azimuth);
   r.elevation = render.Number("elevation", r.elevation);
@@ -550,32 +540,6 @@ void ParseRenderSection(SectionReader render, double duration, bool check_times,
 }
 
 }  // namespace
-
-const char* ToString(RotorModel value) {
-  return value == RotorModel::kWrench ? "wrench" : "actuator";
-}
-const char* ToString(CameraMode value) {
-  switch (value) {
-    case CameraMode::kLeader:
-      return "leader";
-    case CameraMode::kFixed:
-      return "fixed";
-    default:
-      return "follow";
-  }
-}
-const char* ToString(ShapeType value) {
-  switch (value) {
-    case ShapeType::kOffsets:
-      return "offsets";
-    case ShapeType::kTable:
-      return "table";
-    case ShapeType::kNone:
-      return "none";
-    default:
-      return "circle";
-  }
-}
 
 ExperimentConfig ParseExperiment(const std::string& text, const std::string& path,
                                  const std::vector<std::string>& overrides,

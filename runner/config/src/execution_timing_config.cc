@@ -28,21 +28,8 @@ double SamplePeriod(const ExperimentConfig& c) {
 
 }  // namespace
 
-const char* ToString(Predict value) {
-  switch (value) {
-    case Predict::kInput:
-      return "input";
-    case Predict::kAttitude:
-      return "attitude";
-    default:
-      return "none";
-  }
-}
-
 void ParseExecutionTiming(SectionReader& keys, const ExperimentConfig& c, NetworkConfig& n) {
-  n.predict = keys.Enum(
-      "predict", Predict::kNone,
-      {{"none", Predict::kNone}, {"input", Predict::kInput}, {"attitude", Predict::kAttitude}});
+  n.predict = keys.Enum("predict", Predict::kNone, kPredictWords);
   n.clock_offset = keys.Number("clock_offset", 0.0);
   const double period = SamplePeriod(c);
   n.sample_period = period;
@@ -71,17 +58,9 @@ void ParseExecutionTiming(SectionReader& keys, const ExperimentConfig& c, Networ
   }
 }
 
-const char* ToString(ExchangeRounds value) {
-  return value == ExchangeRounds::kOverLinks ? "over_links" : "instantaneous";
-}
-
-const char* ToString(RoundPolicy value) { return value == RoundPolicy::kHold ? "hold" : "apply"; }
-
 void ParseExchangeRounds(SectionReader& keys, ExperimentConfig& c) {
   NetworkConfig& n = c.network;
-  n.rounds = keys.Enum("rounds", ExchangeRounds::kInstantaneous,
-                       {{"instantaneous", ExchangeRounds::kInstantaneous},
-                        {"over_links", ExchangeRounds::kOverLinks}});
+  n.rounds = keys.Enum("rounds", ExchangeRounds::kInstantaneous, kExchangeRoundsWords);
   n.round_timeout = keys.Number("round_timeout", 0.0);
   if (!(n.round_timeout >= 0.0 && n.round_timeout <= c.duration)) {
     keys.Fail("round_timeout",
@@ -90,8 +69,7 @@ void ParseExchangeRounds(SectionReader& keys, ExperimentConfig& c) {
   if (keys.Has("round_timeout") && n.rounds != ExchangeRounds::kOverLinks) {
     keys.Fail("round_timeout", "needs rounds = \"over_links\" (instantaneous rounds take no time)");
   }
-  n.round_policy = keys.Enum("round_policy", RoundPolicy::kApply,
-                             {{"apply", RoundPolicy::kApply}, {"hold", RoundPolicy::kHold}});
+  n.round_policy = keys.Enum("round_policy", RoundPolicy::kApply, kRoundPolicyWords);
   if (keys.Has("round_policy") && n.rounds != ExchangeRounds::kOverLinks) {
     keys.Fail("round_policy",
               "needs rounds = \"over_links\" (instantaneous rounds end in the tick they start)");

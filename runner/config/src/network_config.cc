@@ -67,14 +67,10 @@ network::LinkParams ReadLinkParams(SectionReader& keys, const network::LinkParam
   if (!(p.loss >= 0.0 && p.loss <= 1.0)) {
     keys.Fail("loss", "must be a probability in [0, 1]");
   }
-  const std::string model = keys.String("loss_model", "");
-  if (model == "bernoulli") {
-    p.loss_model = network::LossModel::kBernoulli;
-  } else if (model == "gilbert_elliott") {
-    p.loss_model = network::LossModel::kGilbertElliott;
-  } else if (!model.empty()) {
-    keys.Fail("loss_model", "must be \"bernoulli\" or \"gilbert_elliott\" (got \"" + model + "\")");
-  }
+  static constexpr EnumWord<network::LossModel> kLossModelWords[] = {
+      {"bernoulli", network::LossModel::kBernoulli},
+      {"gilbert_elliott", network::LossModel::kGilbertElliott}};
+  p.loss_model = keys.Enum("loss_model", p.loss_model, kLossModelWords);
   for (auto [key, value] :
        {std::pair{"burst_enter", &p.burst_enter}, std::pair{"burst_exit", &p.burst_exit},
         std::pair{"burst_loss", &p.burst_loss}}) {
@@ -151,21 +147,8 @@ void ParseExecution(const std::string& path, const toml::table& t, const Experim
   Know(keys, {"mode", "coupling", "jacobi_rounds", "jacobi_divergence", "predict", "clock_offset",
               "clock_drift_ppm", "clock_sync"});
   keys.RejectUnknown();
-  const std::string mode = keys.String("mode", "central");
-  if (mode == "per_agent") {
-    n.execution = Execution::kPerAgent;
-  } else if (mode != "central") {
-    keys.Fail("mode", "must be \"central\" or \"per_agent\" (got \"" + mode + "\")");
-  }
-  const std::string coupling = keys.String("coupling", "last_input");
-  if (coupling == "jacobi") {
-    n.coupling = Coupling::kJacobi;
-  } else if (coupling == "central_solve") {
-    n.coupling = Coupling::kCentralSolve;
-  } else if (coupling != "last_input") {
-    keys.Fail("coupling",
-              "must be \"last_input\", \"jacobi\" or \"central_solve\" (got \"" + coupling + "\")");
-  }
+  n.execution = keys.Enum("mode", Execution::kCentral, kExecutionWords);
+  n.coupling = keys.Enum("coupling", Coupling::kLastInput, kCouplingWords);
   if (const toml::node* node = keys.Node("jacobi_rounds")) {
     auto v = node->value_exact<int64_t>();
     if (!v || *v < 1 || *v > 64)
@@ -175,12 +158,8 @@ void ParseExecution(const std::string& path, const toml::table& t, const Experim
     }
     n.jacobi_rounds = static_cast<int>(*v);
   }
-  const std::string divergence = keys.String("jacobi_divergence", "refuse");
-  if (divergence == "warn") {
-    n.refuse_divergent = false;
-  } else if (divergence != "refuse") {
-    keys.Fail("jacobi_divergence", "must be \"refuse\" or \"warn\" (got \"" + divergence + "\")");
-  }
+  static constexpr EnumWord<bool> kDivergenceWords[] = {{"refuse", true}, {"warn", false}};
+  n.refuse_divergent = keys.Enum("jacobi_divergence", true, kDivergenceWords);
   if (n.execution == Execution::kCentral && keys.Has("coupling")) {
     keys.Fail("coupling", "needs mode = \"per_agent\" (central mode solves the coupling exactly)");
   }
@@ -188,21 +167,6 @@ void ParseExecution(const std::string& path, const toml::table& t, const Experim
 }
 
 }  // namespace
-
-const char* ToString(Execution value) {
-  return value == Execution::kPerAgent ? "per_agent" : "central";
-}
-
-const char* ToString(Coupling value) {
-  switch (value) {
-    case Coupling::kJacobi:
-      return "jacobi";
-    case Coupling::kCentralSolve:
-      return "central_solve";
-    default:
-      return "last_input";
-  }
-}
 
 void ParseNetworkSections(const toml::table& root, ExperimentConfig& c) {
   if (const toml::table* t = root.get_as<toml::table>("execution")) {

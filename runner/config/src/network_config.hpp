@@ -4,7 +4,7 @@
 
 #include <toml++/toml.h>
 
-#include "mjformation/config/config.hpp"
+#include "mjformation/config/experiment.hpp"
 
 namespace mjf::runner {
 

@@ -7,7 +7,7 @@
 #include <climits>
 #include <cstdlib>
 
-#include "mjformation/config/config.hpp"
+#include "mjformation/config/config_error.hpp"
 
 namespace mjf::runner {
 

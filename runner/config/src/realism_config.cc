@@ -16,22 +16,16 @@ namespace {
 void ParseSensors(const toml::table* table, const std::string& path, ExperimentConfig* c) {
   SectionReader keys(path, table, "sensors");
   SensorsConfig& s = c->sensors;
+  using Suite = realism::SensorParams (*)();
+  static constexpr EnumWord<Suite> kPresetWords[] = {
+      {"ideal", &realism::SensorParams::Ideal},
+      {"typical", &realism::SensorParams::Typical},
+      {"consumer_gnss", &realism::SensorParams::ConsumerGnss},
+      {"rtk", &realism::SensorParams::Rtk},
+      {"mocap", &realism::SensorParams::MotionCapture}};
+  s.params = keys.Enum("preset", &realism::SensorParams::Ideal, kPresetWords)();
   s.preset = keys.String("preset", s.preset);
   s.scale = keys.Number("scale", s.scale);
-  if (s.preset == "ideal") {
-    s.params = realism::SensorParams::Ideal();
-  } else if (s.preset == "typical") {
-    s.params = realism::SensorParams::Typical();
-  } else if (s.preset == "consumer_gnss") {
-    s.params = realism::SensorParams::ConsumerGnss();
-  } else if (s.preset == "rtk") {
-    s.params = realism::SensorParams::Rtk();
-  } else if (s.preset == "mocap") {
-    s.params = realism::SensorParams::MotionCapture();
-  } else {
-    keys.Fail("preset", "unknown preset '" + s.preset +
-                            "' (known: ideal, typical, consumer_gnss, rtk, mocap)");
-  }
   if (keys.Has("imu")) {
     s.imu = keys.String("imu", "");
     if (!realism::SensorParams::ImuGrade(s.imu, &s.params.accel)) {
@@ -233,56 +227,6 @@ void ParseRealismSections(const toml::table& root, const std::string& path, Expe
   }
   ParseSensors(root.get_as<toml::table>("sensors"), path, c);
   ParseWind(root.get_as<toml::table>("wind"), path, c);
-}
-
-void AddRealismSummary(const ExperimentConfig& c, nlohmann::ordered_json* summary) {
-  if (c.sensors.enabled()) {
-    nlohmann::ordered_json channels = nlohmann::ordered_json::object();
-    for (int k = 0; k < realism::kChannels; ++k) {
-      const realism::ChannelNoise& n = c.sensors.params.channel[k];
-      channels[realism::ChannelName(static_cast<realism::Channel>(k))] = {
-          {"std", n.white_std},
-          {"bias_walk", n.bias_walk},
-          {"rate_hz", n.rate_hz},
-          {"latency_s", n.latency_s}};
-      // The wander keys only when used, so configurations without them keep their summary bytes.
-      if (n.wander_sigma > 0) {
-        auto& ch = channels[realism::ChannelName(static_cast<realism::Channel>(k))];
-        ch["wander"] = n.wander_sigma;
-        ch["wander_tau_s"] = n.wander_tau;
-        ch["correlation"] = n.correlation;
-      }
-    }
-    (*summary)["sensors"] = {
-        {"preset", c.sensors.preset}, {"scale", c.sensors.scale}, {"channels", channels}};
-    const realism::AccelNoise& a = c.sensors.params.accel;
-    if (a.enabled) {
-      (*summary)["sensors"]["accelerometer"] = {{"noise_density", a.noise_density},
-                                                {"bias_walk", a.bias_walk}};
-    }
-  }
-  if (c.wind.enabled()) {
-    const realism::WindParams& p = c.wind.params;
-    nlohmann::ordered_json wind = {{"mean", p.mean}, {"turbulence", c.wind.turbulence}};
-    if (p.turbulence) {
-      wind["w20"] = c.wind.w20;
-      wind["sigma"] = p.dryden.sigma;
-      wind["scale_length"] = p.dryden.scale_length;
-      wind["airspeed"] = p.dryden.airspeed;
-      wind["turbulence_rate_hz"] = p.turbulence_rate_hz;
-      wind["turbulence_correlation"] = p.turbulence_correlation;
-    }
-    nlohmann::ordered_json gusts = nlohmann::ordered_json::array();
-    for (const auto& g : p.gusts) {
-      gusts.push_back({{"start", g.start}, {"duration", g.duration}, {"amplitude", g.amplitude}});
-    }
-    wind["gusts"] = gusts;
-    wind["drag"] = {{"rotor_linear", c.wind.drag.rotor_linear},
-                    {"cda_horizontal", c.wind.drag.cda_horizontal},
-                    {"cda_vertical", c.wind.drag.cda_vertical},
-                    {"air_density", c.wind.drag.air_density}};
-    (*summary)["wind"] = wind;
-  }
 }
 
 }  // namespace mjf::runner

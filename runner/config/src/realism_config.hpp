@@ -7,7 +7,7 @@
 
 #include <string>
 
-#include "mjformation/config/config.hpp"
+#include "mjformation/config/experiment.hpp"
 
 namespace mjf::runner {
 

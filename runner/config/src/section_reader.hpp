@@ -9,8 +9,8 @@
 #include <toml++/toml.h>
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
-#include <initializer_list>
 #include <set>
 #include <string>
 #include <utility>
@@ -58,17 +58,17 @@ class SectionReader {
   std::array<double, 3> Vector3(const std::string& key, std::array<double, 3> fallback);
   void MarkUsed(const std::string& key) { used_.insert(key); }
 
-  // One of a fixed set of words, returned as its enum value.
-  template <typename E>
-  E Enum(const std::string& key, E fallback,
-         std::initializer_list<std::pair<const char*, E>> names) {
+  // One of a fixed set of words (a table of EnumWord, experiment.hpp), returned as its value;
+  // anything else is refused listing the words in the table's order.
+  template <typename E, size_t N>
+  E Enum(const std::string& key, E fallback, const std::pair<const char*, E> (&words)[N]) {
     used_.insert(key);
     if (!Node(key)) return fallback;
     const std::string text = String(key, "");
     std::string list;
-    for (const auto& [name, value] : names) {
-      if (text == name) return value;
-      list += (list.empty() ? "\"" : ", \"") + std::string(name) + "\"";
+    for (const auto& [word, value] : words) {
+      if (text == word) return value;
+      list += (list.empty() ? "\"" : ", \"") + std::string(word) + "\"";
     }
     Fail(key, "must be one of " + list + " (got \"" + text + "\")");
   }

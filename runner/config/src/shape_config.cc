@@ -1,11 +1,12 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
 // [formation.shape] -> the core's Shape: the paper's circle, fixed offsets, or a sampled table.
+#include "mjformation/config/shape_config.hpp"
+
 #include <cmath>
 #include <fstream>
 #include <sstream>
 
-#include "mjformation/config/config.hpp"
 #include "mjformation/config/source_location.hpp"
 #include "mjformation/core/shape.hpp"
 

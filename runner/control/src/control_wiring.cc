@@ -10,6 +10,7 @@
 #include <limits>
 #include <string>
 
+#include "mjformation/config/shape_config.hpp"
 #include "mjformation/config/source_location.hpp"
 #include "mjformation/control/errors.hpp"
 #include "mjformation/control/estimated_sensors.hpp"

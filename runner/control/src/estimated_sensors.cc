@@ -7,7 +7,7 @@
 #include <chrono>
 #include <cmath>
 
-#include "mjformation/config/config.hpp"
+#include "mjformation/config/experiment.hpp"
 #include "mjformation/control/errors.hpp"
 #include "mjformation/realism/gaussian.hpp"
 

@@ -2,7 +2,7 @@
 //
 // The one place where the experiment's realism settings become stages of the control tick:
 // [sensors] -> MeasuredSensors (or IdealSensors), [wind] -> WindDrag (or no force stage).
-#include "mjformation/config/config.hpp"
+#include "mjformation/config/experiment.hpp"
 #include "mjformation/control/stages.hpp"
 #include "mjformation/realism/gaussian.hpp"
 #include "mjformation/realism/sensor_model.hpp"

@@ -8,8 +8,6 @@
 namespace mjf::realism {
 namespace {
 
-constexpr double kFoot = 0.3048;  // m
-
 // integral_0^T s^n e^{-2 s / tau} ds for n = 0, 1, 2, as T^{n+1} f_n(x), x = 2 T / tau, with
 // f_n(x) = integral_0^1 u^n e^{-x u} du: a series for small x (the closed forms cancel there).
 double MomentIntegral(int n, double T, double tau) {
@@ -31,35 +29,6 @@ double MomentIntegral(int n, double T, double tau) {
 }
 
 }  // namespace
-
-DrydenParams DrydenParams::LowAltitude(double altitude_m, double w20_mps, double airspeed_mps) {
-  const double h = altitude_m / kFoot;  // ft
-  if (!(h >= 10 && h <= 1000)) {
-    throw std::invalid_argument(
-        "the Dryden low-altitude model holds for 10..1000 ft (3.05..304.8 "
-        "m); altitude " +
-        std::to_string(altitude_m) + " m is outside");
-  }
-  if (!(w20_mps >= 0) || !std::isfinite(w20_mps)) {
-    throw std::invalid_argument("W20 must be a finite speed >= 0 m/s");
-  }
-  DrydenParams p;
-  const double k = 0.177 + 0.000823 * h;
-  const double lu = h / std::pow(k, 1.2) * kFoot;  // MIL-F-8785C fig. 10, low altitude
-  p.scale_length = {lu, lu, altitude_m};
-  const double sigma_w = 0.1 * w20_mps;  // MIL-F-8785C fig. 11
-  const double sigma_uv = sigma_w / std::pow(k, 0.4);
-  p.sigma = {sigma_uv, sigma_uv, sigma_w};
-  p.airspeed = airspeed_mps;
-  return p;
-}
-
-double DrydenParams::TwoSidedPsd(int k, double omega) const {
-  const double L = scale_length[k], V = airspeed, s2 = sigma[k] * sigma[k];
-  const double r = L * omega / V;
-  if (k == 0) return s2 * (2 * L / V) / (1 + r * r);
-  return s2 * (L / V) * (1 + 3 * r * r) / ((1 + r * r) * (1 + r * r));
-}
 
 DrydenTurbulence::Second DrydenTurbulence::MakeSecond(double sigma, double tau, double T,
                                                       Gaussian& normal) {

@@ -8,10 +8,6 @@
 
 namespace mjf::realism {
 
-bool WindParams::IsCalm() const {
-  return mean[0] == 0 && mean[1] == 0 && mean[2] == 0 && !turbulence && gusts.empty();
-}
-
 WindField::WindField(const WindParams& params, int n_vehicles, double timestep, uint64_t seed)
     : params_(params), timestep_(timestep), wind_(n_vehicles) {
   const double horizontal = std::hypot(params.mean[0], params.mean[1]);

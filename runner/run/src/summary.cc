@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdio>
 
-#include "mjformation/config/realism_config.hpp"
 #include "mjformation/control/delay_margin.hpp"
 #include "mjformation/record/engine_identity.hpp"
 #include "mjformation/record/output.hpp"

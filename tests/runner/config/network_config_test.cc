@@ -5,7 +5,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "mjformation/config/config.hpp"
+#include "mjformation/config/experiment.hpp"
 #include "test_util.hpp"
 
 namespace mjf::runner {

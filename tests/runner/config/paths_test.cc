@@ -9,7 +9,8 @@
 
 #include <filesystem>
 
-#include "mjformation/config/config.hpp"
+#include "mjformation/config/config_error.hpp"
+#include "mjformation/config/experiment.hpp"
 #include "test_util.hpp"
 
 namespace mjf::runner {

@@ -6,14 +6,14 @@
 // runner/config/src/realism_config.cc: the [sensors] and [wind] readers beyond what
 // realism_runner_test.cc checks: the named turbulence levels, the default airspeed, drag and
 // gust keys and their errors, and what summary.json says about both sections.
-#include "mjformation/config/realism_config.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "mjformation/config/config.hpp"
+#include "mjformation/config/config_error.hpp"
+#include "mjformation/config/experiment.hpp"
 #include "mjformation/run/run.hpp"
 #include "mjformation/run/summary.hpp"
 #include "mjformation/sim/simulation.hpp"
@@ -133,9 +133,11 @@ TEST(RealismConfig, BadInputNamesFileLineAndKey) {
   EXPECT_THAT(ErrorOf(base + "[sensors]\nbody_rate_bias_walk = nan\n"),
               AllOf(HasSubstr("exp.toml:18:"), HasSubstr("[sensors] body_rate_bias_walk"),
                     HasSubstr("finite")));
-  EXPECT_THAT(ErrorOf(base + "[sensors]\npreset = \"perfect\"\n"),
-              AllOf(HasSubstr("exp.toml:18:"), HasSubstr("[sensors] preset"),
-                    HasSubstr("known: ideal, typical, consumer_gnss, rtk, mocap")));
+  EXPECT_THAT(
+      ErrorOf(base + "[sensors]\npreset = \"perfect\"\n"),
+      AllOf(HasSubstr("exp.toml:18:"), HasSubstr("[sensors] preset"),
+            HasSubstr(
+                "must be one of \"ideal\", \"typical\", \"consumer_gnss\", \"rtk\", \"mocap\"")));
   EXPECT_THAT(ErrorOf(base + "[sensors]\nattitude_rate = 300.0\n"),
               AllOf(HasSubstr("[sensors] attitude_rate"), HasSubstr("whole number")));
   EXPECT_THAT(ErrorOf(base + "[sensors]\nscale = \"high\"\n"),

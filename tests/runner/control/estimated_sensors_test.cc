@@ -13,7 +13,7 @@
 #include <functional>
 #include <thread>
 
-#include "mjformation/config/config.hpp"
+#include "mjformation/config/experiment.hpp"
 #include "point_mass_util.hpp"
 #include "test_util.hpp"
 

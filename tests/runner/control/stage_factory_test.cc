@@ -7,7 +7,7 @@
 #include <cmath>
 #include <cstring>
 
-#include "mjformation/config/config.hpp"
+#include "mjformation/config/experiment.hpp"
 #include "mjformation/control/stages.hpp"
 #include "mjformation/realism/drag.hpp"
 #include "point_mass_util.hpp"

@@ -13,7 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "mjformation/config/config.hpp"
+#include "mjformation/config/config_error.hpp"
+#include "mjformation/config/experiment.hpp"
 #include "mjformation/record/frame_view.hpp"
 
 namespace mjf::runner {

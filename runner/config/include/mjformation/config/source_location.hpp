@@ -7,7 +7,8 @@
 
 #include <string>
 
-#include "mjformation/config/config.hpp"
+#include "mjformation/config/config_error.hpp"
+#include "mjformation/config/experiment.hpp"
 
 namespace mjf::runner {
 

@@ -15,7 +15,8 @@
 #include <memory>
 #include <vector>
 
-#include "mjformation/config/config.hpp"
+#include "mjformation/config/config_error.hpp"
+#include "mjformation/config/experiment.hpp"
 #include "mjformation/control/agent_channel.hpp"
 #include "mjformation/control/control_tick.hpp"
 #include "mjformation/control/plugin_host.hpp"

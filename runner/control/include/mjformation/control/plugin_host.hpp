@@ -15,7 +15,7 @@
 #include <utility>
 #include <vector>
 
-#include "mjformation/config/config.hpp"
+#include "mjformation/config/experiment.hpp"
 
 namespace mjf::runner {
 

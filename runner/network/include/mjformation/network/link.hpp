@@ -12,6 +12,8 @@
 #include <optional>
 #include <random>
 
+#include "mjformation/network/link_params.hpp"
+
 namespace mjf::network {
 
 // Seeded uniform draws in [0, 1) from the 53 high bits of mt19937_64 (platform-stable).
@@ -27,20 +29,6 @@ class Random {
 
 // A well-mixed per-link seed from the run's seed and the link's index (SplitMix64 finaliser).
 uint64_t LinkSeed(uint64_t run_seed, uint64_t link_index);
-
-enum class LossModel { kBernoulli, kGilbertElliott };
-
-struct LinkParams {
-  int64_t period_steps = 1;  // broadcast every period_steps physics steps (rate = 1 / (n dt))
-  double latency = 0.0;      // s, fixed part of the delay
-  double jitter = 0.0;       // s, uniform [0, jitter] added to each message's delay
-  LossModel loss_model = LossModel::kBernoulli;
-  double loss = 0.0;         // Bernoulli loss probability; Gilbert-Elliott: loss in the good state
-  double burst_enter = 0.0;  // Gilbert-Elliott: P(good -> bad) per message
-  double burst_exit = 1.0;   // Gilbert-Elliott: P(bad -> good) per message (mean burst 1/exit)
-  double burst_loss = 1.0;   // Gilbert-Elliott: loss probability in the bad state
-  double range = 0.0;        // m, the link exists only while the vehicles are within it; 0: always
-};
 
 // Counts of one link over a run.
 struct LinkStats {

@@ -16,7 +16,7 @@
 #include <utility>
 #include <vector>
 
-#include "mjformation/config/config.hpp"
+#include "mjformation/config/experiment.hpp"
 #include "mjformation/plugin.h"
 
 namespace mjf::runner {

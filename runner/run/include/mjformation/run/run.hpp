@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "mjformation/config/config.hpp"
+#include "mjformation/config/experiment.hpp"
 
 namespace mjf::runner {
 

@@ -12,10 +12,15 @@
 namespace mjf::runner {
 
 class Simulation;
+struct ExperimentConfig;
 
 // `recorded`: what the recorders and metrics added ("metrics", "snapshots", ...).
 nlohmann::ordered_json BuildSummary(const Simulation& sim, const RunResult& result,
                                     const nlohmann::ordered_json& recorded);
+
+// summary.json's "sensors" and "wind" entries (the resolved parameters), each only when that
+// stage is switched on, so default runs keep their summary bytes.
+void AddRealismSummary(const ExperimentConfig& c, nlohmann::ordered_json* summary);
 
 // One line for the run's closing output when the leader's measured acceleration left Assumption
 // 1's bounds (summary.json `leader_acceleration.assumption1_holds` false): when, how often, by how

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "mjformation/config/config.hpp"
+#include "mjformation/config/experiment.hpp"
 
 namespace mjf::runner {
 

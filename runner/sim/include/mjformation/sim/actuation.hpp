@@ -11,7 +11,7 @@
 #include <memory>
 #include <vector>
 
-#include "mjformation/config/config.hpp"
+#include "mjformation/config/experiment.hpp"
 #include "mjformation/scene/vehicle_binding.hpp"
 
 namespace mjf::runner {

@@ -25,7 +25,8 @@
 #include <string>
 #include <vector>
 
-#include "mjformation/config/config.hpp"
+#include "mjformation/config/config_error.hpp"
+#include "mjformation/config/experiment.hpp"
 #include "mjformation/scene/scene.hpp"
 
 namespace mjf::runner {

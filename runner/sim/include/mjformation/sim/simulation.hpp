@@ -17,7 +17,8 @@
 #include <string>
 #include <vector>
 
-#include "mjformation/config/config.hpp"
+#include "mjformation/config/config_error.hpp"
+#include "mjformation/config/experiment.hpp"
 #include "mjformation/control/control_tick.hpp"
 #include "mjformation/control/control_wiring.hpp"
 #include "mjformation/control/errors.hpp"
