@@ -20,7 +20,7 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
-#include "mjformation/config/config.hpp"
+#include "mjformation/config/experiment.hpp"
 #include "mjformation/control/agent_clock.hpp"
 #include "mjformation/control/agent_routing.hpp"
 #include "mjformation/control/message_prediction.hpp"

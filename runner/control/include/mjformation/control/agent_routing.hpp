@@ -15,7 +15,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "mjformation/config/config.hpp"
+#include "mjformation/config/experiment.hpp"
 #include "mjformation/network/network.hpp"
 
 namespace mjf::core {

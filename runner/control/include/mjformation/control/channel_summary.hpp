@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "mjformation/config/config.hpp"
+#include "mjformation/config/experiment.hpp"
 #include "mjformation/control/agent_clock.hpp"
 #include "mjformation/control/agent_routing.hpp"
 #include "mjformation/control/central_solver.hpp"

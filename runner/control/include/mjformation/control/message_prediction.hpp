@@ -12,7 +12,7 @@
 
 #include <vector>
 
-#include "mjformation/config/config.hpp"
+#include "mjformation/config/experiment.hpp"
 #include "mjformation/control/agent_clock.hpp"
 
 namespace mjf::runner {

@@ -26,7 +26,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "mjformation/config/config.hpp"
+#include "mjformation/config/experiment.hpp"
 #include "mjformation/control/agent_routing.hpp"
 #include "mjformation/control/central_solver.hpp"
 #include "mjformation/network/round_courier.hpp"
