@@ -83,7 +83,7 @@ for vehicle in pointmass quadrotor; do
 done
 
 echo "leader_study: theory curves (model (40)) into $out/leaders/theory_curves.txt"
-"$root/build/tests/plugins/core/leader_theory_test" \
+"$root/build/tests/plugins/formation/leader_theory_test" \
   --gtest_filter='*CurvesLeaderOutsideTheBoundsAndMisdeclaredBounds' >"$out/leaders/theory_curves.txt" || status=1
 
 if [ $report = 1 ]; then

@@ -4,6 +4,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "mjformation/config/config.hpp"
 #include "mjformation/config/paths.hpp"
 #include "mjformation/control/control_tick.hpp"
 #include "mjformation/control/control_wiring.hpp"

@@ -7,7 +7,7 @@ W2: Exp 2 at one tenth of its size (examples/vehicles/midge/exp2_midge.toml): th
 0.314 rad/s around it (a hexagon for 6; for more followers the circle widens so neighbouring
 slots stay >= 0.2 m apart). Followers fly either to their slot under the simulator's own position
 controller, or under the discrete sliding-mode law, eq. (48) of Wang et al. 2021, ported here
-from plugins/core/src/discrete_smc.cc with the scaled Exp 2 gains."""
+from plugins/formation/src/discrete_smc.cc with the scaled Exp 2 gains."""
 
 import math
 

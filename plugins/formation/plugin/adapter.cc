@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace mjf::formation {
+namespace mjf::formation::adapter {
 namespace {
 
 const mjfGraph& RequireGraph(const mjfCreateContext* ctx) {
@@ -26,7 +26,7 @@ const mjfShape& RequireShape(const mjfCreateContext* ctx) {
 }  // namespace
 
 SwarmSetup::SwarmSetup(const mjfCreateContext* ctx)
-    : graph(core::Graph::FromAbi(RequireGraph(ctx))), shape(RequireShape(ctx)) {
+    : graph(formation::Graph::FromAbi(RequireGraph(ctx))), shape(RequireShape(ctx)) {
   const int n = graph.num_followers();
   if (shape.num_followers() != n) {
     throw std::invalid_argument("formation plugin: the shape has " +
@@ -42,9 +42,9 @@ SwarmSetup::SwarmSetup(const mjfCreateContext* ctx)
   graph.RequireSpanningTree();
 }
 
-core::SlidingGains ParseGains(const plugin::Attributes& attributes) {
+formation::SlidingGains ParseGains(const plugin::Attributes& attributes) {
   const std::vector<double> k = attributes.Numbers(kKeyGains, 2);
-  return core::SlidingGains{k[0], k[1]};
+  return formation::SlidingGains{k[0], k[1]};
 }
 
 double ParseAccelLimit(const plugin::Attributes& attributes) {
@@ -87,8 +87,8 @@ bool SwarmBuffers::Read(const mjfStepContext* ctx) {
   return true;
 }
 
-core::FormationInput SwarmBuffers::Input() const {
-  core::FormationInput input;
+formation::FormationInput SwarmBuffers::Input() const {
+  formation::FormationInput input;
   input.leader_pv = leader_pv.data();
   input.follower_pv = follower_pv.data();
   input.shape_now = shape_now.data();
@@ -117,4 +117,4 @@ void WriteCommands(int n, const double* acceleration, const double* sliding,
   }
 }
 
-}  // namespace mjf::formation
+}  // namespace mjf::formation::adapter

@@ -8,17 +8,17 @@
 #include <mjformation/plugin.h>
 
 #include <cstddef>
-#include <mjformation/core/continuous_smc.hpp>
-#include <mjformation/core/discrete_smc.hpp>
-#include <mjformation/core/graph.hpp>
-#include <mjformation/core/linear_consensus.hpp>
-#include <mjformation/core/shape.hpp>
-#include <mjformation/core/sliding.hpp>
+#include <mjformation/formation/continuous_smc.hpp>
+#include <mjformation/formation/discrete_smc.hpp>
+#include <mjformation/formation/graph.hpp>
+#include <mjformation/formation/linear_consensus.hpp>
+#include <mjformation/formation/shape.hpp>
+#include <mjformation/formation/sliding.hpp>
 #include <mjformation/plugin_contract.hpp>
 #include <mjformation/plugin_util.hpp>
 #include <vector>
 
-namespace mjf::formation {
+namespace mjf::formation::adapter {
 
 // Attribute keys (short, lowercase).
 inline constexpr char kKeyGains[] = "k";
@@ -48,23 +48,23 @@ double ParseAccelLimit(const plugin::Attributes& attributes);
 // with n_vehicles and that the graph has a spanning tree (Assumption 2). Throws on failure.
 struct SwarmSetup {
   explicit SwarmSetup(const mjfCreateContext* ctx);
-  core::Graph graph;
-  core::AbiShape shape;
+  formation::Graph graph;
+  formation::AbiShape shape;
 };
 
-core::SlidingGains ParseGains(const plugin::Attributes& attributes);
+formation::SlidingGains ParseGains(const plugin::Attributes& attributes);
 
 // smc_discrete's attributes, shared by its swarm-level and per-agent plugins (smc_discrete.cc).
 extern const mjfAttribute kDiscreteAttributes[];
 extern const int kDiscreteAttributeCount;
-core::DiscreteSmcParams ParseDiscreteParams(const plugin::Attributes& attributes);
+formation::DiscreteSmcParams ParseDiscreteParams(const plugin::Attributes& attributes);
 // smc_continuous's and consensus_linear's, likewise.
 extern const mjfAttribute kContinuousAttributes[];
 extern const int kContinuousAttributeCount;
-core::ContinuousSmcParams ParseContinuousParams(const plugin::Attributes& attributes);
+formation::ContinuousSmcParams ParseContinuousParams(const plugin::Attributes& attributes);
 extern const mjfAttribute kConsensusAttributes[];
 extern const int kConsensusAttributeCount;
-core::LinearConsensusParams ParseConsensusParams(const plugin::Attributes& attributes);
+formation::LinearConsensusParams ParseConsensusParams(const plugin::Attributes& attributes);
 // Physics steps per sample period T; throws when T is not a whole number of steps.
 int64_t StepsPerSample(double period, double timestep);
 
@@ -75,7 +75,7 @@ class SwarmBuffers {
   // Copies leader and follower pos/vel (x, y) from ctx->states; false if ctx does not match
   // the swarm's size or a state is not finite.
   bool Read(const mjfStepContext* ctx);
-  core::FormationInput Input() const;
+  formation::FormationInput Input() const;
   int n() const { return n_; }
   std::vector<double> leader_pv, follower_pv, shape_now, shape_next;
 
@@ -92,7 +92,7 @@ struct SwarmInstance {
       : shape(setup.shape), controller(setup.graph, params), buffers(setup.graph.num_followers()) {}
   // A law evaluated every physics step updates on each; a sampled law hides this (SwarmPlugin).
   void Sample(const mjfStepContext*) { controller.Update(buffers.Input()); }
-  core::AbiShape shape;
+  formation::AbiShape shape;
   Controller controller;
   SwarmBuffers buffers;
 };
@@ -168,6 +168,6 @@ constexpr mjfPlugin SwarmPlugin(const char* name, const char* doc,
           report};
 }
 
-}  // namespace mjf::formation
+}  // namespace mjf::formation::adapter
 
 #endif  // MJFORMATION_PLUGINS_FORMATION_ADAPTER_HPP_

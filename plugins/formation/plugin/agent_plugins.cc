@@ -1,9 +1,9 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
 // The per-agent formation plugins, for distributed execution ([execution] mode = "per_agent"):
-// smc_discrete_agent (eq. (48), core::DiscreteSmcAgent, sampled every T and held),
-// smc_continuous_agent (eq. (30), core::ContinuousSmcAgent, every step) and
-// consensus_linear_agent (core::LinearConsensusAgent, every step), with the attributes of their
+// smc_discrete_agent (eq. (48), formation::DiscreteSmcAgent, sampled every T and held),
+// smc_continuous_agent (eq. (30), formation::ContinuousSmcAgent, every step) and
+// consensus_linear_agent (formation::LinearConsensusAgent, every step), with the attributes of their
 // swarm-level versions. One adapter, a template over the law. The u_j coupling is closed by what
 // the host hands the instance (docs/NETWORK.md):
 //   - agent->solved (coupling = central_solve): the host's exact solve, the reference;
@@ -14,14 +14,14 @@
 // sample, for the reference slots of followers without a leader link).
 #include <cmath>
 #include <cstdint>
-#include <mjformation/core/agent_laws.hpp>
-#include <mjformation/core/discrete_smc_agent.hpp>
+#include <mjformation/formation/agent_laws.hpp>
+#include <mjformation/formation/discrete_smc_agent.hpp>
 #include <vector>
 
 #include "adapter.hpp"
 #include "plugins.hpp"
 
-namespace mjf::formation {
+namespace mjf::formation::adapter {
 namespace {
 
 using plugin::kPayloadUsed;
@@ -49,7 +49,7 @@ struct Agent {
   double leader_weight;          // a_i0
   plugin::NeighbourInbox inbox;  // the neighbours' messages and the leader's state
   Law core;
-  core::AbiShape shape;
+  formation::AbiShape shape;
   int64_t steps_per_sample;
   double horizon;
   bool has_sample = false;
@@ -82,7 +82,7 @@ void RequireNeighbourhood(const mjfCreateContext* ctx) {
 void* CreateDiscrete(const mjfCreateContext* ctx) {
   return plugin::CreateOrExplain(ctx, [&]() -> void* {
     RequireNeighbourhood(ctx);
-    const core::DiscreteSmcParams params = ParseDiscreteParams(plugin::Attributes(ctx));
+    const formation::DiscreteSmcParams params = ParseDiscreteParams(plugin::Attributes(ctx));
     if (std::isfinite(params.accel_limit)) {
       // The constrained law needs c_i and z_i = (L_H^-1 e)_i, the swarm-wide solve (C1).
       throw std::invalid_argument(
@@ -90,7 +90,7 @@ void* CreateDiscrete(const mjfCreateContext* ctx) {
           "(it needs the swarm-wide solve with L_H); use mode = \"central\" or accel_limit = "
           "\"none\"");
     }
-    return new Agent<core::DiscreteSmcAgent>(
+    return new Agent<formation::DiscreteSmcAgent>(
         ctx, params, StepsPerSample(params.period, ctx->timestep), params.period);
   });
 }
@@ -98,16 +98,16 @@ void* CreateDiscrete(const mjfCreateContext* ctx) {
 void* CreateContinuous(const mjfCreateContext* ctx) {
   return plugin::CreateOrExplain(ctx, [&]() -> void* {
     RequireNeighbourhood(ctx);
-    const core::ContinuousSmcParams params = ParseContinuousParams(plugin::Attributes(ctx));
-    return new Agent<core::ContinuousSmcAgent>(ctx, params, 1, 0.0);
+    const formation::ContinuousSmcParams params = ParseContinuousParams(plugin::Attributes(ctx));
+    return new Agent<formation::ContinuousSmcAgent>(ctx, params, 1, 0.0);
   });
 }
 
 void* CreateConsensus(const mjfCreateContext* ctx) {
   return plugin::CreateOrExplain(ctx, [&]() -> void* {
     RequireNeighbourhood(ctx);
-    const core::LinearConsensusParams params = ParseConsensusParams(plugin::Attributes(ctx));
-    return new Agent<core::LinearConsensusAgent>(ctx, params, 1, 0.0);
+    const formation::LinearConsensusParams params = ParseConsensusParams(plugin::Attributes(ctx));
+    return new Agent<formation::LinearConsensusAgent>(ctx, params, 1, 0.0);
   });
 }
 
@@ -220,7 +220,7 @@ void Destroy(void* instance) {
 }
 
 void ReportDiscrete(void* instance, mjfReportFn emit, void* user) {
-  const auto& a = *static_cast<const Agent<core::DiscreteSmcAgent>*>(instance);
+  const auto& a = *static_cast<const Agent<formation::DiscreteSmcAgent>*>(instance);
   emit(user, plugin::contract::kDelta,
        a.core.delta());  // the host reports the largest over the followers
   emit(user, plugin::contract::kPeriod, a.core.params().period);
@@ -251,16 +251,16 @@ constexpr mjfPlugin AgentPlugin(const char* name, const char* doc, int n_attribu
 
 }  // namespace
 
-const mjfPlugin kSmcDiscreteAgent = AgentPlugin<core::DiscreteSmcAgent>(
+const mjfPlugin kSmcDiscreteAgent = AgentPlugin<formation::DiscreteSmcAgent>(
     "smc_discrete_agent",
     "discrete sliding-mode formation tracking, eq. (48), one instance per follower",
     kDiscreteAttributeCount, kDiscreteAttributes, &CreateDiscrete, &ReportDiscrete);
-const mjfPlugin kSmcContinuousAgent = AgentPlugin<core::ContinuousSmcAgent>(
+const mjfPlugin kSmcContinuousAgent = AgentPlugin<formation::ContinuousSmcAgent>(
     "smc_continuous_agent",
     "continuous sliding-mode formation tracking, eq. (30), one instance per follower",
     kContinuousAttributeCount, kContinuousAttributes, &CreateContinuous, nullptr);
-const mjfPlugin kConsensusLinearAgent = AgentPlugin<core::LinearConsensusAgent>(
+const mjfPlugin kConsensusLinearAgent = AgentPlugin<formation::LinearConsensusAgent>(
     "consensus_linear_agent", "linear consensus formation tracking, one instance per follower",
     kConsensusAttributeCount, kConsensusAttributes, &CreateConsensus, nullptr);
 
-}  // namespace mjf::formation
+}  // namespace mjf::formation::adapter

@@ -2,12 +2,12 @@
 //
 // consensus_linear: the linear consensus-based formation tracking baseline (see the core's
 // linear_consensus.hpp), evaluated every physics step. No sliding variable: sliding stays NaN.
-#include <mjformation/core/linear_consensus.hpp>
+#include <mjformation/formation/linear_consensus.hpp>
 
 #include "adapter.hpp"
 #include "plugins.hpp"
 
-namespace mjf::formation {
+namespace mjf::formation::adapter {
 
 const mjfAttribute kConsensusAttributes[] = {
     {kKeyKp, "1", "position gain kp > 0, 1/s^2"},
@@ -16,8 +16,8 @@ const mjfAttribute kConsensusAttributes[] = {
 const int kConsensusAttributeCount =
     static_cast<int>(sizeof(kConsensusAttributes) / sizeof(kConsensusAttributes[0]));
 
-core::LinearConsensusParams ParseConsensusParams(const plugin::Attributes& attributes) {
-  core::LinearConsensusParams params;
+formation::LinearConsensusParams ParseConsensusParams(const plugin::Attributes& attributes) {
+  formation::LinearConsensusParams params;
   params.kp = attributes.Number(kKeyKp);
   params.kv = attributes.Number(kKeyKv);
   params.Validate();
@@ -26,8 +26,8 @@ core::LinearConsensusParams ParseConsensusParams(const plugin::Attributes& attri
 
 namespace {
 
-struct Instance : SwarmInstance<core::LinearConsensus> {
-  using Config = core::LinearConsensusParams;
+struct Instance : SwarmInstance<formation::LinearConsensus> {
+  using Config = formation::LinearConsensusParams;
   static Config Configure(const mjfCreateContext* ctx) {
     return ParseConsensusParams(plugin::Attributes(ctx));
   }
@@ -42,4 +42,4 @@ const mjfPlugin kConsensusLinear = SwarmPlugin<Instance>(
     "consensus_linear", "linear consensus-based time-varying formation tracking (baseline)",
     kConsensusAttributes);
 
-}  // namespace mjf::formation
+}  // namespace mjf::formation::adapter

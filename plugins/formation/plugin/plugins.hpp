@@ -4,7 +4,7 @@
 
 #include <mjformation/plugin.h>
 
-namespace mjf::formation {
+namespace mjf::formation::adapter {
 
 extern const mjfPlugin kSmcContinuous;         // smc_continuous.cc: eq. (30) / (33)
 extern const mjfPlugin kSmcDiscrete;           // smc_discrete.cc: eq. (48) / (53), zero-order hold
@@ -13,6 +13,6 @@ extern const mjfPlugin kSmcDiscreteAgent;      // agent_plugins.cc: eq. (48), pe
 extern const mjfPlugin kSmcContinuousAgent;    // agent_plugins.cc: eq. (30), per follower
 extern const mjfPlugin kConsensusLinearAgent;  // agent_plugins.cc: linear, per follower
 
-}  // namespace mjf::formation
+}  // namespace mjf::formation::adapter
 
 #endif  // MJFORMATION_PLUGINS_FORMATION_PLUGINS_HPP_

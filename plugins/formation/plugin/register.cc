@@ -3,6 +3,6 @@
 
 #include "plugins.hpp"
 
-MJF_EXPORT_PLUGINS(&mjf::formation::kSmcContinuous, &mjf::formation::kSmcDiscrete,
-                   &mjf::formation::kConsensusLinear, &mjf::formation::kSmcDiscreteAgent,
-                   &mjf::formation::kSmcContinuousAgent, &mjf::formation::kConsensusLinearAgent)
+MJF_EXPORT_PLUGINS(&mjf::formation::adapter::kSmcContinuous, &mjf::formation::adapter::kSmcDiscrete,
+                   &mjf::formation::adapter::kConsensusLinear, &mjf::formation::adapter::kSmcDiscreteAgent,
+                   &mjf::formation::adapter::kSmcContinuousAgent, &mjf::formation::adapter::kConsensusLinearAgent)

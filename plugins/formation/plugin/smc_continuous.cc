@@ -2,12 +2,12 @@
 //
 // smc_continuous: the continuous sliding-mode protocol, eq. (30) via its compact form (33),
 // evaluated every physics step.
-#include <mjformation/core/continuous_smc.hpp>
+#include <mjformation/formation/continuous_smc.hpp>
 
 #include "adapter.hpp"
 #include "plugins.hpp"
 
-namespace mjf::formation {
+namespace mjf::formation::adapter {
 
 const mjfAttribute kContinuousAttributes[] = {
     {kKeyGains, "3 1", "K = [k1 k2] of the sliding variable s_i = K e_i, eq. (17); both > 0"},
@@ -25,16 +25,16 @@ const mjfAttribute kContinuousAttributes[] = {
 const int kContinuousAttributeCount =
     static_cast<int>(sizeof(kContinuousAttributes) / sizeof(kContinuousAttributes[0]));
 
-core::ContinuousSmcParams ParseContinuousParams(const plugin::Attributes& attributes) {
-  core::ContinuousSmcParams params;
+formation::ContinuousSmcParams ParseContinuousParams(const plugin::Attributes& attributes) {
+  formation::ContinuousSmcParams params;
   params.gains = ParseGains(attributes);
   params.rho = attributes.Number(kKeyRho);
   params.q = attributes.Number(kKeyQ);
   params.u_min = attributes.Number(kKeyUMin);
   params.u_max = attributes.Number(kKeyUMax);
-  params.compensation = core::ParseCompensation(attributes.String(kKeyCompensation));
-  params.reaching = core::ParseReaching(attributes.String(kKeyReaching));
-  params.sign = core::ParseSignFunction(attributes.String(kKeySign));
+  params.compensation = formation::ParseCompensation(attributes.String(kKeyCompensation));
+  params.reaching = formation::ParseReaching(attributes.String(kKeyReaching));
+  params.sign = formation::ParseSignFunction(attributes.String(kKeySign));
   params.boundary_layer = attributes.Number(kKeyBoundaryLayer);
   params.Validate();
   return params;
@@ -42,8 +42,8 @@ core::ContinuousSmcParams ParseContinuousParams(const plugin::Attributes& attrib
 
 namespace {
 
-struct Instance : SwarmInstance<core::ContinuousSmc> {
-  using Config = core::ContinuousSmcParams;
+struct Instance : SwarmInstance<formation::ContinuousSmc> {
+  using Config = formation::ContinuousSmcParams;
   static Config Configure(const mjfCreateContext* ctx) {
     return ParseContinuousParams(plugin::Attributes(ctx));
   }
@@ -59,7 +59,7 @@ void Report(void* instance, mjfReportFn emit, void* user) {
     emit(user, "reaching_time_bound", self->controller.reaching_time_bound());
   }
   emit(user, "switching_compensation",
-       self->controller.params().compensation == core::Compensation::kSwitching ? 1.0 : 0.0);
+       self->controller.params().compensation == formation::Compensation::kSwitching ? 1.0 : 0.0);
 }
 
 }  // namespace
@@ -68,4 +68,4 @@ const mjfPlugin kSmcContinuous = SwarmPlugin<Instance>(
     "smc_continuous", "continuous sliding-mode formation tracking, eq. (30) via compact form (33)",
     kContinuousAttributes, &Report);
 
-}  // namespace mjf::formation
+}  // namespace mjf::formation::adapter

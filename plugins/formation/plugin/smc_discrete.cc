@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <mjformation/core/discrete_smc.hpp>
+#include <mjformation/formation/discrete_smc.hpp>
 #include <mjformation/time_steps.hpp>
 #include <sstream>
 #include <stdexcept>
@@ -14,7 +14,7 @@
 #include "adapter.hpp"
 #include "plugins.hpp"
 
-namespace mjf::formation {
+namespace mjf::formation::adapter {
 
 const mjfAttribute kDiscreteAttributes[] = {
     {kKeyGains, "3 1", "K = [k1 k2] of the sliding variable s_i = K e_i, eq. (17); both > 0"},
@@ -37,15 +37,15 @@ const mjfAttribute kDiscreteAttributes[] = {
 const int kDiscreteAttributeCount =
     static_cast<int>(sizeof(kDiscreteAttributes) / sizeof(kDiscreteAttributes[0]));
 
-core::DiscreteSmcParams ParseDiscreteParams(const plugin::Attributes& attributes) {
-  core::DiscreteSmcParams params;
+formation::DiscreteSmcParams ParseDiscreteParams(const plugin::Attributes& attributes) {
+  formation::DiscreteSmcParams params;
   params.gains = ParseGains(attributes);
   params.eps = attributes.Number(kKeyEps);
   params.q = attributes.Number(kKeyQ);
   params.period = attributes.Number(kKeyPeriod);
   params.u_min = attributes.Number(kKeyUMin);
   params.u_max = attributes.Number(kKeyUMax);
-  params.sign = core::ParseSignFunction(attributes.String(kKeySign));
+  params.sign = formation::ParseSignFunction(attributes.String(kKeySign));
   params.boundary_layer = attributes.Number(kKeyBoundaryLayer);
   params.eta0 = attributes.Number(kKeyEta0);
   params.accel_limit = ParseAccelLimit(attributes);
@@ -71,14 +71,14 @@ int64_t StepsPerSample(double period, double timestep) {
 
 namespace {
 
-struct Instance : SwarmInstance<core::DiscreteSmc> {
+struct Instance : SwarmInstance<formation::DiscreteSmc> {
   // The params and the physics steps per sample period T they imply.
   struct Config {
-    core::DiscreteSmcParams params;
+    formation::DiscreteSmcParams params;
     int64_t steps_per_sample;
   };
   static Config Configure(const mjfCreateContext* ctx) {
-    const core::DiscreteSmcParams params = ParseDiscreteParams(plugin::Attributes(ctx));
+    const formation::DiscreteSmcParams params = ParseDiscreteParams(plugin::Attributes(ctx));
     return {params, StepsPerSample(params.period, ctx->timestep)};
   }
   Instance(const SwarmSetup& setup, const Config& config)
@@ -103,7 +103,7 @@ struct Instance : SwarmInstance<core::DiscreteSmc> {
 
 void Report(void* instance, mjfReportFn emit, void* user) {
   const auto* self = static_cast<const Instance*>(instance);
-  const core::DiscreteSmc& c = self->controller;
+  const formation::DiscreteSmc& c = self->controller;
   double delta1 = 0.0, delta2 = 0.0;
   for (int i = 0; i < c.graph().num_followers(); ++i) {
     delta1 = std::max(delta1, c.delta1(i));
@@ -118,7 +118,7 @@ void Report(void* instance, mjfReportFn emit, void* user) {
   emit(user, plugin::contract::kPeriod, c.params().period);
   emit(user, "steps_per_sample", static_cast<double>(self->steps_per_sample));
   if (!c.constrained()) return;  // the paper's law reports what it always did
-  const core::DiscreteSmc::ConstraintStats& stats = c.constraint_stats();
+  const formation::DiscreteSmc::ConstraintStats& stats = c.constraint_stats();
   emit(user, plugin::contract::kAccelLimit, c.params().accel_limit);
   emit(user, "constraint_samples", static_cast<double>(stats.samples));
   emit(user, "constraint_paper_samples", static_cast<double>(stats.paper));
@@ -134,4 +134,4 @@ const mjfPlugin kSmcDiscrete = SwarmPlugin<Instance>(
     "discrete sliding-mode formation tracking, eq. (48) via compact form (53), zero-order hold",
     kDiscreteAttributes, &Report);
 
-}  // namespace mjf::formation
+}  // namespace mjf::formation::adapter

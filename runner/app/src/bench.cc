@@ -22,6 +22,7 @@
 #include <nlohmann/json.hpp>
 
 #include "mjformation/app/cli.hpp"
+#include "mjformation/config/config.hpp"
 #include "mjformation/record/output.hpp"
 #include "mjformation/render.hpp"
 #include "mjformation/run/run.hpp"

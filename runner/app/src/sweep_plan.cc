@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <set>
 
+#include "mjformation/config/config.hpp"
 #include "mjformation/config/paths.hpp"
 #include "mjformation/sim/simulation.hpp"
 #include "sweep.hpp"

@@ -8,13 +8,13 @@
 #include <sstream>
 
 #include "mjformation/config/source_location.hpp"
-#include "mjformation/core/shape.hpp"
+#include "mjformation/formation/shape.hpp"
 
 namespace mjf::runner {
 namespace {
 
 // A table file: a header line, then rows "t, px1, py1, vx1, vy1, px2, ..." (m, m/s).
-std::unique_ptr<core::Shape> ReadTable(const std::string& path, int n) {
+std::unique_ptr<formation::Shape> ReadTable(const std::string& path, int n) {
   std::ifstream in(path);
   if (!in) throw ConfigError(path + ": cannot open the formation shape table");
   std::vector<double> times, samples;
@@ -47,26 +47,26 @@ std::unique_ptr<core::Shape> ReadTable(const std::string& path, int n) {
     samples.insert(samples.end(), row.begin() + 1, row.end());
   }
   if (times.size() < 2) throw ConfigError(path + ": the shape table needs at least two rows");
-  return core::MakeSampledShape(n, std::move(times), std::move(samples));
+  return formation::MakeSampledShape(n, std::move(times), std::move(samples));
 }
 
 }  // namespace
 
-std::unique_ptr<core::Shape> MakeShape(const ExperimentConfig& c) {
+std::unique_ptr<formation::Shape> MakeShape(const ExperimentConfig& c) {
   const ShapeConfig& s = c.shape;
   try {
     if (s.type == ShapeType::kCircle) {
       // Section 6: f_i = r [cos(w t + phase0 + (i-1) phase_step), sin(...)].
       const double step = s.phase_step >= 0 ? s.phase_step : 2 * M_PI / c.followers;
-      return core::MakeCircleShape(c.followers, s.radius, s.omega, s.phase0, step);
+      return formation::MakeCircleShape(c.followers, s.radius, s.omega, s.phase0, step);
     }
     if (s.type == ShapeType::kOffsets) {
-      std::vector<core::FollowerTerms> terms(c.followers);
+      std::vector<formation::FollowerTerms> terms(c.followers);
       for (int i = 0; i < c.followers; ++i) {
         terms[i].x.polynomial = {s.offsets[i][0]};
         terms[i].y.polynomial = {s.offsets[i][1]};
       }
-      return core::MakeTermsShape(std::move(terms));
+      return formation::MakeTermsShape(std::move(terms));
     }
     if (s.type == ShapeType::kTable) return ReadTable(s.file, c.followers);
   } catch (const std::invalid_argument& e) {

@@ -5,8 +5,8 @@
 #include "mjformation/control/channel_summary.hpp"
 #include "mjformation/control/delay_margin.hpp"
 #include "mjformation/control/rounds_over_links.hpp"
-#include "mjformation/core/discrete_smc_agent.hpp"
-#include "mjformation/core/graph.hpp"
+#include "mjformation/formation/discrete_smc_agent.hpp"
+#include "mjformation/formation/graph.hpp"
 
 namespace mjf::runner {
 namespace {
@@ -24,11 +24,11 @@ int RoundsFor(const NetworkConfig& c) {
 
 }  // namespace
 
-AgentChannel::AgentChannel(const core::Graph& graph, const NetworkConfig& config, double timestep,
+AgentChannel::AgentChannel(const formation::Graph& graph, const NetworkConfig& config, double timestep,
                            uint64_t seed)
     : config_(config),
       n_rounds_(RoundsFor(config)),
-      spectral_radius_(core::JacobiSpectralRadius(graph)),
+      spectral_radius_(formation::JacobiSpectralRadius(graph)),
       coupling_radius_(CouplingSpectralRadius(graph)),
       routing_(graph, config, n_rounds_, timestep, seed),
       clocks_(graph.num_followers(), config.clock_offset, config.clock_drift_ppm, timestep, seed,

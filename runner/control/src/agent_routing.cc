@@ -6,11 +6,11 @@
 #include <map>
 #include <utility>
 
-#include "mjformation/core/graph.hpp"
+#include "mjformation/formation/graph.hpp"
 
 namespace mjf::runner {
 
-std::vector<network::LinkSpec> AgentRouting::Links(const core::Graph& graph,
+std::vector<network::LinkSpec> AgentRouting::Links(const formation::Graph& graph,
                                                    const NetworkConfig& c) {
   std::map<std::pair<int, int>, network::LinkParams> overrides;
   for (const auto& o : c.links) overrides[{o.from, o.to}] = o.params;
@@ -29,7 +29,7 @@ std::vector<network::LinkSpec> AgentRouting::Links(const core::Graph& graph,
   return links;
 }
 
-AgentRouting::AgentRouting(const core::Graph& graph, const NetworkConfig& config, int n_rounds,
+AgentRouting::AgentRouting(const formation::Graph& graph, const NetworkConfig& config, int n_rounds,
                            double timestep, uint64_t seed)
     : n_followers_(graph.num_followers()),
       n_rounds_(n_rounds),

@@ -6,11 +6,11 @@
 #include <algorithm>
 
 #include "mjformation/control/errors.hpp"
-#include "mjformation/core/graph.hpp"
+#include "mjformation/formation/graph.hpp"
 
 namespace mjf::runner {
 
-CentralSolver::CentralSolver(const core::Graph& graph)
+CentralSolver::CentralSolver(const formation::Graph& graph)
     : n_followers_(graph.num_followers()),
       solver_(graph.laplacian_h()),
       rhs_(graph.num_followers(), 2),

@@ -15,8 +15,8 @@
 #include "mjformation/control/errors.hpp"
 #include "mjformation/control/estimated_sensors.hpp"
 #include "mjformation/control/vehicle_accel_limit.hpp"
-#include "mjformation/core/graph.hpp"
-#include "mjformation/core/shape.hpp"
+#include "mjformation/formation/graph.hpp"
+#include "mjformation/formation/shape.hpp"
 #include "mjformation/plugin_contract.hpp"
 
 namespace mjf::runner {
@@ -57,9 +57,9 @@ void ControlWiring::BuildGraphAndShape() {
     edge_weight_.push_back(e.weight);
   }
   try {
-    std::vector<core::Edge> edges;
+    std::vector<formation::Edge> edges;
     for (const auto& e : config_.edges) edges.push_back({e.from, e.to, e.weight});
-    graph_ = std::make_unique<core::Graph>(config_.followers, config_.leader_weight, edges);
+    graph_ = std::make_unique<formation::Graph>(config_.followers, config_.leader_weight, edges);
   } catch (const std::invalid_argument& e) {
     SourceLocation{config_.source_path, 0, SectionKey("topology")}.Fail(e.what());
   }
@@ -70,7 +70,7 @@ void ControlWiring::BuildGraphAndShape() {
                 edge_to_.data(),
                 edge_weight_.data()};
   shape_ = MakeShape(config_);
-  if (shape_) abi_shape_ = core::ToAbi(*shape_);
+  if (shape_) abi_shape_ = formation::ToAbi(*shape_);
 }
 
 std::unique_ptr<SensorStage> ControlWiring::MakeSensors() const {
@@ -255,7 +255,7 @@ void ControlWiring::RequireFormationInputs() const {
   }
   try {
     // Algorithms 1 and 2, step "f_ip' = f_iv": the shape must be self-consistent.
-    core::CheckShapeConsistency(*shape_, 0.0, config_.duration, 0.01, config_.shape.tolerance);
+    formation::CheckShapeConsistency(*shape_, 0.0, config_.duration, 0.01, config_.shape.tolerance);
   } catch (const std::invalid_argument& e) {
     SourceLocation{config_.source_path, 0, SectionKey("formation.shape")}.Fail(e.what());
   }

@@ -5,14 +5,14 @@
 #include <cmath>
 #include <limits>
 
-#include "mjformation/core/graph.hpp"
-#include "mjformation/core/laplacian_solver.hpp"
+#include "mjformation/formation/graph.hpp"
+#include "mjformation/formation/laplacian_solver.hpp"
 
 namespace mjf::runner {
 
-double CouplingSpectralRadius(const core::Graph& graph) {
+double CouplingSpectralRadius(const formation::Graph& graph) {
   const int n = graph.num_followers();
-  core::LaplacianSolver solver(graph.laplacian_h());
+  formation::LaplacianSolver solver(graph.laplacian_h());
   Eigen::Matrix<double, Eigen::Dynamic, 2> x(n, 2), ax(n, 2);
   x.setOnes();
   double rho = 0.0;

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <limits>
 
-#include "mjformation/core/metrics.hpp"
-#include "mjformation/core/shape.hpp"
+#include "mjformation/formation/metrics.hpp"
+#include "mjformation/formation/shape.hpp"
 #include "mjformation/record/output.hpp"
 #include "mjformation/sim/simulation.hpp"
 
@@ -121,7 +121,7 @@ double OnlineMetrics::FormationSlots(const Simulation& sim, std::vector<double>*
     final_errors_[i] = std::hypot(s.pos[0] - sx, s.pos[1] - sy);
   }
   // eq. (68)
-  return core::FormationError(nf, follower_pv_.data(), leader_pv_.data(), shape_now_.data());
+  return formation::FormationError(nf, follower_pv_.data(), leader_pv_.data(), shape_now_.data());
 }
 
 // Without a formation the slots are the followers' own held setpoints.

@@ -10,9 +10,9 @@
 #include <atomic>
 #include <cmath>
 #include <cstddef>
-#include <mjformation/core/continuous_smc.hpp>
-#include <mjformation/core/discrete_smc.hpp>
-#include <mjformation/core/shape.hpp>
+#include <mjformation/formation/continuous_smc.hpp>
+#include <mjformation/formation/discrete_smc.hpp>
+#include <mjformation/formation/shape.hpp>
 #include <string>
 #include <vector>
 
@@ -58,9 +58,9 @@ struct Swarm {
   std::vector<int> from = {0, 1, 2, 3, 4, 0, 2, 5};
   std::vector<int> to = {1, 2, 3, 4, 5, 2, 4, 3};
   std::vector<double> weight = std::vector<double>(8, 1.0);
-  std::unique_ptr<mjf::core::Shape> shape = mjf::core::MakeCircleShape(6, 10, 0.314, 0, kPi / 3);
+  std::unique_ptr<mjf::formation::Shape> shape = mjf::formation::MakeCircleShape(6, 10, 0.314, 0, kPi / 3);
   mjfGraph graph{6, leader_weight.data(), 8, from.data(), to.data(), weight.data()};
-  mjfShape abi_shape = mjf::core::ToAbi(*shape);
+  mjfShape abi_shape = mjf::formation::ToAbi(*shape);
   std::vector<mjfVehicleState> states = std::vector<mjfVehicleState>(7);
   std::vector<mjfSetpoint> setpoints = std::vector<mjfSetpoint>(7);
 };
@@ -149,12 +149,12 @@ TEST(NoAllocationTest, PluginComputeDoesNotAllocate) {
 
 TEST(NoAllocationTest, CoreUpdateDoesNotAllocate) {
   if (!MJF_COUNT_MALLOC) GTEST_SKIP() << "malloc is not replaceable under AddressSanitizer";
-  const mjf::core::Graph graph(6, {1, 0, 0, 0, 0, 0}, {{0, 1}, {1, 2}, {2, 3}, {3, 4}, {4, 5}});
-  mjf::core::ContinuousSmc continuous(graph, {});
-  mjf::core::DiscreteSmc discrete(graph, {});
-  mjf::core::DiscreteSmcParams limited;
+  const mjf::formation::Graph graph(6, {1, 0, 0, 0, 0, 0}, {{0, 1}, {1, 2}, {2, 3}, {3, 4}, {4, 5}});
+  mjf::formation::ContinuousSmc continuous(graph, {});
+  mjf::formation::DiscreteSmc discrete(graph, {});
+  mjf::formation::DiscreteSmcParams limited;
   limited.accel_limit = 3.6;  // the input-constrained reaching law, active from this start
-  mjf::core::DiscreteSmc constrained(graph, limited);
+  mjf::formation::DiscreteSmc constrained(graph, limited);
   std::vector<double> leader = {20, 0, 0, 3}, followers(24, 1.0), f(36, 0.5), g(36, 0.4);
   allocations = 0;
   counting = true;

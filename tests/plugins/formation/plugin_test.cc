@@ -10,8 +10,8 @@
 #include <cstring>
 #include <map>
 #include <memory>
-#include <mjformation/core/metrics.hpp>
-#include <mjformation/core/shape.hpp>
+#include <mjformation/formation/metrics.hpp>
+#include <mjformation/formation/shape.hpp>
 #include <string>
 #include <vector>
 
@@ -46,8 +46,8 @@ class FormationPluginTest : public ::testing::Test {
   std::vector<int> from_ = {0, 1, 2, 3, 4, 0, 2, 5};
   std::vector<int> to_ = {1, 2, 3, 4, 5, 2, 4, 3};
   std::vector<double> weight_ = std::vector<double>(8, 1.0);
-  std::unique_ptr<mjf::core::Shape> shape_ =
-      mjf::core::MakeCircleShape(6, 10.0, 0.314, 0.0, kPi / 3);
+  std::unique_ptr<mjf::formation::Shape> shape_ =
+      mjf::formation::MakeCircleShape(6, 10.0, 0.314, 0.0, kPi / 3);
 
   // Creates `plugin` with its declared defaults overridden by `overrides`.
   void* Create(const mjfPlugin* plugin, const std::map<std::string, std::string>& overrides,
@@ -70,7 +70,7 @@ class FormationPluginTest : public ::testing::Test {
     if (!spanning_tree) leader[0] = 0.0;
     graph_leader_ = leader;
     graph_ = {6, graph_leader_.data(), 8, from_.data(), to_.data(), weight_.data()};
-    abi_shape_ = mjf::core::ToAbi(*shape_);
+    abi_shape_ = mjf::formation::ToAbi(*shape_);
     char buffer[512] = "";
     mjfCreateContext ctx{};
     ctx.n_attributes = static_cast<int>(keys_.size());
@@ -148,7 +148,7 @@ class FormationPluginTest : public ::testing::Test {
       }
       result.acc_x.push_back(row);
       const double sigma =
-          mjf::core::FormationError(6, follower_pv.data(), leader_pv.data(), f.data());
+          mjf::formation::FormationError(6, follower_pv.data(), leader_pv.data(), f.data());
       if (k == 0) result.sigma_initial = sigma;
       result.sigma_final = sigma;
       for (int i = 1; i <= 6; ++i) {
@@ -356,9 +356,9 @@ TEST_F(FormationPluginTest, BadConfigurationGivesNullAndMessage) {
 // its in-neighbours, one follower at a time (mjfShape.evaluate_one), never the whole swarm
 // (evaluate), so its cost per step does not grow with the number of followers. A counting shape
 // of 1000 followers records every call.
-class CountingShape : public mjf::core::Shape {
+class CountingShape : public mjf::formation::Shape {
  public:
-  explicit CountingShape(std::unique_ptr<mjf::core::Shape> shape) : shape_(std::move(shape)) {}
+  explicit CountingShape(std::unique_ptr<mjf::formation::Shape> shape) : shape_(std::move(shape)) {}
   int num_followers() const override { return shape_->num_followers(); }
   void Evaluate(double t, double* out) const override {
     ++whole;
@@ -372,14 +372,14 @@ class CountingShape : public mjf::core::Shape {
   mutable std::map<int, long> single;  // EvaluateOne() calls per follower
 
  private:
-  std::unique_ptr<mjf::core::Shape> shape_;
+  std::unique_ptr<mjf::formation::Shape> shape_;
 };
 
 TEST_F(FormationPluginTest, PerAgentInstancesEvaluateOnlyThemselvesAndTheirNeighbours) {
   for (const char* name :
        {"smc_discrete_agent", "smc_continuous_agent", "consensus_linear_agent"}) {
     auto counting = std::make_unique<CountingShape>(
-        mjf::core::MakeCircleShape(1000, 10.0, 0.314, 0.0, 2 * kPi / 1000));
+        mjf::formation::MakeCircleShape(1000, 10.0, 0.314, 0.0, 2 * kPi / 1000));
     const CountingShape& counter = *counting;
     shape_ = std::move(counting);
     // Follower 500 of a ring hears follower 499 only.

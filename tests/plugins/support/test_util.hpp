@@ -6,14 +6,14 @@
 #define MJFORMATION_TESTS_FORMATION_TEST_UTIL_HPP_
 
 #include <algorithm>
-#include <mjformation/core/graph.hpp>
+#include <mjformation/formation/graph.hpp>
 #include <numeric>
 #include <random>
 #include <set>
 #include <utility>
 #include <vector>
 
-namespace mjf::core::testing {
+namespace mjf::formation::testing {
 
 // A random digraph with a spanning tree rooted at the leader: a random tree (each follower,
 // in random order, hears the leader or an earlier follower) plus `extra_edges` random edges.
@@ -54,6 +54,6 @@ inline Graph PaperGraph() {
   return Graph(6, leader, edges);
 }
 
-}  // namespace mjf::core::testing
+}  // namespace mjf::formation::testing
 
 #endif  // MJFORMATION_TESTS_FORMATION_TEST_UTIL_HPP_

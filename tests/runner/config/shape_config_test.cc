@@ -8,7 +8,8 @@
 #include <cmath>
 #include <sstream>
 
-#include "mjformation/core/shape.hpp"
+#include "mjformation/config/config.hpp"
+#include "mjformation/formation/shape.hpp"
 #include "mjformation/sim/simulation.hpp"
 #include "test_util.hpp"
 

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "mjformation/config/config.hpp"
 #include "mjformation/control/agent_channel.hpp"
 #include "mjformation/sim/simulation.hpp"
 #include "test_util.hpp"

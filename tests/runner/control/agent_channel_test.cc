@@ -11,9 +11,10 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
+#include "mjformation/config/config.hpp"
 #include "mjformation/control/delay_margin.hpp"
-#include "mjformation/core/graph.hpp"
-#include "mjformation/core/shape.hpp"
+#include "mjformation/formation/graph.hpp"
+#include "mjformation/formation/shape.hpp"
 #include "mjformation/run/run.hpp"
 #include "mjformation/sim/simulation.hpp"
 #include "test_util.hpp"
@@ -318,7 +319,7 @@ TEST(AgentChannelTest, ClocksOutOfPhaseDefeatTheCentralSolveOracle) {
 // carries the message over its true age and lands on it (exact for a double integrator); with
 // free clocks it is carried over the age read on the two clocks, off by o_1 - o_2.
 TEST(AgentChannelTest, SynchronisedClocksPredictOverTheTrueAge) {
-  const core::Graph graph(2, {1.0, 0.0}, {{0, 1}, {1, 0}});
+  const formation::Graph graph(2, {1.0, 0.0}, {{0, 1}, {1, 0}});
   const double dt = 0.001, latency = 0.02, v = 3.0;
   auto predicted_x = [&](bool sync) {
     NetworkConfig c;

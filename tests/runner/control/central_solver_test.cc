@@ -11,13 +11,13 @@
 #include <stdexcept>
 #include <vector>
 
-#include "mjformation/core/graph.hpp"
+#include "mjformation/formation/graph.hpp"
 
 namespace mjf::runner {
 namespace {
 
 // Leader -> 1, 1 <-> 2, 2 -> 3 (0-based followers 0, 1, 2).
-core::Graph Chain() { return core::Graph(3, {1.0, 0.0, 0.0}, {{0, 1}, {1, 0}, {1, 2}}); }
+formation::Graph Chain() { return formation::Graph(3, {1.0, 0.0, 0.0}, {{0, 1}, {1, 0}, {1, 2}}); }
 
 std::vector<mjfMessage> Published(int n_payload) {
   std::vector<mjfMessage> out(3);
@@ -30,7 +30,7 @@ std::vector<mjfMessage> Published(int n_payload) {
 }
 
 TEST(CentralSolverTest, SolvesLaplacianHForThePublishedRows) {
-  const core::Graph graph = Chain();
+  const formation::Graph graph = Chain();
   CentralSolver solver(graph);
   EXPECT_EQ(solver.solution(0), nullptr);
   const std::vector<mjfMessage> out = Published(4);
@@ -71,7 +71,7 @@ TEST(CentralSolverTest, ASampleWithoutEveryRowIsSkippedAndNoRowIsRefused) {
 }
 
 TEST(CentralSolverTest, TheStarHandsBackTheSameSolutionALatencyUpAndDownLater) {
-  const core::Graph graph = Chain();
+  const formation::Graph graph = Chain();
   CentralSolver instant(graph);
   const std::vector<mjfMessage> out = Published(4);
   instant.SolvePublished(out, 0.0);

@@ -8,14 +8,14 @@
 
 #include <vector>
 
-#include "mjformation/core/graph.hpp"
+#include "mjformation/formation/graph.hpp"
 
 namespace mjf::runner {
 namespace {
 
 constexpr double kDt = 0.001;
 
-core::Graph Pair() { return core::Graph(2, {1.0, 0.0}, {{0, 1}, {1, 0}}); }
+formation::Graph Pair() { return formation::Graph(2, {1.0, 0.0}, {{0, 1}, {1, 0}}); }
 
 TEST(ChannelSummaryTest, ClocksAreInPhaseUnlessDrawnAndSynchronisedOnlyWhenSet) {
   const nlohmann::json in_phase = ClocksSummary(AgentClocks(2, 0.0, 0.0, kDt, 1), 2);

@@ -11,9 +11,10 @@
 #include <string>
 #include <vector>
 
+#include "mjformation/config/config.hpp"
 #include "mjformation/config/paths.hpp"
 #include "mjformation/control/errors.hpp"
-#include "mjformation/core/shape.hpp"
+#include "mjformation/formation/shape.hpp"
 #include "point_mass_info.hpp"
 
 namespace mjf::runner {

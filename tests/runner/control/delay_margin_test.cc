@@ -9,23 +9,23 @@
 #include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
 
-#include "mjformation/core/graph.hpp"
+#include "mjformation/formation/graph.hpp"
 
 namespace mjf::runner {
 namespace {
 
 // Exp 2: a bidirectional ring of six, only follower 1 hears the leader.
-core::Graph Ring() {
-  std::vector<core::Edge> edges;
+formation::Graph Ring() {
+  std::vector<formation::Edge> edges;
   for (int i = 0; i < 6; ++i) {
     edges.push_back({i, (i + 1) % 6, 1.0});
     edges.push_back({(i + 1) % 6, i, 1.0});
   }
-  return core::Graph(6, {1, 0, 0, 0, 0, 0}, edges);
+  return formation::Graph(6, {1, 0, 0, 0, 0, 0}, edges);
 }
 
 TEST(DelayMarginTest, CouplingRadiusMatchesDenseEigenvalues) {
-  const core::Graph g = Ring();
+  const formation::Graph g = Ring();
   const Eigen::MatrixXd lh = Eigen::MatrixXd(g.laplacian_h());
   Eigen::MatrixXd a = -lh;
   a.diagonal().setZero();

@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-#include "mjformation/core/graph.hpp"
+#include "mjformation/formation/graph.hpp"
 
 namespace mjf::runner {
 namespace {
@@ -19,7 +19,7 @@ namespace {
 constexpr double kDt = 0.001;
 
 // Leader -> 1, 1 <-> 2 (0-based followers 0, 1).
-core::Graph Pair() { return core::Graph(2, {1.0, 0.0}, {{0, 1}, {1, 0}}); }
+formation::Graph Pair() { return formation::Graph(2, {1.0, 0.0}, {{0, 1}, {1, 0}}); }
 
 NetworkConfig OverLinks(double latency) {
   NetworkConfig c;

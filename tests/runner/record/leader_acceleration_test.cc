@@ -14,6 +14,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "mjformation/config/config.hpp"
 #include "mjformation/run/run.hpp"
 #include "mjformation/sim/simulation.hpp"
 #include "test_util.hpp"

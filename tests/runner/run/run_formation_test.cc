@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "mjformation/config/config.hpp"
 #include "mjformation/run/run.hpp"
 #include "test_util.hpp"
 
@@ -59,7 +60,7 @@ RunData RunExp2(const std::vector<std::string>& overrides) {
 // With the point-mass vehicle the discrete protocol's measured sigma_f stays below the
 // reported bound once the transient is over (Table 1's window, t >= 25 s). Both bounds the plugin
 // reports are checked: (47) as EQUATIONS.md reads it, and the re-derived ultimate bound
-// (plugins/core/README.md).
+// (plugins/formation/README.md).
 TEST(FormationInMujocoTest, PointMassDiscreteStaysWithinTheBound) {
   const RunData run =
       RunExp2({"vehicles.model=\"pointmass\"", "attitude={plugin=\"pointmass_direct\"}"});

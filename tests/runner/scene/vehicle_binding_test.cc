@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "mjformation/config/config.hpp"
 #include "mjformation/control/plugin_host.hpp"
 #include "mjformation/run/run.hpp"
 #include "mjformation/scene/scene.hpp"

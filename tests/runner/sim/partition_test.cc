@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "mjformation/config/config.hpp"
 #include "mjformation/sim/mujoco_errors.hpp"
 #include "mjformation/run/run.hpp"
 #include "mjformation/sim/simulation.hpp"

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "mjformation/config/config.hpp"
 #include "mjformation/sim/simulation.hpp"
 #include "test_util.hpp"
 

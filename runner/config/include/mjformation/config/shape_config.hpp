@@ -8,15 +8,15 @@
 
 #include "mjformation/config/experiment.hpp"
 
-namespace mjf::core {
+namespace mjf::formation {
 class Shape;
-}  // namespace mjf::core
+}  // namespace mjf::formation
 
 namespace mjf::runner {
 
 // The desired formation f_i(t) of [formation.shape]; nullptr for type "none". Reads the table
 // file for type "table". Throws ConfigError naming the file (and row) on bad input.
-std::unique_ptr<core::Shape> MakeShape(const ExperimentConfig& config);
+std::unique_ptr<formation::Shape> MakeShape(const ExperimentConfig& config);
 
 }  // namespace mjf::runner
 

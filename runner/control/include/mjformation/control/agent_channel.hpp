@@ -26,9 +26,9 @@
 #include "mjformation/control/message_prediction.hpp"
 #include "mjformation/network/network.hpp"
 
-namespace mjf::core {
+namespace mjf::formation {
 class Graph;
-}  // namespace mjf::core
+}  // namespace mjf::formation
 
 namespace mjf::runner {
 
@@ -38,7 +38,7 @@ class RoundsOverLinks;
 class AgentChannel {
  public:
   // graph: the follower graph (0-based); links get [network] defaults and overrides.
-  AgentChannel(const core::Graph& graph, const NetworkConfig& config, double timestep,
+  AgentChannel(const formation::Graph& graph, const NetworkConfig& config, double timestep,
                uint64_t seed);
   ~AgentChannel();
 

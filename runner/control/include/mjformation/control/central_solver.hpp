@@ -17,19 +17,19 @@
 #include <cstdint>
 #include <vector>
 
-#include "mjformation/core/laplacian_solver.hpp"
+#include "mjformation/formation/laplacian_solver.hpp"
 #include "mjformation/network/network.hpp"
 #include "mjformation/network/round_courier.hpp"
 
-namespace mjf::core {
+namespace mjf::formation {
 class Graph;
-}  // namespace mjf::core
+}  // namespace mjf::formation
 
 namespace mjf::runner {
 
 class CentralSolver {
  public:
-  explicit CentralSolver(const core::Graph& graph);
+  explicit CentralSolver(const formation::Graph& graph);
 
   int n_followers() const { return n_followers_; }
   // Samples some follower did not publish R_i in (no solution: the last inputs close the loop).
@@ -71,7 +71,7 @@ class CentralSolver {
   void SolveRightHandSide();  // rhs_ -> solved_
 
   int n_followers_;
-  core::LaplacianSolver solver_;  // the factor of L_H
+  formation::LaplacianSolver solver_;  // the factor of L_H
   Eigen::Matrix<double, Eigen::Dynamic, 2> rhs_;
   std::vector<double> solved_;  // [2 follower + axis]
   bool have_solution_ = false;

@@ -21,10 +21,10 @@
 #include "mjformation/control/control_tick.hpp"
 #include "mjformation/control/plugin_host.hpp"
 
-namespace mjf::core {
+namespace mjf::formation {
 class Graph;
 class Shape;
-}  // namespace mjf::core
+}  // namespace mjf::formation
 
 namespace mjf::runner {
 
@@ -64,7 +64,7 @@ class ControlWiring {
   std::unique_ptr<SensorStage> MakeSensors() const;
 
   // The desired formation (nullptr when [formation.shape] type = "none").
-  const core::Shape* shape() const { return shape_.get(); }
+  const formation::Shape* shape() const { return shape_.get(); }
   // Where each vehicle starts (the plugins' initial_pos points into these).
   const std::vector<std::array<double, 3>>& initial_positions() const {
     return vehicles_.initial_positions;
@@ -90,8 +90,8 @@ class ControlWiring {
   const PluginRegistry& registry_;
   VehicleContexts vehicles_;
   // Handed to the plugins by pointer: they live as long as this object, which outlives them.
-  std::unique_ptr<core::Graph> graph_;
-  std::unique_ptr<core::Shape> shape_;
+  std::unique_ptr<formation::Graph> graph_;
+  std::unique_ptr<formation::Shape> shape_;
   mjfGraph abi_graph_{};
   mjfShape abi_shape_{};
   std::vector<int> edge_from_, edge_to_;

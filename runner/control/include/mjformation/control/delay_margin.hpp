@@ -20,15 +20,15 @@
 
 #include <nlohmann/json.hpp>
 
-namespace mjf::core {
+namespace mjf::formation {
 class Graph;
-}  // namespace mjf::core
+}  // namespace mjf::formation
 
 namespace mjf::runner {
 
 // rho(L_H^-1 A): the Perron root of the nonnegative M, by power iteration with sparse solves
 // (M is positive on every connected part, so the root is dominant). O(N) per iteration.
-double CouplingSpectralRadius(const core::Graph& graph);
+double CouplingSpectralRadius(const formation::Graph& graph);
 
 struct DelayMargin {
   double without_prediction = 0.0;      // s, L* = T / ((1 - qT) rho)

@@ -90,7 +90,7 @@ class Simulation {
   int actuators_per_vehicle() const { return bindings_.actuators_per_vehicle; }
   const VehicleBinding& binding(int vehicle) const { return bindings_.vehicles[vehicle]; }
   // The desired formation (nullptr when [formation.shape] type = "none").
-  const core::Shape* shape() const { return wiring_->shape(); }
+  const formation::Shape* shape() const { return wiring_->shape(); }
   const PluginInstance& leader_plugin() const { return *tick_->plugins().leader; }
   const PluginInstance* formation_plugin() const { return tick_->plugins().formation.get(); }
   // Per-agent execution: the channel stage (network, links, metrics); nullptr in central mode.

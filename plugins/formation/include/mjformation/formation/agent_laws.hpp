@@ -1,0 +1,80 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// One follower's share of the continuous sliding-mode protocol (30) and of the linear consensus
+// baseline, for distributed execution (the discrete protocol is DiscreteSmcAgent). Same
+// interface as DiscreteSmcAgent so that one plugin adapter serves all three.
+//
+// (30) row i, multiplied out, is row i of L_H W = R in w_i = u_i - f_ia with
+//   R_i = (-k1 e_iv - rho sgn(s_i) [- q s_i]) / k2 + a_i0 u~_i,
+// the compact form (33) solving all rows at once: w_i = (R_i + sum_j a_ij w_j) / (d_i + a_i0).
+#ifndef MJFORMATION_FORMATION_AGENT_LAWS_HPP_
+#define MJFORMATION_FORMATION_AGENT_LAWS_HPP_
+
+#include <mjformation/formation/continuous_smc.hpp>
+#include <mjformation/formation/linear_consensus.hpp>
+#include <vector>
+
+namespace mjf::formation {
+
+// e_i of eq. (16) from follower i's own data: e[k], k = (px, py, vx, vy). leader_pv is read only
+// when leader_weight > 0.
+void AgentError(double leader_weight, const std::vector<double>& weights, const double* own_pv,
+                const double* leader_pv, const double* f_now, const double* neighbour_pv,
+                const double* neighbour_f_now, double* e);
+
+class ContinuousSmcAgent {
+ public:
+  ContinuousSmcAgent(const ContinuousSmcParams& params, double leader_weight,
+                     std::vector<double> weights);
+  // f_next and neighbour_f_next are unused (a continuous law); kept for the common interface.
+  void Prepare(const double* own_pv, const double* leader_pv, const double* f_now,
+               const double* f_next, const double* neighbour_pv, const double* neighbour_f_now,
+               const double* neighbour_f_next);
+  double CouplingFromInput(int m, int axis, double u_j) const {
+    return u_j - neighbour_fa_[2 * m + axis];  // w_j = u_j - f_ja
+  }
+  void Solve(const double* w_neighbours);
+  void UseSolved(const double* w_own);
+  const double* acceleration() const { return acceleration_; }
+  const double* sliding() const { return sliding_; }
+  const double* coupling() const { return w_; }
+  const double* rhs() const { return rhs_; }
+  const ContinuousSmcParams& params() const { return params_; }
+
+ private:
+  ContinuousSmcParams params_;
+  double leader_weight_;
+  std::vector<double> weights_;
+  double degree_;
+  std::vector<double> neighbour_fa_;  // [2m + axis]
+  double own_fa_[2] = {0, 0};
+  double rhs_[2] = {0, 0}, w_[2] = {0, 0}, acceleration_[2] = {0, 0}, sliding_[2] = {0, 0};
+};
+
+// u_i = f_ia - kp e_ip - kv e_iv: no coupling through the neighbours' inputs.
+class LinearConsensusAgent {
+ public:
+  LinearConsensusAgent(const LinearConsensusParams& params, double leader_weight,
+                       std::vector<double> weights);
+  void Prepare(const double* own_pv, const double* leader_pv, const double* f_now,
+               const double* f_next, const double* neighbour_pv, const double* neighbour_f_now,
+               const double* neighbour_f_next);
+  double CouplingFromInput(int, int, double) const { return 0.0; }
+  void Solve(const double*) {}
+  void UseSolved(const double*) {}
+  const double* acceleration() const { return acceleration_; }
+  const double* sliding() const { return nullptr; }  // no sliding variable
+  const double* coupling() const { return zero_; }
+  const double* rhs() const { return zero_; }
+
+ private:
+  LinearConsensusParams params_;
+  double leader_weight_;
+  std::vector<double> weights_;
+  double acceleration_[2] = {0, 0};
+  double zero_[2] = {0, 0};
+};
+
+}  // namespace mjf::formation
+
+#endif  // MJFORMATION_FORMATION_AGENT_LAWS_HPP_
