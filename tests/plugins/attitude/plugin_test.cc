@@ -28,6 +28,18 @@ using mjf::test::Library;
 using mjf::test::NaNSetpoint;
 using mjf::test::VehicleInfo;
 
+// A 1 ms step of n vehicles over the caller's arrays.
+mjfStepContext StepOver(int n_vehicles, mjfVehicleState* states, mjfSetpoint* setpoints,
+                        double* controls) {
+  mjfStepContext step{};
+  step.timestep = 0.001;
+  step.n_vehicles = n_vehicles;
+  step.states = states;
+  step.setpoints = setpoints;
+  step.controls = controls;
+  return step;
+}
+
 TEST(AttitudePluginTest, ExportsThePluginsWithTheirActuators) {
   Library lib(MJF_ATTITUDE_PLUGIN);
   ASSERT_EQ(lib.size(), 3u);
@@ -97,12 +109,7 @@ TEST(AttitudePluginTest, QuadrotorPluginsHoverOnTheModelsInfo) {
     sp.vel[2] = 0;
     sp.yaw = 0;
     double controls[4] = {kNaN, kNaN, kNaN, kNaN};
-    mjfStepContext step{};
-    step.timestep = 0.001;
-    step.n_vehicles = 3;
-    step.states = states;
-    step.setpoints = setpoints;
-    step.controls = controls;
+    mjfStepContext step = StepOver(3, states, setpoints, controls);
     ASSERT_EQ(p->compute(instance, &step), 0);
     for (double u : controls) EXPECT_NEAR(u, 1.5 * 9.81 / 4, 1e-9);
     // A non-finite setpoint stops the run instead of producing garbage.
@@ -133,12 +140,7 @@ TEST(AttitudePluginTest, PointMassDirectGivesMassTimesCommand) {
   sp.vel[2] = 0;
   sp.yaw = 0;
   double controls[3];
-  mjfStepContext step{};
-  step.timestep = 0.001;
-  step.n_vehicles = 1;
-  step.states = &state;
-  step.setpoints = &sp;
-  step.controls = controls;
+  mjfStepContext step = StepOver(1, &state, &sp, controls);
   ASSERT_EQ(p->compute(instance, &step), 0);
   EXPECT_DOUBLE_EQ(controls[0], 0.3);
   EXPECT_DOUBLE_EQ(controls[1], -0.4);
@@ -168,12 +170,7 @@ TEST(AttitudePluginTest, ComputeRefusesAStepItCannotFlyWithItsMessage) {
     mjfSetpoint sp = NaNSetpoint();
     double controls[4] = {kNaN, kNaN, kNaN, kNaN};
     char error[128] = "";
-    mjfStepContext step{};
-    step.timestep = 0.001;
-    step.n_vehicles = 1;
-    step.states = &state;
-    step.setpoints = &sp;
-    step.controls = controls;
+    mjfStepContext step = StepOver(1, &state, &sp, controls);
     step.error = error;
     step.error_size = sizeof(error);
     EXPECT_EQ(p->compute(instance, &step), 2);
