@@ -1,12 +1,14 @@
 #!/usr/bin/env python3
-"""Lists functions in runner/ and plugins/ longer than a limit (default 60 lines): each does one job.
+"""Lists functions longer than a limit (default 60 lines): each does one job.
 
 Usage: /usr/bin/python3 dev/function_lengths.py [LIMIT] [FOLDER...]   (exit 1 when any is longer)
-FOLDER: relative to the repository root (default: runner plugins); every .cc, .hpp and .h in it.
-ctest runs it (test function_lengths). A function is a block opened by a line at column 0 (or
-indented inside a class) ending in '{' after a ')' and closed by the matching '}' at the same
-indentation.
+FOLDER: relative to the repository root (default: runner plugins); every .cc, .hpp, .h and .py in
+it. ctest runs it (test function_lengths). A C++ function is a block opened by a line at column 0
+(or indented inside a class) ending in '{' after a ')' and closed by the matching '}' at the same
+indentation. A Python function is a `def` as Python's own parser reads it, from its decorators to
+its last line (a nested function counts inside its parent and on its own).
 """
+import ast
 import pathlib
 import re
 import sys
@@ -32,11 +34,25 @@ def sources():
         if not base.is_dir():
             sys.exit(f"function_lengths.py: no folder {base}")
         for path in sorted(base.rglob("*")):
-            if path.suffix in (".cc", ".hpp", ".h") and path.is_file():
+            if path.suffix in (".cc", ".hpp", ".h", ".py") and path.is_file():
                 yield path
 
 
+def python_functions(path):
+    """(lines, first line, signature) of every function and method of a Python file."""
+    tree = ast.parse(path.read_text(), filename=str(path))
+    for node in ast.walk(tree):
+        if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
+            first = min([node.lineno] + [d.lineno for d in node.decorator_list])
+            yield node.end_lineno - first + 1, first, f"def {node.name}("
+
+
 for path in sources():
+    if path.suffix == ".py":
+        for n, first, sig in python_functions(path):
+            if n > limit:
+                long_ones.append((n, f"{path.relative_to(root)}:{first}", sig))
+        continue
     lines = [strip(x) for x in path.read_text().split("\n")]
     depth, stack = 0, []  # stack of (depth before the body, start line, signature)
     signature_start = 0

@@ -14,7 +14,7 @@ PACKAGES=(
   libopenmpi-dev openmpi-bin
   python3 python3-numpy python3-matplotlib python3-pytest
   python3-dev pybind11-dev python3-pybind11 python3-pandas python3-venv
-  clang libclang-rt-14-dev
+  clang clang-format libclang-rt-14-dev
 )
 missing=()
 for p in "${PACKAGES[@]}"; do
