@@ -3,7 +3,7 @@
 # mjformation_add_plugin(<target> SOURCES <files>... [LIBS <libraries>...] [NO_INSTALL])
 #
 # A plugin family as a module the runner dlopen()s: lib<target>.so, linked against
-# mjformation::plugin, C++17, no undefined symbols, and exactly one exported symbol, the entry
+# mjformation::plugin, C++17, no undefined symbols (see below), and exactly one exported symbol, the entry
 # point mjf_plugin_entry, however it was written: C++ with MJF_EXPORT_PLUGINS (plugin_util.hpp),
 # C with MJF_PLUGIN_EXPORT (plugin.h) or plain C without either. C++ sources are compiled with
 # hidden visibility; C sources keep the default, so a plain-C entry point is not hidden, and a
@@ -21,7 +21,12 @@ function(mjformation_add_plugin target)
   set_target_properties(${target} PROPERTIES PREFIX "lib" CXX_VISIBILITY_PRESET hidden)
   set(exports "${CMAKE_CURRENT_BINARY_DIR}/${target}_exports.map")
   file(WRITE "${exports}" "{ global: mjf_plugin_entry; local: *; };\n")
-  target_link_options(${target} PRIVATE -Wl,--no-undefined "-Wl,--version-script=${exports}")
+  target_link_options(${target} PRIVATE "-Wl,--version-script=${exports}")
+  # No undefined symbols, except in mjformation's own Clang sanitizer build, whose runtime the
+  # loading executable provides (MJF_MODULES_RESOLVE_AT_LOAD, set by mjformation's CMakeLists).
+  if(NOT MJF_MODULES_RESOLVE_AT_LOAD)
+    target_link_options(${target} PRIVATE -Wl,--no-undefined)
+  endif()
   set_property(TARGET ${target} APPEND PROPERTY LINK_DEPENDS "${exports}")
   if(NOT ARG_NO_INSTALL)
     include(GNUInstallDirs)

@@ -1,31 +1,30 @@
 #!/usr/bin/env bash
 # Fuzzes every parser of outside input with libFuzzer (docs/FUZZING.md): builds the targets of
-# tests/fuzz with Clang, ASan and UBSan into their own build folder, then runs each from its
-# checked-in seeds and regression inputs for SECONDS. New inputs and any finding (crash-*,
-# leak-*, timeout-*, oom-*) go under BUILD/tests/fuzz/work/<target>/; nothing in the source tree
-# is written. Exit 1 when any target found something.
+# tests/fuzz in the instrumented tree that dev/test.sh also tests (dev/sanitizer_build.sh: Clang,
+# ASan and UBSan), then runs each from its checked-in seeds and regression inputs for SECONDS. New
+# inputs and any finding (crash-*, leak-*, timeout-*, oom-*) go under
+# BUILD/tests/fuzz/work/<target>/; nothing in the source tree is written. Exit 1 when any target
+# found something.
 # Usage: dev/fuzz.sh [--seconds N] [--build DIR] [TARGET...]
 #   TARGET: experiment vehicle_mjcf timeseries trajectory sweep_vary (default: all)
 #   --seconds N: per target (default 900, the once-per-change long run; the test suite's
 #                fuzz_run_* tests run 15 s each: MJF_FUZZ_SECONDS)
+#   --build DIR: the instrumented tree (default build-asan)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-seconds=900 build=$root/build-fuzz targets=()
+seconds=900 build=$root/build-asan targets=()
 while (($#)); do
   case $1 in
     --seconds) seconds=$2; shift 2 ;;
     --build) build=$2; shift 2 ;;
-    -h|--help) sed -n 2,10p "$0"; exit 0 ;;
+    -h|--help) sed -n 2,12p "$0"; exit 0 ;;
     *) targets+=("$1"); shift ;;
   esac
 done
 ((${#targets[@]})) || targets=(experiment vehicle_mjcf timeseries trajectory sweep_vary)
-command -v clang++ >/dev/null || { echo "fuzz.sh: clang++ is missing: bash scripts/setup.sh installs it" >&2; exit 1; }
-cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DMJF_SANITIZE=ON -DMJF_FUZZ=ON \
-  -DMJF_FUZZ_SECONDS="$seconds" -DCMAKE_CXX_FLAGS="-fsanitize=fuzzer-no-link" \
-  -DCMAKE_C_FLAGS="-fsanitize=fuzzer-no-link" >/dev/null
-cmake --build "$build" -j"$(nproc)" --target "${targets[@]/#/fuzz_}"
+target_args=()
+for t in "${targets[@]}"; do target_args+=(--target "fuzz_$t"); done
+bash "$root/dev/sanitizer_build.sh" "$build" --fuzz-seconds "$seconds" "${target_args[@]}"
 found=0
 for t in "${targets[@]}"; do
   echo "== fuzz_$t for $seconds s"

@@ -1,32 +1,50 @@
 #!/usr/bin/env bash
-# Installs what is missing, builds, and runs every test (scripts/test.sh forwards here): the C++
-# suites and the analysis pytest (through ctest), then all of them again under AddressSanitizer + UBSan.
-# Set MJF_SKIP_SANITIZE=1 to skip the sanitizer build, MJF_SKIP_FUZZ=1 to skip the short fuzz runs
-# (dev/fuzz.sh, MJF_FUZZ_SECONDS per target, default 15).
+# Installs what is missing, builds, and runs every test (scripts/test.sh forwards here), in two
+# trees, each built once:
+#   1. the release build (GCC, what users run): every test, the README's commands and the lint
+#      checks included;
+#   2. the instrumented build (Clang, ASan + UBSan, dev/sanitizer_build.sh): every test that runs
+#      our C++ again, with leak checking (Mesa's own leak suppressed: tests/lsan.supp), and the
+#      fuzz targets' short runs (fuzz_run_*, MJF_FUZZ_SECONDS each, default 15; docs/FUZZING.md).
+# Prints the time of each phase and the total in its closing line.
+# Set MJF_SKIP_SANITIZE=1 to skip the instrumented tree, MJF_SKIP_FUZZ=1 to skip the fuzz runs,
+# MJF_SANITIZE_TESTS=REGEX to run only the matching tests there.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-bash "$root/scripts/build.sh" "$root/build"
-log=$(mktemp)
-(cd "$root/build" && ctest --output-on-failure -j2) | tee "$log"
+phases=()
+phase_start=$SECONDS
+end_phase() {  # NAME: records how long the phase that ends now took
+  phases+=("$1 $((SECONDS - phase_start)) s")
+  echo "== $1: $((SECONDS - phase_start)) s"
+  phase_start=$SECONDS
+}
 # A test suite whose set-up failed reports its tests as skipped, and ctest passes: not here.
-if grep -q '\*\*\*Skipped' "$log"; then
-  echo "test.sh: tests were skipped in the regular build (a failed set-up?):" >&2
-  grep '\*\*\*Skipped' "$log" >&2
-  exit 1
-fi
-rm -f "$log"
+run_ctest() {  # BUILD_DIR NAME [ctest arguments...]
+  local build=$1 name=$2 log
+  shift 2
+  log=$(mktemp)
+  (cd "$build" && ctest --output-on-failure -j2 "$@") | tee "$log"
+  if grep -q '\*\*\*Skipped' "$log"; then
+    echo "test.sh: tests were skipped in the $name build (a failed set-up?):" >&2
+    grep '\*\*\*Skipped' "$log" >&2
+    exit 1
+  fi
+  rm -f "$log"
+}
+
+bash "$root/scripts/build.sh" "$root/build"
+end_phase "release build"
+run_ctest "$root/build" release
+end_phase "release tests"
 if [ "${MJF_SKIP_SANITIZE:-0}" != 1 ]; then
-  echo "== sanitizer build (ASan + UBSan)"
-  cmake -S "$root" -B "$root/build-asan" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMJF_SANITIZE=ON >/dev/null
-  cmake --build "$root/build-asan" -j"$(nproc)"
-  # Every test again, with leak checking (Mesa's own leak suppressed: tests/lsan.supp).
-  (cd "$root/build-asan" && ASAN_OPTIONS=detect_leaks=1 \
-      LSAN_OPTIONS="suppressions=$root/tests/lsan.supp" ctest --output-on-failure -j2 \
-      -R "${MJF_SANITIZE_TESTS:-.}")
+  echo "== instrumented build (Clang, ASan + UBSan, fuzz targets)"
+  bash "$root/dev/sanitizer_build.sh" "$root/build-asan" --fuzz-seconds "${MJF_FUZZ_SECONDS:-15}"
+  end_phase "instrumented build"
+  skip_fuzz=()
+  [ "${MJF_SKIP_FUZZ:-0}" = 1 ] && skip_fuzz=(-LE fuzz)
+  ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS="suppressions=$root/tests/lsan.supp" \
+    run_ctest "$root/build-asan" instrumented -R "${MJF_SANITIZE_TESTS:-.}" "${skip_fuzz[@]}"
+  end_phase "instrumented tests and fuzz runs"
 fi
-if [ "${MJF_SKIP_FUZZ:-0}" != 1 ]; then
-  # A short run of every fuzz target from its checked-in corpus (docs/FUZZING.md).
-  echo "== fuzz targets, ${MJF_FUZZ_SECONDS:-15} s each (libFuzzer, Clang)"
-  bash "$root/dev/fuzz.sh" --seconds "${MJF_FUZZ_SECONDS:-15}"
-fi
+echo "test.sh: phases: $(IFS=';'; echo "${phases[*]}" | sed 's/;/, /g')"
 echo "test.sh: every test passed (${SECONDS} s)"
