@@ -6,8 +6,8 @@
 # from it, so nothing is downloaded), then `pip install --no-build-isolation --no-deps --no-index
 # SOURCE`. Exp 2 then flies, briefly, through the `mjformation` command, through `import
 # mjformation`, and through stock MuJoCo (`import mujoco` loads our native plugins by its entry
-# point), from the installed package's own files: the build and source trees are moved out of
-# reach (their paths are never looked at: the version text must not name them).
+# point), from the installed package's own files: every folder the runner searches for plugins
+# and models lies in the package.
 # Usage: pip_install.sh SOURCE_DIR PROJECT_ENV WORK_DIR
 set -euo pipefail
 source_dir=$(cd "$1" && pwd)
@@ -42,10 +42,12 @@ cd "$work"  # not the source tree
 version=$("$work/venv/bin/mjformation" --version)
 echo "$version"
 grep -q "installed in $package" <<<"$version"
-if grep -q -e "$source_dir" <<<"$version"; then
-  echo "the installed runner looks into the source or build tree" >&2
-  exit 1
-fi
+for dir in $(sed -n 's/^\(plugin\|model\) search path://p' <<<"$version"); do
+  if [[ "$dir" != "$package"/* ]]; then
+    echo "the installed runner searches $dir, outside its package $package" >&2
+    exit 1
+  fi
+done
 "$work/venv/bin/mjformation" run "$experiment" --out "$work/runs/cli" --quiet --no-render "${short[@]}"
 
 # The module, the same run; and stock MuJoCo flying the exported scene with the native plugins.
