@@ -470,7 +470,7 @@ std::string SectionTable(const std::string& section, const Keys& keys) {
     std::string what = e.what;
     if (!e.needs.empty()) {
       std::string needs = e.needs;
-      std::replace(needs.begin(), needs.end(), '\n', ',');
+      for (size_t at; (at = needs.find('\n')) != std::string::npos;) needs.replace(at, 1, "`, `");
       what += " Needs `" + needs + "`.";
     }
     out += fmt::format("| `{}` | {} | {} | {} | {} | {} |\n", e.key, Escape(e.type), e.unit,
