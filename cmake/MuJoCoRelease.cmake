@@ -19,14 +19,19 @@ endif()
 
 set(MJF_PYTHON_ENV ${CMAKE_SOURCE_DIR}/.venv CACHE PATH
     "the project-local Python environment that holds the pinned MuJoCo (scripts/setup.sh)")
+set(mjf_env_python ${MJF_PYTHON_ENV}/bin/python)
+if(SKBUILD AND Python_EXECUTABLE)
+  # Under pip: the interpreter pip builds for, whose environment holds the pinned mujoco.
+  set(mjf_env_python ${Python_EXECUTABLE})
+endif()
 if(NOT MJF_MUJOCO_ROOT)
-  if(NOT EXISTS ${MJF_PYTHON_ENV}/bin/python)
+  if(NOT EXISTS ${mjf_env_python})
     message(FATAL_ERROR "MuJoCo ${MJF_MUJOCO_VERSION}: no environment at ${MJF_PYTHON_ENV} "
                         "(run scripts/setup.sh, or pass -DMJF_MUJOCO_ROOT=<folder of the release>)")
   endif()
   # find_spec locates the package without importing it (no engine is loaded at configure time).
   execute_process(
-    COMMAND ${MJF_PYTHON_ENV}/bin/python -c
+    COMMAND ${mjf_env_python} -c
             "import importlib.util, os; print(os.path.dirname(importlib.util.find_spec('mujoco').origin))"
     OUTPUT_VARIABLE mjf_package_dir OUTPUT_STRIP_TRAILING_WHITESPACE RESULT_VARIABLE mjf_rc
     ERROR_VARIABLE mjf_err)

@@ -31,9 +31,14 @@ from ._laws import Graph, Neighbourhood
 _HERE = Path(__file__).resolve().parent
 # Installed: the prefix's models and plugins (lib/python3.X/dist-packages/mjformation -> prefix).
 # In the build tree (build/python/mjformation) the runner's compiled-in paths serve instead.
+# From a wheel (`pip install .`) the package folder itself is the prefix (bin/, lib/, share/).
 _INSTALLED_PLUGINS = []
-if _HERE.parent.name in ("dist-packages", "site-packages") and len(_HERE.parents) > 3:
+_PREFIX = None
+if (_HERE / "share/mjformation/mjcf").is_dir():
+    _PREFIX = _HERE
+elif _HERE.parent.name in ("dist-packages", "site-packages") and len(_HERE.parents) > 3:
     _PREFIX = _HERE.parents[3]
+if _PREFIX is not None:
     if (_PREFIX / "share/mjformation/mjcf").is_dir():
         os.environ.setdefault("MJF_MJCF_DIR", str(_PREFIX / "share/mjformation/mjcf"))
     _INSTALLED_PLUGINS = [str(p) for p in [_PREFIX / "lib/mjformation/plugins"] if p.is_dir()]
@@ -273,7 +278,12 @@ def export(experiment, out, overwrite=False) -> Path:
 
 
 def native_plugin_library() -> str:
-    """libmjformation_mujoco.so, for mujoco.mj_loadPluginLibrary before loading an export."""
+    """libmjformation_mujoco.so, for mujoco.mj_loadPluginLibrary before loading an export: the
+    installed one (<prefix>/lib) when this package is installed, else the build tree's."""
+    if _PREFIX is not None:
+        for lib in ("lib", "lib64", "lib/x86_64-linux-gnu"):
+            if (_PREFIX / lib / "libmjformation_mujoco.so").is_file():
+                return str(_PREFIX / lib / "libmjformation_mujoco.so")
     return _core.native_plugin_library()
 
 

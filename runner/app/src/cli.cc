@@ -11,6 +11,7 @@
 #include <limits>
 
 #include "mjformation/config/config.hpp"
+#include "mjformation/config/key_reference.hpp"
 #include "mjformation/config/paths.hpp"
 #include "mjformation/config/source_location.hpp"
 #include "mjformation/control/plugin_host.hpp"
@@ -181,6 +182,11 @@ int PluginsCommand(const CliCommands& c) {
   return 0;
 }
 
+int KeysCommand(const CliCommands& c) {
+  std::fputs(KeyReferenceMarkdown(c.keys_section).c_str(), stdout);
+  return 0;
+}
+
 }  // namespace
 
 void RefuseExistingFiles(const std::vector<std::string>& paths) {
@@ -259,6 +265,9 @@ void AddCommands(CLI::App& app, CliCommands* c) {
 
   c->plugins = app.add_subcommand("plugins", "List the plugins found, with their attributes");
   c->plugins->add_option("--plugin-path", c->plugin_path, "extra folder to search for plugins");
+  c->keys = app.add_subcommand(
+      "keys", "Every key of the experiment file: type, unit, default, range, what it does");
+  c->keys->add_option("section", c->keys_section, "only this section (and its sub-tables)");
   AddBenchCommand(app, c);
   AddSweepCommand(app, c);
   AddReplayCommand(app, c);
@@ -272,6 +281,7 @@ int Dispatch(const CLI::App& app, const CliCommands& c) {
     if (c.run->parsed()) return RunCommand(c);
     if (c.check->parsed()) return CheckCommand(c);
     if (c.plugins->parsed()) return PluginsCommand(c);
+    if (c.keys->parsed()) return KeysCommand(c);
     if (c.bench && c.bench->parsed()) return BenchCommand(c);
     if (c.sweep->parsed()) return SweepCommand(c);
     if (c.replay && c.replay->parsed()) return ReplayCommand(c);

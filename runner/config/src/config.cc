@@ -70,6 +70,8 @@ std::vector<std::string> ActuatorNames(SectionReader& vehicles, const Reporter& 
 void ParseThrustAndMoments(SectionReader& vehicles, const Reporter& reporter,
                            const std::function<ValueOrigin(const char*)>& origin,
                            ExperimentConfig* c) {
+  vehicles.MarkUsed("thrust");  // known even when absent: the unknown-key message lists them
+  vehicles.MarkUsed("moments");
   if (!vehicles.Has("thrust") && !vehicles.Has("moments")) return;
   if (!c->vehicle_rotors.empty()) {
     vehicles.Fail("thrust", "a vehicle has rotors or thrust and moments, not both");
@@ -141,6 +143,10 @@ PluginSection ReadPluginSection(const Reporter& reporter, const toml::table& roo
                                 const std::set<std::string>& reserved) {
   PluginSection out;
   out.section = name;
+  // Its own keys; every other key is an attribute the chosen plugin declares (plugin host).
+  std::set<std::string> own = reserved;
+  own.insert("plugin");
+  RecordAcceptedKeys(name, own);
   const toml::node* node = root.get(name);
   if (node && !node->is_table()) {
     reporter.Fail(node, "[" + name + "]", "expected a table");
@@ -248,17 +254,14 @@ toml::table ParseDocument(const std::string& text, const std::string& path,
   return root;
 }
 
-// The sections an experiment file may have, in the order the documentation lists them.
-const char* const kSections[] = {"run",      "vehicles",  "topology", "leader", "formation",
-                                 "attitude", "render",    "sensors",  "wind",   "execution",
-                                 "network",  "estimator", "safety"};
-
 void RejectUnknownSections(const Reporter& reporter, const toml::table& root) {
   for (auto&& [key, node] : root) {
     const std::string name(key.str());
-    if (std::find(std::begin(kSections), std::end(kSections), name) == std::end(kSections)) {
+    if (std::find(std::begin(kExperimentSections), std::end(kExperimentSections), name) ==
+        std::end(kExperimentSections)) {
       std::string known;
-      for (const char* s : kSections) known += (known.empty() ? "" : ", ") + std::string(s);
+      for (const char* s : kExperimentSections)
+        known += (known.empty() ? "" : ", ") + std::string(s);
       reporter.Fail(&node, SectionKey(name), "unknown section (known: " + known + ")");
     }
     if (!node.is_table()) reporter.Fail(&node, name, "expected a [section] table");
@@ -443,8 +446,7 @@ void ReadLeaderLinks(const Reporter& reporter, SectionReader& topology, Experime
 void ParseTopologySection(const Reporter& reporter, SectionReader topology, ExperimentConfig& c) {
   ReadLeaderLinks(reporter, topology, c);
   // Generated graphs for large N: "chain" (1 -> 2 -> ... -> N) or "ring" (chain + N -> 1).
-  static constexpr EnumWord<bool> kGeneratorWords[] = {{"chain", false}, {"ring", true}};
-  const bool ring = topology.Enum("generate", false, kGeneratorWords);
+  const bool ring = topology.Enum("generate", false, kTopologyGeneratorWords);
   c.edges = ReadEdges(reporter, topology, c.followers);
   if (topology.Has("generate")) {
     if (!c.edges.empty()) topology.Fail("generate", "give either edges or generate, not both");
@@ -563,10 +565,10 @@ ExperimentConfig ParseExperiment(const std::string& text, const std::string& pat
                        path, c);
   ParseTopologySection(reporter, SectionReader(reporter.path(), table_of("topology"), "topology"),
                        c);
-  c.leader = ReadPluginSection(reporter, root, "leader", "circle", {});
+  c.leader = ReadPluginSection(reporter, root, "leader", kDefaultLeaderPlugin, {});
   c.formation = ReadPluginSection(reporter, root, "formation", "", {"shape"});
-  c.attitude = ReadPluginSection(reporter, root, "attitude", "pd_cascade", {});
-  c.estimator = ReadPluginSection(reporter, root, "estimator", "passthrough", {});
+  c.attitude = ReadPluginSection(reporter, root, "attitude", kDefaultAttitudePlugin, {});
+  c.estimator = ReadPluginSection(reporter, root, "estimator", kDefaultEstimatorPlugin, {});
   for (PluginSection* section : {&c.leader, &c.formation, &c.attitude}) {
     section->derived["seed"] = std::to_string(c.seed);
   }

@@ -67,9 +67,6 @@ network::LinkParams ReadLinkParams(SectionReader& keys, const network::LinkParam
   if (!(p.loss >= 0.0 && p.loss <= 1.0)) {
     keys.Fail("loss", "must be a probability in [0, 1]");
   }
-  static constexpr EnumWord<network::LossModel> kLossModelWords[] = {
-      {"bernoulli", network::LossModel::kBernoulli},
-      {"gilbert_elliott", network::LossModel::kGilbertElliott}};
   p.loss_model = keys.Enum("loss_model", p.loss_model, kLossModelWords);
   for (auto [key, value] :
        {std::pair{"burst_enter", &p.burst_enter}, std::pair{"burst_exit", &p.burst_exit},
@@ -158,8 +155,7 @@ void ParseExecution(const std::string& path, const toml::table& t, const Experim
     }
     n.jacobi_rounds = static_cast<int>(*v);
   }
-  static constexpr EnumWord<bool> kDivergenceWords[] = {{"refuse", true}, {"warn", false}};
-  n.refuse_divergent = keys.Enum("jacobi_divergence", true, kDivergenceWords);
+  n.refuse_divergent = keys.Enum("jacobi_divergence", true, kJacobiDivergenceWords);
   if (n.execution == Execution::kCentral && keys.Has("coupling")) {
     keys.Fail("coupling", "needs mode = \"per_agent\" (central mode solves the coupling exactly)");
   }

@@ -1,6 +1,8 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 #include "mjformation/config/paths.hpp"
 
+#include <dlfcn.h>
+#include <link.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -36,17 +38,34 @@ std::string ResolveRelative(const std::string& path, const std::string& relative
   return relative_to_file.substr(0, slash + 1) + path;
 }
 
+std::string CodeDir() {
+  Dl_info info{};
+  link_map* map = nullptr;
+  if (dladdr1(reinterpret_cast<void*>(&CodeDir), &info, reinterpret_cast<void**>(&map),
+              RTLD_DL_LINKMAP) == 0 ||
+      map == nullptr || map->l_name == nullptr || map->l_name[0] == '\0') {
+    return ExecutableDir();  // the main program: its link map has no name
+  }
+  char resolved[PATH_MAX];
+  if (realpath(map->l_name, resolved) == nullptr) return ExecutableDir();
+  const std::string path(resolved);
+  return path.substr(0, path.find_last_of('/'));
+}
+
 std::string InstalledPrefix() {
-  // Resolved once: the executable does not move while it runs.
+  // Resolved once: the code does not move while it runs.
   static const std::string prefix = [] {
-    const std::string candidate = ExecutableDir() + "/" MJF_INSTALL_BIN_TO_PREFIX;
-    char resolved[PATH_MAX];
-    if (!IsDirectory(candidate + "/" MJF_INSTALL_DATA_DIR) ||
-        !IsDirectory(candidate + "/" MJF_INSTALL_PLUGIN_DIR) ||
-        realpath(candidate.c_str(), resolved) == nullptr) {
-      return std::string();
+    const std::string dir = CodeDir();
+    for (const std::string& candidate :
+         {dir + "/" MJF_INSTALL_BIN_TO_PREFIX, dir + "/..", dir + "/../../../..", dir}) {
+      char resolved[PATH_MAX];
+      if (IsDirectory(candidate + "/" MJF_INSTALL_DATA_DIR) &&
+          IsDirectory(candidate + "/" MJF_INSTALL_PLUGIN_DIR) &&
+          realpath(candidate.c_str(), resolved) != nullptr) {
+        return std::string(resolved);
+      }
     }
-    return std::string(resolved);
+    return std::string();
   }();
   return prefix;
 }

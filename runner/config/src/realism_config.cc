@@ -16,16 +16,10 @@ namespace {
 void ParseSensors(const toml::table* table, const std::string& path, ExperimentConfig* c) {
   SectionReader keys(path, table, "sensors");
   SensorsConfig& s = c->sensors;
-  using Suite = realism::SensorParams (*)();
-  static constexpr EnumWord<Suite> kPresetWords[] = {
-      {"ideal", &realism::SensorParams::Ideal},
-      {"typical", &realism::SensorParams::Typical},
-      {"consumer_gnss", &realism::SensorParams::ConsumerGnss},
-      {"rtk", &realism::SensorParams::Rtk},
-      {"mocap", &realism::SensorParams::MotionCapture}};
-  s.params = keys.Enum("preset", &realism::SensorParams::Ideal, kPresetWords)();
+  s.params = keys.Enum("preset", &realism::SensorParams::Ideal, kSensorPresetWords)();
   s.preset = keys.String("preset", s.preset);
   s.scale = keys.Number("scale", s.scale);
+  keys.MarkUsed("imu");  // known even when absent: the unknown-key message lists it
   if (keys.Has("imu")) {
     s.imu = keys.String("imu", "");
     if (!realism::SensorParams::ImuGrade(s.imu, &s.params.accel)) {
@@ -161,7 +155,7 @@ realism::OneCosineGust ReadGust(const SectionReader& keys, const toml::node& ite
                                 const std::string& path, double duration, double timestep) {
   const toml::table* g = item.as_table();
   if (!g) keys.FailAt(&item, "gusts", "expected {start = s, duration = s, amplitude = [x, y, z]}");
-  SectionReader gust(path, g, "wind] gusts[" + std::to_string(index));
+  SectionReader gust(path, g, "wind] gusts[" + std::to_string(index), "wind.gusts");
   realism::OneCosineGust one;
   if (!g->contains("start") || !g->contains("duration") || !g->contains("amplitude")) {
     keys.FailAt(&item, "gusts", "each gust needs start, duration and amplitude");

@@ -4,6 +4,18 @@
 #include <cmath>
 
 namespace mjf::runner {
+namespace {
+
+thread_local AcceptedKeyMap* accepted_keys = nullptr;
+
+}  // namespace
+
+AcceptedKeysRecorder::AcceptedKeysRecorder(AcceptedKeyMap* into) { accepted_keys = into; }
+AcceptedKeysRecorder::~AcceptedKeysRecorder() { accepted_keys = nullptr; }
+
+void RecordAcceptedKeys(const std::string& section, const std::set<std::string>& keys) {
+  if (accepted_keys) (*accepted_keys)[section].insert(keys.begin(), keys.end());
+}
 
 const char* TypeName(const toml::node& node) {
   switch (node.type()) {
@@ -114,6 +126,7 @@ std::array<double, 3> SectionReader::Vector3(const std::string& key,
 }
 
 void SectionReader::RejectUnknown() const {
+  RecordAcceptedKeys(reference_, used_);
   if (!table_) return;
   for (auto&& [key, node] : *table_) {
     const std::string k(key.str());

@@ -11,6 +11,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <map>
 #include <set>
 #include <string>
 #include <utility>
@@ -28,11 +29,31 @@ SourceLocation NodeLocation(const std::string& file, const toml::node* node,
 // "a string", "an integer", ...: the kind of value a type error says it got.
 const char* TypeName(const toml::node& node);
 
+// Which keys each table accepts, as the readers themselves know them (the key reference's
+// completeness test, key_reference.hpp AcceptedKeys): while an AcceptedKeysRecorder is alive on
+// this thread, every RejectUnknown (and every plugin section) adds its section and known keys.
+using AcceptedKeyMap = std::map<std::string, std::set<std::string>>;
+class AcceptedKeysRecorder {
+ public:
+  explicit AcceptedKeysRecorder(AcceptedKeyMap* into);
+  ~AcceptedKeysRecorder();
+  AcceptedKeysRecorder(const AcceptedKeysRecorder&) = delete;
+  AcceptedKeysRecorder& operator=(const AcceptedKeysRecorder&) = delete;
+};
+// Adds `keys` to the recorder's `section` (nothing when no recorder is alive).
+void RecordAcceptedKeys(const std::string& section, const std::set<std::string>& keys);
+
 class SectionReader {
  public:
-  // `table` may be null (the section is absent): every read returns its fallback.
-  SectionReader(std::string path, const toml::table* table, std::string name)
-      : path_(std::move(path)), table_(table), name_(std::move(name)) {}
+  // `table` may be null (the section is absent): every read returns its fallback. `reference`
+  // names the table in the key reference when `name`, the one messages show, differs (a gust is
+  // "[wind] gusts[2] start" in a message, "wind.gusts" in the reference).
+  SectionReader(std::string path, const toml::table* table, std::string name,
+                std::string reference = "")
+      : path_(std::move(path)),
+        table_(table),
+        name_(std::move(name)),
+        reference_(reference.empty() ? name_ : std::move(reference)) {}
 
   bool Has(const std::string& key) const { return table_ && table_->contains(key); }
   const toml::node* Node(const std::string& key) const {
@@ -82,6 +103,7 @@ class SectionReader {
   std::string path_;
   const toml::table* table_;
   std::string name_;
+  std::string reference_;
   std::set<std::string> used_;
 };
 

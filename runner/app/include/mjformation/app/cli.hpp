@@ -16,6 +16,8 @@ struct CliCommands {
   CLI::App* plugins = nullptr;
   CLI::App* bench = nullptr;
   CLI::App* sweep = nullptr;
+  CLI::App* keys = nullptr;  // `keys [SECTION]`: the experiment file's key reference
+  std::string keys_section;
   std::string experiment;
   std::string out;
   std::vector<std::string> overrides;

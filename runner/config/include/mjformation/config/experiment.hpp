@@ -82,6 +82,23 @@ enum class RoundPolicy { kApply, kHold };
 inline constexpr EnumWord<RoundPolicy> kRoundPolicyWords[] = {{"apply", RoundPolicy::kApply},
                                                               {"hold", RoundPolicy::kHold}};
 const char* ToString(RoundPolicy value);
+// [network] loss_model: independent losses, or Gilbert-Elliott bursts (docs/NETWORK.md).
+inline constexpr EnumWord<network::LossModel> kLossModelWords[] = {
+    {"bernoulli", network::LossModel::kBernoulli},
+    {"gilbert_elliott", network::LossModel::kGilbertElliott}};
+// [execution] jacobi_divergence: a Jacobi iteration that cannot converge is refused, or warned of.
+inline constexpr EnumWord<bool> kJacobiDivergenceWords[] = {{"refuse", true}, {"warn", false}};
+// [topology] generate, for large N: the chain 1 -> 2 -> ... -> N (false), or the ring (true:
+// the chain and N -> 1).
+inline constexpr EnumWord<bool> kTopologyGeneratorWords[] = {{"chain", false}, {"ring", true}};
+// [sensors] preset: the named sensor suites (realism/sensor_params.hpp).
+using SensorSuite = realism::SensorParams (*)();
+inline constexpr EnumWord<SensorSuite> kSensorPresetWords[] = {
+    {"ideal", &realism::SensorParams::Ideal},
+    {"typical", &realism::SensorParams::Typical},
+    {"consumer_gnss", &realism::SensorParams::ConsumerGnss},
+    {"rtk", &realism::SensorParams::Rtk},
+    {"mocap", &realism::SensorParams::MotionCapture}};
 
 struct NetworkConfig {
   Execution execution = Execution::kCentral;
@@ -126,6 +143,11 @@ struct AttributeValue {
   std::string origin;  // "--set section.key=value" when it came from the command line, else ""
 };
 
+// The plugin of a plugin section that does not name one ([formation] must).
+inline constexpr const char* kDefaultLeaderPlugin = "circle";
+inline constexpr const char* kDefaultAttitudePlugin = "pd_cascade";
+inline constexpr const char* kDefaultEstimatorPlugin = "passthrough";
+
 // A [leader] / [formation] / [attitude] section: plugin name plus its attributes.
 // Where a value was given, for the messages that name it after parsing (docs/ARCHITECTURE.md,
 // failure contract): a line of the experiment file, or the command-line argument that gave it
@@ -134,6 +156,11 @@ struct ValueOrigin {
   int line = 0;
   std::string argument;
 };
+
+// The sections an experiment file may have, in the order the documentation lists them.
+inline constexpr const char* kExperimentSections[] = {
+    "run",     "vehicles", "topology",  "leader",  "formation", "attitude", "render",
+    "sensors", "wind",     "execution", "network", "estimator", "safety"};
 
 // Physics partitions at most ([run] threads, run and bench --threads).
 constexpr int kMaxThreads = 1024;

@@ -15,9 +15,16 @@ std::string ExecutableDir();
 // `path` as given if absolute; else relative to the folder of `relative_to_file`.
 std::string ResolveRelative(const std::string& path, const std::string& relative_to_file);
 
-// The prefix the running executable was installed into (wherever it was moved since: the
-// folder above bin/ when it holds share/mjformation and lib/mjformation/plugins), or "" when it
-// runs from the build tree (or is a test or the Python module). An installed runner searches
+// Folder of the file this code was loaded from: the executable, or the shared object (the
+// Python module, the native MuJoCo plugin library) when it runs inside another program.
+std::string CodeDir();
+
+// The prefix the running code was installed into (wherever it was moved since), or "" when it
+// runs from the build tree (or is a test). A prefix holds share/mjformation and
+// lib/mjformation/plugins; it is looked for from CodeDir() where each layout puts its files:
+// bin/ (the runner), lib/ (the native plugin library), lib/pythonX.Y/dist-packages/mjformation
+// (the Python module of `cmake --install`), and the Python package itself, which is the prefix
+// in a wheel (`pip install .`: site-packages/mjformation). An installed runner searches
 // only its own prefix (and what the user names); the build tree's runner the build and source
 // trees.
 std::string InstalledPrefix();
