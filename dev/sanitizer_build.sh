@@ -31,4 +31,8 @@ cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -gline-tables-only -DNDEBUG" \
   -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O2 -gline-tables-only -DNDEBUG" \
   ${MJF_PYTHON_ENV:+-DMJF_PYTHON_ENV="$MJF_PYTHON_ENV"} "$@" >/dev/null
+# The build runs each test binary once to list its tests (gtest_discover_tests); LeakSanitizer
+# checks that run too, so it takes the same suppressions as the tests (Mesa's and LLVM's
+# allocations at load, tests/lsan.supp).
+export LSAN_OPTIONS="suppressions=$root/tests/lsan.supp${LSAN_OPTIONS:+:$LSAN_OPTIONS}"
 cmake --build "$build" -j"$(nproc)" "${targets[@]}"
