@@ -84,20 +84,8 @@ def measure(path: Path) -> dict:
     }
 
 
-def main(argv=None) -> int:
-    argv = sys.argv[1:] if argv is None else argv
-    if len(argv) != 1:
-        print(__doc__, file=sys.stderr)
-        return 2
-    out = Path(argv[0])
-    results = {}
-    for exp_dir in sorted(p for p in out.iterdir() if p.is_dir() and p.name.startswith("exp")):
-        for run in sorted(exp_dir.iterdir()):
-            if (run / "summary.json").exists():
-                results[(exp_dir.name, run.name)] = measure(run)
-    if not results:
-        print(f"rocking_diagnosis.py: no runs in {out}", file=sys.stderr)
-        return 2
+def rocking_table(results):
+    """The Markdown table of every run, and the point-mass curves keyed by (exp, limit)."""
     lines = ["| exp | vehicle | lag tau (s) | accel. limit (m/s^2) | mean σ_f | max slot error (m) | "
              "RMS tilt needed atan(|a|/g) (deg) | quadrotor RMS tilt (deg) | rocking (Hz) | "
              "RMS |u| command (m/s^2) | a vs command at the rocking frequency: lag (deg), gain |",
@@ -128,8 +116,11 @@ def main(argv=None) -> int:
             f"{r['quad_rms_tilt_deg']:.1f}" if math.isfinite(r["quad_rms_tilt_deg"]) else "—",
             f"{r['accel_hz']:.2f}", f"{r['cmd_rms']:.2f}",
             f"{r['lag_deg']:.0f}, {r['gain']:.2f}"]) + " |")
-    (out / "rocking.md").write_text("\n".join(lines) + "\n")
+    return lines, curves
 
+
+def rocking_figure(results, curves, path: Path) -> None:
+    """Tilt needed, rocking frequency and sigma_f against the lag tau, point mass and quadrotor."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -169,7 +160,26 @@ def main(argv=None) -> int:
     fig.suptitle("Point mass with lag τ (lines) vs quadrotor (markers, placed at the lag of its "
                  "small-step attitude bandwidth)")
     fig.tight_layout()
-    fig.savefig(out / "rocking.png", dpi=110)
+    fig.savefig(path, dpi=110)
+
+
+def main(argv=None) -> int:
+    argv = sys.argv[1:] if argv is None else argv
+    if len(argv) != 1:
+        print(__doc__, file=sys.stderr)
+        return 2
+    out = Path(argv[0])
+    results = {}
+    for exp_dir in sorted(p for p in out.iterdir() if p.is_dir() and p.name.startswith("exp")):
+        for run in sorted(exp_dir.iterdir()):
+            if (run / "summary.json").exists():
+                results[(exp_dir.name, run.name)] = measure(run)
+    if not results:
+        print(f"rocking_diagnosis.py: no runs in {out}", file=sys.stderr)
+        return 2
+    lines, curves = rocking_table(results)
+    (out / "rocking.md").write_text("\n".join(lines) + "\n")
+    rocking_figure(results, curves, out / "rocking.png")
     print(f"rocking_diagnosis.py: wrote {out / 'rocking.md'} and rocking.png ({len(results)} runs)")
     return 0
 

@@ -412,51 +412,67 @@ def section(results_dir: Path, out_dir: Path) -> list[str]:
     L.append("")
     cells = collect(leaders_dir) if leaders_dir.is_dir() else {}
     if cells:
-        L.append("### Per leader and protocol")
-        L.append("")
-        L.append("Seeded leaders (`random_accel`, `bang_bang`) run with seeds 1-5: mean ± "
-                 "95 % Student-t CI over seeds; the others are deterministic (one run). "
-                 "Reaching time: the runner's (`reaching_time_s`: from then on every |s_i| "
-                 "stays inside its `reaching_band`: Δ for the discrete protocol, 0.1 for the "
-                 "others, widened to the smallest Δ 2^k that holds |s| over the metric window "
-                 "when that is at most a tenth of the largest |s|; 'never' when it does not). The band is tested on the window [25, 40] s, long after any "
-                 "reaching phase: max |s_i| there over every follower and axis, and its ratio "
-                 "to Δ (the plugin's, the largest over followers) and to each follower's own "
-                 "Δ_i (eqs. (49)-(50) recomputed from config.toml: followers without a leader "
-                 "link have Δ_i = εT only). A reaching time defined from "
-                 "the band itself would make 'after reaching' ≤ Δ by construction (last exit) "
-                 "or be fooled by s_i crossing zero during the transient (first entry). "
-                 f"Formation reached: max final slot error < {FORMATION_TOLERANCE_M:g} m. "
-                 "Leader acceleration: measured; max excess < 0 means inside the bounds by "
-                 "that margin.")
-        L.append("")
-        L.extend(compact_table(cells))
-        L.append("")
-        L.append("In detail (reaching time, |s_i| on the window, the leader's measured "
-                 "acceleration):")
-        L.append("")
-        L.extend(table(cells))
-        L.append("")
-        for vehicle in ("quadrotor", "pointmass"):
-            for leader in LEADERS:
-                if not any(k[1] == leader and k[2] == vehicle for k in cells):
-                    continue
-                L.append(f"#### {leader} leader, {vehicle}")
-                L.append("")
-                p = fig_sigma_by_protocol(cells, leader, vehicle,
-                                          fig_dir / f"sigma_f_{leader}_{vehicle}.png")
-                L.append(f"![sigma_f, {leader}, {vehicle}]({_rel(p, out_dir)})")
-                L.append("")
-                c = cells.get(("exp2", leader, vehicle))
-                if c and c.runs:
-                    run = c.runs[0]
-                    if vehicle == "quadrotor":
-                        p = plots.fig_trajectories(run, fig_dir / run.name / "trajectories_xy.png")
-                        L.append(f"![trajectories {run.name}]({_rel(p, out_dir)})")
-                        L.append("")
-                    p = fig_sliding_window(run, fig_dir / run.name / "sliding_s1_window.png")
-                    L.append(f"![s_1 with ±Δ, {run.name}]({_rel(p, out_dir)})")
+        L.extend(_protocol_lines(cells, fig_dir, out_dir))
+    L.extend(_theory_lines(leaders_dir, fig_dir, out_dir))
+    if sweep_dir.is_dir():
+        L.extend(_period_lines(sweep_dir, fig_dir, out_dir))
+    return L
+
+
+def _protocol_lines(cells, fig_dir: Path, out_dir: Path) -> list[str]:
+    """The per-leader, per-protocol tables and figures."""
+    L = []
+    L.append("### Per leader and protocol")
+    L.append("")
+    L.append("Seeded leaders (`random_accel`, `bang_bang`) run with seeds 1-5: mean ± "
+             "95 % Student-t CI over seeds; the others are deterministic (one run). "
+             "Reaching time: the runner's (`reaching_time_s`: from then on every |s_i| "
+             "stays inside its `reaching_band`: Δ for the discrete protocol, 0.1 for the "
+             "others, widened to the smallest Δ 2^k that holds |s| over the metric window "
+             "when that is at most a tenth of the largest |s|; 'never' when it does not). The band is tested on the window [25, 40] s, long after any "
+             "reaching phase: max |s_i| there over every follower and axis, and its ratio "
+             "to Δ (the plugin's, the largest over followers) and to each follower's own "
+             "Δ_i (eqs. (49)-(50) recomputed from config.toml: followers without a leader "
+             "link have Δ_i = εT only). A reaching time defined from "
+             "the band itself would make 'after reaching' ≤ Δ by construction (last exit) "
+             "or be fooled by s_i crossing zero during the transient (first entry). "
+             f"Formation reached: max final slot error < {FORMATION_TOLERANCE_M:g} m. "
+             "Leader acceleration: measured; max excess < 0 means inside the bounds by "
+             "that margin.")
+    L.append("")
+    L.extend(compact_table(cells))
+    L.append("")
+    L.append("In detail (reaching time, |s_i| on the window, the leader's measured "
+             "acceleration):")
+    L.append("")
+    L.extend(table(cells))
+    L.append("")
+    for vehicle in ("quadrotor", "pointmass"):
+        for leader in LEADERS:
+            if not any(k[1] == leader and k[2] == vehicle for k in cells):
+                continue
+            L.append(f"#### {leader} leader, {vehicle}")
+            L.append("")
+            p = fig_sigma_by_protocol(cells, leader, vehicle,
+                                      fig_dir / f"sigma_f_{leader}_{vehicle}.png")
+            L.append(f"![sigma_f, {leader}, {vehicle}]({_rel(p, out_dir)})")
+            L.append("")
+            c = cells.get(("exp2", leader, vehicle))
+            if c and c.runs:
+                run = c.runs[0]
+                if vehicle == "quadrotor":
+                    p = plots.fig_trajectories(run, fig_dir / run.name / "trajectories_xy.png")
+                    L.append(f"![trajectories {run.name}]({_rel(p, out_dir)})")
                     L.append("")
+                p = fig_sliding_window(run, fig_dir / run.name / "sliding_s1_window.png")
+                L.append(f"![s_1 with ±Δ, {run.name}]({_rel(p, out_dir)})")
+                L.append("")
+    return L
+
+
+def _theory_lines(leaders_dir: Path, fig_dir: Path, out_dir: Path) -> list[str]:
+    """The leader-outside-the-bounds curves, when leader_theory_test wrote them."""
+    L = []
     curves_file = leaders_dir / "theory_curves.txt"
     if curves_file.is_file():
         curves = read_theory_curves(curves_file)
@@ -472,30 +488,35 @@ def section(results_dir: Path, out_dir: Path) -> list[str]:
             p = fig_theory_curves(curves, fig_dir / "excess_curves.png")
             L.append(f"![excess of |s| over the band]({_rel(p, out_dir)})")
             L.append("")
-    if sweep_dir.is_dir():
-        sweeps = {}
-        for d in sorted(sweep_dir.iterdir()):
-            if (d / "sweep.json").is_file():
-                vehicle, _, leader = d.name.partition("_")
-                sweeps[(vehicle, leader)] = read_period_sweep(d)
-        if sweeps:
-            L.append("### σ_f against the sample period T")
-            L.append("")
-            L.append("`smc_discrete` (Exp. 2's gains, q = 4.5 so 1 - qT > 0 up to 0.2 s) over "
-                     "12 periods from 0.005 to 0.2 s, the paper's circle leader and the "
-                     "bang_bang leader (seeds 1-5, mean ± 95 % CI). Slope: least-squares fit of "
-                     "log mean σ_f on log T (± 95 % CI); Theorem 2's band is O(T).")
-            L.append("")
-            for (vehicle, leader), pts in sorted(sweeps.items()):
-                slope, half = fitted_slope(pts)
-                L.append(f"- fitted slope, {vehicle}, {leader} leader: **{_fmt(slope, 3)} ± "
-                         f"{_fmt(half, 2)}** ({len(pts)} periods)")
-            L.append("")
-            p = fig_period(sweeps, fig_dir / "sigma_f_vs_T.png")
-            L.append(f"![sigma_f against T]({_rel(p, out_dir)})")
-            L.append("")
-            L.extend(period_table(sweeps))
-            L.append("")
+    return L
+
+
+def _period_lines(sweep_dir: Path, fig_dir: Path, out_dir: Path) -> list[str]:
+    """sigma_f against the sample period T."""
+    L = []
+    sweeps = {}
+    for d in sorted(sweep_dir.iterdir()):
+        if (d / "sweep.json").is_file():
+            vehicle, _, leader = d.name.partition("_")
+            sweeps[(vehicle, leader)] = read_period_sweep(d)
+    if sweeps:
+        L.append("### σ_f against the sample period T")
+        L.append("")
+        L.append("`smc_discrete` (Exp. 2's gains, q = 4.5 so 1 - qT > 0 up to 0.2 s) over "
+                 "12 periods from 0.005 to 0.2 s, the paper's circle leader and the "
+                 "bang_bang leader (seeds 1-5, mean ± 95 % CI). Slope: least-squares fit of "
+                 "log mean σ_f on log T (± 95 % CI); Theorem 2's band is O(T).")
+        L.append("")
+        for (vehicle, leader), pts in sorted(sweeps.items()):
+            slope, half = fitted_slope(pts)
+            L.append(f"- fitted slope, {vehicle}, {leader} leader: **{_fmt(slope, 3)} ± "
+                     f"{_fmt(half, 2)}** ({len(pts)} periods)")
+        L.append("")
+        p = fig_period(sweeps, fig_dir / "sigma_f_vs_T.png")
+        L.append(f"![sigma_f against T]({_rel(p, out_dir)})")
+        L.append("")
+        L.extend(period_table(sweeps))
+        L.append("")
     return L
 
 
