@@ -5,8 +5,8 @@
 // a small experiment as the sweep applies it (an override per axis), up to the experiment
 // parser's verdict; building the simulations is the experiment and MJCF targets' business.
 #include "../../runner/app/src/sweep.hpp"
-#include "mjformation/config/config.hpp"
 #include "fuzz_util.hpp"
+#include "mjformation/config/config.hpp"
 
 namespace {
 

@@ -24,8 +24,8 @@ int RoundsFor(const NetworkConfig& c) {
 
 }  // namespace
 
-AgentChannel::AgentChannel(const formation::Graph& graph, const NetworkConfig& config, double timestep,
-                           uint64_t seed)
+AgentChannel::AgentChannel(const formation::Graph& graph, const NetworkConfig& config,
+                           double timestep, uint64_t seed)
     : config_(config),
       n_rounds_(RoundsFor(config)),
       spectral_radius_(formation::JacobiSpectralRadius(graph)),

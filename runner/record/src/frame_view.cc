@@ -70,9 +70,10 @@ render::Overlay FrameOverlay(const TrailBuffer& trails, const std::vector<Vec3>&
   }
   // The picture's scale: at the default 45 m the vehicles are dots, and the ring of known radius
   // is the one length a reader can measure against.
-  o.label = ring_radius > 0 && !positions.empty()
-                ? label + fmt::format("   white ring: desired formation, radius {:g} m", ring_radius)
-                : label;
+  o.label =
+      ring_radius > 0 && !positions.empty()
+          ? label + fmt::format("   white ring: desired formation, radius {:g} m", ring_radius)
+          : label;
   o.legend_vehicles = static_cast<int>(positions.size());
   return o;
 }

@@ -58,7 +58,8 @@ struct Swarm {
   std::vector<int> from = {0, 1, 2, 3, 4, 0, 2, 5};
   std::vector<int> to = {1, 2, 3, 4, 5, 2, 4, 3};
   std::vector<double> weight = std::vector<double>(8, 1.0);
-  std::unique_ptr<mjf::formation::Shape> shape = mjf::formation::MakeCircleShape(6, 10, 0.314, 0, kPi / 3);
+  std::unique_ptr<mjf::formation::Shape> shape =
+      mjf::formation::MakeCircleShape(6, 10, 0.314, 0, kPi / 3);
   mjfGraph graph{6, leader_weight.data(), 8, from.data(), to.data(), weight.data()};
   mjfShape abi_shape = mjf::formation::ToAbi(*shape);
   std::vector<mjfVehicleState> states = std::vector<mjfVehicleState>(7);
@@ -149,7 +150,8 @@ TEST(NoAllocationTest, PluginComputeDoesNotAllocate) {
 
 TEST(NoAllocationTest, CoreUpdateDoesNotAllocate) {
   if (!MJF_COUNT_MALLOC) GTEST_SKIP() << "malloc is not replaceable under AddressSanitizer";
-  const mjf::formation::Graph graph(6, {1, 0, 0, 0, 0, 0}, {{0, 1}, {1, 2}, {2, 3}, {3, 4}, {4, 5}});
+  const mjf::formation::Graph graph(6, {1, 0, 0, 0, 0, 0},
+                                    {{0, 1}, {1, 2}, {2, 3}, {3, 4}, {4, 5}});
   mjf::formation::ContinuousSmc continuous(graph, {});
   mjf::formation::DiscreteSmc discrete(graph, {});
   mjf::formation::DiscreteSmcParams limited;

@@ -16,7 +16,9 @@ namespace mjf::runner {
 namespace {
 
 // Leader -> 1, 1 -> 2, 3 -> 2, 2 -> 3 (0-based followers 0, 1, 2).
-formation::Graph Triangle() { return formation::Graph(3, {1.0, 0.0, 0.0}, {{0, 1}, {2, 1}, {1, 2}}); }
+formation::Graph Triangle() {
+  return formation::Graph(3, {1.0, 0.0, 0.0}, {{0, 1}, {2, 1}, {1, 2}});
+}
 
 std::vector<mjfVehicleState> States(int n) {
   std::vector<mjfVehicleState> s(n);

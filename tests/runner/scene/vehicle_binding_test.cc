@@ -247,9 +247,9 @@ RunResult RunInMemory(const ExperimentConfig& config) {
 
 TEST(VehicleBindingTest, ScaledExp2IsExp2ScaledOnThePointMass) {
   const RunResult scaled = RunInMemory(LoadExperiment(kExp2Midge, kOnThePointMass));
-  const RunResult exp2 = RunInMemory(LoadExperiment(
-      std::string(MJF_SOURCE_DIR) + "/experiments/exp2.toml",
-      {"vehicles.model=\"pointmass\"", "attitude={plugin=\"pointmass_direct\"}"}));
+  const RunResult exp2 = RunInMemory(
+      LoadExperiment(std::string(MJF_SOURCE_DIR) + "/experiments/exp2.toml",
+                     {"vehicles.model=\"pointmass\"", "attitude={plugin=\"pointmass_direct\"}"}));
   ASSERT_TRUE(scaled.complete) << scaled.error;
   ASSERT_TRUE(exp2.complete) << exp2.error;
   const double s = scaled.summary["metrics"]["sigma_f_mean"].get<double>();
@@ -259,8 +259,8 @@ TEST(VehicleBindingTest, ScaledExp2IsExp2ScaledOnThePointMass) {
 
 TEST(VehicleBindingTest, TheMidgeReachesTheScaledExp2Formation) {
   for (const std::string attitude : {"geometric", "pd_cascade"}) {
-    const RunResult r = RunInMemory(
-        LoadExperiment(kExp2Midge, {"attitude={plugin=\"" + attitude + "\"}"}));
+    const RunResult r =
+        RunInMemory(LoadExperiment(kExp2Midge, {"attitude={plugin=\"" + attitude + "\"}"}));
     ASSERT_TRUE(r.complete) << attitude << ": " << r.error;
     const auto& m = r.summary["metrics"];
     // The formation circle has a 1 m radius: every follower ends within 1 cm of its slot, and

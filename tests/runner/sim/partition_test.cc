@@ -10,8 +10,8 @@
 #include <thread>
 
 #include "mjformation/config/config.hpp"
-#include "mjformation/sim/mujoco_errors.hpp"
 #include "mjformation/run/run.hpp"
+#include "mjformation/sim/mujoco_errors.hpp"
 #include "mjformation/sim/simulation.hpp"
 #include "test_util.hpp"
 

@@ -295,8 +295,9 @@ TEST(SetupErrorTest, ASingularRotorLayoutNamesTheModelsRotors) {
   ExperimentConfig c = mjf::runner::LoadExperiment(mjf::testing::WriteFile(dir + "/e.toml", text));
   c.plugin_path.push_back(MJF_TEST_PLUGIN_DIR);
   const std::string error = ErrorOf([&] { Simulation sim(c); });
-  EXPECT_THAT(error, AllOf(HasSubstr("e.toml:"), HasSubstr("[vehicles] rotors: the attitude "
-                                                           "plugin 'pd_cascade' cannot fly"),
+  EXPECT_THAT(error, AllOf(HasSubstr("e.toml:"),
+                           HasSubstr("[vehicles] rotors: the attitude "
+                                     "plugin 'pd_cascade' cannot fly"),
                            HasSubstr("'prop1' (rotor0, "), HasSubstr("'prop4' (rotor3, "),
                            HasSubstr("docs/VEHICLES.md")));
   EXPECT_THAT(error, ::testing::Not(HasSubstr("[attitude]")));

@@ -28,12 +28,13 @@ class AgentRouting {
  public:
   // graph: the follower graph (0-based); links get [network] defaults and overrides. n_rounds:
   // rounds per sample (a broadcast carries the sender's last round, n_rounds - 1).
-  AgentRouting(const formation::Graph& graph, const NetworkConfig& config, int n_rounds, double timestep,
-               uint64_t seed);
+  AgentRouting(const formation::Graph& graph, const NetworkConfig& config, int n_rounds,
+               double timestep, uint64_t seed);
 
   // Every follower edge j -> i and every leader link 0 -> i with a_i0 > 0, in the order of the
   // follower's in-neighbours (the order of its messages), then its leader link.
-  static std::vector<network::LinkSpec> Links(const formation::Graph& graph, const NetworkConfig& c);
+  static std::vector<network::LinkSpec> Links(const formation::Graph& graph,
+                                              const NetworkConfig& c);
 
   int n_followers() const { return n_followers_; }
   // What follower i (0-based) knows of the graph: its own row of L_H, for create().
