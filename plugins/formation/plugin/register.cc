@@ -4,5 +4,7 @@
 #include "plugins.hpp"
 
 MJF_EXPORT_PLUGINS(&mjf::formation::adapter::kSmcContinuous, &mjf::formation::adapter::kSmcDiscrete,
-                   &mjf::formation::adapter::kConsensusLinear, &mjf::formation::adapter::kSmcDiscreteAgent,
-                   &mjf::formation::adapter::kSmcContinuousAgent, &mjf::formation::adapter::kConsensusLinearAgent)
+                   &mjf::formation::adapter::kConsensusLinear,
+                   &mjf::formation::adapter::kSmcDiscreteAgent,
+                   &mjf::formation::adapter::kSmcContinuousAgent,
+                   &mjf::formation::adapter::kConsensusLinearAgent)
