@@ -13,8 +13,8 @@ namespace mjf::formation::adapter {
 namespace {
 
 const mjfAttribute kAttributes[] = {
-    {"k", "0.5", "position consensus gain k > 0, 1/s (not tuned)"},
-    {"gamma", "0.5", "leader-velocity estimator gain gamma > 0, 1/s"},
+    {"k", "1", "position consensus gain k > 0, 1/s (not tuned)"},
+    {"gamma", "1", "leader-velocity estimator gain gamma > 0, 1/s"},
     {kKeyKv, "4", "inner velocity-loop gain kv > 0, 1/s (our adaptation to double integrators)"},
 };
 

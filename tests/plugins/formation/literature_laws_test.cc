@@ -87,36 +87,37 @@ double Sigma(const FormationInput& in) {
   return FormationError(6, in.follower_pv, in.leader_pv, in.shape_now);
 }
 
-// Cao & Ren: with beta > |u_0| (0.49 m/s^2 here) the tracking error decays to zero; with beta
-// below it the sign term cannot reject the leader's input and an error persists.
-double VsFinalSigma(double beta, double* sigma_20s) {
+// Cao & Ren: with beta > |u_0| (0.49 m/s^2 here) the tracking error goes to zero in continuous
+// time. Euler at dt leaves a chattering floor of order beta dt, so the property checked is that
+// the floor shrinks in proportion to dt; with beta below |u_0| it does not (the sign term cannot
+// reject the leader's input).
+double VsLateSigma(double beta, double dt) {
   VsTrackingParams params;
   params.beta = beta;
   VsTracking law(RingGraph(), params);
-  double last = 0.0;
+  double late = 0.0;
   Fly(
-      Leader{}, 20.0, 1e-3, 60.0,
+      Leader{}, 20.0, dt, 40.0,
       [&](const FormationInput& in, double) -> const std::vector<double>& {
         law.Update(in);
         return law.acceleration();
       },
       [&](double t, const FormationInput& in) {
-        if (std::abs(t - 20.0) < 5e-4) *sigma_20s = Sigma(in);
-        last = std::max(t >= 50.0 ? Sigma(in) : 0.0, last);
+        if (t >= 30.0) late = std::max(late, Sigma(in));
       });
-  return last;
+  return late;
 }
 
-TEST(VsTrackingTest, ErrorsDecayToZeroWhenBetaExceedsTheLeaderInput) {
-  double at20 = 0.0;
-  const double late = VsFinalSigma(1.5, &at20);
-  RecordProperty("sigma_f_20s", std::to_string(at20));
-  RecordProperty("max_sigma_f_50_60s", std::to_string(late));
-  EXPECT_LT(late, 1e-2);
-  EXPECT_LT(late, 0.1 * at20);  // still decaying after 20 s, not a floor
-  const double weak = VsFinalSigma(0.2, &at20);  // beta < r w^2 = 0.49
-  RecordProperty("max_sigma_f_50_60s_beta_0_2", std::to_string(weak));
-  EXPECT_GT(weak, 10.0 * late);
+TEST(VsTrackingTest, ErrorsGoToZeroWithTheStepWhenBetaExceedsTheLeaderInput) {
+  const double coarse = VsLateSigma(1.5, 1e-3), fine = VsLateSigma(1.5, 2.5e-4);
+  RecordProperty("max_sigma_f_30_40s_dt_1ms", std::to_string(coarse));
+  RecordProperty("max_sigma_f_30_40s_dt_0_25ms", std::to_string(fine));
+  EXPECT_LT(coarse, 0.2);
+  EXPECT_LT(fine, 0.35 * coarse);  // O(dt): 0.25 for a floor exactly proportional to dt
+  const double weak_coarse = VsLateSigma(0.2, 1e-3), weak_fine = VsLateSigma(0.2, 2.5e-4);
+  RecordProperty("max_sigma_f_30_40s_beta_0_2", std::to_string(weak_fine));
+  EXPECT_GT(weak_fine, 10.0 * fine);
+  EXPECT_GT(weak_fine, 0.7 * weak_coarse);  // not a discretization floor
 }
 
 // Moreno & Osorio: with d = 0 (leader at constant velocity) every s_i reaches 0 within
@@ -178,39 +179,57 @@ TEST(SuperTwistingTest, RejectsTheLeaderInputUnderLevantsCondition) {
   EXPECT_LT(worst_w_error, 0.01 * circle.radius * circle.omega * circle.omega);
 }
 
-// Li, Liu, Ren & Xie: with leakage phi > 0 the gains d_i are uniformly ultimately bounded and so
-// is the tracking error, for a leader input (3.2 m/s^2) far above the initial gain d0 = 0.1: d_i
-// rises to what the leader needs and then stops growing.
-TEST(AdaptiveTrackingTest, GainsStayBoundedForAnUnknownLeaderInputBound) {
+// Li, Liu, Ren & Xie: with leakage phi > 0 the gains d_i and the tracking error are uniformly
+// ultimately bounded, for a leader input (3.2 m/s^2) far above the initial gain d0 = 0.1 and
+// unknown to the law: d_i rises past the leader's bound, then stops growing; the ultimate error
+// shrinks with phi.
+struct AdaptiveRun {
+  double d_at_60 = 0.0, d_max_late = 0.0, d_max = 0.0, sigma_late = 0.0;
+};
+AdaptiveRun FlyAdaptive(double phi) {
   AdaptiveTrackingParams params;
   params.d0 = 0.1;
   params.tau = 0.5;
+  params.phi = phi;
   AdaptiveTracking law(RingGraph(), params);
-  double d_at_60 = 0.0, d_max_late = 0.0, sigma_late = 0.0;
+  AdaptiveRun run;
   Fly(
-      Leader{20.0, 0.4}, 2.0, 1e-3, 120.0,
+      Leader{20.0, 0.4}, 2.0, 1e-3, 90.0,
       [&](const FormationInput& in, double t) -> const std::vector<double>& {
         law.Update(in, t);
         return law.acceleration();
       },
       [&](double t, const FormationInput& in) {
         const double d = *std::max_element(law.gain().begin(), law.gain().end());
-        if (std::abs(t - 60.0) < 5e-4) d_at_60 = d;
-        if (t >= 60.0) d_max_late = std::max(d_max_late, d);
-        if (t >= 60.0) sigma_late = std::max(sigma_late, Sigma(in));
+        if (std::abs(t - 60.0) < 5e-4) run.d_at_60 = d;
+        if (t >= 60.0) run.d_max_late = std::max(run.d_max_late, d);
+        if (t >= 60.0) run.sigma_late = std::max(run.sigma_late, Sigma(in));
       });
-  RecordProperty("max_d_60s", std::to_string(d_at_60));
-  RecordProperty("max_d_60_120s", std::to_string(d_max_late));
-  RecordProperty("max_sigma_f_60_120s", std::to_string(sigma_late));
-  EXPECT_GT(law.max_gain(), 1.0);  // it adapted well above d0
-  EXPECT_LT(d_max_late, 1.05 * d_at_60 + 1e-9);  // and stopped growing
-  EXPECT_LT(sigma_late, 1.0);  // the ultimate bound on the tracking error
+  run.d_max = law.max_gain();
+  return run;
+}
+
+TEST(AdaptiveTrackingTest, GainsStayBoundedForAnUnknownLeaderInputBound) {
+  const AdaptiveRun run = FlyAdaptive(0.05);
+  RecordProperty("max_d_60s", std::to_string(run.d_at_60));
+  RecordProperty("max_d_60_90s", std::to_string(run.d_max_late));
+  RecordProperty("max_sigma_f_60_90s", std::to_string(run.sigma_late));
+  EXPECT_GT(run.d_max, 3.2);                         // it adapted past the unknown bound r w^2
+  EXPECT_LT(run.d_max_late, 1.01 * run.d_at_60);     // and stopped growing
+  EXPECT_LT(run.sigma_late, 5.0);                    // ultimately bounded
+  const AdaptiveRun less_leak = FlyAdaptive(0.005);  // a smaller ultimate bound
+  RecordProperty("max_sigma_f_60_90s_phi_0_005", std::to_string(less_leak.sigma_late));
+  EXPECT_LT(less_leak.sigma_late, 0.6 * run.sigma_late);
 }
 
 // Hong, Hu & Gao: with a leader at constant velocity (its input known, = 0) every follower's
 // estimate vbar_i converges to v_0 (never measured).
 TEST(ObserverTrackingTest, LeaderVelocityEstimatesConverge) {
-  ObserverTracking law(RingGraph(), ObserverTrackingParams{});
+  ObserverTrackingParams params;
+  params.k = 2.0;  // the ring's slowest mode (lambda_min(L_H) = 0.109) decays at 0.11/s
+  params.gamma = 1.0;
+  params.kv = 8.0;
+  ObserverTracking law(RingGraph(), params);
   Leader line;
   line.omega = 0.0;
   double early = 0.0, late = 0.0;
