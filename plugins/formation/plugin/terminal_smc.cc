@@ -18,8 +18,9 @@ const mjfAttribute kAttributes[] = {
     {"beta", "1", "surface gain beta > 0 of s = e_p + e_v^(p/q) / beta (not tuned)"},
     {"p", "5", "odd integer p, q < p < 2q"},
     {"q", "3", "odd integer q"},
-    {kKeyRho, "1.5", "switching gain rho = l + eta > 0, m/s^2, above a_i0 times the leader's "
-                     "acceleration bound"},
+    {kKeyRho, "1.5",
+     "switching gain rho = l + eta > 0, m/s^2, above a_i0 times the leader's "
+     "acceleration bound"},
     {kKeySign, "sgn", "sign function: sgn (as published) or sat (boundary layer)"},
     {kKeyBoundaryLayer, "0.1", "boundary-layer width phi of sat (sign = sat only)"},
 };

@@ -59,7 +59,7 @@ void AdaptiveTracking::Update(const FormationInput& input, double time) {
       // r(w) = w / (||w|| + kappa); r(0) = 0 for the discontinuous law (kappa = 0).
       const double r = norm + params_.kappa > 0.0 ? w[axis] / (norm + params_.kappa) : 0.0;
       acceleration_[2 * i + axis] = input.shape_now[6 * i + 4 + axis]  // f_ia (formation shift)
-                                    + d * w[axis] + d * r;              // d_i K xi_i + d_i r(K xi_i)
+                                    + d * w[axis] + d * r;             // d_i K xi_i + d_i r(K xi_i)
     }
     // d_i' = tau [-phi d_i + xi' Gamma xi + ||K xi||], xi' Gamma xi = ||K xi||^2.
     d_[i] = d + dt * params_.tau * (-params_.phi * d + norm * norm + norm);

@@ -170,7 +170,8 @@ TEST(SuperTwistingTest, RejectsTheLeaderInputUnderLevantsCondition) {
       [&](double t, const FormationInput&) {
         if (t < 30.0) return;
         for (double s : law.sliding()) worst_late = std::max(worst_late, std::abs(s));
-        const double u0x = -circle.radius * circle.omega * circle.omega * std::cos(circle.omega * t);
+        const double u0x =
+            -circle.radius * circle.omega * circle.omega * std::cos(circle.omega * t);
         worst_w_error = std::max(worst_w_error, std::abs(law.integral()[0] - u0x));
       });
   RecordProperty("max_abs_s_30_40s", std::to_string(worst_late));

@@ -185,7 +185,8 @@ class FormationPluginTest : public ::testing::Test {
 void* FormationPluginTest::handle_ = nullptr;
 std::map<std::string, const mjfPlugin*> FormationPluginTest::plugins_;
 
-TEST_F(FormationPluginTest, ExportsThreeFormationPluginsTheirPerAgentVersionsAndFiveFromTheLiterature) {
+TEST_F(FormationPluginTest,
+       ExportsThreeFormationPluginsTheirPerAgentVersionsAndFiveFromTheLiterature) {
   ASSERT_EQ(plugins_.size(), 11u);
   for (const char* name :
        {"smc_continuous", "smc_discrete", "consensus_linear", "smc_continuous_agent",
@@ -207,8 +208,8 @@ TEST_F(FormationPluginTest, ExportsThreeFormationPluginsTheirPerAgentVersionsAnd
 // brings the formation error down, and after reset() repeats the same commands (its state, e.g.
 // an adaptive gain or an estimate, goes back to the start).
 TEST_F(FormationPluginTest, LawsFromTheLiteratureFlyAndResetToTheirStart) {
-  for (const char* name :
-       {"vs_tracking", "super_twisting", "adaptive_tracking", "observer_tracking", "terminal_smc"}) {
+  for (const char* name : {"vs_tracking", "super_twisting", "adaptive_tracking",
+                           "observer_tracking", "terminal_smc"}) {
     SCOPED_TRACE(name);
     const mjfPlugin* p = Plugin(name);
     std::string error;
@@ -229,8 +230,10 @@ TEST_F(FormationPluginTest, LawsFromTheLiteratureFlyAndResetToTheirStart) {
 // A bad gain is refused at create() with a reason naming the attribute.
 TEST_F(FormationPluginTest, LawsFromTheLiteratureRefuseBadGainsNamingTheKey) {
   const std::map<std::string, std::pair<std::string, std::string>> bad = {
-      {"vs_tracking", {"beta", "-1"}},      {"super_twisting", {"lambda", "0"}},
-      {"adaptive_tracking", {"phi", "-1"}}, {"observer_tracking", {"gamma", "0"}},
+      {"vs_tracking", {"beta", "-1"}},
+      {"super_twisting", {"lambda", "0"}},
+      {"adaptive_tracking", {"phi", "-1"}},
+      {"observer_tracking", {"gamma", "0"}},
       {"terminal_smc", {"p", "4"}}};
   for (const auto& [name, key_value] : bad) {
     std::string error;

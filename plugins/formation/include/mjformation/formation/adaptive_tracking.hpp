@@ -30,11 +30,11 @@ namespace mjf::formation {
 
 // Gains are defaults, NOT tuned.
 struct AdaptiveTrackingParams {
-  double tau = 0.02;    // 'tau', adaptation rate
-  double phi = 0.05;    // 'phi', 1/s: leakage (sigma-modification), >= 0; 0 with kappa = 0 is
-                        // the discontinuous law
-  double kappa = 0.1;   // 'kappa', m/s^2: width of the continuous r(.), >= 0
-  double d0 = 1.0;      // 'd0', initial gain d_i(0) > 0
+  double tau = 0.02;   // 'tau', adaptation rate
+  double phi = 0.05;   // 'phi', 1/s: leakage (sigma-modification), >= 0; 0 with kappa = 0 is
+                       // the discontinuous law
+  double kappa = 0.1;  // 'kappa', m/s^2: width of the continuous r(.), >= 0
+  double d0 = 1.0;     // 'd0', initial gain d_i(0) > 0
   void Validate() const;
 };
 
@@ -49,7 +49,7 @@ class AdaptiveTracking {
   const std::vector<double>& sliding() const { return sliding_; }
   const std::vector<double>& error() const { return error_; }
   const std::vector<double>& gain() const { return d_; }  // d_i, [i]
-  double max_gain() const { return max_gain_; }  // largest d_i so far (since Reset)
+  double max_gain() const { return max_gain_; }           // largest d_i so far (since Reset)
   const Graph& graph() const { return graph_; }
   template <typename Visit>
   void VisitState(Visit& visit) {

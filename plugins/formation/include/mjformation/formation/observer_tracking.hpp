@@ -31,9 +31,9 @@ namespace mjf::formation {
 
 // Gains are defaults, NOT tuned.
 struct ObserverTrackingParams {
-  double k = 1.0;      // 'k', 1/s: position consensus gain
-  double gamma = 1.0;  // 'gamma', 1/s: estimator gain
-  double kv = 4.0;     // 'kv', 1/s: inner velocity loop (our adaptation to double integrators)
+  double k = 1.0;         // 'k', 1/s: position consensus gain
+  double gamma = 1.0;     // 'gamma', 1/s: estimator gain
+  double kv = 4.0;        // 'kv', 1/s: inner velocity loop (our adaptation to double integrators)
   void Validate() const;  // all > 0
 };
 

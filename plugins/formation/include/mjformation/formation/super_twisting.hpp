@@ -34,9 +34,9 @@ namespace mjf::formation {
 
 // Gains are defaults, NOT tuned.
 struct SuperTwistingParams {
-  SlidingGains gains;    // 'k': K = [k1 k2] of eq. (17)
-  double lambda = 1.5;   // 'lambda', (s-units)^(1/2)/s: the |s|^(1/2) gain
-  double alpha = 0.5;    // 'alpha', (s-units)/s^2: the integral gain, > C
+  SlidingGains gains;     // 'k': K = [k1 k2] of eq. (17)
+  double lambda = 1.5;    // 'lambda', (s-units)^(1/2)/s: the |s|^(1/2) gain
+  double alpha = 0.5;     // 'alpha', (s-units)/s^2: the integral gain, > C
   void Validate() const;  // k1, k2, lambda, alpha > 0
 };
 

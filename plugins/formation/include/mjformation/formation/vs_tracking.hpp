@@ -5,7 +5,8 @@
 // structure approach", IEEE Transactions on Automatic Control 57(1):33-48, 2012, section IV
 // (double-integrator dynamics). The paper could not be read here; the law is implemented from
 // its common statement (e.g. as restated in later surveys of leader-follower tracking):
-//   u_i = - sum_j a_ij [ (r_i - r_j) + alpha (v_i - v_j) ] - b_i [ (r_i - r_0) + alpha (v_i - v_0) ]
+//   u_i = - sum_j a_ij [ (r_i - r_j) + alpha (v_i - v_j) ] - b_i [ (r_i - r_0) + alpha (v_i - v_0)
+//   ]
 //         - beta sgn{ sum_j a_ij [ gamma (r_i - r_j) + (v_i - v_j) ]
 //                     + b_i [ gamma (r_i - r_0) + (v_i - v_0) ] },
 // with a leader whose acceleration is bounded, |a_0| <= gamma_l, undirected follower graph, some
