@@ -28,6 +28,7 @@ class LiteratureLawFlight : public ::testing::TestWithParam<Flight> {};
 TEST_P(LiteratureLawFlight, FliesExp2WithoutASafetyEvent) {
   const Flight flight = GetParam();
   std::vector<std::string> sets = {"run.duration=6.0", "run.metric_window=[0.0, 6.0]",
+                                   "render.snapshots=[0.0]",
                                    std::string("formation={plugin=\"") + flight.law + "\"}"};
   if (flight.point_mass) {
     sets.push_back("vehicles.model=\"pointmass\"");
