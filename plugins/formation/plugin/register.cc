@@ -7,4 +7,8 @@ MJF_EXPORT_PLUGINS(&mjf::formation::adapter::kSmcContinuous, &mjf::formation::ad
                    &mjf::formation::adapter::kConsensusLinear,
                    &mjf::formation::adapter::kSmcDiscreteAgent,
                    &mjf::formation::adapter::kSmcContinuousAgent,
-                   &mjf::formation::adapter::kConsensusLinearAgent)
+                   &mjf::formation::adapter::kConsensusLinearAgent,
+                   &mjf::formation::adapter::kVsTracking, &mjf::formation::adapter::kSuperTwisting,
+                   &mjf::formation::adapter::kAdaptiveTracking,
+                   &mjf::formation::adapter::kObserverTracking,
+                   &mjf::formation::adapter::kTerminalSmc)

@@ -185,11 +185,13 @@ class FormationPluginTest : public ::testing::Test {
 void* FormationPluginTest::handle_ = nullptr;
 std::map<std::string, const mjfPlugin*> FormationPluginTest::plugins_;
 
-TEST_F(FormationPluginTest, ExportsThreeFormationPluginsAndTheirPerAgentVersions) {
-  ASSERT_EQ(plugins_.size(), 6u);
+TEST_F(FormationPluginTest,
+       ExportsThreeFormationPluginsTheirPerAgentVersionsAndFiveFromTheLiterature) {
+  ASSERT_EQ(plugins_.size(), 11u);
   for (const char* name :
        {"smc_continuous", "smc_discrete", "consensus_linear", "smc_continuous_agent",
-        "smc_discrete_agent", "consensus_linear_agent"}) {
+        "smc_discrete_agent", "consensus_linear_agent", "vs_tracking", "super_twisting",
+        "adaptive_tracking", "observer_tracking", "terminal_smc"}) {
     const mjfPlugin* p = Plugin(name);
     EXPECT_EQ(p->abi_version, MJF_ABI_VERSION);
     EXPECT_EQ(p->kind, std::string(name).find("_agent") == std::string::npos
@@ -198,6 +200,46 @@ TEST_F(FormationPluginTest, ExportsThreeFormationPluginsAndTheirPerAgentVersions
     EXPECT_NE(p->create, nullptr);
     EXPECT_NE(p->compute, nullptr);
     EXPECT_NE(p->destroy, nullptr);
+  }
+}
+
+// Each law from the literature, with its default (untuned) gains, through the ABI on the
+// point-mass swarm: writes only x-y commands and the slots, finite commands and sliding values,
+// brings the formation error down, and after reset() repeats the same commands (its state, e.g.
+// an adaptive gain or an estimate, goes back to the start).
+TEST_F(FormationPluginTest, LawsFromTheLiteratureFlyAndResetToTheirStart) {
+  for (const char* name : {"vs_tracking", "super_twisting", "adaptive_tracking",
+                           "observer_tracking", "terminal_smc"}) {
+    SCOPED_TRACE(name);
+    const mjfPlugin* p = Plugin(name);
+    std::string error;
+    void* instance = Create(p, {}, &error, 0.01);
+    ASSERT_NE(instance, nullptr) << error;
+    const RunResult first = Run(p, instance, 3000);
+    EXPECT_TRUE(first.untouched);
+    EXPECT_TRUE(first.finite);
+    EXPECT_TRUE(first.slots_ok);
+    EXPECT_LT(first.sigma_final, 0.5 * first.sigma_initial);
+    p->reset(instance);
+    const RunResult again = Run(p, instance, 3000);
+    EXPECT_EQ(again.acc_x, first.acc_x);
+    p->destroy(instance);
+  }
+}
+
+// A bad gain is refused at create() with a reason naming the attribute.
+TEST_F(FormationPluginTest, LawsFromTheLiteratureRefuseBadGainsNamingTheKey) {
+  const std::map<std::string, std::pair<std::string, std::string>> bad = {
+      {"vs_tracking", {"beta", "-1"}},
+      {"super_twisting", {"lambda", "0"}},
+      {"adaptive_tracking", {"phi", "-1"}},
+      {"observer_tracking", {"gamma", "0"}},
+      {"terminal_smc", {"p", "4"}}};
+  for (const auto& [name, key_value] : bad) {
+    std::string error;
+    void* instance = Create(Plugin(name), {{key_value.first, key_value.second}}, &error);
+    EXPECT_EQ(instance, nullptr) << name;
+    EXPECT_NE(error.find("'" + key_value.first + "'"), std::string::npos) << name << ": " << error;
   }
 }
 

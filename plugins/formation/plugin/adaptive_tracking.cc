@@ -1,0 +1,50 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// adaptive_tracking: Li, Liu, Ren & Xie (IEEE TAC 2013)'s adaptive-gain tracking of a leader
+// whose input bound is unknown (the core's adaptive_tracking.hpp), evaluated every physics
+// step; the gains d_i advance with the host's time. sliding = e_ip + sqrt(3) e_iv.
+#include <mjformation/formation/adaptive_tracking.hpp>
+
+#include "adapter.hpp"
+#include "plugins.hpp"
+
+namespace mjf::formation::adapter {
+namespace {
+
+const mjfAttribute kAttributes[] = {
+    {"tau", "0.02", "adaptation rate tau > 0 of d_i' (not tuned)"},
+    {"phi", "0.05", "leakage phi >= 0 of d_i', 1/s (0 with kappa = 0: the discontinuous law)"},
+    {"kappa", "0.1", "width kappa >= 0 of r(w) = w / (||w|| + kappa), m/s^2"},
+    {"d0", "1", "initial adaptive gain d_i(0) > 0"},
+};
+
+struct Instance : SwarmInstance<formation::AdaptiveTracking> {
+  using Config = formation::AdaptiveTrackingParams;
+  static Config Configure(const mjfCreateContext* ctx) {
+    const plugin::Attributes attributes(ctx);
+    Config params;
+    params.tau = attributes.Number("tau");
+    params.phi = attributes.Number("phi");
+    params.kappa = attributes.Number("kappa");
+    params.d0 = attributes.Number("d0");
+    params.Validate();
+    return params;
+  }
+  using SwarmInstance::SwarmInstance;
+  void Sample(const mjfStepContext* ctx) { controller.Update(buffers.Input(), ctx->time); }
+  const double* sliding() const { return controller.sliding().data(); }
+  void Reset() { controller.Reset(); }
+};
+
+void Report(void* instance, mjfReportFn emit, void* user) {
+  emit(user, "max_adaptive_gain", static_cast<const Instance*>(instance)->controller.max_gain());
+}
+
+}  // namespace
+
+const mjfPlugin kAdaptiveTracking = SwarmPlugin<Instance>(
+    "adaptive_tracking",
+    "adaptive-gain tracking of a leader with unknown input bound, Li, Liu, Ren & Xie (TAC 2013)",
+    kAttributes, &Report);
+
+}  // namespace mjf::formation::adapter

@@ -1,0 +1,44 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// observer_tracking: Hong, Hu & Gao (Automatica 2006)'s tracking with a leader-velocity
+// estimator, with an inner velocity loop for our double integrators (the core's
+// observer_tracking.hpp), evaluated every physics step; the estimates advance with the host's
+// time. It never reads the leader's velocity. sliding = e_ip.
+#include <mjformation/formation/observer_tracking.hpp>
+
+#include "adapter.hpp"
+#include "plugins.hpp"
+
+namespace mjf::formation::adapter {
+namespace {
+
+const mjfAttribute kAttributes[] = {
+    {"k", "1", "position consensus gain k > 0, 1/s (not tuned)"},
+    {"gamma", "1", "leader-velocity estimator gain gamma > 0, 1/s"},
+    {kKeyKv, "4", "inner velocity-loop gain kv > 0, 1/s (our adaptation to double integrators)"},
+};
+
+struct Instance : SwarmInstance<formation::ObserverTracking> {
+  using Config = formation::ObserverTrackingParams;
+  static Config Configure(const mjfCreateContext* ctx) {
+    const plugin::Attributes attributes(ctx);
+    Config params;
+    params.k = attributes.Number("k");
+    params.gamma = attributes.Number("gamma");
+    params.kv = attributes.Number(kKeyKv);
+    params.Validate();
+    return params;
+  }
+  using SwarmInstance::SwarmInstance;
+  void Sample(const mjfStepContext* ctx) { controller.Update(buffers.Input(), ctx->time); }
+  const double* sliding() const { return controller.sliding().data(); }
+  void Reset() { controller.Reset(); }
+};
+
+}  // namespace
+
+const mjfPlugin kObserverTracking = SwarmPlugin<Instance>(
+    "observer_tracking",
+    "tracking with a leader-velocity estimator, Hong, Hu & Gao (Automatica 2006)", kAttributes);
+
+}  // namespace mjf::formation::adapter
