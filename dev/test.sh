@@ -1,14 +1,17 @@
 #!/usr/bin/env bash
 # Installs what is missing, builds, and runs every test (scripts/test.sh forwards here), in two
 # trees, each built once:
-#   1. the release build (GCC, what users run): every test, the README's commands and the lint
-#      checks included;
-#   2. the instrumented build (Clang, ASan + UBSan, dev/sanitizer_build.sh): every test that runs
-#      our C++ again, with leak checking (Mesa's own leak suppressed: tests/lsan.supp), and the
-#      fuzz targets' short runs (fuzz_run_*, MJF_FUZZ_SECONDS each, default 15; docs/FUZZING.md).
+#   1. the release build (GCC, what users run): the tests of the product as a user meets it, the
+#      README's commands, the Python module and `pip install .`, the analysis and the lint checks
+#      (MJF_UNIT_TESTS=OFF: its C++ tests are not built here);
+#   2. the instrumented build (Clang, ASan + UBSan, dev/sanitizer_build.sh): every C++ test and
+#      every command-line test, with leak checking (Mesa's own leak suppressed: tests/lsan.supp),
+#      and the fuzz targets' short runs (fuzz_run_*, MJF_FUZZ_SECONDS each, default 15;
+#      docs/FUZZING.md). Each test runs once, in the build that checks the most.
 # Prints the time of each phase and the total in its closing line.
-# Set MJF_SKIP_SANITIZE=1 to skip the instrumented tree, MJF_SKIP_FUZZ=1 to skip the fuzz runs,
-# MJF_SANITIZE_TESTS=REGEX to run only the matching tests there.
+# Set MJF_SKIP_SANITIZE=1 to skip the instrumented tree (the release tree then runs every test),
+# MJF_SKIP_FUZZ=1 to skip the fuzz runs, MJF_SANITIZE_TESTS=REGEX to run only the matching tests
+# there.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 phases=()
@@ -32,7 +35,10 @@ run_ctest() {  # BUILD_DIR NAME [ctest arguments...]
   rm -f "$log"
 }
 
-bash "$root/scripts/build.sh" "$root/build"
+# Without the instrumented tree, the release tree builds and runs the C++ tests itself.
+unit_tests=OFF
+[ "${MJF_SKIP_SANITIZE:-0}" = 1 ] && unit_tests=ON
+MJF_UNIT_TESTS=$unit_tests bash "$root/scripts/build.sh" "$root/build"
 end_phase "release build"
 run_ctest "$root/build" release
 end_phase "release tests"
