@@ -8,6 +8,7 @@
 #define MJFORMATION_PLUGIN_UTIL_HPP_
 
 #include <mjformation/plugin.h>
+#include <mjformation/plugin_state.hpp>
 
 #include <algorithm>
 #include <cerrno>
@@ -198,6 +199,11 @@ class NeighbourInbox {
   bool knows_leader() const { return knows_leader_; }
   // The leader's (px, py, vx, vy) last heard; zeros until knows_leader().
   const double* leader_pv() const { return leader_pv_; }
+  // What a Gather() leaves for the next: the leader's state as last heard (plugin_state.hpp).
+  template <typename Visit>
+  void VisitState(Visit& visit) {
+    visit(leader_pv_, knows_leader_);
+  }
 
  private:
   std::vector<int> neighbours_;

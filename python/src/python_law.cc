@@ -350,7 +350,12 @@ const mjfPlugin kCentral = {MJF_ABI_VERSION,
                             &ComputeCentral,
                             &ResetCentral,
                             &DestroyCentral,
-                            &ReportCentral};
+                            &ReportCentral,
+                            // A Python law's state lives in Python objects: not declared, so
+                            // a host that copies or checkpoints instances refuses it.
+                            nullptr,
+                            nullptr,
+                            nullptr};
 
 const mjfPlugin kAgent = {MJF_ABI_VERSION,
                           "python_agent",
@@ -364,7 +369,10 @@ const mjfPlugin kAgent = {MJF_ABI_VERSION,
                           &ComputeAgent,
                           &ResetAgent,
                           &DestroyAgent,
-                          &ReportAgent};
+                          &ReportAgent,
+                          nullptr,
+                          nullptr,
+                          nullptr};
 
 }  // namespace
 

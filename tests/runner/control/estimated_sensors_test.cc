@@ -155,7 +155,8 @@ int ComputeNanEstimate(void* instance, const mjfStepContext* ctx) {
 }
 const mjfPlugin kNanEstimator = {
     MJF_ABI_VERSION, "nan_estimate_test", MJF_KIND_ESTIMATOR,  "test",  0,       nullptr, 0,
-    nullptr,         &CreateNanEstimator, &ComputeNanEstimate, nullptr, nullptr, nullptr};
+    nullptr,         &CreateNanEstimator, &ComputeNanEstimate, nullptr, nullptr, nullptr,
+    nullptr,         nullptr,             nullptr};
 
 // A non-finite estimate stops the run where it appears, naming the estimator, the vehicle and
 // the part, instead of reaching the controllers (the stop was reported later as a non-finite
