@@ -43,15 +43,16 @@ namespace state_detail {
 template <typename T, typename Visitor, typename = void>
 struct HasVisitState : std::false_type {};
 template <typename T, typename Visitor>
-struct HasVisitState<
-    T, Visitor, std::void_t<decltype(std::declval<T&>().VisitState(std::declval<Visitor&>()))>>
+struct HasVisitState<T, Visitor,
+                     std::void_t<decltype(std::declval<T&>().VisitState(std::declval<Visitor&>()))>>
     : std::true_type {};
 
 template <typename T, typename = void>
 struct IsContiguous : std::false_type {};
 template <typename T>
-struct IsContiguous<T, std::void_t<decltype(*std::declval<T&>().data()),
-                                   decltype(std::declval<T&>().size())>> : std::true_type {};
+struct IsContiguous<
+    T, std::void_t<decltype(*std::declval<T&>().data()), decltype(std::declval<T&>().size())>>
+    : std::true_type {};
 
 template <typename T>
 struct IsRandomEngine : std::false_type {};

@@ -8,7 +8,6 @@
 #define MJFORMATION_PLUGIN_UTIL_HPP_
 
 #include <mjformation/plugin.h>
-#include <mjformation/plugin_state.hpp>
 
 #include <algorithm>
 #include <cerrno>
@@ -17,6 +16,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <mjformation/plugin_state.hpp>
 #include <sstream>
 #include <stdexcept>
 #include <string>

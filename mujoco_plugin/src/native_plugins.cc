@@ -33,9 +33,9 @@
 #include <mujoco/mjplugin.h>
 #include <mujoco/mujoco.h>
 
+#include <algorithm>
 #include <cmath>
 #include <exception>
-#include <algorithm>
 #include <limits>
 #include <map>
 #include <memory>
@@ -207,9 +207,9 @@ std::unique_ptr<Holder> MakeSwarm(const mjModel* m, int instance) {
 // experiment parser checks every section here too (names, values, messages as for a file).
 size_t SwarmStateSize(const mjModel* m, int instance) {
   const runner::ExperimentConfig config = ReadSwarmConfig(m, instance);
-  return OnOwnThread([&] {
-    return std::make_unique<SwarmHost>(SwarmHost::Prepare(m, config, false));
-  })->state_size();
+  return OnOwnThread(
+             [&] { return std::make_unique<SwarmHost>(SwarmHost::Prepare(m, config, false)); })
+      ->state_size();
 }
 
 // ---- mjformation.attitude

@@ -93,8 +93,7 @@ std::shared_ptr<const SwarmShared> SwarmHost::Prepare(const mjModel* m,
         std::make_unique<runner::PluginRegistry>(runner::PluginSearchPath(s->config.plugin_path));
     s->attitude = &runner::FindPlugin(*s->registry, s->config, s->config.attitude,
                                       {MJF_KIND_ATTITUDE}, "this section needs an attitude plugin");
-    runner::ResolveAttributes(*s->attitude->descriptor, s->config.attitude,
-                              s->config.source_path);
+    runner::ResolveAttributes(*s->attitude->descriptor, s->config.attitude, s->config.source_path);
     s->bindings = bind_model ? runner::BindVehicles(m, s->config, *s->attitude->descriptor)
                              : runner::DescribeVehicles(m, s->config, *s->attitude->descriptor);
     return s;
@@ -103,8 +102,7 @@ std::shared_ptr<const SwarmShared> SwarmHost::Prepare(const mjModel* m,
   }
 }
 
-SwarmHost::SwarmHost(std::shared_ptr<const SwarmShared> shared)
-    : impl_(std::make_unique<Impl>()) {
+SwarmHost::SwarmHost(std::shared_ptr<const SwarmShared> shared) : impl_(std::make_unique<Impl>()) {
   Impl& s = *impl_;
   s.shared = std::move(shared);
   const runner::ExperimentConfig& config = s.shared->config;

@@ -149,8 +149,8 @@ TEST_F(NativeState, RepeatedCopiesReuseTheHolderAndLeakNothing) {
   auto start = std::chrono::steady_clock::now();
   constexpr int kCopies = 2000;
   for (int i = 0; i < kCopies; ++i) mj_copyData(dest, m_, d);
-  const double per_copy = std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
-                              .count() / kCopies;
+  const double per_copy =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / kCopies;
   for (int i = 0; i < 50; ++i) mj_deleteData(mj_copyData(nullptr, m_, d));
   Step(m_, dest, 500);
   Step(m_, d, 500);
@@ -159,9 +159,10 @@ TEST_F(NativeState, RepeatedCopiesReuseTheHolderAndLeakNothing) {
   Step(m_, d, 1000);
   const double per_step =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / 1000;
-  std::printf("mj_copyData into an mjData with its controllers: %.2f us per copy; mj_step: %.2f "
-              "us per step (%d vehicles)\n",
-              per_copy * 1e6, per_step * 1e6, static_cast<int>(m_->nbody - 1));
+  std::printf(
+      "mj_copyData into an mjData with its controllers: %.2f us per copy; mj_step: %.2f "
+      "us per step (%d vehicles)\n",
+      per_copy * 1e6, per_step * 1e6, static_cast<int>(m_->nbody - 1));
   EXPECT_LT(per_copy, 1e-3);  // a rebuild costs milliseconds
 }
 

@@ -6,9 +6,9 @@
 #define MJFORMATION_ESTIMATOR_PLUGIN_ADAPTER_HPP_
 
 #include <mjformation/plugin.h>
-#include <mjformation/plugin_state.hpp>
 
 #include <cstddef>
+#include <mjformation/plugin_state.hpp>
 
 namespace mjf::estimator::adapter {
 

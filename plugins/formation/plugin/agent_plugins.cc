@@ -3,9 +3,9 @@
 // The per-agent formation plugins, for distributed execution ([execution] mode = "per_agent"):
 // smc_discrete_agent (eq. (48), formation::DiscreteSmcAgent, sampled every T and held),
 // smc_continuous_agent (eq. (30), formation::ContinuousSmcAgent, every step) and
-// consensus_linear_agent (formation::LinearConsensusAgent, every step), with the attributes of their
-// swarm-level versions. One adapter, a template over the law. The u_j coupling is closed by what
-// the host hands the instance (docs/NETWORK.md):
+// consensus_linear_agent (formation::LinearConsensusAgent, every step), with the attributes of
+// their swarm-level versions. One adapter, a template over the law. The u_j coupling is closed by
+// what the host hands the instance (docs/NETWORK.md):
 //   - agent->solved (coupling = central_solve): the host's exact solve, the reference;
 //   - round r > 0 (coupling = jacobi): the neighbours' round r-1 iterates w_j (payload[0..1]);
 //   - otherwise (round 0, or a round message lost): the neighbours' last inputs u_j.

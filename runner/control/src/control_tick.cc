@@ -109,7 +109,8 @@ void ControlTick::RunAgents(const mjfStepContext& ctx, const std::vector<mjfVehi
   for (int round = 0; round < channel_->n_rounds(); ++round) {
     for (size_t i = 0; i < plugins_.formation_agents.size(); ++i) {
       if (clocks.active()) {
-        // Each follower runs on its own clock ([execution] clock_offset): it samples when that clock says so.
+        // Each follower runs on its own clock ([execution] clock_offset): it samples when that
+        // clock says so.
         agent_ctx.time = clocks.Reading(static_cast<int>(i) + 1, ctx.time);
         agent_ctx.step = clocks.LocalStep(static_cast<int>(i), ctx.time);
       }

@@ -21,10 +21,10 @@ const mjfPlugin kFutureAbi = {99u,
                               nullptr,
                               nullptr};
 // Only abi_version is read of a foreign descriptor, so the ABI-4 struct stands in for ABI 3's.
-const mjfPlugin kPreviousAbi = {3u,      "previous_abi", MJF_KIND_GUIDANCE, "built for ABI 3",
-                                0,       nullptr,        0,                 nullptr,
-                                nullptr, nullptr,        nullptr,           nullptr,
-                                nullptr, nullptr,        nullptr,           nullptr};
+const mjfPlugin kPreviousAbi = {
+    3u,      "previous_abi", MJF_KIND_GUIDANCE, "built for ABI 3", 0,       nullptr, 0,
+    nullptr, nullptr,        nullptr,           nullptr,           nullptr, nullptr, nullptr,
+    nullptr, nullptr};
 const mjfPlugin* const kPlugins[] = {&kFutureAbi, &kPreviousAbi};
 }  // namespace
 

@@ -97,7 +97,7 @@ class KfIns {
     visit(x_, P_, step_, history_, fused_, rejected_, too_old_);
     int64_t n = static_cast<int64_t>(corrections_.size());
     visit(n);
-    corrections_.resize(static_cast<size_t>(n));  // on a read, the count just read
+    corrections_.resize(static_cast<size_t>(n));                  // on a read, the count just read
     Correction unused{0, 0, StateVec::Zero(), StateMat::Zero()};  // the empty slots: zeros
     for (size_t k = 0; k < max_corrections(); ++k) {
       visit(k < corrections_.size() ? corrections_[k] : unused);
