@@ -5,7 +5,7 @@
 // acceleration plus a PD correction on the reference. It shows the pieces a plugin written
 // against the installed mjformation needs: the ABI (mjformation/plugin.h), typed attributes and
 // exception-safe create/compute (mjformation/plugin_util.hpp), and MJF_EXPORT_PLUGINS. Built
-// against plugin ABI 3 (MJF_ABI_VERSION); a library built for another version is refused.
+// against plugin ABI 4 (MJF_ABI_VERSION); a library built for another version is refused.
 #include <mjformation/plugin.h>
 
 #include <cmath>
@@ -84,6 +84,9 @@ const mjfPlugin kOrbit = {MJF_ABI_VERSION,
                           Compute,
                           nullptr,
                           Destroy,
+                          nullptr,
+                          nullptr,  // ABI 4: no state (a function of time and the state)
+                          nullptr,
                           nullptr};
 
 }  // namespace

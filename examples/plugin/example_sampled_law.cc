@@ -43,6 +43,12 @@ class SampledLaw {
 
   void Report(mjfReportFn emit, void* user) const { contract::Emit(law_, emit, user); }
 
+  // ABI 4: what one Compute() leaves for the next, the held input (its phase is ctx->step's).
+  template <typename Visit>
+  void VisitState(Visit& visit) {
+    visit(held_);
+  }
+
  private:
   void Sample(const mjfStepContext* ctx) {
     const mjfVehicleState& leader = ctx->states[0];
@@ -96,7 +102,10 @@ const mjfPlugin kSampledLaw = {MJF_ABI_VERSION,
                                Compute,
                                nullptr,
                                Destroy,
-                               Report};
+                               Report,
+                               mjf::plugin::StateSizeOf<SampledLaw>,
+                               mjf::plugin::GetStateOf<SampledLaw>,
+                               mjf::plugin::SetStateOf<SampledLaw>};
 
 }  // namespace
 

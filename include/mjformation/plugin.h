@@ -1,8 +1,15 @@
 /* Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0. */
 /*
- * mjformation plugin ABI, version 3.
+ * mjformation plugin ABI, version 4.
  *
- * Version 3 (this wave): the estimator kind (MJF_KIND_ESTIMATOR, mjfImuSample, mjfMeasurement,
+ * Version 4 (this wave): a plugin declares its state (mjfPlugin.state_size, get_state,
+ * set_state, appended at the end): every number that carries from one compute() to the next,
+ * as a fixed count of doubles, so that a host can copy, checkpoint and rewind an instance
+ * (MuJoCo's plugin_state, checkpoint and resume). A C++ plugin gets the three from one
+ * VisitState member (plugin_state.hpp). An ABI-3 library is refused at load with a message
+ * naming both versions and docs/PLUGINS.md, "Migrating from ABI 3".
+ *
+ * Version 3: the estimator kind (MJF_KIND_ESTIMATOR, mjfImuSample, mjfMeasurement,
  * mjfEstimatorInput, mjfEstimate, mjfSensorInfo; appended to mjfCreateContext and
  * mjfStepContext), and the vehicle info says which actuation contract the vehicle's actuators
  * follow (mjfVehicleInfo.actuation: four rotors, or one collective thrust and three body
@@ -39,7 +46,7 @@ extern "C" {
 #endif
 
 /* Bump on any change of the structs or callbacks below. */
-#define MJF_ABI_VERSION 3u
+#define MJF_ABI_VERSION 4u
 
 /* Name of the exported entry point: const mjfPlugin* const* mjf_plugin_entry(int* count). */
 #define MJF_ENTRY_SYMBOL "mjf_plugin_entry"
@@ -314,6 +321,16 @@ typedef struct mjfPlugin_ {
   void (*reset)(void* instance);
   void (*destroy)(void* instance);
   void (*report)(void* instance, mjfReportFn emit, void* user); /* may be NULL */
+  /* Appended in version 4: the instance's state, everything compute() reads that an earlier
+   * compute() wrote (held samples and their phase, integrators, filters, random streams).
+   * state_size: the number of doubles, fixed from create() to destroy(). get_state writes them
+   * to out[0 .. state_size - 1]; set_state reads them back, after which the instance computes
+   * exactly (bit for bit) what the instance that wrote them would have. Integers and flags
+   * are stored exactly as doubles. NULL state_size: the plugin has no state (get_state and
+   * set_state are then not called). A host may call set_state before any compute(). */
+  size_t (*state_size)(void* instance);
+  void (*get_state)(void* instance, double* out);
+  void (*set_state)(void* instance, const double* in);
 } mjfPlugin;
 
 typedef const mjfPlugin* const* (*mjfEntryFn)(int* count);

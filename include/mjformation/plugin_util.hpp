@@ -16,6 +16,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <mjformation/plugin_state.hpp>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -198,6 +199,11 @@ class NeighbourInbox {
   bool knows_leader() const { return knows_leader_; }
   // The leader's (px, py, vx, vy) last heard; zeros until knows_leader().
   const double* leader_pv() const { return leader_pv_; }
+  // What a Gather() leaves for the next: the leader's state as last heard (plugin_state.hpp).
+  template <typename Visit>
+  void VisitState(Visit& visit) {
+    visit(leader_pv_, knows_leader_);
+  }
 
  private:
   std::vector<int> neighbours_;

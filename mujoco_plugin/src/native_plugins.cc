@@ -8,14 +8,21 @@
 //                         of ours (VehicleHost): a Menagerie-style drone in the user's scene.
 // Both are actuator plugins with the same timing and actuation, described here.
 //
-// Timing. MuJoCo calls actuator plugins inside mj_fwdActuation, after every position and
-// velocity sensor of the step has been computed: the same sensor values the runner reads
-// between mj_step1 and mj_step2. Our plugins are stateful (a formation law samples every T and
-// holds; pd_cascade integrates) and their state is opaque, so the tick of physics step k runs
-// once, at the first evaluation of step k; its controls are held in plugin_state with the step
-// they belong to. Every further evaluation of the same step (mj_forward again and again in a
-// paused viewer) reuses them: compute is idempotent. advance() commits the step, so the next
-// evaluation runs the next tick.
+// Timing and state (the tick rule, docs/PLUGINS.md). MuJoCo calls actuator plugins inside
+// mj_fwdActuation, after every position and velocity sensor of the step: the same sensor values
+// the runner reads between mj_step1 and mj_step2. All of the controllers' state lives in
+// plugin_state, so MuJoCo copies, saves (mj_getState) and restores it with the physics:
+//   [0] layout (kLayout), [1] k = the steps committed (advance adds 1), [2] the step whose
+//   controls are held (-1: none), [3] 1 when the blocks below hold a state (0 after a reset:
+//   the controllers' initial state), [4 + a] the held control of actuator a (NaN: not
+//   driven), then the tick's state blocks (runner::ControlTick::GetState; ABI 4).
+// The tick of step k runs at the first evaluation of step k (held != k), from the blocks, and
+// leaves the controls and the new blocks with held = k. Every further evaluation of the same
+// step (RK4's stages, mjd_transitionFD's perturbed evaluations restored to the same state,
+// mj_forward again and again) reuses the held controls and advances nothing; advance() commits
+// (k + 1). The time a controller sees is k * timestep, never d->time. plugin_data is a cache
+// (the plugin instances), rebuilt from the model's configuration and loaded from the blocks
+// before each tick: compute depends on the model and mjData only.
 //
 // Actuation. The runner writes its controls into d->ctrl; MuJoCo then clamps them to
 // ctrlrange and, for a filter actuator, sets act_dot = (ctrl - act) / max(mjMINVAL, tau), and
@@ -26,10 +33,13 @@
 #include <mujoco/mjplugin.h>
 #include <mujoco/mujoco.h>
 
+#include <algorithm>
 #include <cmath>
 #include <exception>
 #include <limits>
+#include <map>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <thread>
 #include <utility>
@@ -41,15 +51,17 @@
 namespace mjf::native {
 namespace {
 
-// State: [0] the physics step whose controls are held (-1: none), [1] the last committed step,
-// [2 + a] the held control of actuator a (NaN: not driven by this instance).
-constexpr int kHeader = 2;
+constexpr int kLayout = 0, kCommitted = 1, kHeld = 2, kValid = 3, kHeader = 4;
+constexpr double kLayoutVersion = 1;
 
-// What an instance holds in plugin_data: its bridge, rebuilt on reset.
+// What an instance caches in plugin_data: its plugin instances and their initial state.
 struct Holder {
   virtual ~Holder() = default;
   virtual void Tick(int64_t step, const mjModel* m, const mjData* d, double* controls) = 0;
-  virtual void Restart(const mjModel* m, int instance) = 0;
+  virtual size_t state_size() const = 0;
+  virtual void GetState(double* out) const = 0;
+  virtual void SetState(const double* in) = 0;
+  std::vector<double> initial;  // the state before the first tick (what a reset restores)
 };
 
 std::string InstanceWhere(const char* plugin, const mjModel* m, int instance) {
@@ -77,6 +89,43 @@ auto OnOwnThread(Make make) -> decltype(make()) {
   return made;
 }
 
+// Which holder belongs to which mjData. MuJoCo copies plugin_data raw in places (an unpickled
+// MjData, mj_copyData before our copy callback runs), so a pointer found there is trusted only
+// when this table says it is that mjData's own.
+class Holders {
+ public:
+  static Holders& Get() {
+    static Holders holders;  // process-wide: mjData pointers are
+    return holders;
+  }
+  Holder* Find(const mjData* d, int instance) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    auto it = owned_.find({d, instance});
+    return it == owned_.end() ? nullptr : it->second.get();
+  }
+  // Takes `holder` as d's (the one it had before is freed) and returns it.
+  Holder* Adopt(const mjData* d, int instance, std::unique_ptr<Holder> holder) {
+    std::unique_ptr<Holder> old;
+    std::lock_guard<std::mutex> lock(mutex_);
+    std::unique_ptr<Holder>& slot = owned_[{d, instance}];
+    old = std::move(slot);
+    slot = std::move(holder);
+    return slot.get();
+  }
+  std::unique_ptr<Holder> Release(const mjData* d, int instance) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    auto it = owned_.find({d, instance});
+    if (it == owned_.end()) return nullptr;
+    std::unique_ptr<Holder> holder = std::move(it->second);
+    owned_.erase(it);
+    return holder;
+  }
+
+ private:
+  std::mutex mutex_;
+  std::map<std::pair<const mjData*, int>, std::unique_ptr<Holder>> owned_;
+};
+
 // ---- mjformation.swarm
 constexpr char kSwarm[] = "mjformation.swarm";
 
@@ -89,38 +138,98 @@ runner::ExperimentConfig ReadSwarmConfig(const mjModel* m, int instance) {
   return ConfigFromPairs(pairs, InstanceWhere(kSwarm, m, instance));
 }
 
+// What one model's swarm instances share (the files read, the libraries loaded), kept per
+// model so that a new mjData, a copy or a reset reads nothing again. Keyed by the model's
+// address and what the instance is made of (its configuration, sizes and timestep), so a later
+// model at the same address is not mistaken for it.
+class SwarmModels {
+ public:
+  static SwarmModels& Get() {
+    static SwarmModels models;
+    return models;
+  }
+  std::shared_ptr<const SwarmShared> For(const mjModel* m, int instance) {
+    const std::string key = Key(m, instance);
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      for (const Entry& e : entries_) {
+        if (e.model == m && e.instance == instance && e.key == key) return e.shared;
+      }
+    }
+    const runner::ExperimentConfig config = ReadSwarmConfig(m, instance);
+    std::shared_ptr<const SwarmShared> shared =
+        OnOwnThread([&] { return SwarmHost::Prepare(m, config, true); });
+    std::lock_guard<std::mutex> lock(mutex_);
+    entries_.push_back({m, instance, key, shared});
+    if (entries_.size() > kKept) entries_.erase(entries_.begin());
+    return shared;
+  }
+
+ private:
+  static constexpr size_t kKept = 16;  // models alive at once in one process, generously
+  static std::string Key(const mjModel* m, int instance) {
+    std::string key = std::to_string(m->nu) + "/" + std::to_string(m->nsensor) + "/" +
+                      std::to_string(m->nbody) + "/" + std::to_string(m->opt.timestep);
+    for (const std::string& section : CarriedSections()) {
+      const char* value = mj_getPluginConfig(m, instance, section.c_str());
+      key += "\n" + section + "=" + (value ? value : "");
+    }
+    return key;
+  }
+  struct Entry {
+    const mjModel* model;
+    int instance;
+    std::string key;
+    std::shared_ptr<const SwarmShared> shared;
+  };
+  std::mutex mutex_;
+  std::vector<Entry> entries_;
+};
+
 struct SwarmHolder final : Holder {
   std::unique_ptr<SwarmHost> host;
   void Tick(int64_t step, const mjModel* m, const mjData* d, double* controls) override {
     host->Tick(step, m, d, controls);
   }
-  void Restart(const mjModel* m, int) override { host->Restart(m); }
+  size_t state_size() const override { return host->state_size(); }
+  void GetState(double* out) const override { host->GetState(out); }
+  void SetState(const double* in) override { host->SetState(in); }
 };
 
 std::unique_ptr<Holder> MakeSwarm(const mjModel* m, int instance) {
   auto holder = std::make_unique<SwarmHolder>();
-  holder->host =
-      OnOwnThread([&] { return std::make_unique<SwarmHost>(m, ReadSwarmConfig(m, instance)); });
+  holder->host = std::make_unique<SwarmHost>(SwarmModels::Get().For(m, instance));
   return holder;
 }
 
-// The experiment parser checks every section while the model compiles (names, values,
-// messages as for an experiment file); our plugins' create() checks their attributes in Init,
-// which the compiler also runs on a trial mjData.
-void CheckSwarm(const mjModel* m, int instance) { ReadSwarmConfig(m, instance); }
+// The state's size, while the model compiles: its sensors and actuators are not there yet, so
+// the plugins are created on the vehicles' description alone (runner::DescribeVehicles). The
+// experiment parser checks every section here too (names, values, messages as for a file).
+size_t SwarmStateSize(const mjModel* m, int instance) {
+  const runner::ExperimentConfig config = ReadSwarmConfig(m, instance);
+  return OnOwnThread(
+             [&] { return std::make_unique<SwarmHost>(SwarmHost::Prepare(m, config, false)); })
+      ->state_size();
+}
 
 // ---- mjformation.attitude
 constexpr char kAttitude[] = "mjformation.attitude";
+// The state a vehicle's guidance and attitude plugins may declare together, in doubles: a
+// fixed bound, since the vehicle's actuators (which their create() reads) are not compiled when
+// MuJoCo asks for the size. The stock plugins declare at most a few tens.
+constexpr size_t kVehicleStateBound = 256;
 
 struct VehicleHolder final : Holder {
   std::unique_ptr<VehicleHost> host;
   void Tick(int64_t step, const mjModel* m, const mjData* d, double* controls) override {
     host->Tick(step, m, d, controls);
   }
-  void Restart(const mjModel* m, int instance) override {
-    host.reset();
-    host = std::make_unique<VehicleHost>(m, VehicleConfigFromModel(m, instance, kAttitude));
+  size_t state_size() const override { return kVehicleStateBound; }
+  void GetState(double* out) const override {
+    std::fill(out, out + kVehicleStateBound, 0.0);
+    host->GetState(out);
   }
+  void SetState(const double* in) override { host->SetState(in); }
 };
 
 std::unique_ptr<Holder> MakeVehicle(const mjModel* m, int instance) {
@@ -128,97 +237,118 @@ std::unique_ptr<Holder> MakeVehicle(const mjModel* m, int instance) {
   holder->host = OnOwnThread([&] {
     return std::make_unique<VehicleHost>(m, VehicleConfigFromModel(m, instance, kAttitude));
   });
+  if (holder->host->state_size() > kVehicleStateBound) {
+    throw std::runtime_error(InstanceWhere(kAttitude, m, instance) + ": its plugins declare " +
+                             std::to_string(holder->host->state_size()) +
+                             " doubles of state, more than the " +
+                             std::to_string(kVehicleStateBound) + " this plugin holds");
+  }
   return holder;
 }
 
-void CheckVehicle(const mjModel* m, int instance) {
+size_t VehicleStateSize(const mjModel* m, int instance) {
   VehicleConfigFromModel(m, instance, kAttitude);
+  return kVehicleStateBound;
 }
 
 // ---- the shared mechanics, one set of callbacks per plugin
 struct Kind {
   const char* name;
   std::unique_ptr<Holder> (*make)(const mjModel*, int);
-  void (*check)(const mjModel*, int);
+  size_t (*state_size)(const mjModel*, int);
 };
 
-// Called while the model compiles: a refusal becomes the compile error (mju_error inside the
-// compiler here; in Init, mju_warning + -1, which MuJoCo appends to its error).
+// Runs f; a C++ exception becomes a MuJoCo error (mju_error: the user's handler, or exit).
+template <typename F>
+void OrMujocoError(F f) {
+  std::string error;
+  try {
+    f();
+  } catch (const std::exception& e) {
+    error = e.what();
+  }
+  if (!error.empty()) mju_error("%s", error.c_str());
+}
+
+// Called while the model compiles: a refusal becomes the compile error.
 template <const Kind& K>
 int NState(const mjModel* m, int instance) {
-  std::string error;
-  try {
-    K.check(m, instance);
-  } catch (const std::exception& e) {
-    error = e.what();
-  }
-  if (!error.empty()) mju_error("%s", error.c_str());
-  return kHeader + m->nu;
-}
-
-void ClearState(const mjModel* m, mjtNum* state) {
-  state[0] = -1;
-  state[1] = -1;
-  for (int a = 0; a < m->nu; ++a) state[kHeader + a] = std::numeric_limits<double>::quiet_NaN();
-}
-
-Holder* HolderOf(const mjData* d, int instance) {
-  return reinterpret_cast<Holder*>(d->plugin_data[instance]);
-}
-
-template <const Kind& K>
-int Init(const mjModel* m, mjData* d, int instance) {
-  try {
-    d->plugin_data[instance] = reinterpret_cast<uintptr_t>(K.make(m, instance).release());
-  } catch (const std::exception& e) {
-    mju_warning("%s", e.what());
-    return -1;
-  }
-  ClearState(m, d->plugin_state + m->plugin_stateadr[instance]);
-  return 0;
-}
-
-void Destroy(mjData* d, int instance) {
-  delete HolderOf(d, instance);
-  d->plugin_data[instance] = 0;
-}
-
-// Our plugins' own state cannot be rewound, so a reset builds the bridge again from the model.
-template <const Kind& K>
-void Reset(const mjModel* m, mjtNum* plugin_state, void* plugin_data, int instance) {
-  ClearState(m, plugin_state);
-  if (!plugin_data) return;  // mj_makeData resets before init
-  std::string error;
-  try {
-    static_cast<Holder*>(plugin_data)->Restart(m, instance);
-  } catch (const std::exception& e) {
-    error = e.what();
-  }
-  if (!error.empty()) mju_error("%s", error.c_str());
+  size_t blocks = 0;
+  OrMujocoError([&] { blocks = K.state_size(m, instance); });
+  return kHeader + m->nu + static_cast<int>(blocks);
 }
 
 mjtNum* State(const mjModel* m, mjData* d, int instance) {
   return d->plugin_state + m->plugin_stateadr[instance];
 }
 
+void ClearState(const mjModel* m, mjtNum* state) {
+  state[kLayout] = kLayoutVersion;
+  state[kCommitted] = 0;
+  state[kHeld] = -1;
+  state[kValid] = 0;
+  for (int a = 0; a < m->nu; ++a) state[kHeader + a] = std::numeric_limits<double>::quiet_NaN();
+}
+
+// d's holder: its own, or one built for it (a copy, an unpickled MjData, a failed build
+// before). Never a pointer that plugin_data holds but the table does not give to d.
+template <const Kind& K>
+Holder* HolderFor(const mjModel* m, mjData* d, int instance) {
+  Holder* holder = Holders::Get().Find(d, instance);
+  if (!holder) {
+    std::unique_ptr<Holder> made = K.make(m, instance);
+    made->initial.resize(made->state_size());
+    made->GetState(made->initial.data());
+    holder = Holders::Get().Adopt(d, instance, std::move(made));
+  }
+  d->plugin_data[instance] = reinterpret_cast<uintptr_t>(holder);
+  return holder;
+}
+
+template <const Kind& K>
+int Init(const mjModel* m, mjData* d, int instance) {
+  try {
+    HolderFor<K>(m, d, instance);
+  } catch (const std::exception& e) {
+    mju_warning("%s", e.what());
+    return -1;
+  }
+  ClearState(m, State(m, d, instance));
+  return 0;
+}
+
+void Destroy(mjData* d, int instance) {
+  Holders::Get().Release(d, instance);  // frees it; a raw copy of another's pointer is not ours
+  d->plugin_data[instance] = 0;
+}
+
+// A reset only clears plugin_state: the next tick starts from the holder's initial state.
+// Nothing is rebuilt, no file is read.
+void Reset(const mjModel* m, mjtNum* plugin_state, void*, int) { ClearState(m, plugin_state); }
+
 // The tick of the current step, once (see the file comment).
 template <const Kind& K>
 mjtNum* HeldControls(const mjModel* m, mjData* d, int instance) {
   mjtNum* state = State(m, d, instance);
-  // The step index of d->time (accumulated by MuJoCo, so within rounding of k * timestep);
-  // an intermediate stage of RK4 (t + h/2) belongs to its step.
-  const int64_t step = static_cast<int64_t>(std::floor(d->time / m->opt.timestep + 1e-3));
-  if (state[0] != static_cast<double>(step)) {
-    std::string error;
-    try {
-      HolderOf(d, instance)->Tick(step, m, d, state + kHeader);
-    } catch (const std::exception& e) {
-      error = e.what();
+  mjtNum* controls = state + kHeader;
+  if (state[kHeld] == state[kCommitted]) return controls;
+  OrMujocoError([&] {
+    if (state[kLayout] != kLayoutVersion) {
+      throw std::runtime_error(InstanceWhere(K.name, m, instance) + ": plugin_state has layout " +
+                               std::to_string(state[kLayout]) + ", this library reads layout " +
+                               std::to_string(kLayoutVersion) +
+                               " (a state saved by another version, or never initialised)");
     }
-    if (!error.empty()) mju_error("%s", error.c_str());
-    state[0] = static_cast<double>(step);
-  }
-  return state + kHeader;
+    Holder* holder = HolderFor<K>(m, d, instance);
+    mjtNum* blocks = controls + m->nu;
+    holder->SetState(state[kValid] != 0 ? blocks : holder->initial.data());
+    const auto step = static_cast<int64_t>(state[kCommitted]);
+    holder->Tick(step, m, d, controls);
+    holder->GetState(blocks);
+    state[kValid] = 1;
+    state[kHeld] = state[kCommitted];
+  });
+  return controls;
 }
 
 double Clamped(const mjModel* m, int a, double u) {
@@ -248,18 +378,15 @@ void Compute(const mjModel* m, mjData* d, int instance, int) {
   }
 }
 
-void Advance(const mjModel* m, mjData* d, int instance) {
-  mjtNum* state = State(m, d, instance);
-  state[1] = state[0];
-}
+// The commit: the step whose tick ran is done.
+void Advance(const mjModel* m, mjData* d, int instance) { State(m, d, instance)[kCommitted] += 1; }
 
-// A copy flies on with a bridge of its own, built from the model (ours cannot be cloned), and
-// the source's held controls and step.
+// The copy's state came with plugin_state; dest keeps the holder it had (a viewer copying
+// every frame into one mjData builds nothing) or gets one at its first tick.
 template <const Kind& K>
-void Copy(mjData* dest, const mjModel* m, const mjData* src, int instance) {
-  (void)src;
-  dest->plugin_data[instance] = 0;
-  Init<K>(m, dest, instance);
+void Copy(mjData* dest, const mjModel*, const mjData*, int instance) {
+  Holder* own = Holders::Get().Find(dest, instance);
+  dest->plugin_data[instance] = reinterpret_cast<uintptr_t>(own);
 }
 
 template <const Kind& K>
@@ -274,15 +401,15 @@ void Register(const std::vector<const char*>& attributes) {
   plugin.init = Init<K>;
   plugin.destroy = Destroy;
   plugin.copy = Copy<K>;
-  plugin.reset = Reset<K>;
+  plugin.reset = Reset;
   plugin.compute = Compute<K>;
   plugin.advance = Advance;
   plugin.actuator_act_dot = ActDot<K>;
   mjp_registerPlugin(&plugin);
 }
 
-constexpr Kind kSwarmKind = {kSwarm, MakeSwarm, CheckSwarm};
-constexpr Kind kAttitudeKind = {kAttitude, MakeVehicle, CheckVehicle};
+constexpr Kind kSwarmKind = {kSwarm, MakeSwarm, SwarmStateSize};
+constexpr Kind kAttitudeKind = {kAttitude, MakeVehicle, VehicleStateSize};
 
 }  // namespace
 

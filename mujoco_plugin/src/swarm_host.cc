@@ -66,10 +66,15 @@ runner::ExperimentConfig ConfigFromPairs(
   }
 }
 
-struct SwarmHost::Impl {
+struct SwarmShared {
   runner::ExperimentConfig config;
   std::unique_ptr<runner::PluginRegistry> registry;
-  runner::VehicleBindings bindings;
+  const runner::LoadedPlugin* attitude = nullptr;
+  runner::VehicleBindings bindings;  // read only: shared by every host of the model
+};
+
+struct SwarmHost::Impl {
+  std::shared_ptr<const SwarmShared> shared;  // outlives the plugin instances below
   std::unique_ptr<runner::ControlWiring> wiring;
   std::unique_ptr<runner::ControlTick> tick;
   std::vector<mjfVehicleState> truth;
@@ -77,59 +82,70 @@ struct SwarmHost::Impl {
 
 // The same construction as the runner's Simulation, on the scene MuJoCo compiled: the bindings
 // read the vehicle model of [vehicles] model for mass, inertia and actuator geometry.
-SwarmHost::SwarmHost(const mjModel* m, const runner::ExperimentConfig& config) {
+std::shared_ptr<const SwarmShared> SwarmHost::Prepare(const mjModel* m,
+                                                      const runner::ExperimentConfig& config,
+                                                      bool bind_model) {
   try {
-    Build(m, config);
+    auto s = std::make_shared<SwarmShared>();
+    s->config = config;
+    s->config.timestep = m->opt.timestep;
+    s->registry =
+        std::make_unique<runner::PluginRegistry>(runner::PluginSearchPath(s->config.plugin_path));
+    s->attitude = &runner::FindPlugin(*s->registry, s->config, s->config.attitude,
+                                      {MJF_KIND_ATTITUDE}, "this section needs an attitude plugin");
+    runner::ResolveAttributes(*s->attitude->descriptor, s->config.attitude, s->config.source_path);
+    s->bindings = bind_model ? runner::BindVehicles(m, s->config, *s->attitude->descriptor)
+                             : runner::DescribeVehicles(m, s->config, *s->attitude->descriptor);
+    return s;
   } catch (const std::exception& e) {
     throw std::runtime_error(WithoutLine(e.what(), config.source_path));
   }
 }
 
-void SwarmHost::Restart(const mjModel* m) {
-  const runner::ExperimentConfig config = impl_->config;
-  impl_.reset();  // plugin instances before their libraries, as the runner ends them
-  Build(m, config);
-}
-
-void SwarmHost::Build(const mjModel* m, const runner::ExperimentConfig& config) {
-  impl_ = std::make_unique<Impl>();
+SwarmHost::SwarmHost(std::shared_ptr<const SwarmShared> shared) : impl_(std::make_unique<Impl>()) {
   Impl& s = *impl_;
-  s.config = config;
-  s.config.timestep = m->opt.timestep;
-  s.registry =
-      std::make_unique<runner::PluginRegistry>(runner::PluginSearchPath(s.config.plugin_path));
-  const runner::LoadedPlugin& attitude =
-      runner::FindPlugin(*s.registry, s.config, s.config.attitude, {MJF_KIND_ATTITUDE},
-                         "this section needs an attitude plugin");
-  runner::ResolveAttributes(*attitude.descriptor, s.config.attitude, s.config.source_path);
-  std::vector<std::array<double, 3>> initial = runner::InitialPositions(s.config);
-  s.bindings = runner::BindVehicles(m, s.config, *attitude.descriptor);
-  s.truth.resize(s.config.followers + 1);
-  runner::VehicleContexts contexts;
-  for (const runner::VehicleBinding& b : s.bindings.vehicles) contexts.info.push_back(&b.info);
-  contexts.initial_positions = std::move(initial);
-  contexts.model = reinterpret_cast<const struct mjModel_*>(m);
-  s.wiring = std::make_unique<runner::ControlWiring>(s.config, *s.registry, std::move(contexts));
-  std::unique_ptr<runner::AgentChannel> channel = s.wiring->MakeChannel();
-  runner::ControlPlugins plugins = s.wiring->CreatePlugins(attitude, channel.get());
-  s.tick = std::make_unique<runner::ControlTick>(
-      std::move(plugins), s.wiring->MakeSensors(), s.wiring->InitialSetpoints(),
-      s.bindings.actuators_per_vehicle, s.config.altitude, s.config.timestep, std::move(channel));
+  s.shared = std::move(shared);
+  const runner::ExperimentConfig& config = s.shared->config;
+  try {
+    s.truth.resize(config.followers + 1);
+    runner::VehicleContexts contexts;
+    for (const runner::VehicleBinding& b : s.shared->bindings.vehicles) {
+      contexts.info.push_back(&b.info);
+    }
+    contexts.initial_positions = runner::InitialPositions(config);
+    s.wiring =
+        std::make_unique<runner::ControlWiring>(config, *s.shared->registry, std::move(contexts));
+    std::unique_ptr<runner::AgentChannel> channel = s.wiring->MakeChannel();
+    runner::ControlPlugins plugins = s.wiring->CreatePlugins(*s.shared->attitude, channel.get());
+    s.tick = std::make_unique<runner::ControlTick>(
+        std::move(plugins), s.wiring->MakeSensors(), s.wiring->InitialSetpoints(),
+        s.shared->bindings.actuators_per_vehicle, config.altitude, config.timestep,
+        std::move(channel));
+    s.tick->RequireSavable();
+  } catch (const std::exception& e) {
+    throw std::runtime_error(WithoutLine(e.what(), config.source_path));
+  }
 }
 
-SwarmHost::~SwarmHost() = default;
+SwarmHost::~SwarmHost() {
+  // Plugin instances before the wiring and the libraries (held by `shared`).
+  if (impl_) impl_->tick.reset();
+}
 
-double SwarmHost::timestep() const { return impl_->config.timestep; }
+size_t SwarmHost::state_size() const { return impl_->tick->StateSize(); }
+void SwarmHost::GetState(double* out) const { impl_->tick->GetState(out); }
+void SwarmHost::SetState(const double* in) { impl_->tick->SetState(in); }
 
 void SwarmHost::Tick(int64_t step, const mjModel* m, const mjData* d, double* controls) {
   Impl& s = *impl_;
-  runner::ReadTrueStates(d, s.bindings, &s.truth);
+  const runner::VehicleBindings& bindings = s.shared->bindings;
+  runner::ReadTrueStates(d, bindings, &s.truth);
   s.tick->Run(step, s.truth, reinterpret_cast<const struct mjModel_*>(m),
               reinterpret_cast<const struct mjData_*>(d));
   const std::vector<double>& c = s.tick->controls();
-  const int per = s.bindings.actuators_per_vehicle;
-  for (size_t i = 0; i < s.bindings.vehicles.size(); ++i) {
-    const std::vector<int>& ids = s.bindings.vehicles[i].actuators;
+  const int per = bindings.actuators_per_vehicle;
+  for (size_t i = 0; i < bindings.vehicles.size(); ++i) {
+    const std::vector<int>& ids = bindings.vehicles[i].actuators;
     for (int k = 0; k < per; ++k) controls[ids[k]] = c[i * per + k];
   }
 }

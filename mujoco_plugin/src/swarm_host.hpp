@@ -28,9 +28,21 @@ const std::vector<std::string>& CarriedSections();
 runner::ExperimentConfig ConfigFromPairs(
     const std::vector<std::pair<std::string, std::string>>& pairs, const std::string& where);
 
+// What every SwarmHost of one model shares, read once: the configuration, the plugin
+// libraries and the vehicles' bindings (the vehicle file is read here, never per mjData).
+struct SwarmShared;
+
 class SwarmHost {
  public:
-  SwarmHost(const mjModel* m, const runner::ExperimentConfig& config);
+  // Reads the files and loads the libraries `config` names. bind_model: bind the vehicles'
+  // sensors and actuators in `m` (false while the model compiles, when only the state's size
+  // is wanted). Throws std::runtime_error naming the section.
+  static std::shared_ptr<const SwarmShared> Prepare(const mjModel* m,
+                                                    const runner::ExperimentConfig& config,
+                                                    bool bind_model);
+  // Creates every stage and plugin instance, as the runner's Simulation does. Checks that the
+  // tick's state can be saved (runner::ControlTick::RequireSavable).
+  explicit SwarmHost(std::shared_ptr<const SwarmShared> shared);
   ~SwarmHost();
   SwarmHost(const SwarmHost&) = delete;
   SwarmHost& operator=(const SwarmHost&) = delete;
@@ -38,12 +50,13 @@ class SwarmHost {
   // Runs one control tick of our plugins for physics step `step` on the sensors of `d` and
   // writes each driven actuator's control into `controls` (indexed by actuator id).
   void Tick(int64_t step, const mjModel* m, const mjData* d, double* controls);
-  double timestep() const;
-  // Builds every stage and plugin instance again, as at construction (mj_resetData).
-  void Restart(const mjModel* m);
+  // The tick's state (runner::ControlTick::GetState): fixed size, every number a tick leaves
+  // for the next.
+  size_t state_size() const;
+  void GetState(double* out) const;
+  void SetState(const double* in);
 
  private:
-  void Build(const mjModel* m, const runner::ExperimentConfig& config);
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

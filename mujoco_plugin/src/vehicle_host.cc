@@ -163,6 +163,14 @@ VehicleHost::VehicleHost(const mjModel* m, VehicleHostConfig config)
   ctx.model = reinterpret_cast<const struct mjModel_*>(m);
   s.guidance = std::make_unique<runner::PluginInstance>(guidance, s.sections.leader, where, ctx);
   s.attitude = std::make_unique<runner::PluginInstance>(attitude, s.sections.attitude, where, ctx);
+  for (const runner::PluginInstance* p : {s.guidance.get(), s.attitude.get()}) {
+    if (!p->declares_state()) {
+      throw std::runtime_error(where + ": plugin '" + p->descriptor().name +
+                               "' declares no state (mjfPlugin.state_size is NULL): MuJoCo "
+                               "could not copy or checkpoint it (docs/PLUGINS.md, \"Plugin "
+                               "state\")");
+    }
+  }
   s.setpoint.sliding[0] = s.setpoint.sliding[1] = kNaN;
   for (int k = 0; k < 3; ++k) s.setpoint.pos[k] = s.initial_pos[k];
   s.controls.assign(d.n_actuators, 0.0);
@@ -171,6 +179,29 @@ VehicleHost::VehicleHost(const mjModel* m, VehicleHostConfig config)
 VehicleHost::~VehicleHost() = default;
 
 const std::vector<int>& VehicleHost::actuator_ids() const { return impl_->actuators; }
+
+namespace {
+constexpr size_t kSetpointDoubles = sizeof(mjfSetpoint) / sizeof(double);
+static_assert(sizeof(mjfSetpoint) == 12 * sizeof(double), "mjfSetpoint holds doubles only");
+}  // namespace
+
+size_t VehicleHost::state_size() const {
+  return kSetpointDoubles + impl_->guidance->state_size() + impl_->attitude->state_size();
+}
+
+void VehicleHost::GetState(double* out) const {
+  std::memcpy(out, &impl_->setpoint, sizeof(mjfSetpoint));
+  out += kSetpointDoubles;
+  impl_->guidance->GetState(out);
+  impl_->attitude->GetState(out + impl_->guidance->state_size());
+}
+
+void VehicleHost::SetState(const double* in) {
+  std::memcpy(&impl_->setpoint, in, sizeof(mjfSetpoint));
+  in += kSetpointDoubles;
+  impl_->guidance->SetState(in);
+  impl_->attitude->SetState(in + impl_->guidance->state_size());
+}
 
 void VehicleHost::Tick(int64_t step, const mjModel* m, const mjData* d, double* controls) {
   Impl& s = *impl_;
@@ -185,7 +216,9 @@ void VehicleHost::Tick(int64_t step, const mjModel* m, const mjData* d, double* 
   std::memcpy(state.vel, world + 3, sizeof(state.vel));
   std::memcpy(state.gyro, local, sizeof(state.gyro));
   mjfStepContext ctx{};
-  ctx.time = d->time;
+  // The tick's time is its step's (as the runner's), never d->time: an RK4 stage or a
+  // perturbed evaluation has a time of its own.
+  ctx.time = static_cast<double>(step) * m->opt.timestep;
   ctx.step = step;
   ctx.timestep = m->opt.timestep;
   ctx.n_vehicles = 1;
@@ -200,7 +233,7 @@ void VehicleHost::Tick(int64_t step, const mjModel* m, const mjData* d, double* 
     ctx.controls = p == s.attitude.get() ? s.controls.data() : nullptr;
     if (p->Compute(ctx) != 0) {
       throw std::runtime_error(s.config.where + ": plugin '" + p->descriptor().name +
-                               "' failed at t = " + std::to_string(d->time) +
+                               "' failed at t = " + std::to_string(ctx.time) +
                                " s: " + (s.error[0] ? s.error : "no reason given"));
     }
   }

@@ -338,19 +338,13 @@ void ReportAgent(void* instance, mjfReportFn emit, void* user) {
   Report(a.calls, a.period, a.steps_per_sample, emit, user);
 }
 
-const mjfPlugin kCentral = {MJF_ABI_VERSION,
-                            "python",
-                            MJF_KIND_FORMATION,
-                            "a formation law written in Python (mjformation.run(formation=...))",
-                            2,
-                            kAttributes,
-                            0,
-                            nullptr,
-                            &CreateCentral,
-                            &ComputeCentral,
-                            &ResetCentral,
-                            &DestroyCentral,
-                            &ReportCentral};
+const mjfPlugin kCentral = {MJF_ABI_VERSION, "python", MJF_KIND_FORMATION,
+                            "a formation law written in Python (mjformation.run(formation=...))", 2,
+                            kAttributes, 0, nullptr, &CreateCentral, &ComputeCentral, &ResetCentral,
+                            &DestroyCentral, &ReportCentral,
+                            // A Python law's state lives in Python objects: not declared, so
+                            // a host that copies or checkpoints instances refuses it.
+                            nullptr, nullptr, nullptr};
 
 const mjfPlugin kAgent = {MJF_ABI_VERSION,
                           "python_agent",
@@ -364,7 +358,10 @@ const mjfPlugin kAgent = {MJF_ABI_VERSION,
                           &ComputeAgent,
                           &ResetAgent,
                           &DestroyAgent,
-                          &ReportAgent};
+                          &ReportAgent,
+                          nullptr,
+                          nullptr,
+                          nullptr};
 
 }  // namespace
 

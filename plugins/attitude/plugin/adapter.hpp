@@ -52,6 +52,10 @@ template <typename Controller>
 struct VehicleInstance {
   int vehicle;
   Controller controller;
+  template <typename Visit>
+  void VisitState(Visit& visit) {
+    controller.VisitState(visit);
+  }
 };
 
 // How compute() drives a four-rotor controller (PdCascade, Geometric): Update(state, setpoint,
@@ -103,6 +107,10 @@ constexpr mjfPlugin AttitudePlugin(const char* name, const char* doc,
                                    const char* const (&actuator_names)[kActuators],
                                    void* (*create)(const mjfCreateContext*),
                                    void (*report)(void*, mjfReportFn, void*) = nullptr) {
+  using Instance = VehicleInstance<typename Drive::Controller>;
+  static_assert(mjf::plugin::kHasVisitState<typename Drive::Controller>,
+                "an attitude controller lists its state: template <typename Visit> void "
+                "VisitState(Visit&) (mjformation/plugin_state.hpp)");
   return {MJF_ABI_VERSION,
           name,
           MJF_KIND_ATTITUDE,
@@ -115,7 +123,10 @@ constexpr mjfPlugin AttitudePlugin(const char* name, const char* doc,
           AttitudeCompute<Drive>,
           AttitudeReset<Drive>,
           AttitudeDestroy<Drive>,
-          report};
+          report,
+          &mjf::plugin::StateSizeOf<Instance>,
+          &mjf::plugin::GetStateOf<Instance>,
+          &mjf::plugin::SetStateOf<Instance>};
 }
 
 // The descriptors, one per file (register.cc lists them).

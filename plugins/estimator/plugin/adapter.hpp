@@ -8,6 +8,7 @@
 #include <mjformation/plugin.h>
 
 #include <cstddef>
+#include <mjformation/plugin_state.hpp>
 
 namespace mjf::estimator::adapter {
 
@@ -24,6 +25,9 @@ constexpr mjfPlugin EstimatorPlugin(const char* name, const char* doc, int n_att
                                     void* (*create)(const mjfCreateContext*),
                                     int (*compute)(void*, const mjfStepContext*),
                                     void (*report)(void*, mjfReportFn, void*) = nullptr) {
+  static_assert(mjf::plugin::kHasVisitState<Instance>,
+                "an estimator lists its state: template <typename Visit> void VisitState(Visit&) "
+                "(mjformation/plugin_state.hpp)");
   return {MJF_ABI_VERSION,
           name,
           MJF_KIND_ESTIMATOR,
@@ -36,7 +40,10 @@ constexpr mjfPlugin EstimatorPlugin(const char* name, const char* doc, int n_att
           compute,
           nullptr,
           EstimatorDestroy<Instance>,
-          report};
+          report,
+          &mjf::plugin::StateSizeOf<Instance>,
+          &mjf::plugin::GetStateOf<Instance>,
+          &mjf::plugin::SetStateOf<Instance>};
 }
 template <typename Instance, size_t kAttributes>
 constexpr mjfPlugin EstimatorPlugin(const char* name, const char* doc,

@@ -113,6 +113,10 @@ struct KfInsInstance {
   // is measurement noise.
   double suite_wander_variance;
   bool wander_is_a_state;
+  template <typename Visit>
+  void VisitState(Visit& visit) {
+    filter.VisitState(visit);
+  }
 };
 
 void* KfInsCreate(const mjfCreateContext* ctx) {

@@ -12,6 +12,8 @@ namespace {
 
 struct Passthrough {
   int vehicle;
+  template <typename Visit>
+  void VisitState(Visit&) {}  // no state: the held samples are the sensor stage's
 };
 
 void* PassthroughCreate(const mjfCreateContext* ctx) { return new Passthrough{ctx->vehicle}; }

@@ -203,6 +203,12 @@ bool KfIns::Fuse(const AidingSample& m) {
   TransitionPower(step_ - taken, &dP);
   x_ = x_now + dx;
   P_ = P_now + dP;
+  if (corrections_.size() >= max_corrections()) {
+    throw std::length_error("KfIns::Fuse: more than " + std::to_string(max_corrections()) +
+                            " late measurements within the history window of " +
+                            std::to_string(window_steps_) +
+                            " steps (the filter's state bound); lower the aiding rates");
+  }
   corrections_.push_back(std::move(c));
   return ok;
 }

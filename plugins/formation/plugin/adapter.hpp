@@ -87,11 +87,18 @@ class SwarmBuffers {
 // buffers its compute() fills.
 template <typename Controller>
 struct SwarmInstance {
+  using Law = Controller;
   template <typename Params>
   SwarmInstance(const SwarmSetup& setup, const Params& params)
       : shape(setup.shape), controller(setup.graph, params), buffers(setup.graph.num_followers()) {}
   // A law evaluated every physics step updates on each; a sampled law hides this (SwarmPlugin).
   void Sample(const mjfStepContext*) { controller.Update(buffers.Input()); }
+  // The law's state; the buffers are filled from the step before they are read (not state). A
+  // law with state of its own (a sample phase) visits it after this.
+  template <typename Visit>
+  void VisitState(Visit& visit) {
+    controller.VisitState(visit);
+  }
   formation::AbiShape shape;
   Controller controller;
   SwarmBuffers buffers;
@@ -112,7 +119,9 @@ void WriteCommands(int n, const double* acceleration, const double* sliding,
 //   void Sample(const mjfStepContext*): updates the controller once F(t) is in buffers.shape_now
 //     (SwarmInstance's: every step);
 //   const double* sliding() const: the s_i to write, or nullptr for a law without one;
-//   void Reset(): back to the state before the first step.
+//   void Reset(): back to the state before the first step;
+//   template <typename Visit> void VisitState(Visit&): its state (SwarmInstance's: the law's,
+//     which must have one: a law without VisitState does not compile here).
 template <typename Instance>
 void* SwarmCreate(const mjfCreateContext* ctx) {
   return plugin::CreateOrExplain(ctx, [&]() -> void* {
@@ -153,6 +162,9 @@ template <typename Instance, size_t kAttributes>
 constexpr mjfPlugin SwarmPlugin(const char* name, const char* doc,
                                 const mjfAttribute (&attributes)[kAttributes],
                                 void (*report)(void*, mjfReportFn, void*) = nullptr) {
+  static_assert(plugin::kHasVisitState<typename Instance::Law>,
+                "a formation law lists its state: template <typename Visit> void "
+                "VisitState(Visit&) (mjformation/plugin_state.hpp)");
   return {MJF_ABI_VERSION,
           name,
           MJF_KIND_FORMATION,
@@ -165,7 +177,10 @@ constexpr mjfPlugin SwarmPlugin(const char* name, const char* doc,
           &SwarmCompute<Instance>,
           &SwarmReset<Instance>,
           &SwarmDestroy<Instance>,
-          report};
+          report,
+          &plugin::StateSizeOf<Instance>,
+          &plugin::GetStateOf<Instance>,
+          &plugin::SetStateOf<Instance>};
 }
 
 }  // namespace mjf::formation::adapter

@@ -69,6 +69,12 @@ struct Agent {
   double own_f_now_time = NAN;  // the time own_f_now was evaluated at (NaN: not yet)
   double own_f_next[6] = {0, 0, 0, 0, 0, 0};
   std::vector<double> neighbour_pv, neighbour_f_now, neighbour_f_next, neighbour_w;
+  // Everything above that a call leaves for the next (plugin_state.hpp).
+  template <typename Visit>
+  void VisitState(Visit& visit) {
+    visit(has_sample, due_index, sample_due, last_round, own_f_now, own_f_now_time, own_f_next);
+    visit(neighbour_pv, neighbour_f_now, neighbour_f_next, neighbour_w, inbox, core);
+  }
 };
 
 void RequireNeighbourhood(const mjfCreateContext* ctx) {
@@ -234,6 +240,9 @@ constexpr mjfPlugin AgentPlugin(const char* name, const char* doc, int n_attribu
                                 const mjfAttribute* attributes,
                                 void* (*create)(const mjfCreateContext*),
                                 void (*report)(void*, mjfReportFn, void*)) {
+  static_assert(plugin::kHasVisitState<Law>,
+                "a per-agent formation law lists its state: template <typename Visit> void "
+                "VisitState(Visit&) (mjformation/plugin_state.hpp)");
   return {MJF_ABI_VERSION,
           name,
           MJF_KIND_FORMATION_AGENT,
@@ -246,7 +255,10 @@ constexpr mjfPlugin AgentPlugin(const char* name, const char* doc, int n_attribu
           &Compute<Law>,
           &Reset<Law>,
           &Destroy<Law>,
-          report};
+          report,
+          &plugin::StateSizeOf<Agent<Law>>,
+          &plugin::GetStateOf<Agent<Law>>,
+          &plugin::SetStateOf<Agent<Law>>};
 }
 
 }  // namespace

@@ -97,6 +97,12 @@ struct Instance : SwarmInstance<formation::DiscreteSmc> {
     has_sample = false;
     controller.ResetConstraintStats();
   }
+  // The law's held sample and whether one was taken (the phase is the step's, ctx->step).
+  template <typename Visit>
+  void VisitState(Visit& visit) {
+    SwarmInstance::VisitState(visit);
+    visit(has_sample);
+  }
   int64_t steps_per_sample;  // zero-order hold: physics steps per sample period T
   bool has_sample = false;
 };

@@ -74,6 +74,10 @@ template <typename Law>
 struct LeaderInstance {
   int vehicle;
   Law law;
+  template <typename Visit>
+  void VisitState(Visit& visit) {
+    law.VisitState(visit);
+  }
 };
 
 template <typename Law>
@@ -101,6 +105,9 @@ constexpr mjfPlugin LeaderPlugin(const char* name, const char* doc,
                                  const mjfAttribute (&attributes)[kAttributes],
                                  void* (*create)(const mjfCreateContext*),
                                  void (*reset)(void*) = nullptr) {
+  static_assert(mjf::plugin::kHasVisitState<Guidance>,
+                "a guidance law lists its state: template <typename Visit> void VisitState(Visit&) "
+                "(mjformation/plugin_state.hpp)");
   return {MJF_ABI_VERSION,
           name,
           MJF_KIND_GUIDANCE,
@@ -113,7 +120,10 @@ constexpr mjfPlugin LeaderPlugin(const char* name, const char* doc,
           LeaderCompute<Guidance>,
           reset,
           LeaderDestroy<Guidance>,
-          nullptr};
+          nullptr,
+          &mjf::plugin::StateSizeOf<LeaderInstance<Guidance>>,
+          &mjf::plugin::GetStateOf<LeaderInstance<Guidance>>,
+          &mjf::plugin::SetStateOf<LeaderInstance<Guidance>>};
 }
 
 // The descriptors, one per file (register.cc lists them).

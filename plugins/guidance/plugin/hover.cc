@@ -26,6 +26,10 @@ struct HoverLaw {
   GuidanceOutput Update(double /*t*/, const Vec3& pos, const Vec3& vel) const {
     return guidance.Update(pos, vel);
   }
+  template <typename Visit>
+  void VisitState(Visit& visit) {
+    guidance.VisitState(visit);
+  }
   HoverGuidance guidance;
 };
 

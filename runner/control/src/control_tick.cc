@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "mjformation/control/agent_channel.hpp"
@@ -222,6 +223,68 @@ void ControlTick::Call(PluginInstance& plugin, mjfStepContext& ctx, int vehicle)
   ctx.error[ctx.error_size - 1] = '\0';
   throw SimulationError(who() + " failed (code " + std::to_string(code) +
                         "): " + (ctx.error[0] ? ctx.error : "no reason given"));
+}
+
+std::vector<PluginInstance*> ControlTick::Instances() const {
+  std::vector<PluginInstance*> all;
+  if (plugins_.leader) all.push_back(plugins_.leader.get());
+  if (plugins_.formation) all.push_back(plugins_.formation.get());
+  for (const auto* group :
+       {&plugins_.follower_guidance, &plugins_.formation_agents, &plugins_.attitude}) {
+    for (const auto& p : *group) all.push_back(p.get());
+  }
+  return all;
+}
+
+void ControlTick::RequireSavable() const {
+  if (channel_) {
+    throw SimulationError(
+        "the communication channel ([network], per-agent execution) does not declare its state "
+        "yet: a tick with it cannot be copied or checkpointed");
+  }
+  if (!sensors_->stateless()) {
+    throw SimulationError(
+        "the sensor stage ([sensors], [estimator]) does not declare its state yet: a tick with "
+        "it cannot be copied or checkpointed");
+  }
+  for (const PluginInstance* p : Instances()) {
+    if (!p->declares_state()) {
+      throw SimulationError(std::string("plugin '") + p->descriptor().name +
+                            "' declares no state (mjfPlugin.state_size is NULL): a tick with "
+                            "it cannot be copied or checkpointed (docs/PLUGINS.md, \"Plugin "
+                            "state\")");
+    }
+  }
+}
+
+// The bus: every mjfSetpoint is doubles only (plugin.h), written as its kSetpointDoubles.
+namespace {
+constexpr size_t kSetpointDoubles = sizeof(mjfSetpoint) / sizeof(double);
+static_assert(sizeof(mjfSetpoint) == 12 * sizeof(double), "mjfSetpoint holds doubles only");
+}  // namespace
+
+size_t ControlTick::StateSize() const {
+  size_t n = setpoints_.size() * kSetpointDoubles;
+  for (const PluginInstance* p : Instances()) n += p->state_size();
+  return n;
+}
+
+void ControlTick::GetState(double* out) const {
+  std::memcpy(out, setpoints_.data(), setpoints_.size() * sizeof(mjfSetpoint));
+  out += setpoints_.size() * kSetpointDoubles;
+  for (const PluginInstance* p : Instances()) {
+    p->GetState(out);
+    out += p->state_size();
+  }
+}
+
+void ControlTick::SetState(const double* in) {
+  std::memcpy(setpoints_.data(), in, setpoints_.size() * sizeof(mjfSetpoint));
+  in += setpoints_.size() * kSetpointDoubles;
+  for (PluginInstance* p : Instances()) {
+    p->SetState(in);
+    in += p->state_size();
+  }
 }
 
 }  // namespace mjf::runner

@@ -37,6 +37,20 @@ struct InProcessPlugins {
   std::vector<LoadedPlugin> plugins;
 };
 
+// "was built for plugin ABI X, this runner speaks ABI Y; ...": what to do about it.
+std::string AbiMismatch(uint32_t built) {
+  std::string message = "was built for plugin ABI " + std::to_string(built) +
+                        ", this runner speaks ABI " + std::to_string(MJF_ABI_VERSION) +
+                        "; rebuild it against include/mjformation/plugin.h";
+  if (built == 3 && MJF_ABI_VERSION == 4) {
+    // The one step a plugin author takes by hand: declaring the instance's state.
+    message +=
+        " after adding state_size, get_state and set_state (docs/PLUGINS.md, \"Migrating from "
+        "ABI 3\")";
+  }
+  return message;
+}
+
 InProcessPlugins& InProcess() {
   static InProcessPlugins registered;  // process-wide by design: the embedding program's own
   return registered;
@@ -59,10 +73,8 @@ void PluginRegistry::AddInProcessPlugins() {
   std::lock_guard<std::mutex> lock(in_process.mutex);
   for (const LoadedPlugin& p : in_process.plugins) {
     if (p.descriptor->abi_version != MJF_ABI_VERSION) {
-      problems_.push_back(p.library + ": plugin '" + p.descriptor->name +
-                          "' was built for plugin ABI " +
-                          std::to_string(p.descriptor->abi_version) + ", this runner speaks ABI " +
-                          std::to_string(MJF_ABI_VERSION));
+      problems_.push_back(p.library + ": plugin '" + p.descriptor->name + "' " +
+                          AbiMismatch(p.descriptor->abi_version));
       continue;
     }
     const bool duplicate = std::any_of(plugins_.begin(), plugins_.end(), [&](auto& q) {
@@ -115,11 +127,8 @@ PluginRegistry::PluginRegistry(const std::vector<std::string>& search_path)
         // abi_version is the first field in every ABI version, so it is safe to read; the
         // rest of a foreign-ABI descriptor is not.
         if (p->abi_version != MJF_ABI_VERSION) {
-          problems_.push_back(path + ": plugin #" + std::to_string(i) +
-                              " was built for plugin ABI " + std::to_string(p->abi_version) +
-                              ", this runner speaks ABI " + std::to_string(MJF_ABI_VERSION) +
-                              "; rebuild it against "
-                              "include/mjformation/plugin.h");
+          problems_.push_back(path + ": plugin #" + std::to_string(i) + " " +
+                              AbiMismatch(p->abi_version));
           continue;
         }
         const bool duplicate = std::any_of(plugins_.begin(), plugins_.end(), [&](auto& q) {
@@ -245,6 +254,15 @@ PluginInstance::PluginInstance(const LoadedPlugin& plugin, const PluginSection& 
     throw PluginError(RefusalWhere(section, config_path, error) + " '" + descriptor_->name + "' (" +
                       plugin.library +
                       ") refused its configuration: " + (error[0] ? error : "no reason given"));
+  }
+  if (descriptor_->state_size) {
+    if (!descriptor_->get_state || !descriptor_->set_state) {
+      if (descriptor_->destroy) descriptor_->destroy(instance_);
+      throw PluginError(std::string("plugin '") + descriptor_->name + "' (" + plugin.library +
+                        ") declares state_size without get_state and set_state: a plugin "
+                        "sets all three or none (docs/PLUGINS.md, \"Plugin state\")");
+    }
+    state_size_ = descriptor_->state_size(instance_);
   }
 }
 

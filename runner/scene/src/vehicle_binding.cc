@@ -202,9 +202,11 @@ std::vector<std::array<double, 3>> InitialPositions(const ExperimentConfig& c) {
   return out;
 }
 
-VehicleBindings BindVehicles(const mjModel* composed, const ExperimentConfig& config,
-                             const mjfPlugin& attitude, const std::string& vehicle_xml, int first,
-                             int count) {
+namespace {
+
+VehicleBindings Bind(const mjModel* composed, const ExperimentConfig& config,
+                     const mjfPlugin& attitude, const std::string& vehicle_xml, int first,
+                     int count, bool bind_ids) {
   const VehicleModelInfo vehicle = ReadVehicleModel(config, attitude, vehicle_xml);
   VehicleBindings out;
   out.wrench_gain = vehicle.gains;
@@ -215,10 +217,8 @@ VehicleBindings BindVehicles(const mjModel* composed, const ExperimentConfig& co
   for (int i = 0; i < n; ++i) {
     VehicleBinding& b = out.vehicles[i];
     const std::string prefix = VehiclePrefix(first + i);
-    b.body = mj_name2id(composed, mjOBJ_BODY, (prefix + "vehicle").c_str());
-    BindSensors(composed, prefix, config.model_path, &b);
     b.actuator_info = vehicle.actuators;
-    for (int k = 0; k < attitude.n_actuators; ++k) {
+    for (int k = 0; bind_ids && k < attitude.n_actuators; ++k) {
       if (config.rotor_model == RotorModel::kWrench) {
         b.sites.push_back(
             mj_name2id(composed, mjOBJ_SITE, (prefix + vehicle.site_names[k]).c_str()));
@@ -235,8 +235,24 @@ VehicleBindings BindVehicles(const mjModel* composed, const ExperimentConfig& co
     b.info.actuation = config.vehicle_actuation == VehicleActuation::kThrustMoments
                            ? MJF_ACTUATION_THRUST_MOMENTS
                            : MJF_ACTUATION_ROTORS;
+    if (!bind_ids) continue;
+    b.body = mj_name2id(composed, mjOBJ_BODY, (prefix + "vehicle").c_str());
+    BindSensors(composed, prefix, config.model_path, &b);
   }
   return out;
+}
+
+}  // namespace
+
+VehicleBindings BindVehicles(const mjModel* composed, const ExperimentConfig& config,
+                             const mjfPlugin& attitude, const std::string& vehicle_xml, int first,
+                             int count) {
+  return Bind(composed, config, attitude, vehicle_xml, first, count, true);
+}
+
+VehicleBindings DescribeVehicles(const mjModel* model, const ExperimentConfig& config,
+                                 const mjfPlugin& attitude) {
+  return Bind(model, config, attitude, "", 0, -1, false);
 }
 
 void ReadTrueStates(const mjData* data, const VehicleBindings& bindings,

@@ -153,9 +153,22 @@ int ComputeNanEstimate(void* instance, const mjfStepContext* ctx) {
   if (instance == &g_nan_instance && ctx->step >= 3) ctx->estimate->state.vel[2] = std::nan("");
   return 0;
 }
-const mjfPlugin kNanEstimator = {
-    MJF_ABI_VERSION, "nan_estimate_test", MJF_KIND_ESTIMATOR,  "test",  0,       nullptr, 0,
-    nullptr,         &CreateNanEstimator, &ComputeNanEstimate, nullptr, nullptr, nullptr};
+const mjfPlugin kNanEstimator = {MJF_ABI_VERSION,
+                                 "nan_estimate_test",
+                                 MJF_KIND_ESTIMATOR,
+                                 "test",
+                                 0,
+                                 nullptr,
+                                 0,
+                                 nullptr,
+                                 &CreateNanEstimator,
+                                 &ComputeNanEstimate,
+                                 nullptr,
+                                 nullptr,
+                                 nullptr,
+                                 nullptr,
+                                 nullptr,
+                                 nullptr};
 
 // A non-finite estimate stops the run where it appears, naming the estimator, the vehicle and
 // the part, instead of reaching the controllers (the stop was reported later as a non-finite

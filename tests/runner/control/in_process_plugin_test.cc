@@ -16,8 +16,9 @@ void* CreateNothing(const mjfCreateContext*) { return nullptr; }
 int ComputeNothing(void*, const mjfStepContext*) { return 0; }
 
 mjfPlugin Descriptor(const char* name, uint32_t abi) {
-  return {abi,     name,           MJF_KIND_GUIDANCE, "test",  0,       nullptr, 0,
-          nullptr, &CreateNothing, &ComputeNothing,   nullptr, nullptr, nullptr};
+  return {abi,     name,    MJF_KIND_GUIDANCE, "test",          0,       nullptr,
+          0,       nullptr, &CreateNothing,    &ComputeNothing, nullptr, nullptr,
+          nullptr, nullptr, nullptr,           nullptr};
 }
 
 const mjfPlugin kGood = Descriptor("in_process_test", MJF_ABI_VERSION);

@@ -75,13 +75,15 @@ TEST(PluginHostTest, AWrongAbiPluginIsRefusedNamingBothVersions) {
                     HasSubstr("libmjf_test_badabi.so")));
 }
 
-// ABI 3 added the estimator kind: a library built against ABI 2 is refused, naming 2 and 3.
-TEST(PluginHostTest, AnAbi2PluginIsRefusedNamingBothVersions) {
-  ASSERT_EQ(MJF_ABI_VERSION, 3u);
+// ABI 4 added declared plugin state: a library built against ABI 3 is refused, naming 3 and 4
+// and where the migration is written.
+TEST(PluginHostTest, AnAbi3PluginIsRefusedNamingBothVersionsAndTheMigration) {
+  ASSERT_EQ(MJF_ABI_VERSION, 4u);
   PluginRegistry registry({kTestPlugins});
   EXPECT_THAT(ErrorOf([&] { registry.Find("previous_abi", "exp.toml:4: [leader]"); }),
               AllOf(HasSubstr("unknown plugin 'previous_abi'"),
-                    HasSubstr("plugin #1 was built for plugin ABI 2, this runner speaks ABI 3")));
+                    HasSubstr("plugin #1 was built for plugin ABI 3, this runner speaks ABI 4"),
+                    HasSubstr("docs/PLUGINS.md, \"Migrating from ABI 3\"")));
 }
 
 TEST(PluginHostTest, AnUnknownPluginListsTheValidNamesWithTheirKindsAndTheFolders) {
@@ -180,7 +182,10 @@ const mjfPlugin kLocal = {MJF_ABI_VERSION,
                           LocalCompute,
                           LocalReset,
                           LocalDestroy,
-                          LocalReport};
+                          LocalReport,
+                          nullptr,
+                          nullptr,
+                          nullptr};
 
 PluginSection Section(std::map<std::string, AttributeValue> attributes) {
   PluginSection s;

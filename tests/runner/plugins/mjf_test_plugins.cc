@@ -66,6 +66,9 @@ const mjfPlugin kRequired = {MJF_ABI_VERSION,
                              ComputeHold,
                              nullptr,
                              Destroy,
+                             nullptr,
+                             nullptr,
+                             nullptr,
                              nullptr};
 const mjfPlugin kNan = {MJF_ABI_VERSION,
                         "test_nan",
@@ -81,6 +84,9 @@ const mjfPlugin kNan = {MJF_ABI_VERSION,
                         ComputeHold,
                         nullptr,
                         Destroy,
+                        nullptr,
+                        nullptr,
+                        nullptr,
                         nullptr};
 
 const mjfPlugin kHuge = {MJF_ABI_VERSION,
@@ -95,6 +101,9 @@ const mjfPlugin kHuge = {MJF_ABI_VERSION,
                          ComputeHold,
                          nullptr,
                          Destroy,
+                         nullptr,
+                         nullptr,
+                         nullptr,
                          nullptr};
 
 // The faults: each holds position until `after`, then fails its own way.
@@ -130,6 +139,9 @@ constexpr mjfPlugin FaultPlugin(const char* name, const char* doc) {
           ComputeFault<kFault>,
           nullptr,
           Destroy,
+          nullptr,
+          nullptr,
+          nullptr,
           nullptr};
 }
 
@@ -210,7 +222,10 @@ const mjfPlugin kAgentRecorder = {MJF_ABI_VERSION,
                                   ComputeRecorder,
                                   nullptr,
                                   [](void* p) { delete static_cast<Recorder*>(p); },
-                                  ReportRecorder};
+                                  ReportRecorder,
+                                  nullptr,
+                                  nullptr,
+                                  nullptr};
 
 }  // namespace
 

@@ -94,6 +94,11 @@ class Geometric {
   // not bind or att_bw was given): the loop the outer loops were tuned against.
   double unlimited_att_bw() const { return unlimited_att_bw_; }
   double altitude_integral() const { return integral_z_; }  // m/s^2
+  // What a step leaves for the next: the altitude and body-rate integrators (plugin_state.hpp).
+  template <typename Visit>
+  void VisitState(Visit& visit) {
+    visit(integral_z_, integral_rate_);
+  }
 
   static constexpr double kNominalTiltMax = 0.78;  // rad
   // The resolved tilt limit and bandwidths (rad/s) for given gains and vehicle: 0 entries

@@ -86,6 +86,11 @@ class PdCascade {
   // gains): the loop the outer loops were tuned against.
   double unlimited_att_bw() const { return unlimited_att_bw_; }
   double altitude_integral() const { return integral_z_; }  // m/s^2
+  // What a step leaves for the next: the altitude integrator (plugin_state.hpp).
+  template <typename Visit>
+  void VisitState(Visit& visit) {
+    visit(integral_z_);
+  }
 
  private:
   // The tilt limit on the references of eq. (9) (pd_cascade.cc).

@@ -21,6 +21,8 @@ class PointMassDirect {
   // World-frame force (N) on the fx, fy, fz actuators:
   //   f_xy = m acc_xy,  f_z = m (g + acc_z + kp_z (z_ref - z) + kd_z (vz_ref - vz)).
   Vec3 Update(const VehicleState& state, const Setpoint& setpoint) const;
+  template <typename Visit>
+  void VisitState(Visit&) {}  // no state: a pure function of state and setpoint
 
  private:
   Gains gains_;

@@ -85,11 +85,34 @@ class KfIns {
   const StateMat& transition() const { return F_; }
   const StateMat& process_noise() const { return Q_; }
 
+  // The most late-fusion corrections the filter keeps at once (a fixed state size): every
+  // measurement of the history window taken late, one per step, plus a margin; Fuse refuses a
+  // late measurement past it with this number.
+  size_t max_corrections() const { return static_cast<size_t>(window_steps_) + 17; }
+
+  // The filter's state (plugin_state.hpp): estimate, covariance, step, the stored posteriors,
+  // the corrections in flight (count, then max_corrections() slots) and the counts.
+  template <typename Visit>
+  void VisitState(Visit& visit) {
+    visit(x_, P_, step_, history_, fused_, rejected_, too_old_);
+    int64_t n = static_cast<int64_t>(corrections_.size());
+    visit(n);
+    corrections_.resize(static_cast<size_t>(n));                  // on a read, the count just read
+    Correction unused{0, 0, StateVec::Zero(), StateMat::Zero()};  // the empty slots: zeros
+    for (size_t k = 0; k < max_corrections(); ++k) {
+      visit(k < corrections_.size() ? corrections_[k] : unused);
+    }
+  }
+
  private:
   struct Slot {  // the posterior at `step` as it was stored
     int64_t step = -1;
     StateVec x;
     StateMat P;
+    template <typename Visit>
+    void VisitState(Visit& visit) {
+      visit(step, x, P);
+    }
   };
   // A fusion at the past step `step`, made when the slots up to `last` were stored: slot j in
   // [step, last] is read as x_j + F^(j - step) dx, P_j + F^(j - step) dP F^(j - step)'.
@@ -97,6 +120,10 @@ class KfIns {
     int64_t step, last;
     StateVec dx;
     StateMat dP;
+    template <typename Visit>
+    void VisitState(Visit& visit) {
+      visit(step, last, dx, dP);
+    }
   };
   void PropagateOnce(const Vec3& specific_force_world);
   // x <- F^m x and P <- F^m P F^m' without the input (F^m in closed form: m steps of the

@@ -41,6 +41,11 @@ class ContinuousSmcAgent {
   const double* rhs() const { return rhs_; }
   const ContinuousSmcParams& params() const { return params_; }
 
+  template <typename Visit>
+  void VisitState(Visit& visit) {  // plugin_state.hpp
+    visit(neighbour_fa_, own_fa_, rhs_, w_, acceleration_, sliding_);
+  }
+
  private:
   ContinuousSmcParams params_;
   double leader_weight_;
@@ -66,6 +71,11 @@ class LinearConsensusAgent {
   const double* sliding() const { return nullptr; }  // no sliding variable
   const double* coupling() const { return zero_; }
   const double* rhs() const { return zero_; }
+
+  template <typename Visit>
+  void VisitState(Visit& visit) {  // plugin_state.hpp
+    visit(acceleration_);
+  }
 
  private:
   LinearConsensusParams params_;

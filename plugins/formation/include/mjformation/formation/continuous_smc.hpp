@@ -70,6 +70,12 @@ class ContinuousSmc {
   const Graph& graph() const { return graph_; }
   long factor_nonzeros() const { return solver_.factor_nonzeros(); }
 
+  // The last outputs and the reaching-time bound of the first Update (plugin_state.hpp).
+  template <typename Visit>
+  void VisitState(Visit& visit) {
+    visit(acceleration_, sliding_, error_, reaching_time_bound_);
+  }
+
  private:
   Graph graph_;
   ContinuousSmcParams params_;

@@ -93,6 +93,14 @@ class DiscreteSmc {
   const DiscreteSmcParams& params() const { return params_; }
   const Graph& graph() const { return graph_; }
 
+  // The state a sample leaves for the next (plugin_state.hpp): the held u_i and s_i, e_i and the
+  // constraint counts. The factor of L_H and the right-hand sides are fixed or scratch.
+  template <typename Visit>
+  void VisitState(Visit& visit) {
+    visit(acceleration_, sliding_, error_);
+    visit(stats_.samples, stats_.paper, stats_.constrained, stats_.peak_paper_demand);
+  }
+
  private:
   // The input-constrained reaching law (discrete_smc_constrained.cc): replaces the
   // demand of (48) by (C7)-(C8) when it leaves the feasible disc.

@@ -48,6 +48,12 @@ class DiscreteSmcAgent {
   double delta() const;
   const DiscreteSmcParams& params() const { return params_; }
 
+  // The held sample and what the next one reads of it (plugin_state.hpp).
+  template <typename Visit>
+  void VisitState(Visit& visit) {
+    visit(neighbour_y_, own_y_, rhs_, w_, acceleration_, sliding_);
+  }
+
  private:
   DiscreteSmcParams params_;
   double leader_weight_;

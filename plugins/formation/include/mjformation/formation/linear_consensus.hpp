@@ -31,6 +31,11 @@ class LinearConsensus {
   const std::vector<double>& error() const { return error_; }                // [4i + k]
   const Graph& graph() const { return graph_; }
 
+  template <typename Visit>
+  void VisitState(Visit& visit) {  // the last outputs (plugin_state.hpp)
+    visit(acceleration_, error_);
+  }
+
  private:
   Graph graph_;
   LinearConsensusParams params_;

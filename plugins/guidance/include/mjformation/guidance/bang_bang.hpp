@@ -30,6 +30,12 @@ class BangBangGuidance {
   explicit BangBangGuidance(const Config& config);
   GuidanceOutput Update(double t, const Vec3& pos, const Vec3& vel);
   void Reset();
+  // The current dwell per axis and the dwell draws so far (drawn from (seed, index), so the
+  // counter is the random stream's state), and the last time (plugin_state.hpp).
+  template <typename Visit>
+  void VisitState(Visit& visit) {
+    visit(sign_, switch_time_, draws_, last_time_);
+  }
 
  private:
   double Dwell(int axis, uint64_t index) const;

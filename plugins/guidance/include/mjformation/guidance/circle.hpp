@@ -32,6 +32,8 @@ class CircleGuidance {
   GuidanceOutput Reference(double t) const;
   // The reference and the tracking command for a vehicle at pos (m), vel (m/s).
   GuidanceOutput Update(double t, const Vec3& pos, const Vec3& vel) const;
+  template <typename Visit>
+  void VisitState(Visit&) {}  // no state: a function of t and the state
 
  private:
   Config config_;

@@ -18,6 +18,8 @@ class HoverGuidance {
   };
   explicit HoverGuidance(const Config& config);
   GuidanceOutput Update(const Vec3& pos, const Vec3& vel) const;
+  template <typename Visit>
+  void VisitState(Visit&) {}  // no state: a function of the state
 
  private:
   Config config_;

@@ -27,6 +27,8 @@ class LemniscateGuidance {
   explicit LemniscateGuidance(const Config& config);
   GuidanceOutput Reference(double t) const;
   GuidanceOutput Update(double t, const Vec3& pos, const Vec3& vel) const;
+  template <typename Visit>
+  void VisitState(Visit&) {}  // no state: a function of t and the state
 
  private:
   Config config_;

@@ -30,6 +30,8 @@ class RandomAccelGuidance {
   // The unclipped random signal on one axis at time t (s): inside [a_min, a_max].
   double Signal(int axis, double t) const;
   GuidanceOutput Update(double t, const Vec3& pos, const Vec3& vel) const;
+  template <typename Visit>
+  void VisitState(Visit&) {}  // no state: its knots are drawn from (seed, index), a function of t
 
  private:
   Config config_;

@@ -28,6 +28,8 @@ class WaypointGuidance {
   };
   explicit WaypointGuidance(const Config& config);
   GuidanceOutput Update(double t, const Vec3& pos, const Vec3& vel) const;
+  template <typename Visit>
+  void VisitState(Visit&) {}  // no state: a function of t and the state
   const HermitePath& path() const { return path_; }
 
  private:

@@ -58,6 +58,17 @@ class ControlTick {
                       const struct mjModel_* model, const struct mjData_* data);
   void RunAttitude(int first, int count, char* error, size_t error_size);
 
+  // The tick's state, what one Run leaves for the next: the setpoint bus, then each plugin
+  // instance's declared state (leader, formation, follower guidance, per-agent formation,
+  // attitude; ABI 4). After SetState(GetState()) of another tick built from the same
+  // configuration, Run gives the same bits. RequireSavable() throws naming the first stage
+  // whose state is not declared (a plugin without state_size, a communication channel, a
+  // sensor stage other than ideal); StateSize() etc. are meaningful only when it passes.
+  void RequireSavable() const;
+  size_t StateSize() const;
+  void GetState(double* out) const;
+  void SetState(const double* in);
+
   int n_vehicles() const { return static_cast<int>(setpoints_.size()); }
   int actuators_per_vehicle() const { return actuators_per_vehicle_; }
   // What the controllers saw on the last tick (the truth with ideal sensors).
@@ -77,6 +88,8 @@ class ControlTick {
   void RequireFiniteSetpoints(double time) const;
   // Calls the plugin and turns a failure code or a C++ exception into a SimulationError.
   void Call(PluginInstance& plugin, mjfStepContext& ctx, int vehicle);
+  // Every plugin instance, in the order of the state layout.
+  std::vector<PluginInstance*> Instances() const;
 
   ControlPlugins plugins_;
   std::unique_ptr<SensorStage> sensors_;

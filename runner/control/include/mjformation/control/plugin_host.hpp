@@ -74,6 +74,17 @@ class PluginInstance {
   }
   std::vector<std::pair<std::string, double>> Report() const;
 
+  // The instance's declared state (ABI 4): its size in doubles (0 for a plugin without state),
+  // fixed at create(), and the calls that write and read it.
+  size_t state_size() const { return state_size_; }
+  bool declares_state() const { return descriptor_->state_size != nullptr; }
+  void GetState(double* out) const {
+    if (state_size_ > 0) descriptor_->get_state(instance_, out);
+  }
+  void SetState(const double* in) {
+    if (state_size_ > 0) descriptor_->set_state(instance_, in);
+  }
+
   const mjfPlugin& descriptor() const { return *descriptor_; }
   // Every declared attribute with the value in use (given or default), declaration order.
   const std::vector<std::pair<std::string, std::string>>& attributes() const { return attributes_; }
@@ -81,6 +92,7 @@ class PluginInstance {
  private:
   const mjfPlugin* descriptor_;
   void* instance_ = nullptr;
+  size_t state_size_ = 0;
   std::vector<std::pair<std::string, std::string>> attributes_;
 };
 

@@ -27,6 +27,8 @@ class SensorStage {
   // `measured` has the size of `truth`; step is the physics step index, time = step * dt.
   virtual void Measure(int64_t step, double time, const std::vector<mjfVehicleState>& truth,
                        std::vector<mjfVehicleState>* measured) = 0;
+  // True when Measure keeps nothing from one call to the next (a tick's state then omits it).
+  virtual bool stateless() const { return false; }
 };
 
 // Perfect sensors: the controllers see the truth, bit for bit (the default).
@@ -34,6 +36,7 @@ class IdealSensors final : public SensorStage {
  public:
   void Measure(int64_t step, double time, const std::vector<mjfVehicleState>& truth,
                std::vector<mjfVehicleState>* measured) override;
+  bool stateless() const override { return true; }
 };
 
 // External forces on each vehicle (wind, drag, ...), applied at its centre of mass in the world

@@ -44,6 +44,11 @@ std::vector<std::array<double, 3>> InitialPositions(const ExperimentConfig& conf
 VehicleBindings BindVehicles(const mjModel* composed, const ExperimentConfig& config,
                              const mjfPlugin& attitude, const std::string& vehicle_xml = "",
                              int first = 0, int count = -1);
+// The same vehicle info (mass, inertia, actuators; gravity from `model`), without binding any
+// sensor, actuator or site of `model` (ids stay -1): what a plugin's create() needs, for a
+// model whose sensors and actuators are not compiled yet (a native plugin's nstate).
+VehicleBindings DescribeVehicles(const mjModel* model, const ExperimentConfig& config,
+                                 const mjfPlugin& attitude);
 
 // The vehicles' true states from MuJoCo's sensors (after mj_step1 or mj_forward).
 void ReadTrueStates(const mjData* data, const VehicleBindings& bindings,
