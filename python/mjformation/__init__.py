@@ -410,6 +410,11 @@ class Simulation:
             obs["truth"] = self._sim.states
         return obs
 
+    def offsets(self, t: float | None = None) -> np.ndarray:
+        """(N, 6) the desired offsets f_i(t) = px py vx vy ax ay from the leader (Definition 1)
+        at t (default: now); zeros without a [formation.shape] (driven)."""
+        return self._sim.offsets(self.time if t is None else float(t))
+
     law_actions = property(lambda self: self._sim.setpoints[1:, 0:3],
                            doc="(N, 3) the formation law's commands of this tick (driven)")
     events = property(lambda self: self._sim.events if self.driven else [],
