@@ -25,6 +25,7 @@
 #include "mjformation/config/paths.hpp"
 #include "mjformation/control/plugin_host.hpp"
 #include "mjformation/export/export.hpp"
+#include "mjformation/formation/shape.hpp"
 #include "mjformation/record/engine_identity.hpp"
 #include "mjformation/record/output.hpp"
 #include "mjformation/run/interrupt.hpp"
