@@ -8,8 +8,8 @@
 #include <pybind11/stl.h>
 
 #include <cerrno>
-#include <cmath>
 #include <charconv>
+#include <cmath>
 #include <csignal>
 #include <cstdlib>
 #include <cstring>
@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "driven.hpp"
 #include "mjformation/app/cli.hpp"
 #include "mjformation/config/config.hpp"
 #include "mjformation/config/paths.hpp"
@@ -32,7 +33,6 @@
 #include "mjformation/run/run.hpp"
 #include "mjformation/scene/scene.hpp"
 #include "mjformation/sim/simulation.hpp"
-#include "driven.hpp"
 #include "python_law.hpp"
 
 namespace py = pybind11;
@@ -415,7 +415,8 @@ void BindDriven(py::module_& m) {
         }),
         py::arg("experiment"), py::arg("overrides"), py::arg("plugin_path"))
       .def("act", &Act, py::arg("actions"), py::arg("steps"))
-      .def("offsets", [](const D& d, double t) { return Offsets(d.sim(), t); }, py::arg("t"))
+      .def(
+          "offsets", [](const D& d, double t) { return Offsets(d.sim(), t); }, py::arg("t"))
       .def("heard", &Heard)
       .def_property_readonly("events", &Events);
   BindViews(c);
