@@ -296,19 +296,30 @@ def plugins(plugin_path=None) -> list[dict]:
 
 
 class Simulation:
-    """One simulation, stepped from Python: step(n), time, states, measured, slots, graph.
+    """One simulation, stepped from Python: step(n), time, states, measured, slots, graph; and,
+    after reset(seed), driven by your commands: step(actions) (docs/PYTHON.md, "Drive it
+    yourself").
 
-    It always stands at a control tick: states / measured / setpoints / slots / controls are
-    those of `time`, as the timeseries.csv row at that time records them. step(n) integrates n
-    physics steps, each followed by the next tick (sensors, plugins or the Python law).
+    Built by the constructor, it always stands at a control tick: states / measured / setpoints
+    / slots / controls are those of `time`, as the timeseries.csv row at that time records them.
+    step(n) integrates n physics steps, each followed by the next tick (sensors, plugins or the
+    Python law). After reset() it stands inside the tick, before the attitude plugins: the
+    formation law's commands are on the bus (law_actions) and step(actions) replaces them.
     """
 
-    def __init__(self, experiment, set=None, formation=None, plugin_path=None):
+    def __init__(self, experiment, set=None, formation=None, plugin_path=None, driven=False,
+                 seed=None):
         self._law = _LawInUse(formation, experiment)
         self._stopped = None  # why the simulation stopped (a SimulationError), once it has
-        overrides = self._law.__enter__() + _overrides(set)
+        self._experiment = str(experiment)
+        self._plugin_path = _plugin_path(plugin_path)
+        self._overrides = self._law.__enter__() + _overrides(set)
+        self.driven = False
         try:
-            self._sim = _core.Simulation(str(experiment), overrides, _plugin_path(plugin_path))
+            if driven:
+                self.reset(seed)
+            else:
+                self._sim = _core.Simulation(self._experiment, self._overrides, self._plugin_path)
         except BaseException:
             self._law.__exit__()
             raise
@@ -319,23 +330,95 @@ class Simulation:
         if law is not None:
             law.__exit__()
 
-    def step(self, n: int = 1) -> "Simulation":
-        """n >= 0 physics steps (fewer at the end of the experiment); the GIL is released.
+    def reset(self, seed: int | None = None) -> dict:
+        """Back to t = 0 as a new simulation of the same experiment, driven by step(actions);
+        seed: [run] seed (every seeded source: sensors, wind, network, start jitter); None keeps
+        the experiment's. The same seed gives the same flight, bit for bit. Returns observe()."""
+        overrides = list(self._overrides)
+        if seed is not None:
+            if int(seed) < 0:
+                raise ValueError(f"reset(seed={seed}): the seed is an integer >= 0")
+            overrides.append(f"run.seed={int(seed)}")
+        self._sim = None  # the old simulation's plugins go before the new one's are made
+        self._sim = _core.DrivenSimulation(self._experiment, overrides, self._plugin_path)
+        self._stopped = None
+        self.driven = True
+        return self.observe()
 
-        Once a step has failed (a law's exception, a non-finite state: SimulationError), the
-        simulation stays where it stopped and every later step raises SimulationError again: a
-        failed tick left its setpoints half made, and stepping on would fly them.
+    def step(self, actions=1, steps: int | None = None):
+        """step(n): n >= 0 physics steps flown by the experiment's own laws (fewer at the end of
+        the experiment); returns the Simulation. step(actions), after reset(): the followers'
+        acceleration commands, an (N, 3) array (x, y and the vertical feedforward on the
+        altitude hold, m/s^2, world frame; (N, 2): no feedforward) held for `steps` physics
+        steps (default action_steps, the law's sample period); returns observe().
+        The GIL is released while it flies.
+
+        Once a step has failed (a law's exception, a non-finite state or command:
+        SimulationError), the simulation stays where it stopped and every later step raises
+        SimulationError again: a failed tick left its setpoints half made.
         """
         if self._stopped is not None:
             raise SimulationError(f"this Simulation stopped at t = {self.time:.3f} s "
-                                  f"({self._stopped}); create a new one to run again")
+                                  f"({self._stopped}); reset() or create a new one to run again")
+        by_count = isinstance(actions, (int, np.integer)) and not isinstance(actions, bool)
+        if not by_count and not self.driven:
+            raise RuntimeError("step(actions) drives a Simulation after reset(): one made by "
+                               "the constructor has already flown its law's commands at t")
         try:
-            self._sim.step(int(n))
+            if by_count and not self.driven:
+                self._sim.step(int(actions))
+                return self
+            if by_count:
+                if actions < 0:
+                    raise ValueError(f"step(n): n is a number of physics steps >= 0, got {actions}")
+                self._sim.act(None, int(actions))
+                return self
+            n = self.action_steps if steps is None else int(steps)
+            self._sim.act(np.asarray(actions, dtype=np.float64), n)
         except SimulationError as e:
             self._stopped = e
             raise
-        return self
+        return self.observe()
 
+    @property
+    def action_steps(self) -> int:
+        """Physics steps a step(actions) holds its commands by default: the formation law's
+        sample period T when it reports one (Exp 2: 0.05 s = 50 steps), else 1."""
+        period = self._sim.law_period if self.driven else float("nan")
+        if np.isfinite(period) and period > 0:
+            return max(1, round(period / self._sim.timestep))
+        return 1
+
+    def observe(self, truth: bool = False) -> dict:
+        """What the followers know at `time` (driven simulations), followers 0..N-1:
+        own (N, 13): each one's measured state (STATE_COLUMNS; the [sensors] model applied);
+        offsets (N, 6): f_i(t) = px py vx vy ax ay from the leader (mission data);
+        heard (N, N + 1, 13), heard_mask (N, N + 1): what follower i holds of vehicle v (0 the
+        leader, v = j + 1 follower j): central execution, the measured states of the vehicles it
+        hears in [topology] (an ideal network); per-agent execution, the newest messages that
+        reached it through [network] (delay, loss, range); zeros where mask is 0;
+        law_actions (N, 3): the experiment's formation law's commands for this tick;
+        truth (V, 13), only with truth=True: the true states, vehicle 0 the leader.
+        """
+        if not self.driven:
+            raise RuntimeError("observe() needs a driven Simulation: call reset() first")
+        heard, mask = self._sim.heard()
+        obs = {"time": self._sim.time, "own": self._sim.measured[1:],
+               "offsets": self._sim.offsets(self._sim.time), "heard": heard, "heard_mask": mask,
+               "law_actions": self.law_actions}
+        if truth:
+            obs["truth"] = self._sim.states
+        return obs
+
+    def offsets(self, t: float | None = None) -> np.ndarray:
+        """(N, 6) the desired offsets f_i(t) = px py vx vy ax ay from the leader (Definition 1)
+        at t (default: now); zeros without a [formation.shape] (driven)."""
+        return self._sim.offsets(self.time if t is None else float(t))
+
+    law_actions = property(lambda self: self._sim.setpoints[1:, 0:3],
+                           doc="(N, 3) the formation law's commands of this tick (driven)")
+    events = property(lambda self: self._sim.events if self.driven else [],
+                      doc="safety events so far (driven): dicts kind, time, vehicles, value, text")
     time = property(lambda self: self._sim.time, doc="s, simulated time")
     step_index = property(lambda self: self._sim.step_index)
     total_steps = property(lambda self: self._sim.total_steps)
@@ -345,9 +428,17 @@ class Simulation:
     setpoints = property(lambda self: self._sim.setpoints,
                          doc="(V, 14): acc 3, pos 3, vel 3, yaw, sliding 2 (the setpoint bus)")
     slots = property(lambda self: self._sim.slots, doc="(V, 2) desired x, y of each vehicle")
-    controls = property(lambda self: self._sim.controls, doc="(V, actuators) the controls")
     scene_xml = property(lambda self: self._sim.scene_xml,
                          doc="the composed MJCF (scene.xml): loads in the `mujoco` package alone")
+
+    @property
+    def controls(self):
+        """(V, actuators) the controls of this tick (not for a driven Simulation, whose tick
+        stands before its attitude plugins)."""
+        if self.driven:
+            raise RuntimeError("a driven Simulation stands before this tick's attitude plugins: "
+                               "its controls are made by the next step")
+        return self._sim.controls
 
     @property
     def graph(self) -> Graph:

@@ -9,20 +9,24 @@
 
 #include <cerrno>
 #include <charconv>
+#include <cmath>
 #include <csignal>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <limits>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "driven.hpp"
 #include "mjformation/app/cli.hpp"
 #include "mjformation/config/config.hpp"
 #include "mjformation/config/paths.hpp"
 #include "mjformation/control/plugin_host.hpp"
 #include "mjformation/export/export.hpp"
+#include "mjformation/formation/shape.hpp"
 #include "mjformation/record/engine_identity.hpp"
 #include "mjformation/record/output.hpp"
 #include "mjformation/run/interrupt.hpp"
@@ -318,6 +322,106 @@ void BindSimulation(py::module_& m) {
       .def_property_readonly("scene_xml", &rn::Simulation::scene_xml);
 }
 
+// Checks the followers' commands: an (N, 3) array of finite numbers (acceleration x, y and the
+// vertical feedforward, m/s^2) or an (N, 2) one (no feedforward); returns them [follower][3].
+std::vector<double> Commands(const rn::Simulation& sim, const py::array_t<double>& actions) {
+  const py::ssize_t n = sim.n_followers();
+  const auto columns = actions.ndim() == 2 ? actions.shape(1) : -1;
+  if (actions.ndim() != 2 || actions.shape(0) != n || (columns != 2 && columns != 3)) {
+    std::string shape;
+    for (py::ssize_t k = 0; k < actions.ndim(); ++k)
+      shape += (k ? ", " : "") + std::to_string(actions.shape(k));
+    throw py::value_error("step(actions): actions has shape (" + shape + "), expected (" +
+                          std::to_string(n) + ", 3): each follower's acceleration x, y, z, m/s^2");
+  }
+  std::vector<double> out(3 * static_cast<size_t>(n), 0.0);
+  for (py::ssize_t i = 0; i < n; ++i) {
+    for (py::ssize_t k = 0; k < columns; ++k) {
+      const double a = actions.at(i, k);
+      if (!std::isfinite(a))
+        throw py::value_error("step(actions): the command of follower " + std::to_string(i) +
+                              " (0-based) is not finite");
+      out[3 * i + k] = a;
+    }
+  }
+  return out;
+}
+
+// act(actions or None, steps) -> physics steps done; the GIL released while it flies.
+int64_t Act(mjf::python::DrivenSimulation& d, const std::optional<py::array_t<double>>& actions,
+            int64_t steps) {
+  if (steps < 0) throw py::value_error("steps is a number of physics steps >= 0");
+  std::vector<double> commands;
+  if (actions) commands = Commands(d.sim(), *actions);
+  py::gil_scoped_release nogil;
+  return d.Act(actions ? commands.data() : nullptr, steps);
+}
+
+// f_i(t) of every follower, (N, 6): px py vx vy ax ay (Definition 1); zeros without a shape.
+py::array_t<double> Offsets(const rn::Simulation& sim, double t) {
+  const py::ssize_t n = sim.n_followers();
+  py::array_t<double> out({n, py::ssize_t{6}});
+  std::fill(out.mutable_data(), out.mutable_data() + 6 * n, 0.0);
+  if (sim.shape() != nullptr) sim.shape()->Evaluate(t, out.mutable_data());
+  return out;
+}
+
+py::tuple Heard(const mjf::python::DrivenSimulation& d) {
+  const py::ssize_t n = d.sim().n_followers();
+  py::array_t<double> states({n, n + 1, py::ssize_t{13}}), heard({n, n + 1});
+  d.Heard(states.mutable_data(), heard.mutable_data());
+  return py::make_tuple(states, heard);
+}
+
+py::list Events(const mjf::python::DrivenSimulation& d) {
+  py::list out;
+  for (const rn::SafetyEvent& e : d.events()) {
+    out.append(py::dict(py::arg("kind") = e.kind, py::arg("time") = e.time_s,
+                        py::arg("vehicles") = e.vehicles, py::arg("value") = e.value,
+                        py::arg("text") = rn::DescribeEvent(e)));
+  }
+  return out;
+}
+
+// The same read-only view as Simulation's, over the driven simulation.
+template <typename Class>
+void BindViews(Class& c) {
+  using D = mjf::python::DrivenSimulation;
+  c.def_property_readonly("time", [](const D& d) { return d.sim().time(); })
+      .def_property_readonly("step_index", [](const D& d) { return d.sim().step_index(); })
+      .def_property_readonly("total_steps", [](const D& d) { return d.sim().total_steps(); })
+      .def_property_readonly("timestep", [](const D& d) { return d.sim().config().timestep; })
+      .def_property_readonly("n_vehicles", [](const D& d) { return d.sim().n_vehicles(); })
+      .def_property_readonly("states", [](const D& d) { return States(d.sim().states()); })
+      .def_property_readonly("measured", [](const D& d) { return States(d.sim().measured()); })
+      .def_property_readonly("setpoints", [](const D& d) { return Setpoints(d.sim()); })
+      .def_property_readonly("slots", [](const D& d) { return Slots(d.sim()); })
+      .def_property_readonly("graph", [](const D& d) { return GraphDict(d.sim()); })
+      .def_property_readonly("scene_xml", [](const D& d) { return d.sim().scene_xml(); })
+      .def_property_readonly("per_agent", [](const D& d) { return d.sim().channel() != nullptr; })
+      .def_property_readonly("law_period", [](const D& d) {
+        return d.sim().contracts().law.period;  // NaN: the law does not say
+      });
+}
+
+void BindDriven(py::module_& m) {
+  using D = mjf::python::DrivenSimulation;
+  py::class_<D> c(m, "DrivenSimulation");
+  c.def(py::init([](const std::string& path, const std::vector<std::string>& overrides,
+                    const std::vector<std::string>& plugin_path) {
+          const rn::ExperimentConfig config = Load(path, overrides, plugin_path, false);
+          py::gil_scoped_release nogil;
+          return std::make_unique<D>(config);
+        }),
+        py::arg("experiment"), py::arg("overrides"), py::arg("plugin_path"))
+      .def("act", &Act, py::arg("actions"), py::arg("steps"))
+      .def(
+          "offsets", [](const D& d, double t) { return Offsets(d.sim(), t); }, py::arg("t"))
+      .def("heard", &Heard)
+      .def_property_readonly("events", &Events);
+  BindViews(c);
+}
+
 void RegisterExceptions(py::module_& m) {
   static py::exception<rn::SimulationError> simulation_error(m, "SimulationError",
                                                              PyExc_RuntimeError);
@@ -371,4 +475,5 @@ PYBIND11_MODULE(_core, m) {
     return d;
   });
   BindSimulation(m);
+  BindDriven(m);
 }

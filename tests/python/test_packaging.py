@@ -19,6 +19,8 @@ def test_pyproject_pins_are_requirements_pins(source):
     required = pins((source / "requirements.txt").read_text().splitlines())
     project = tomllib.loads((source / "pyproject.toml").read_text())
     listed = project["build-system"]["requires"] + project["project"]["dependencies"]
+    for extra in project["project"].get("optional-dependencies", {}).values():
+        listed = listed + extra
     assert all("==" in item for item in listed), listed
     given = pins(listed)
     assert given and len(given) == len(listed)

@@ -53,7 +53,7 @@ ControlTick::~ControlTick() {
 void ControlTick::Run(int64_t step, const std::vector<mjfVehicleState>& truth,
                       const struct mjModel_* model, const struct mjData_* data) {
   RunSwarmStages(step, truth, model, data);
-  RunAttitude(0, n_vehicles(), plugin_error_.data(), plugin_error_.size());
+  RunAttitude();
 }
 
 void ControlTick::RunSwarmStages(int64_t step, const std::vector<mjfVehicleState>& truth,
@@ -182,6 +182,19 @@ void ControlTick::RequireFiniteSetpoints(double time) const {
                                        : *plugins_.follower_guidance[i - 1];
     throw SimulationError(TimeTag(time) + ": plugin '" + writer.descriptor().name +
                           "' wrote a non-finite setpoint for vehicle " + std::to_string(i));
+  }
+}
+
+void ControlTick::CommandFollowers(const double* acc) {
+  for (int i = 1; i < n_vehicles(); ++i) {
+    for (int k = 0; k < 3; ++k) {
+      const double a = acc[3 * (i - 1) + k];
+      if (!std::isfinite(a)) {
+        throw SimulationError(TimeTag(tick_ctx_.time) + ": the command of follower " +
+                              std::to_string(i) + " is not finite");
+      }
+      setpoints_[i].acc[k] = a;
+    }
   }
 }
 

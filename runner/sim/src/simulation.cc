@@ -222,6 +222,11 @@ void Simulation::AdaptForeignVehicle(const mjfPlugin& attitude) {
 }
 
 void Simulation::ComputeControls() {
+  ComputeSetpoints();
+  ComputeActuation();
+}
+
+void Simulation::ComputeSetpoints() {
   ClearMujocoWarning();
   if (partitions_) {
     // The partitions' controls and forces are handed over in Integrate, on their threads; the
@@ -230,6 +235,16 @@ void Simulation::ComputeControls() {
     whole_data_stale_ = true;
     tick_->RunSwarmStages(step_, truth_, reinterpret_cast<const struct mjModel_*>(model_.get()),
                           nullptr);
+    return;
+  }
+  mj_step1(model_.get(), data_.get());
+  ReadTrueStates(data_.get(), bindings_, &truth_);
+  tick_->RunSwarmStages(step_, truth_, reinterpret_cast<const struct mjModel_*>(model_.get()),
+                        reinterpret_cast<const struct mjData_*>(data_.get()));
+}
+
+void Simulation::ComputeActuation() {
+  if (partitions_) {
     // Each vehicle's attitude plugin on its partition's thread (they share nothing).
     partitions_->ForEachRange(
         [](void* tick, int first, int count, char* error, size_t size) {
@@ -239,10 +254,7 @@ void Simulation::ComputeControls() {
     if (!force_stages_.empty()) ComputeForces();
     return;
   }
-  mj_step1(model_.get(), data_.get());
-  ReadTrueStates(data_.get(), bindings_, &truth_);
-  tick_->Run(step_, truth_, reinterpret_cast<const struct mjModel_*>(model_.get()),
-             reinterpret_cast<const struct mjData_*>(data_.get()));
+  tick_->RunAttitude();
   if (actuation_->UsesAppliedForces() || !force_stages_.empty()) {
     mju_zero(data_->qfrc_applied, model_->nv);
   }

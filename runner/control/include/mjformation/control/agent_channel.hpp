@@ -52,6 +52,9 @@ class AgentChannel {
                  const std::vector<mjfVehicleState>& measured,
                  const std::vector<mjfSetpoint>& setpoints);
   const mjfAgentInput& Input(int follower, int round);
+  // What follower i was last handed (its inbox and leader message as of its last call): what
+  // it knows of its neighbours, read after the tick without fetching anything again.
+  const mjfAgentInput& LastInput(int follower) const { return routing_.input(follower); }
   // After every follower ran round `round`; setpoints: the bus (inputs of the next broadcast).
   void EndRound(int round, const std::vector<mjfSetpoint>& setpoints);
 

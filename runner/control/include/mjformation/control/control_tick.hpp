@@ -57,6 +57,13 @@ class ControlTick {
   void RunSwarmStages(int64_t step, const std::vector<mjfVehicleState>& truth,
                       const struct mjModel_* model, const struct mjData_* data);
   void RunAttitude(int first, int count, char* error, size_t error_size);
+  // Every vehicle's attitude plugin, after RunSwarmStages (Run is the two in a row).
+  void RunAttitude() { RunAttitude(0, n_vehicles(), plugin_error_.data(), plugin_error_.size()); }
+  // Replaces the followers' horizontal commands the formation stage wrote, between
+  // RunSwarmStages and RunAttitude: acc[3 * (i - 1) + k] becomes setpoint i's acc[k] (followers
+  // i = 1..N; k = 0, 1 the horizontal command, 2 the vertical feedforward on the altitude hold).
+  // The formation stage's slots (pos, vel) stay. Throws SimulationError on a non-finite value.
+  void CommandFollowers(const double* acc);
 
   // The tick's state, what one Run leaves for the next: the setpoint bus, then each plugin
   // instance's declared state (leader, formation, follower guidance, per-agent formation,

@@ -42,8 +42,17 @@ class Simulation {
   Simulation& operator=(const Simulation&) = delete;
 
   // Computes sensors (mj_step1), runs the control tick and hands the controls and external
-  // forces to MuJoCo. Throws SimulationError.
+  // forces to MuJoCo. Throws SimulationError. The same as ComputeSetpoints, ComputeActuation.
   void ComputeControls();
+  // The tick in two parts, so that a caller can command the followers in between
+  // (CommandFollowers; the Python environments): the true states, the sensors, the leader
+  // and the formation stage; then the attitude plugins, actuation and external forces.
+  void ComputeSetpoints();
+  void ComputeActuation();
+  // Between ComputeSetpoints and ComputeActuation: the followers' acceleration commands,
+  // [follower][3] (x, y horizontal; z the feedforward on the altitude hold), in place of the
+  // formation stage's (ControlTick::CommandFollowers).
+  void CommandFollowers(const double* acc) { tick_->CommandFollowers(acc); }
   // Integrates one step (mj_step2) and checks the new state: non-finite values or MuJoCo
   // warnings throw SimulationError.
   void Integrate();

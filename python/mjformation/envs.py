@@ -1,0 +1,268 @@
+# Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+"""Learning environments over any experiment file (docs/PYTHON.md, "Environments").
+
+    from mjformation.envs import FormationParallelEnv, FormationEnv
+    env = FormationParallelEnv("experiments/exp2.toml")      # PettingZoo: agents = followers
+    obs, infos = env.reset(seed=0)
+    obs, rewards, terminations, truncations, infos = env.step(env.law_actions())
+
+Both fly the runner's own simulation (mjformation.Simulation after reset(seed)): the same
+vehicles, attitude plugins, sensors, network, wind and safety events as `mjformation run`;
+stepped with the formation law's own commands they fly the runner's flight bit for bit.
+gymnasium and pettingzoo are pinned in requirements.txt; only this module imports them.
+"""
+
+from __future__ import annotations
+
+from typing import Callable
+
+import numpy as np
+import gymnasium
+from gymnasium import spaces
+from pettingzoo import ParallelEnv
+
+from . import STATE_COLUMNS, Simulation, SimulationError
+
+STATE = len(STATE_COLUMNS)  # 13
+OFFSET = 6  # f_i(t): px py vx vy ax ay
+NEIGHBOUR = STATE + OFFSET + 1  # a neighbour's state, its offset, heard (1) or not (0)
+TERMINATE_ON = ("flip", "ground_impact", "collision")
+
+
+def observation_layout(max_neighbours: int) -> dict:
+    """Where each part of a follower's observation vector lies (slices)."""
+    own, offset = slice(0, STATE), slice(STATE, STATE + OFFSET)
+    lead = STATE + OFFSET
+    layout = {"own": own, "offset": offset, "leader": slice(lead, lead + STATE),
+              "leader_heard": slice(lead + STATE, lead + STATE + 1)}
+    start = lead + STATE + 1
+    layout["neighbours"] = slice(start, start + NEIGHBOUR * max_neighbours)
+    layout["size"] = start + NEIGHBOUR * max_neighbours
+    return layout
+
+
+class _Swarm:
+    """What both environments share: the simulation, the per-follower observation vectors, the
+    reward and the episode's end."""
+
+    def __init__(self, experiment, set=None, plugin_path=None, action_steps=None,
+                 accel_max=5.0, vertical_max=2.0, terminate_on=TERMINATE_ON,
+                 crash_penalty=10.0, velocity_weight=0.1, truth=False):
+        self.sim = Simulation(experiment, set=set, plugin_path=plugin_path, driven=True)
+        self.n = self.sim.n_vehicles - 1
+        self._action_steps = action_steps
+        self.terminate_on = tuple(terminate_on)
+        self.crash_penalty = float(crash_penalty)
+        self.velocity_weight = float(velocity_weight)
+        self.truth = truth
+        adjacency = self.sim.graph.adjacency
+        hears = [np.flatnonzero(adjacency[i] > 0) for i in range(self.n)]
+        self.max_neighbours = max([len(h) for h in hears] + [0])
+        self.neighbours = np.full((self.n, self.max_neighbours), -1, dtype=np.int64)
+        for i, h in enumerate(hears):
+            self.neighbours[i, :len(h)] = h
+        self.layout = observation_layout(self.max_neighbours)
+        self.observation_space = spaces.Box(-np.inf, np.inf, (self.layout["size"],), np.float64)
+        bound = np.array([accel_max, accel_max, vertical_max], dtype=np.float64)
+        self.action_space = spaces.Box(-bound, bound, (3,), np.float64)
+        self.events_seen = 0
+        self.steps = 0
+
+    @property
+    def action_steps(self) -> int:
+        return self._action_steps or self.sim.action_steps
+
+    def reset(self, seed: int) -> dict:
+        self.sim.reset(seed)
+        self.events_seen = 0
+        self.steps = 0
+        return self.sim.observe(truth=self.truth)
+
+    def vectors(self, obs: dict) -> np.ndarray:
+        """(N, size): each follower's observation (observation_layout)."""
+        out = np.zeros((self.n, self.layout["size"]))
+        out[:, self.layout["own"]] = obs["own"]
+        out[:, self.layout["offset"]] = obs["offsets"]
+        out[:, self.layout["leader"]] = obs["heard"][:, 0]
+        out[:, self.layout["leader_heard"]] = obs["heard_mask"][:, :1]
+        if self.max_neighbours:
+            idx = np.maximum(self.neighbours, 0)
+            rows = np.arange(self.n)[:, None]
+            valid = (self.neighbours >= 0).astype(float)
+            block = np.concatenate([obs["heard"][rows, idx + 1] * valid[..., None],
+                                    obs["offsets"][idx] * valid[..., None],
+                                    (obs["heard_mask"][rows, idx + 1] * valid)[..., None]],
+                                   axis=2)
+            out[:, self.layout["neighbours"]] = block.reshape(self.n, -1)
+        return out
+
+    def rewards(self) -> np.ndarray:
+        """-(|slot error| + velocity_weight |slot velocity error|), true states, horizontal."""
+        x = self.sim.states
+        f = self.sim.offsets()
+        e_p = x[1:, 0:2] - x[0, 0:2] - f[:, 0:2]
+        e_v = x[1:, 3:5] - x[0, 3:5] - f[:, 2:4]
+        return -(np.linalg.norm(e_p, axis=1) + self.velocity_weight * np.linalg.norm(e_v, axis=1))
+
+    def advance(self, actions: np.ndarray):
+        """Flies one environment step; returns (obs or None, rewards, terminated, truncated,
+        info)."""
+        info = {}
+        try:
+            obs = self.sim.step(actions, steps=self.action_steps)
+        except SimulationError as e:
+            info["error"] = str(e)
+            return None, np.full(self.n, -self.crash_penalty), True, False, info
+        self.steps += 1
+        rewards = self.rewards()
+        events = self.sim.events
+        fresh, self.events_seen = events[self.events_seen:], len(events)
+        ending = [e for e in fresh if e["kind"] in self.terminate_on]
+        for e in ending:
+            for v in e["vehicles"]:
+                if v > 0:
+                    rewards[v - 1] -= self.crash_penalty
+        if fresh:
+            info["events"] = fresh
+        truncated = self.sim.step_index >= self.sim.total_steps
+        return obs, rewards, bool(ending), truncated, info
+
+
+class FormationParallelEnv(ParallelEnv):
+    """PettingZoo ParallelEnv over an experiment: one agent per follower ("uav1".."uavN", the
+    timeseries.csv names), every agent's action its acceleration command (x, y, vertical
+    feedforward; m/s^2, world frame), held for action_steps physics steps (default: the
+    formation law's sample period, else one step). See docs/PYTHON.md for the observation,
+    reward, termination and truncation."""
+
+    metadata = {"name": "mjformation_formation_v0", "render_modes": []}
+
+    def __init__(self, experiment, set=None, plugin_path=None, action_steps=None, accel_max=5.0,
+                 vertical_max=2.0, terminate_on=TERMINATE_ON, crash_penalty=10.0,
+                 velocity_weight=0.1, truth=False):
+        self.swarm = _Swarm(experiment, set, plugin_path, action_steps, accel_max, vertical_max,
+                            terminate_on, crash_penalty, velocity_weight, truth)
+        self.possible_agents = [f"uav{i + 1}" for i in range(self.swarm.n)]
+        self.agents = list(self.possible_agents)
+        self.render_mode = None
+        self._rng = np.random.default_rng()
+        self._obs = None
+
+    def observation_space(self, agent):
+        return self.swarm.observation_space
+
+    def action_space(self, agent):
+        return self.swarm.action_space
+
+    @property
+    def sim(self) -> Simulation:
+        return self.swarm.sim
+
+    def _observations(self, obs: dict) -> tuple[dict, dict]:
+        self._obs = obs
+        vectors = self.swarm.vectors(obs)
+        info = {"time": obs["time"]}
+        if "truth" in obs:
+            info["truth"] = obs["truth"]
+        return ({a: vectors[i] for i, a in enumerate(self.possible_agents)},
+                {a: dict(info) for a in self.possible_agents})
+
+    def reset(self, seed=None, options=None):
+        """seed: the run's [run] seed; None: one drawn from the generator the last seed set."""
+        if seed is not None:
+            self._rng = np.random.default_rng(seed)
+        run_seed = int(seed) if seed is not None else int(self._rng.integers(0, 2**31))
+        self.agents = list(self.possible_agents)
+        return self._observations(self.swarm.reset(run_seed))
+
+    def law_actions(self) -> dict:
+        """The experiment's formation law's commands for this tick, per agent (float64)."""
+        law = self._obs["law_actions"]
+        return {a: law[i].copy() for i, a in enumerate(self.possible_agents)}
+
+    def step(self, actions: dict):
+        commands = self._obs["law_actions"].copy()  # an agent without an action flies the law
+        for i, a in enumerate(self.possible_agents):
+            if a in actions:
+                commands[i] = np.asarray(actions[a], dtype=np.float64)
+        obs, rewards, terminated, truncated, info = self.swarm.advance(commands)
+        if obs is None:
+            observations = {a: np.zeros(self.swarm.layout["size"]) for a in self.agents}
+            infos = {a: dict(info) for a in self.agents}
+        else:
+            observations, infos = self._observations(obs)
+            for a in infos:
+                infos[a].update(info)
+        agents = self.agents
+        result = (observations, {a: float(rewards[i]) for i, a in enumerate(agents)},
+                  {a: terminated for a in agents}, {a: truncated and not terminated for a in agents},
+                  infos)
+        if terminated or truncated:
+            self.agents = []
+        return result
+
+    def render(self):
+        return None
+
+    def close(self):
+        pass
+
+
+class FormationEnv(gymnasium.Env):
+    """Gymnasium Env over an experiment: one learning follower (`follower`, 0-based; agent
+    "uav<follower + 1>"), the others flown by `others`: None (default) the experiment's own
+    formation law (Exp 2's: smc_discrete, eq. (48)), or a callable others(obs) -> (N, 3)
+    commands, obs being Simulation.observe()'s dict (the learner's row is replaced). The same
+    observation, action, reward and episode end as FormationParallelEnv, for that follower."""
+
+    metadata = {"render_modes": []}
+
+    def __init__(self, experiment, follower: int = 0, others: Callable | None = None, set=None,
+                 plugin_path=None, action_steps=None, accel_max=5.0, vertical_max=2.0,
+                 terminate_on=TERMINATE_ON, crash_penalty=10.0, velocity_weight=0.1, truth=False):
+        self.swarm = _Swarm(experiment, set, plugin_path, action_steps, accel_max, vertical_max,
+                            terminate_on, crash_penalty, velocity_weight, truth)
+        if not 0 <= follower < self.swarm.n:
+            raise ValueError(f"follower={follower}: the experiment has followers 0..{self.swarm.n - 1}")
+        self.follower = follower
+        self.others = others
+        self.observation_space = self.swarm.observation_space
+        self.action_space = self.swarm.action_space
+        self.render_mode = None
+        self._obs = None
+
+    @property
+    def sim(self) -> Simulation:
+        return self.swarm.sim
+
+    def _info(self, obs: dict) -> dict:
+        info = {"time": obs["time"]}
+        if "truth" in obs:
+            info["truth"] = obs["truth"]
+        return info
+
+    def reset(self, *, seed=None, options=None):
+        """seed: the run's [run] seed; None: one drawn from the generator the last seed set."""
+        super().reset(seed=seed)
+        run_seed = int(seed) if seed is not None else int(self.np_random.integers(0, 2**31))
+        self._obs = self.swarm.reset(run_seed)
+        return self.swarm.vectors(self._obs)[self.follower], self._info(self._obs)
+
+    def law_action(self) -> np.ndarray:
+        """The experiment's formation law's command for the learner at this tick."""
+        return self._obs["law_actions"][self.follower].copy()
+
+    def step(self, action):
+        if self.others is None:
+            commands = self._obs["law_actions"].copy()
+        else:
+            commands = np.array(self.others(self._obs), dtype=np.float64).reshape(self.swarm.n, 3)
+        commands[self.follower] = np.asarray(action, dtype=np.float64)
+        obs, rewards, terminated, truncated, info = self.swarm.advance(commands)
+        reward = float(rewards[self.follower])
+        if obs is None:
+            return np.zeros(self.swarm.layout["size"]), reward, True, False, info
+        self._obs = obs
+        info.update(self._info(obs))
+        return (self.swarm.vectors(obs)[self.follower], reward, terminated,
+                truncated and not terminated, info)

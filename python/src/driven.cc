@@ -1,0 +1,69 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+#include "driven.hpp"
+
+#include <cstring>
+
+#include "mjformation/control/agent_channel.hpp"
+#include "mjformation/record/recorders.hpp"
+
+namespace mjf::python {
+namespace rn = mjf::runner;
+
+namespace {
+
+constexpr int kStateSize = 13;  // pos 3, vel 3, quat 4, gyro 3 (mjfVehicleState)
+
+void CopyState(const mjfVehicleState& s, double* out) {
+  std::memcpy(out, &s, kStateSize * sizeof(double));
+}
+
+}  // namespace
+
+DrivenSimulation::DrivenSimulation(const rn::ExperimentConfig& config)
+    : sim_(std::make_unique<rn::Simulation>(config)) {
+  monitor_ = std::make_unique<rn::SafetyMonitor>(config.safety, rn::VehicleRadii(*sim_));
+  sim_->ComputeSetpoints();
+  monitor_->Check(sim_->time(), sim_->states());
+}
+
+// The runner's loop (run.cc StepLoop) is ComputeControls, record, Integrate; here the tick is
+// split around the commands, and the safety check sees the states the recorders would.
+int64_t DrivenSimulation::Act(const double* commands, int64_t steps) {
+  int64_t done = 0;
+  for (; done < steps && sim_->step_index() < sim_->total_steps(); ++done) {
+    if (commands != nullptr) sim_->CommandFollowers(commands);
+    sim_->ComputeActuation();
+    sim_->Integrate();
+    sim_->ComputeSetpoints();
+    monitor_->Check(sim_->time(), sim_->states());
+  }
+  return done;
+}
+
+void DrivenSimulation::Heard(double* states, double* heard) const {
+  const int n = sim_->n_followers();
+  const size_t row = static_cast<size_t>(n) + 1;
+  std::memset(states, 0, sizeof(double) * n * row * kStateSize);
+  std::memset(heard, 0, sizeof(double) * n * row);
+  auto put = [&](int follower, int vehicle, const mjfVehicleState& s) {
+    const size_t at = follower * row + vehicle;
+    CopyState(s, states + at * kStateSize);
+    heard[at] = 1.0;
+  };
+  if (const rn::AgentChannel* channel = sim_->channel()) {
+    for (int i = 0; i < n; ++i) {
+      const mjfAgentInput& in = channel->LastInput(i);
+      if (in.leader != nullptr) put(i, 0, in.leader->state);
+      for (int m = 0; m < in.n_messages; ++m) put(i, in.messages[m].sender, in.messages[m].state);
+    }
+    return;
+  }
+  const rn::ExperimentConfig& c = sim_->config();
+  const auto& measured = sim_->measured();
+  for (int i = 0; i < n; ++i) {
+    if (c.leader_weight[i] > 0) put(i, 0, measured[0]);
+  }
+  for (const auto& e : c.edges) put(e.to, e.from + 1, measured[e.from + 1]);
+}
+
+}  // namespace mjf::python

@@ -1,0 +1,51 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// A simulation driven from outside, one command at a time (Simulation.reset / step(actions) and
+// the environments of mjformation.envs, docs/PYTHON.md). It stands between the two parts of a
+// tick: the sensors, the leader and the formation stage have run for time(), so what each
+// follower knows is there, and the formation law's own commands are on the bus; Act() replaces
+// the followers' commands (or keeps the law's), runs the attitude plugins and integrates,
+// for as many physics steps as asked, each followed by the next tick's first part and the
+// runner's safety check. Flying the law's own commands is the runner's flight, bit for bit.
+#ifndef MJFORMATION_PYTHON_DRIVEN_HPP_
+#define MJFORMATION_PYTHON_DRIVEN_HPP_
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "mjformation/config/experiment.hpp"
+#include "mjformation/record/safety_events.hpp"
+#include "mjformation/sim/simulation.hpp"
+
+namespace mjf::python {
+
+class DrivenSimulation {
+ public:
+  // Builds the simulation and runs the first part of its tick at t = 0. Throws as Simulation.
+  explicit DrivenSimulation(const runner::ExperimentConfig& config);
+
+  // Up to `steps` physics steps (fewer at the experiment's end) with the followers' commands
+  // `commands` ([follower][3]: acceleration x, y and the vertical feedforward, m/s^2, world
+  // frame) held, or the formation law's own when null. Returns the steps done. Throws
+  // SimulationError (a non-finite command or state, a plugin's failure).
+  int64_t Act(const double* commands, int64_t steps);
+
+  runner::Simulation& sim() { return *sim_; }
+  const runner::Simulation& sim() const { return *sim_; }
+  // The safety events seen so far (flip, ground impact, collision, ...), checked every step.
+  const std::vector<runner::SafetyEvent>& events() const { return monitor_->events(); }
+  // What each follower i holds of vehicle v (0 the leader, 1..N the followers):
+  // states[(i * (N + 1) + v) * 13 ..] and heard[i * (N + 1) + v] = 1, else zeros. Central
+  // execution: the measured states of the vehicles it hears in the graph (an ideal network);
+  // per-agent execution: the newest messages it was handed through [network].
+  void Heard(double* states, double* heard) const;
+
+ private:
+  std::unique_ptr<runner::Simulation> sim_;
+  std::unique_ptr<runner::SafetyMonitor> monitor_;
+};
+
+}  // namespace mjf::python
+
+#endif  // MJFORMATION_PYTHON_DRIVEN_HPP_

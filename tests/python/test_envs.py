@@ -1,0 +1,140 @@
+# Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+"""Driving the simulation from outside (Simulation.reset / step(actions)) and the learning
+environments of mjformation.envs: the runner's flight bit for bit under the law's own commands,
+determinism under reset(seed), what a follower knows, the episode's end, the API checkers."""
+
+import warnings
+
+import numpy as np
+import pytest
+
+import mjformation
+from conftest import short
+from mjformation.envs import FormationEnv, FormationParallelEnv
+
+
+def noisy(duration):
+    """A short Exp 2 with seeded sensor noise: the seed matters."""
+    return {**short(duration), "sensors.preset": "typical"}
+
+
+def test_the_laws_own_commands_fly_the_runners_flight_bit_for_bit(exp2, tmp_path):
+    # Given the runner's own loop (Simulation stepped by its law) and a driven one, with noise
+    overrides = noisy(0.5)
+    runner = mjformation.Simulation(exp2, set=overrides)
+    driven = mjformation.Simulation(exp2, set=overrides, driven=True)
+    assert driven.action_steps == 50  # smc_discrete's T = 0.05 s
+    assert np.array_equal(driven.states, runner.states)
+    # When the driven one flies the law's commands each step (T held)
+    while driven.step_index < driven.total_steps:
+        driven.step(driven.law_actions)
+        runner.step(driven.step_index - runner.step_index)
+        # Then every state and setpoint is the runner's, bit for bit
+        assert np.array_equal(driven.states, runner.states), driven.time
+        assert np.array_equal(driven.measured, runner.measured), driven.time
+        assert np.array_equal(driven.setpoints, runner.setpoints, equal_nan=True), driven.time
+    # And the CLI's run records the same flight (its 9-digit rows)
+    ts = mjformation.run(exp2, set=overrides, out=tmp_path / "r").timeseries
+    for v in range(7):
+        for k, col in enumerate(("px", "py", "vx")):
+            assert driven.states[v, [0, 1, 3][k]] == pytest.approx(ts[f"uav{v}_{col}"][-1],
+                                                                 rel=1e-8, abs=1e-9)
+
+
+def test_reset_with_a_seed_repeats_the_flight_and_another_seed_does_not(exp2):
+    sim = mjformation.Simulation(exp2, set=noisy(0.3), driven=True)
+    push = np.tile([0.5, -0.2, 0.0], (6, 1))
+
+    def fly(seed):
+        sim.reset(seed=seed)
+        out = []
+        for _ in range(4):
+            out.append(sim.step(push, steps=25)["own"])
+        return np.array(out)
+
+    first = fly(3)
+    assert np.array_equal(first, fly(3))
+    assert not np.array_equal(first, fly(4))  # the sensors' noise is seeded by [run] seed
+
+
+def test_a_follower_knows_what_the_graph_lets_it_hear(exp2):
+    # Exp 2: follower 0 hears the leader and followers 1 and 5 (0-based); follower 3 hears 2, 4
+    sim = mjformation.Simulation(exp2, set=short(0.2), driven=True)
+    obs = sim.observe()
+    assert obs["heard_mask"][0].tolist() == [1, 0, 1, 0, 0, 0, 1]
+    assert obs["heard_mask"][3].tolist() == [0, 0, 0, 1, 0, 1, 0]
+    assert np.array_equal(obs["heard"][3, 3], sim.measured[3])
+    assert not obs["heard"][3, 0].any()
+    assert "truth" not in obs and np.array_equal(sim.observe(truth=True)["truth"], sim.states)
+    assert np.array_equal(obs["own"], sim.measured[1:])
+
+
+def test_per_agent_execution_observes_the_messages_of_the_network(exp2):
+    # Given per-agent execution over a network whose messages take 20 ms
+    overrides = {**short(0.2), "execution.mode": "per_agent", "network.latency": 0.02}
+    sim = mjformation.Simulation(exp2, set=overrides, driven=True)
+    sim.step(sim.law_actions, steps=100)
+    obs = sim.observe()
+    # Then what follower 3 holds of follower 2 is older than follower 2's own measurement
+    assert obs["heard_mask"][3].tolist() == [0, 0, 0, 1, 0, 1, 0]
+    assert not np.array_equal(obs["heard"][3, 3], sim.measured[3])
+
+
+def test_commands_are_checked_and_a_made_simulation_is_not_driven(exp2):
+    sim = mjformation.Simulation(exp2, set=short(0.2))
+    with pytest.raises(RuntimeError, match="reset"):
+        sim.step(np.zeros((6, 3)))
+    sim.reset(seed=1)
+    with pytest.raises(ValueError, match=r"shape \(6, 4\), expected \(6, 3\)"):
+        sim.step(np.zeros((6, 4)))
+    bad = np.zeros((6, 3))
+    bad[2, 1] = np.nan
+    with pytest.raises(ValueError, match="follower 2"):
+        sim.step(bad)
+
+
+def test_a_ground_impact_ends_the_episode(exp2):
+    env = FormationParallelEnv(exp2, set=short(4.0))
+    env.reset(seed=0)
+    actions = env.law_actions()
+    actions["uav2"] = np.array([0.0, 0.0, -30.0])  # the vertical feedforward cuts its thrust
+    for _ in range(80):
+        _, rewards, terminations, truncations, infos = env.step(actions)
+        if terminations["uav2"]:
+            break
+    assert terminations["uav2"] and not truncations["uav2"] and env.agents == []
+    kinds = {e["kind"] for e in infos["uav2"]["events"]}
+    assert kinds & {"ground_impact", "flip", "collision"}
+    assert rewards["uav2"] < rewards["uav1"] - 5  # the crash penalty
+
+
+def test_the_parallel_env_flown_by_the_law_is_the_runners_flight(exp2):
+    env = FormationParallelEnv(exp2, set=noisy(0.3))
+    runner = mjformation.Simulation(exp2, set=noisy(0.3))
+    obs, _ = env.reset(seed=1)  # the experiment's own seed
+    assert np.array_equal(obs["uav1"][:13], runner.measured[1])
+    done = False
+    while not done:
+        _, _, terminations, truncations, _ = env.step(env.law_actions())
+        runner.step(env.sim.step_index - runner.step_index)
+        assert np.array_equal(env.sim.states, runner.states)
+        done = truncations["uav1"] or terminations["uav1"]
+    assert truncations["uav1"] and env.sim.time == pytest.approx(0.3)
+
+
+def test_the_gymnasium_env_passes_its_checker(exp2):
+    from gymnasium.utils.env_checker import check_env
+
+    env = FormationEnv(exp2, follower=2, set=short(0.5))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # float64 spaces: kept for the bit-exact commands
+        check_env(env, skip_render_check=True)
+    obs, _ = env.reset(seed=5)
+    obs2, reward, terminated, truncated, info = env.step(env.law_action())
+    assert obs.shape == env.observation_space.shape and reward < 0 and not terminated
+
+
+def test_the_parallel_env_passes_pettingzoos_api_test(exp2):
+    from pettingzoo.test import parallel_api_test
+
+    parallel_api_test(FormationParallelEnv(exp2, set=short(0.5)), num_cycles=20)
