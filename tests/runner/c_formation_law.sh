@@ -35,7 +35,8 @@ phase_step = 2.0943951023931953
 [attitude]
 plugin = "pointmass_direct"
 T
-"$bin" plugins --plugin-path "$plugins" | grep -q "example_consensus_c  -  consensus formation"
+"$bin" plugins --plugin-path "$plugins" > "$work/plugins.txt"
+grep -q "example_consensus_c  -  consensus formation" "$work/plugins.txt"
 "$bin" run "$work/c_law.toml" --out "$work/run" --plugin-path "$plugins" --no-render -q
 python3 - "$work/run/summary.json" <<'PY'
 import json, sys
@@ -44,7 +45,7 @@ m = s["metrics"] if "metrics" in s else s
 assert s["complete"], s.get("error")
 assert s["plugins"]["formation"]["name"] == "example_consensus_c", s["plugins"]["formation"]
 initial, final = m["sigma_f_initial"], m["sigma_f_final"]
-assert final < 0.05 * initial and final < 0.5, (initial, final)
+assert final < 0.05 * initial and final < 1.0, (initial, final)  # the lag of a law without u_0
 print(f"example_consensus_c: sigma_f {initial:.3g} -> {final:.3g}")
 PY
 # A bad gain is refused with the plugin's own one-line reason.
