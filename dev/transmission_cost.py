@@ -7,7 +7,7 @@
 Composes N copies of mjcf/quadrotor.xml with mjSpec (contacts off, Euler, 1 ms), steps each
 model 100 times with constant controls and prints steps/s and MuJoCo's own stage timers
 (mjData.timer). The difference between the two models is the rotors' site transmissions:
-docs/PERFORMANCE.md, "The wrench rotor model on MuJoCo 4".
+docs/PERFORMANCE.md, "What the figures mean" (use the wrench rotor model for large swarms).
 """
 import sys
 import time

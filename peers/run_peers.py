@@ -2,14 +2,16 @@
 # Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 """The peers harness (issue 37, docs/PEERS.md): mjformation beside RotorPy, PyFlyt and Crazyflow.
 
-  /usr/bin/python3 peers/run_peers.py --build build            # everything -> docs/PEERS.md
+  /usr/bin/python3 peers/run_peers.py --build build            # everything -> peers/out/PEERS.md
+  /usr/bin/python3 peers/run_peers.py --build build --doc      # ... and the tracked docs/PEERS.md
   /usr/bin/python3 peers/run_peers.py --build build --sizes 7 --repeats 3 --batch-worlds 0   # quicker
 
 Installs each peer into its own virtual environment (peers/.envs/NAME) from its pinned lock
 (peers/locks/NAME.txt), runs each in its own process (peers/workers/worker_NAME.py) with
 single-threaded BLAS/XLA, times mjformation's runner (BUILD/runner/mjformation) on the same
-workloads in the same invocation, runs the dynamics tiers, writes peers/out/results.json, the
-divergence figure and docs/PEERS.md. Not part of CI: it installs from a registry."""
+workloads in the same invocation, runs the dynamics tiers, writes OUT/results.json (OUT:
+--out, default peers/out), the report OUT/PEERS.md and its divergence figure beside it (with --doc,
+docs/PEERS.md and docs/peers_divergence.png instead). Not part of CI: it installs from a registry."""
 
 import argparse
 import datetime
@@ -163,7 +165,7 @@ def machine():
             "loadavg": os.getloadavg()}
 
 
-def main(argv=None):
+def parse_args(argv):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--build", default=str(ROOT / "build"), help="mjformation build folder (BUILD/runner/mjformation)")
     ap.add_argument("--binary", help="the runner itself (overrides --build)")
@@ -175,105 +177,207 @@ def main(argv=None):
     ap.add_argument("--duration", type=float, default=40.0, help="simulated seconds per run")
     ap.add_argument("--wall-budget", type=float, default=120.0, help="stop a peer run after this many wall seconds")
     ap.add_argument("--python", default="/usr/bin/python3", help="interpreter the virtual environments are made from")
-    ap.add_argument("--out", default=str(HERE / "out"))
-    ap.add_argument("--doc", default=str(ROOT / "docs" / "PEERS.md"))
+    ap.add_argument("--out", default=str(HERE / "out"), help="folder of results.json, PEERS.md and the figure")
+    ap.add_argument("--doc", nargs="?", const=str(ROOT / "docs" / "PEERS.md"),
+                    help="write the report to this file instead of OUT/PEERS.md (no FILE: the tracked "
+                         "docs/PEERS.md)")
     ap.add_argument("--batch-worlds", type=int, default=8, help="Crazyflow worlds in the batched 2-core cell (0: skip)")
     ap.add_argument("--batch-duration", type=float, default=10.0, help="simulated seconds of the batched cell")
     ap.add_argument("--skip-speed", action="store_true")
     ap.add_argument("--skip-dynamics", action="store_true")
-    ap.add_argument("--report-only", action="store_true", help="rewrite the doc from OUT/results.json")
-    args = ap.parse_args(argv)
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
-    if args.report_only:
-        import report
-        report.write(json.loads((out / "results.json").read_text()), Path(args.doc), out)
-        return 0
-    binary = args.binary or str(Path(args.build) / "runner" / "mjformation")
+    ap.add_argument("--report-only", action="store_true", help="rewrite the report from OUT/results.json")
+    return ap.parse_args(argv)
+
+
+def fail(message):
+    """One line on stderr naming the argument or file and what to do; exit status 2."""
+    return SystemExit(f"run_peers.py: {message}")
+
+
+def writable_folder(path, option):
+    """Creates `path` and checks that a file can be written in it."""
+    try:
+        path.mkdir(parents=True, exist_ok=True)
+        probe = path / ".write-check"
+        probe.write_text("")
+        probe.unlink()
+    except OSError as error:
+        raise fail(f"{option} {path}: cannot write there ({error.strerror}); name a writable folder") from None
+    return path
+
+
+def checked_inputs(args):
+    """(runner, peers, sizes) from the arguments, or a one-line refusal before anything is installed."""
+    sizes = []
+    for word in (w for w in args.sizes.split(",") if w.strip()):
+        if not word.strip().isdigit() or int(word) < 1:
+            raise fail(f"--sizes: '{word}' is not a number of vehicles; give whole numbers >= 1, e.g. --sizes 1,7,49")
+        sizes.append(int(word))
     peers = [p for p in args.peers.split(",") if p]
-    sizes = [int(s) for s in args.sizes.split(",") if s]
-    envs = HERE / ".envs"
-    envs.mkdir(exist_ok=True)
+    unknown = [p for p in peers if p not in PEERS]
+    if unknown:
+        raise fail(f"--peers: unknown peer '{unknown[0]}'; the harness knows {', '.join(PEERS)}")
+    binary = args.binary or str(Path(args.build) / "runner" / "mjformation")
+    if not (os.path.isfile(binary) and os.access(binary, os.X_OK)):
+        where = "--binary" if args.binary else f"--build {args.build}:"
+        raise fail(f"{where} no runner at {binary}; build it (cmake --build build --target mjf_product) "
+                   "or name it with --binary FILE")
+    return binary, peers, sizes
+
+
+def load_results(out):
+    """OUT/results.json of an earlier invocation, or a one-line refusal."""
+    path = out / "results.json"
+    try:
+        results = json.loads(path.read_text())
+    except FileNotFoundError:
+        raise fail(f"{path}: no results to report; run the harness without --report-only first") from None
+    except json.JSONDecodeError as error:
+        raise fail(f"{path}: line {error.lineno}: not valid JSON ({error.msg}); run the harness again "
+                   "to rewrite it") from None
+    missing = [k for k in ("speed", "dynamics", "machine", "install", "command") if k not in results]
+    if not isinstance(results, dict) or missing:
+        raise fail(f"{path}: not a results file of this harness (no '{(missing or ['speed'])[0]}'); "
+                   "run the harness again to rewrite it")
+    return results
+
+
+def write_report(results, args, out):
+    import report
+    doc = Path(args.doc) if args.doc else out / "PEERS.md"
+    try:
+        report.write(results, doc, out)
+    except OSError as error:
+        raise fail(f"{doc}: cannot write the report ({error.strerror}); name a writable file with --doc") from None
+    log(f"wrote {doc}")
+
+
+def take_lock(envs):
+    """The harness's lock, or None when another invocation holds it."""
     import fcntl
     guard = open(envs / ".harness-lock", "w")
     try:   # two invocations at once would rebuild the same environments under each other
         fcntl.flock(guard, fcntl.LOCK_EX | fcntl.LOCK_NB)
     except OSError:
         log(f"another run_peers.py holds {envs / '.harness-lock'}: wait for it to finish")
-        return 2
-    results = {"started": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
-               "command": " ".join([os.path.relpath(sys.argv[0], ROOT)] + sys.argv[1:]),
-               "machine": machine(), "binary": binary, "reference": P.REFERENCE, "derived": P.derived(),
-               "unmatched": P.unmatched(), "args": vars(args), "install": {}, "speed": [], "dynamics": {}}
-    ver = subprocess.run([binary, "--version"], capture_output=True, text=True)
-    results["mjformation_version"] = (ver.stdout or ver.stderr).strip().splitlines()[0]
+        return None
+    return guard
+
+
+KEPT_PINS = ("pyflyt", "rotorpy", "crazyflow", "drone_models", "mujoco", "numpy", "jax", "pybullet", "scipy")
+
+
+def install_all(peers, args, envs, results):
+    """{name: python} for every peer (and the mujoco reference) that installed."""
     pys = {}
     for name in peers + ["mujoco"]:
         py, err = ensure_env(name, args.python, envs)
-        results["install"][name] = {"ok": py is not None, "error": err,
-                                    "pins": [l for l in (HERE / "locks" / f"{name}.txt").read_text().split()
-                                             if l.split("==")[0].lower() in (name, "pyflyt", "rotorpy", "crazyflow", "drone_models", "mujoco", "numpy", "jax", "pybullet", "scipy")]}
+        pins = [line for line in (HERE / "locks" / f"{name}.txt").read_text().split()
+                if line.split("==")[0].lower() in KEPT_PINS + (name,)]
+        results["install"][name] = {"ok": py is not None, "error": err, "pins": pins}
         if py:
             pys[name] = py
         else:
             log(f"{name}: install failed: {err}")
+    return pys
+
+
+def dynamics_tiers(binary, model, peers, pys, out, results):
+    """Tiers (a)-(c): mjformation's composed scene in stock MuJoCo beside each peer."""
+    log("dynamics tiers")
+    toml = out / "dyn_w1.toml"
+    toml.write_text(E.experiment("W1", 2, str(model), duration=0.1))
+    rd = out / "mjf_scene"
+    subprocess.run([binary, "run", str(toml), "--out", str(rd), "--no-render", "--overwrite", "-q"],
+                   capture_output=True, text=True)
+    scene = rd / "scene.xml"
+    if "mujoco" in pys:
+        results["dynamics"]["mjformation"] = run_worker(
+            pys["mujoco"], "worker_mujoco.py", {"peer": "mjformation", "tag": "dyn",
+                                                "model": str(scene) if scene.exists() else None}, out, 600)
+    for name in peers:
+        if name in pys:
+            task = {"peer": name, "tag": "dyn", "jobs": [{"kind": "dynamics"}, {"kind": "dynamics", "bare": True}]}
+            results["dynamics"][name] = run_worker(pys[name], PEERS[name]["worker"], task, out, 1200)
+
+
+def peer_speed_cells(name, workload, n, reps, pys, out, args):
+    """The speed cells of one peer on one workload and size (its own controller, and the SMC law
+    where it takes an acceleration reference)."""
+    cells = []
+    ctrls = ["own"] + (["smc"] if workload == "W2" and PEERS[name]["hosts_law"] and n > 1 else [])
+    for ctrl in ctrls:
+        log(f"{workload} N={n}: {name} ({ctrl})")
+        job = {"kind": "speed", "workload": workload, "n": n, "controller": ctrl,
+               "duration": args.duration, "repeats": reps, "wall_budget": args.wall_budget}
+        res = run_worker(pys[name], PEERS[name]["worker"],
+                         {"peer": name, "tag": f"{workload}_{n}_{ctrl}", "jobs": [job]}, out,
+                         reps * (args.wall_budget + 120) + 300)
+        j = res["jobs"][0] if res["jobs"] else {}
+        cells.append({"sim": name, "workload": workload, "n": n, "controller": ctrl,
+                      "runs": j.get("runs", []), "physics_hz": j.get("physics_hz"),
+                      "error": j.get("error") or res.get("process_error")})
+    return cells
+
+
+def speed_tiers(binary, model, peers, sizes, pys, out, args, results):
+    """W1 and W2 at every size: mjformation's runner, then each installed peer."""
+    for n in sizes:
+        reps = args.repeats if (n == 7 or not args.repeats_other) else args.repeats_other
+        for workload in ("W1", "W2"):
+            toml = out / f"{workload}_n{n}.toml"
+            toml.write_text(E.experiment(workload, n, str(model), duration=args.duration))
+            results["machine"].setdefault("load_during", []).append(os.getloadavg())
+            log(f"{workload} N={n}: mjformation")
+            cell = {"sim": "mjformation", "workload": workload, "n": n,
+                    "controller": "smc (48)" if workload == "W2" else "hover"}
+            cell.update(mjformation_speed(binary, toml, out, workload, n, reps))
+            results["speed"].append(cell)
+            for name in (p for p in peers if p in pys):
+                results["speed"] += peer_speed_cells(name, workload, n, reps, pys, out, args)
+            save(results, out)
+
+
+def save(results, out):
+    (out / "results.json").write_text(json.dumps(results, indent=1, default=float))
+
+
+def now():
+    return datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds")
+
+
+def main(argv=None):
+    args = parse_args(argv)
+    out = writable_folder(Path(args.out), "--out")
+    if args.report_only:
+        write_report(load_results(out), args, out)
+        return 0
+    binary, peers, sizes = checked_inputs(args)
+    envs = HERE / ".envs"
+    envs.mkdir(exist_ok=True)
+    guard = take_lock(envs)
+    if guard is None:
+        return 2
+    results = {"started": now(), "command": " ".join([os.path.relpath(sys.argv[0], ROOT)] + sys.argv[1:]),
+               "machine": machine(), "binary": binary, "reference": P.REFERENCE, "derived": P.derived(),
+               "unmatched": P.unmatched(), "args": vars(args), "install": {}, "speed": [], "dynamics": {}}
+    ver = subprocess.run([binary, "--version"], capture_output=True, text=True)
+    results["mjformation_version"] = (ver.stdout or ver.stderr).strip().splitlines()[0]
+    pys = install_all(peers, args, envs, results)
     model = out / "cfref.xml"
     model.write_text(P.mjcf())
     if not args.skip_dynamics:
-        log("dynamics tiers")
-        toml = out / "dyn_w1.toml"
-        toml.write_text(E.experiment("W1", 2, str(model), duration=0.1))
-        rd = out / "mjf_scene"
-        subprocess.run([binary, "run", str(toml), "--out", str(rd), "--no-render", "--overwrite", "-q"],
-                       capture_output=True, text=True)
-        scene = rd / "scene.xml"
-        if "mujoco" in pys:
-            results["dynamics"]["mjformation"] = run_worker(
-                pys["mujoco"], "worker_mujoco.py", {"peer": "mjformation", "tag": "dyn",
-                                                    "model": str(scene) if scene.exists() else None}, out, 600)
-        for name in peers:
-            if name in pys:
-                task = {"peer": name, "tag": "dyn", "jobs": [{"kind": "dynamics"}, {"kind": "dynamics", "bare": True}]}
-                results["dynamics"][name] = run_worker(pys[name], PEERS[name]["worker"], task, out, 1200)
-        (out / "results.json").write_text(json.dumps(results, indent=1, default=float))
+        dynamics_tiers(binary, model, peers, pys, out, results)
+        save(results, out)
     if not args.skip_speed:
-        for n in sizes:
-            reps = args.repeats if (n == 7 or not args.repeats_other) else args.repeats_other
-            for workload in ("W1", "W2"):
-                toml = out / f"{workload}_n{n}.toml"
-                toml.write_text(E.experiment(workload, n, str(model), duration=args.duration))
-                results["machine"].setdefault("load_during", []).append(os.getloadavg())
-                log(f"{workload} N={n}: mjformation")
-                cell = {"sim": "mjformation", "workload": workload, "n": n,
-                        "controller": "smc (48)" if workload == "W2" else "hover"}
-                cell.update(mjformation_speed(binary, toml, out, workload, n, reps))
-                results["speed"].append(cell)
-                for name in peers:
-                    if name not in pys:
-                        continue
-                    ctrls = ["own"] + (["smc"] if workload == "W2" and PEERS[name]["hosts_law"] and n > 1 else [])
-                    for ctrl in ctrls:
-                        log(f"{workload} N={n}: {name} ({ctrl})")
-                        job = {"kind": "speed", "workload": workload, "n": n, "controller": ctrl,
-                               "duration": args.duration, "repeats": reps, "wall_budget": args.wall_budget}
-                        res = run_worker(pys[name], PEERS[name]["worker"],
-                                         {"peer": name, "tag": f"{workload}_{n}_{ctrl}", "jobs": [job]}, out,
-                                         reps * (args.wall_budget + 120) + 300)
-                        j = res["jobs"][0] if res["jobs"] else {}
-                        cell = {"sim": name, "workload": workload, "n": n, "controller": ctrl,
-                                "runs": j.get("runs", []), "physics_hz": j.get("physics_hz"),
-                                "error": j.get("error") or res.get("process_error")}
-                        results["speed"].append(cell)
-                (out / "results.json").write_text(json.dumps(results, indent=1, default=float))
+        speed_tiers(binary, model, peers, sizes, pys, out, args, results)
     if not args.skip_speed and args.batch_worlds and "crazyflow" in pys:
         results["batch"] = batch_cell(binary, pys["crazyflow"], model, out, args)
-        (out / "results.json").write_text(json.dumps(results, indent=1, default=float))
-    results["finished"] = datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds")
+        save(results, out)
+    results["finished"] = now()
     results["machine"]["loadavg_end"] = os.getloadavg()
-    (out / "results.json").write_text(json.dumps(results, indent=1, default=float))
-    import report
-    report.write(results, Path(args.doc), out)
-    log(f"wrote {args.doc}")
+    save(results, out)
+    write_report(results, args, out)
     return 0
 
 

@@ -10,5 +10,5 @@ shift || true
 bash "$root/scripts/setup.sh"
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release ${MJF_PYTHON_ENV:+-DMJF_PYTHON_ENV="$MJF_PYTHON_ENV"} \
   -DMJF_UNIT_TESTS="${MJF_UNIT_TESTS:-ON}" "$@" >/dev/null
-# MJF_BUILD_TARGET=mjformation builds the runner and its plugins only (no tests).
+# MJF_BUILD_TARGET=mjf_product builds what the README uses and cmake --install installs (no tests).
 cmake --build "$build" -j"$(nproc)" ${MJF_BUILD_TARGET:+--target "$MJF_BUILD_TARGET"}

@@ -25,7 +25,7 @@ while (($#)); do
 done
 cd "$root"  # the trajectory leader's CSV path is relative to the repository root
 start=$(date +%s)
-MJF_BUILD_TARGET=mjformation bash "$root/scripts/build.sh" "$root/build"
+MJF_BUILD_TARGET=mjf_product bash "$root/scripts/build.sh" "$root/build"
 cmake --build "$root/build" -j"$jobs" --target leader_theory_test >/dev/null
 bin=$root/build/runner/mjformation
 pointmass=(--set 'vehicles.model="pointmass"' --set 'attitude={plugin="pointmass_direct"}')

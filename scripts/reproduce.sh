@@ -27,7 +27,7 @@ while (($#)); do
   esac
   shift
 done
-MJF_BUILD_TARGET=mjformation bash "$root/scripts/build.sh" "$root/build"  # runner + plugins
+MJF_BUILD_TARGET=mjf_product bash "$root/scripts/build.sh" "$root/build"  # everything the README uses
 bin=$root/build/runner/mjformation
 mkdir -p "$out"
 experiments=(exp1_printed exp1_switching exp1_exponential exp2 exp3 consensus_baseline)

@@ -18,7 +18,7 @@ out=${1:-$root/results/robustness}
 seeds=${SEEDS:-10}
 jobs=${JOBS:-2}
 bin=${MJF_BIN:-$root/build/runner/mjformation}  # MJF_BIN: a frozen copy while the tree rebuilds
-[ -x "$bin" ] || MJF_BUILD_TARGET=mjformation bash "$root/scripts/build.sh" "$root/build"
+[ -x "$bin" ] || MJF_BUILD_TARGET=mjf_product bash "$root/scripts/build.sh" "$root/build"
 tilts=(0.25 0.35 0.45 0.55 0.65 0.78)
 tilt_list=$(IFS=,; echo "${tilts[*]}")
 declare -A plugins=(

@@ -11,7 +11,7 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 export PYTHONPATH="$root/analysis${PYTHONPATH:+:$PYTHONPATH}"
 out=${1:-$root/results/rocking}
 bin=$root/build/runner/mjformation
-[ -x "$bin" ] || MJF_BUILD_TARGET=mjformation bash "$root/scripts/build.sh" "$root/build"
+[ -x "$bin" ] || MJF_BUILD_TARGET=mjf_product bash "$root/scripts/build.sh" "$root/build"
 mkdir -p "$out/models"
 # The point mass of mjcf/pointmass.xml with lagged (dyntype filter) and optionally limited
 # horizontal force actuators; fz keeps no limit. Mass 1 kg: N = m/s^2.

@@ -516,17 +516,19 @@ def _topology_lines(runs: list[Run]) -> list[str]:
     return L
 
 
-def _discussion_lines(rows: list[Row], results_dir: Path) -> list[str]:
-    L = ["## Discussion", "", "Generated from the data:", ""]
-    L.extend(discussion(rows))
-    L.append("")
+def _findings_lines(rows: list[Row]) -> list[str]:
+    """What these runs show, generated from their data: the report's opening section."""
+    return ["## Findings", "", "Generated from the runs below (the tables and figures follow):", ""] \
+        + discussion(rows) + [""]
+
+
+def _commentary_lines(results_dir: Path) -> list[str]:
+    """The experiment authors' commentary (`discussion.md` beside the runs), after the figures."""
     disc = results_dir / "discussion.md"
-    if disc.is_file():
-        L.append("### From the experiment authors (`discussion.md`)")
-        L.append("")
-        L.append(disc.read_text().rstrip("\n"))
-        L.append("")
-    return L
+    if not disc.is_file():
+        return []
+    return ["## Commentary from the experiment authors (`discussion.md`)", "",
+            disc.read_text().rstrip("\n"), ""]
 
 
 def _run_summary_lines(r: Row) -> list[str]:
@@ -615,9 +617,11 @@ def write_report(results_dir, out_dir) -> Path:
     out_dir.mkdir(parents=True, exist_ok=True)
     fig_dir = out_dir / "figures"
     rows = [analyse(r) for r in runs]
+    # Findings and Table 1 first; the evidence, the commentary and each run's detail after.
     L = _header_lines(results_dir, out_dir, len(runs))
-    L += _runs_lines(rows)
+    L += _findings_lines(rows)
     L += _table1_lines(rows)
+    L += _runs_lines(rows)
     L += _crosscheck_lines(rows)
     L += motion_lines(rows)  # inner-loop motion: tilt, oscillation, thrust variation
     L += transient_lines(rows)
@@ -627,8 +631,8 @@ def write_report(results_dir, out_dir) -> Path:
     L += ["## σ_f(t) of all runs", "", f"![sigma_f of all runs, log scale]({_rel(comp, out_dir)})",
           ""]
     L += _topology_lines(runs)
-    L += _discussion_lines(rows, results_dir)
     L += leaders.section(results_dir, out_dir)  # non-cooperative leaders, when they were run
+    L += _commentary_lines(results_dir)
     L += ["## Runs in detail", ""]
     for r in rows:
         L += _run_summary_lines(r)

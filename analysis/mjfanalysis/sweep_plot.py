@@ -99,6 +99,18 @@ def _run_values(sweep, metric: str, keys: list[str], valid_only: bool) -> dict:
     return {k: (kept, dropped, count[0]) for k, (kept, dropped, count) in values.items()}
 
 
+def _cells_from_runs(sweep, keys: list[str], valid_only: bool) -> list[dict]:
+    """One cell per run of a sweep without --seeds: the run's metric as the mean of one run
+    (none when the run did not complete or, with valid_only, had an invalidating event)."""
+    cells = []
+    for entry in sweep.runs:
+        usable = bool(entry.get("complete")) and not (valid_only and _invalidating(entry) > 0)
+        metrics = {name: {"n": int(usable and _finite(v)), "mean": v if usable else None}
+                   for name, v in (entry.get("metrics") or {}).items()}
+        cells.append({**{k: entry.get(k) for k in keys}, "metrics": metrics})
+    return cells
+
+
 def _point(cell: dict, metric: str, x: str, runs: tuple, valid_only: bool) -> Point:
     table = cell.get("metrics_valid", cell.get("metrics_event_free")) if valid_only else None
     stats = (table if table is not None else cell.get("metrics") or {}).get(metric) or {}
@@ -111,23 +123,23 @@ def _point(cell: dict, metric: str, x: str, runs: tuple, valid_only: bool) -> Po
 def sweep_lines(sweep, metric: str = "sigma_f_mean", x: str | None = None,
                 valid_only: bool = True) -> tuple[str, list[Line]]:
     """(x, the lines) of the sweep plot of `sweep` (a mjfanalysis.io.Sweep: its path, varied,
-    runs and cells are read; not imported here, so that io.py may import this module). Raises ValueError for a sweep without cells (no --seeds),
-    one that varies nothing, an unknown x or a metric no cell has."""
+    runs and cells are read; not imported here, so that io.py may import this module). A sweep
+    without --seeds has no cells: each run is then its own point (one run, no interval). Raises
+    ValueError for a sweep that varies nothing, an unknown x or a metric no cell has."""
     keys = sweep.varied
-    if not sweep.cells:
-        raise ValueError(f"{sweep.path}: no cells (a sweep with --seeds has them): no interval")
+    cells = sweep.cells or _cells_from_runs(sweep, keys, valid_only)
     if not keys:
         raise ValueError(f"{sweep.path}: the sweep varies no parameter: nothing to plot against")
     x = x or keys[0]
     if x not in keys:
         raise ValueError(f"{sweep.path}: '{x}' is not varied (varied: {', '.join(keys)})")
-    known = sorted({m for c in sweep.cells for m in (c.get("metrics") or {})})
+    known = sorted({m for c in cells for m in (c.get("metrics") or {})})
     if metric not in known:
         raise ValueError(f"{sweep.path}: no metric '{metric}' (metrics: {', '.join(known)})")
     others = [k for k in keys if k != x]
     runs = _run_values(sweep, metric, keys, valid_only)
     lines = {}
-    for cell in sweep.cells:
+    for cell in cells:
         label = ", ".join(f"{k}={_text(cell.get(k))}" for k in others)
         line = lines.setdefault(label, Line(label))
         line.points.append(_point(cell, metric, x, runs.get(_cell_key(cell, keys), ([], [], 0)),
@@ -189,12 +201,17 @@ def plot_sweep(sweep, metric: str = "sigma_f_mean", x: str | None = None, ax=Non
     which = f"valid runs ({left_out} left out: {left_out_reason(sweep)})" if valid_only else \
         "all complete runs (safety events or not)"
     ax.set(xlabel=x, ylabel=metric,
-           title=title or f"{metric}: mean and 95 % CI per cell ({sweep.seeds} seeds)\n"
-                          f"over the {which}; dots: the runs")
+           title=title or _title(sweep, metric, which))
     ax.title.set_fontsize(9)
     ax.grid(True, alpha=0.35)
     ax.legend(fontsize=8)
     return ax
+
+
+def _title(sweep, metric: str, which: str) -> str:
+    if not sweep.cells:
+        return f"{metric}: one run per cell (no seeds: no interval)\nover the {which}"
+    return f"{metric}: mean and 95 % CI per cell ({sweep.seeds} seeds)\nover the {which}; dots: the runs"
 
 
 def left_out_reason(sweep) -> str:

@@ -12,6 +12,7 @@ the parameters the scene carries in the plugin's "formation" configuration).
 """
 import argparse
 import math
+import os
 import sys
 import tomllib
 import xml.etree.ElementTree as ET
@@ -28,9 +29,11 @@ def circle_shape(scene_path: str) -> dict:
         if config.get("key") == "formation":
             shape = tomllib.loads("f = {" + config.get("value") + "}")["f"]["shape"]
             if shape.get("type", "circle") != "circle":
-                raise SystemExit("this example computes F for a circle shape only")
+                raise SystemExit(f"fly_exported.py: {scene_path}: the formation shape is "
+                                 f"'{shape.get('type')}'; this example computes F for a circle only")
             return shape
-    raise SystemExit(f"{scene_path}: no mjformation.swarm formation configuration")
+    raise SystemExit(f"fly_exported.py: {scene_path}: no mjformation.swarm formation configuration; "
+                     "pass a scene written by `mjformation export`")
 
 
 def offsets(shape: dict, n: int, t: float) -> np.ndarray:
@@ -75,6 +78,29 @@ def fly(scene_path: str, seconds: float, every: float = 0.1):
     return np.array(times), np.array(sigma)
 
 
+def fail(message: str) -> SystemExit:
+    """One line on stderr naming what is wrong and what to do; exit status 1."""
+    return SystemExit(f"fly_exported.py: {message}")
+
+
+def check_arguments(args) -> None:
+    """Refuses what would otherwise end in a traceback after minutes of flight."""
+    if not os.path.isfile(args.scene):
+        raise fail(f"{args.scene}: no such file; write one with "
+                   "`mjformation export EXPERIMENT.toml -o DIR` and pass DIR/scene.xml")
+    try:
+        ET.parse(args.scene)
+    except ET.ParseError as error:
+        raise fail(f"{args.scene}: line {error.position[0]}: not an XML file ({error}); "
+                   "pass the scene.xml `mjformation export` wrote") from None
+    if not (math.isfinite(args.seconds) and args.seconds > 0):
+        raise fail(f"--seconds {args.seconds:g}: give a positive number of seconds")
+    if args.plot:
+        folder = os.path.dirname(os.path.abspath(args.plot))
+        if not os.path.isdir(folder) or not os.access(folder, os.W_OK):
+            raise fail(f"--plot {args.plot}: cannot write into {folder}; name a writable file")
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("scene", help="scene.xml written by `mjformation export`")
@@ -82,6 +108,15 @@ def main() -> int:
     parser.add_argument("--plot", help="write sigma_f(t) to this image")
     parser.add_argument("--viewer", action="store_true", help="open MuJoCo's viewer instead")
     args = parser.parse_args()
+    check_arguments(args)
+    try:
+        return fly_and_report(args)
+    except ValueError as error:  # MuJoCo's compiler and the plugins report through ValueError
+        raise fail(f"{args.scene}: MuJoCo refused the scene: {str(error).splitlines()[0]}") from None
+
+
+def fly_and_report(args) -> int:
+    """The viewer, or a headless flight with its sigma_f line and optional plot."""
     if args.viewer:
         from mujoco import viewer
         mujoco.mj_loadPluginLibrary(mjformation.native_plugin_library())

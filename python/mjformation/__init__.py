@@ -186,6 +186,46 @@ def _plugin_path(plugin_path) -> list[str]:
     return [str(p) for p in extra] + _INSTALLED_PLUGINS
 
 
+def _override_value(overrides: list[str], key: str):
+    """The value an override string "key=value" gives `key` (the last one wins), else None."""
+    import tomllib
+
+    value = None
+    for o in overrides:
+        name, _, text = o.partition("=")
+        if name.strip() == key:
+            try:
+                value = tomllib.loads(f"v = {text}")["v"]
+            except tomllib.TOMLDecodeError:
+                return None  # the runner reports it, with its own message
+    return value
+
+
+def _proportionate_window(experiment, overrides: list[str], caller: str) -> list[str]:
+    """A run.duration override without run.metric_window, on a file whose [run] metric_window
+    would reach past the new duration: the window scaled with the duration (the file's
+    [25, 40] s of 40 s become [2.5, 4] s of a 4 s run), added as an override and stated in a
+    warning. Nothing otherwise (the runner's default window already follows the duration)."""
+    duration = _override_value(overrides, "run.duration")
+    if not isinstance(duration, (int, float)) or isinstance(duration, bool) or duration <= 0:
+        return []
+    if _override_value(overrides, "run.metric_window") is not None:
+        return []
+    run = _read_toml(experiment).get("run", {})
+    window, full = run.get("metric_window"), run.get("duration", 40.0)
+    if not (isinstance(window, list) and len(window) == 2 and isinstance(full, (int, float))
+            and full > 0 and all(isinstance(w, (int, float)) for w in window)):
+        return []
+    if window[1] <= duration + 1e-9:
+        return []
+    scaled = [window[0] * duration / full, window[1] * duration / full]
+    warnings.warn(f"{caller}: {experiment}: run.duration = {duration:g} s ends before the file's "
+                  f"[run] metric_window [{window[0]:g}, {window[1]:g}] s (of {full:g} s): averaging "
+                  f"over the proportionate window [{scaled[0]:g}, {scaled[1]:g}] s; pass "
+                  "run.metric_window to choose another", UserWarning, stacklevel=3)
+    return [f"run.metric_window={_toml_value(scaled)}"]
+
+
 # ---- runs --------------------------------------------------------------------------------------
 
 
@@ -233,13 +273,16 @@ def run(experiment, set=None, out=None, render=False, formation=None, overwrite=
     its Run with complete False and warns (RuntimeWarning, with the reason); with
     raise_on_failure=True it raises RunFailed instead.
     render=False (the default) renders nothing and skips [render]'s checks (snapshot times
-    inside the duration), as the CLI's --no-render.
+    inside the duration), as the CLI's --no-render. A shorter run.duration alone scales the
+    file's metric_window with it (a UserWarning states the window used).
     """
     temporary = out is None
     out = Path(tempfile.mkdtemp(prefix="mjformation_")) / "run" if temporary else Path(out)
     in_use = _LawInUse(formation, experiment)
     with in_use as law_overrides:
-        result = _core.run(str(experiment), law_overrides + _overrides(set),
+        overrides = _overrides(set)
+        overrides += _proportionate_window(experiment, overrides, "mjformation.run")
+        result = _core.run(str(experiment), law_overrides + overrides,
                            _plugin_path(plugin_path), str(out), overwrite, render, record)
         if in_use.law is not None and in_use.law.per_agent:
             _annotate_agent_summary(out, in_use.key, in_use.law)
@@ -260,11 +303,14 @@ def run(experiment, set=None, out=None, render=False, formation=None, overwrite=
     return r
 
 
-def check(experiment, set=None, formation=None, plugin_path=None) -> dict:
-    """Validates an experiment (config, model, plugins, topology) without running it."""
+def check(experiment, set=None, formation=None, plugin_path=None, render=True) -> dict:
+    """Validates an experiment (config, model, plugins, topology) without running it; with
+    render=False, not [render]'s checks (as run(render=False) and the CLI's --no-render)."""
     with _LawInUse(formation, experiment) as law_overrides:
-        return _core.check(str(experiment), law_overrides + _overrides(set),
-                           _plugin_path(plugin_path))
+        overrides = _overrides(set)
+        overrides += _proportionate_window(experiment, overrides, "mjformation.check")
+        return _core.check(str(experiment), law_overrides + overrides,
+                           _plugin_path(plugin_path), bool(render))
 
 
 def export(experiment, out, overwrite=False) -> Path:

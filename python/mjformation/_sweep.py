@@ -18,11 +18,13 @@ def sweep(experiment, vary=None, seeds=None, jobs=2, set=None, out=None, render=
     at a time (the GIL released), and returns the Sweep (mjfanalysis.io.Sweep: cells with 95 %
     CI, runs).
 
-    out=None: a temporary folder. Ctrl-C keeps the finished runs and raises KeyboardInterrupt
+    render=False (the default) renders nothing and skips [render]'s checks; a shorter
+    run.duration alone scales the file's metric_window with it (stated in a UserWarning), as
+    mjformation.run. out=None: a temporary folder. Ctrl-C keeps the finished runs and raises KeyboardInterrupt
     (finish with resume=True). The CLI's exit code 3 (some run failed) is not an exception:
     see Sweep.complete and each cell's complete_runs.
     """
-    from . import _LawInUse, _overrides, _plugin_path, _toml_value
+    from . import _LawInUse, _overrides, _plugin_path, _proportionate_window, _toml_value
 
     out = Path(tempfile.mkdtemp(prefix="mjformation_sweep_")) / "sweep" if out is None else Path(out)
     args = ["sweep", str(experiment), "--out", str(out), "--jobs", str(int(jobs))]
@@ -38,10 +40,14 @@ def sweep(experiment, vary=None, seeds=None, jobs=2, set=None, out=None, render=
         args.append("--overwrite")
     if resume:
         args.append("--resume")
+    overrides = _overrides(set)
+    overrides += _proportionate_window(experiment, overrides, "mjformation.sweep")
     with _LawInUse(formation, experiment) as law_overrides:
-        # Bad input raises ValueError with the runner's FILE:LINE: [section] key message.
-        _core.check(str(experiment), law_overrides + _overrides(set), _plugin_path(plugin_path))
-        for o in law_overrides + _overrides(set):
+        # Bad input raises ValueError with the runner's FILE:LINE: [section] key message; without
+        # rendering, [render]'s checks are skipped as the runs skip them (--no-render).
+        _core.check(str(experiment), law_overrides + overrides, _plugin_path(plugin_path),
+                    bool(render))
+        for o in law_overrides + overrides:
             args += ["--set", o]
         code = _core.command_line(args)
     if code == 128 + signal.SIGINT:

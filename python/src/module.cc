@@ -122,8 +122,8 @@ int CommandLine(const std::vector<std::string>& args) {
 }
 
 py::dict Check(const std::string& path, const std::vector<std::string>& overrides,
-               const std::vector<std::string>& plugin_path) {
-  const rn::ExperimentConfig config = Load(path, overrides, plugin_path);
+               const std::vector<std::string>& plugin_path, bool render) {
+  const rn::ExperimentConfig config = Load(path, overrides, plugin_path, render);
   std::unique_ptr<rn::Simulation> sim;
   {
     py::gil_scoped_release nogil;
@@ -462,7 +462,8 @@ PYBIND11_MODULE(_core, m) {
       },
       py::arg("experiment"), py::arg("out"), py::arg("overwrite"));
   m.def("native_plugin_library", [] { return std::string(MJF_NATIVE_PLUGIN_LIBRARY); });
-  m.def("check", &Check, py::arg("experiment"), py::arg("overrides"), py::arg("plugin_path"));
+  m.def("check", &Check, py::arg("experiment"), py::arg("overrides"), py::arg("plugin_path"),
+        py::arg("render") = true);
   m.def("plugins", &Plugins, py::arg("plugin_path"));
   m.def("read_csv", &ReadCsv, py::arg("path"));
   m.def("version", &rn::VersionString);

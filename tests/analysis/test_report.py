@@ -96,6 +96,17 @@ def test_discussion_and_topology(report):
     assert "measured mean σ_f" in text and "bound 9" in text
 
 
+def test_findings_first_commentary_and_detail_after(report):
+    _, _, text = report
+    headings = [line for line in text.splitlines() if line.startswith("## ")]
+    assert headings[:2] == ["## Findings", "## Table 1, side by side with the paper"], headings
+    order = [headings.index(h) for h in ("## Findings", "## Runs",
+                                          "## Commentary from the experiment authors (`discussion.md`)",
+                                          "## Runs in detail")]
+    assert order == sorted(order), headings
+    assert text.index("Formation achieved") < text.index("## Table 1")
+
+
 def test_cross_check_agrees(report):
     _, _, text = report
     line = next(x for x in text.splitlines() if x.startswith("| `exp2` | [25, 40]"))

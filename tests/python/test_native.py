@@ -96,3 +96,33 @@ def test_sigma_f_from_mjdata_alone_is_the_runners(source, exp2, tmp_path):
         assert abs(row[0] - t) < 1e-9
         assert s == pytest.approx(row[1], rel=1e-8), t  # the CSV keeps 9 significant digits
     assert sigma[0] == pytest.approx(53.8, abs=0.05)  # exp2.toml: sigma_f(0) = 53.8
+
+
+def run_example_failing(source, name: str, *args) -> str:
+    """The script's stderr when it refuses its input: one line, no traceback, exit status 1."""
+    import subprocess
+    import sys
+    done = subprocess.run([sys.executable, str(source / "examples/mujoco_native" / name), *args],
+                          capture_output=True, text=True, timeout=120)
+    assert done.returncode == 1, done.stdout + done.stderr
+    assert "Traceback" not in done.stderr and done.stderr.count("\n") == 1, done.stderr
+    return done.stderr
+
+
+def test_fly_exported_refuses_bad_input_in_one_line(source, exp2, tmp_path):
+    missing = tmp_path / "nowhere" / "scene.xml"
+    assert f"{missing}: no such file; write one with `mjformation export" in run_example_failing(
+        source, "fly_exported.py", str(missing))
+    garbled = tmp_path / "garbled.xml"
+    garbled.write_text("<mujoco><worldbody>\n</mujoco")
+    assert f"{garbled}: line 2: not an XML file" in run_example_failing(
+        source, "fly_exported.py", str(garbled))
+    foreign = tmp_path / "foreign.xml"
+    foreign.write_text("<mujoco><worldbody/></mujoco>")
+    assert "no mjformation.swarm formation configuration; pass a scene" in run_example_failing(
+        source, "fly_exported.py", str(foreign))
+    scene = mjformation.export(exp2, tmp_path / "exp2")
+    assert "--seconds -1: give a positive number" in run_example_failing(
+        source, "fly_exported.py", str(scene), "--seconds", "-1")
+    assert "--plot /proc/none/s.png: cannot write into /proc/none" in run_example_failing(
+        source, "fly_exported.py", str(scene), "--plot", "/proc/none/s.png")

@@ -67,6 +67,8 @@ PY
 # The example formation law declares the contract's period and q (docs/PLUGINS.md): the runner
 # reads them back into summary.json's plugin report.
 test -f "$work/example-build/libexample_sampled_law.so"
+# The plain-C formation law: the project declares LANGUAGES C CXX (docs/PLUGINS.md).
+test -f "$work/example-build/libexample_consensus_c.so"
 "$bin" run "$work/exp.toml" --out "$work/run_law" --plugin-path "$work/example-build" --no-render \
   -q --set formation.plugin='"example_sampled_law"' \
   --set 'formation.shape={type="circle",radius=3.0,omega=0.3}'

@@ -71,6 +71,19 @@ while IFS= read -r line; do
     failures=$((failures + 1))
   fi
 done < commands.txt
+# After either README command every plugin family is built: `plugins` lists one plugin (at least)
+# from each family's library (scripts/reproduce.sh builds mjf_product; dev/product_target.py).
+build/runner/mjformation plugins >plugins.txt 2>&1
+for family in "$source"/plugins/*/; do
+  family=$(basename "$family")
+  if grep -q "library: .*/libmjf_${family}\.so$" plugins.txt; then
+    echo "ok   mjformation plugins lists the $family family"
+    passed=$((passed + 1))
+  else
+    echo "FAIL mjformation plugins lists no plugin of libmjf_${family}.so: build the mjf_product target" >&2
+    failures=$((failures + 1))
+  fi
+done
 [ $passed -ge 15 ] || { echo "FAIL: only $passed README commands found" >&2; failures=$((failures + 1)); }
 echo "readme_examples: $passed passed, $failures failed"
 [ $failures = 0 ]

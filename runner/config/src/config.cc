@@ -527,8 +527,14 @@ void ParseRenderSection(SectionReader render, double duration, bool check_times,
   ReadRenderValues(render, r);
   render.RejectUnknown();
   for (double t : r.snapshots) {
-    if (t < 0 || (check_times && t > duration + 1e-9))
-      render.Fail("snapshots", "times must lie in [0, duration]");
+    if (t < 0 || (check_times && t > duration + 1e-9)) {
+      // The usual cause is a shortened run: say which time and the two ways out.
+      render.Fail("snapshots",
+                  fmt::format("times must lie in [0, duration]: {} s is outside [0, {}] s (set "
+                              "render.snapshots to times inside the run, e.g. [], or render "
+                              "nothing: --no-render, render=False in Python)",
+                              t, duration));
+    }
   }
   if (r.width < 16 || r.height < 16 || r.width > 4096 || r.height > 4096) {
     render.Fail("width", "width and height must be in [16, 4096] pixels");

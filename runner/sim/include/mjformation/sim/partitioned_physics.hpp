@@ -5,7 +5,8 @@
 // tick that sees the whole swarm (simulation.cc). Valid only when vehicles do not interact
 // through MuJoCo (no inter-vehicle contacts, no shared joints): then every vehicle's free-body
 // arithmetic in a partition is the arithmetic it had in the whole-swarm model (see
-// docs/PERFORMANCE.md, "Partitioned physics", for why the result is the same bit for bit).
+// docs/history/PERFORMANCE_NOTEBOOK.md, "Both cores: partitioned physics", for why the result
+// is the same bit for bit).
 //
 // One step is two lockstep phases, each run by every partition on its own thread (partition 0
 // on the caller's):
