@@ -207,6 +207,41 @@ def _by_model(rows):
     return models
 
 
+def _orderings(model: str, rs: list[Row]) -> list[str]:
+    """The paper's orderings of its experiments (Exp. 2 vs 3, Exp. 1 vs 2) on one vehicle model."""
+    lines = []
+    by_exp = {}
+    for r in rs:
+        # The paper's orderings are about its protocols as it ran them: a per-agent run over
+        # a network (exp2_network) is a different question and stays out of them.
+        if r.exp and math.isfinite(r.sigma) and not network.protocol_suffix(r.run.summary):
+            by_exp.setdefault(r.exp, []).append(r)
+    if 2 in by_exp and 3 in by_exp:
+        for a in by_exp[2]:
+            for b in by_exp[3]:
+                agree = a.sigma < b.sigma
+                lines.append(
+                    f"- **Exp. 2 vs Exp. 3** ({model}): mean σ_f(`{a.run.name}`) = "
+                    f"{fmt(a.sigma)} {'<' if agree else '≥'} mean σ_f(`{b.run.name}`) = "
+                    f"{fmt(b.sigma)}: "
+                    + ("agrees with the paper (a larger sampling period T widens the "
+                       "quasi-sliding band and the error)." if agree else
+                       "does NOT agree with the paper's claim that the error grows with T."))
+    elif 2 in by_exp or 3 in by_exp:
+        lines.append(f"- **Exp. 2 vs Exp. 3** ({model}): cannot compare, "
+                     f"only Exp. {2 if 2 in by_exp else 3} has a complete run.")
+    if 1 in by_exp and 2 in by_exp:
+        for a in by_exp[1]:
+            b = by_exp[2][0]
+            agree = a.sigma < b.sigma
+            lines.append(
+                f"- **Exp. 1 vs Exp. 2** ({model}): mean σ_f(`{a.run.name}`) = {fmt(a.sigma)} "
+                f"{'<' if agree else '≥'} {fmt(b.sigma)} (`{b.run.name}`): "
+                + ("consistent with the paper's reading of Exp. 1 as the T → 0 limit."
+                   if agree else "not the paper's ordering (continuous below discrete)."))
+    return lines
+
+
 def discussion(rows: list[Row]) -> list[str]:
     lines = []
     # A run in which a vehicle crashed is no evidence for or against the protocol.
@@ -227,35 +262,7 @@ def discussion(rows: list[Row]) -> list[str]:
                      + ", ".join(f"`{r.run.name}` ({r.run.status}, t = {fmt(r.t_end, 2)} s: "
                                  f"{_esc(r.run.error or '?')})" for r in not_done) + ".")
     for model, rs in sorted(_by_model(done).items()):
-        by_exp = {}
-        for r in rs:
-            # The paper's orderings are about its protocols as it ran them: a per-agent run over
-            # a network (exp2_network) is a different question and stays out of them.
-            if r.exp and math.isfinite(r.sigma) and not network.protocol_suffix(r.run.summary):
-                by_exp.setdefault(r.exp, []).append(r)
-        if 2 in by_exp and 3 in by_exp:
-            for a in by_exp[2]:
-                for b in by_exp[3]:
-                    agree = a.sigma < b.sigma
-                    lines.append(
-                        f"- **Exp. 2 vs Exp. 3** ({model}): mean σ_f(`{a.run.name}`) = "
-                        f"{fmt(a.sigma)} {'<' if agree else '≥'} mean σ_f(`{b.run.name}`) = "
-                        f"{fmt(b.sigma)}: "
-                        + ("agrees with the paper (a larger sampling period T widens the "
-                           "quasi-sliding band and the error)." if agree else
-                           "does NOT agree with the paper's claim that the error grows with T."))
-        elif 2 in by_exp or 3 in by_exp:
-            lines.append(f"- **Exp. 2 vs Exp. 3** ({model}): cannot compare, "
-                         f"only Exp. {2 if 2 in by_exp else 3} has a complete run.")
-        if 1 in by_exp and 2 in by_exp:
-            for a in by_exp[1]:
-                b = by_exp[2][0]
-                agree = a.sigma < b.sigma
-                lines.append(
-                    f"- **Exp. 1 vs Exp. 2** ({model}): mean σ_f(`{a.run.name}`) = {fmt(a.sigma)} "
-                    f"{'<' if agree else '≥'} {fmt(b.sigma)} (`{b.run.name}`): "
-                    + ("consistent with the paper's reading of Exp. 1 as the T → 0 limit."
-                       if agree else "not the paper's ordering (continuous below discrete)."))
+        lines.extend(_orderings(model, rs))
     bounded = [r for r in done if math.isfinite(r.run.plugin_report("error_bound"))
                and math.isfinite(r.sigma)]
     for r in bounded:
