@@ -3,7 +3,8 @@
 // mjformation.attitude on drones written as MuJoCo users write them: an inertia whose principal
 // axes are not the body's (a rotated <inertial>, a full inertia), and an actuator that is not a
 // rotor (a gimbal's orientation servo, 4 controls and 3 force outputs) declared before the
-// rotors. Each drone takes off from 0.8 m and holds (0, 0, 1) m; MuJoCo's C API alone flies it.
+// rotors. Each drone starts tilted and yawed 0.4 m from (0, 0, 1) m, which it then holds: its
+// rates and inertia matter. MuJoCo's C API alone flies it.
 #include <gtest/gtest.h>
 #include <mujoco/mujoco.h>
 #include <unistd.h>
@@ -51,7 +52,7 @@ std::string DroneXml(const std::string& inertial, bool gimbal) {
     </default>
   </default>
   <worldbody>
-    <body name="quad" pos="0 0 0.8">
+    <body name="quad" pos="0.3 -0.2 0.8" euler="0.2 0.1 0.3">
       <freejoint/>
       )" +
          inertial +
@@ -92,8 +93,10 @@ Flight Fly(const std::string& xml, double seconds) {
     return true;
   }();
   (void)loaded;
-  const fs::path path =
-      fs::temp_directory_path() / ("mjf_attitude_" + std::to_string(getpid()) + ".xml");
+  // A name per flight: no two models are ever read from one path.
+  static int flights = 0;
+  const fs::path path = fs::temp_directory_path() / ("mjf_attitude_" + std::to_string(getpid()) +
+                                                     "_" + std::to_string(++flights) + ".xml");
   std::ofstream(path) << xml;
   Flight f;
   char error[1024] = {0};
@@ -120,7 +123,7 @@ Flight Fly(const std::string& xml, double seconds) {
   return f;
 }
 
-constexpr double kSeconds = 5.0;
+constexpr double kSeconds = 12.0;
 
 // The reference: the body-aligned drone holds its point to well under a millimetre.
 TEST(NativeAttitude, BodyAlignedInertiaHolds) {
