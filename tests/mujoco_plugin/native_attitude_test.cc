@@ -110,9 +110,12 @@ Flight Fly(const std::string& xml, double seconds) {
     f.hold = 0;
     const int body = mj_name2id(m, mjOBJ_BODY, "quad");
     const double target[3] = {0, 0, 1};
-    while (d->time < seconds) {
+    // Counted steps, not d->time: MuJoCo resets a diverging simulation to time 0.
+    const int steps = static_cast<int>(std::lround(seconds / m->opt.timestep));
+    const int last_second = static_cast<int>(std::lround(1.0 / m->opt.timestep));
+    for (int k = 0; k < steps; ++k) {
       mj_step(m, d);
-      if (d->time > seconds - 1.0) {
+      if (k >= steps - last_second) {
         f.hold = std::max(f.hold, mju_dist3(d->xpos + 3 * body, target));
       }
     }
@@ -125,13 +128,6 @@ Flight Fly(const std::string& xml, double seconds) {
 
 constexpr double kSeconds = 12.0;
 
-// The reference: the body-aligned drone holds its point to well under a millimetre.
-TEST(NativeAttitude, BodyAlignedInertiaHolds) {
-  const Flight f = Fly(DroneXml(kBodyAligned, false), kSeconds);
-  ASSERT_TRUE(f.flew) << f.error;
-  EXPECT_LT(f.hold, 0.005) << "final z " << f.final_z;
-}
-
 // The same drone, its inertia given in principal axes turned 90 degrees about x: the body-frame
 // tensor is the body-aligned one exactly, so the flight is the same to rounding.
 TEST(NativeAttitude, RotatedInertialIsTheSameDrone) {
@@ -140,6 +136,8 @@ TEST(NativeAttitude, RotatedInertialIsTheSameDrone) {
       diaginertia="0.012 0.022 0.012"/>)",
                                       false),
                              kSeconds);
+  ASSERT_TRUE(aligned.flew) << aligned.error;
+  EXPECT_LT(aligned.hold, 0.005) << "final z " << aligned.final_z;
   ASSERT_TRUE(rotated.flew) << rotated.error;
   EXPECT_LT(rotated.hold, 0.005) << "final z " << rotated.final_z;
   EXPECT_NEAR(rotated.final_z, aligned.final_z, 1e-6);
