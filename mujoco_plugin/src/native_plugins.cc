@@ -14,8 +14,10 @@
 // plugin_state, so MuJoCo copies, saves (mj_getState) and restores it with the physics:
 //   [0] layout (kLayout), [1] k = the steps committed (advance adds 1), [2] the step whose
 //   controls are held (-1: none), [3] 1 when the blocks below hold a state (0 after a reset:
-//   the controllers' initial state), [4 + a] the held control of actuator a (NaN: not
-//   driven), then the tick's state blocks (runner::ControlTick::GetState; ABI 4).
+//   the controllers' initial state), [4 + a] the held control of actuator id a (NaN: not
+//   driven; one slot per actuator, nactuator of them: in MuJoCo 4 an actuator may take several
+//   controls, so nu is not the actuator count), then the tick's state blocks
+//   (runner::ControlTick::GetState; ABI 4).
 // The tick of step k runs at the first evaluation of step k (held != k), from the blocks, and
 // leaves the controls and the new blocks with held = k. Every further evaluation of the same
 // step (RK4's stages, mjd_transitionFD's perturbed evaluations restored to the same state,
@@ -30,6 +32,9 @@
 // quantities, with the same operations, from its held controls: in actuator_act_dot (called
 // after MuJoCo's own act_dot) and in compute (called after MuJoCo's own forces). The
 // vehicles' actuators keep their MJCF definitions; d->ctrl of a driven actuator is unused.
+// Per-actuator arrays are indexed by actuator id, per-control arrays (ctrlrange, ctrllimited)
+// by the actuator's actuator_ctrladr, per-output arrays (actuator_force) by its
+// actuator_outadr; only single-control, single-output actuators are driven.
 #include <mujoco/mjplugin.h>
 #include <mujoco/mujoco.h>
 
@@ -275,7 +280,7 @@ template <const Kind& K>
 int NState(const mjModel* m, int instance) {
   size_t blocks = 0;
   OrMujocoError([&] { blocks = K.state_size(m, instance); });
-  return kHeader + m->nu + static_cast<int>(blocks);
+  return kHeader + static_cast<int>(m->nactuator + blocks);
 }
 
 mjtNum* State(const mjModel* m, mjData* d, int instance) {
@@ -287,7 +292,9 @@ void ClearState(const mjModel* m, mjtNum* state) {
   state[kCommitted] = 0;
   state[kHeld] = -1;
   state[kValid] = 0;
-  for (int a = 0; a < m->nu; ++a) state[kHeader + a] = std::numeric_limits<double>::quiet_NaN();
+  for (int a = 0; a < m->nactuator; ++a) {
+    state[kHeader + a] = std::numeric_limits<double>::quiet_NaN();
+  }
 }
 
 // d's holder: its own, or one built for it (a copy, an unpickled MjData, a failed build
@@ -340,7 +347,7 @@ mjtNum* HeldControls(const mjModel* m, mjData* d, int instance) {
                                " (a state saved by another version, or never initialised)");
     }
     Holder* holder = HolderFor<K>(m, d, instance);
-    mjtNum* blocks = controls + m->nu;
+    mjtNum* blocks = controls + m->nactuator;
     holder->SetState(state[kValid] != 0 ? blocks : holder->initial.data());
     const auto step = static_cast<int64_t>(state[kCommitted]);
     holder->Tick(step, m, d, controls);
@@ -351,15 +358,17 @@ mjtNum* HeldControls(const mjModel* m, mjData* d, int instance) {
   return controls;
 }
 
+// u clamped to actuator a's ctrlrange: ctrllimited and ctrlrange are per control (nu rows).
 double Clamped(const mjModel* m, int a, double u) {
-  if (!m->actuator_ctrllimited[a]) return u;
-  return mju_clip(u, m->actuator_ctrlrange[2 * a], m->actuator_ctrlrange[2 * a + 1]);
+  const int c = m->actuator_ctrladr[a];
+  if (!m->actuator_ctrllimited[c]) return u;
+  return mju_clip(u, m->actuator_ctrlrange[2 * c], m->actuator_ctrlrange[2 * c + 1]);
 }
 
 template <const Kind& K>
 void ActDot(const mjModel* m, mjData* d, int instance) {
   const mjtNum* u = HeldControls<K>(m, d, instance);
-  for (int a = 0; a < m->nu; ++a) {
+  for (int a = 0; a < m->nactuator; ++a) {
     if (std::isnan(u[a]) || m->actuator_actnum[a] == 0) continue;
     const int adr = m->actuator_actadr[a] + m->actuator_actnum[a] - 1;
     const mjtNum tau = mju_max(mjMINVAL, m->actuator_dynprm[mjNDYN * a]);
@@ -370,11 +379,11 @@ void ActDot(const mjModel* m, mjData* d, int instance) {
 template <const Kind& K>
 void Compute(const mjModel* m, mjData* d, int instance, int) {
   const mjtNum* u = HeldControls<K>(m, d, instance);
-  for (int a = 0; a < m->nu; ++a) {
+  for (int a = 0; a < m->nactuator; ++a) {
     if (std::isnan(u[a]) || m->actuator_actnum[a] != 0) continue;
     mjtNum force = m->actuator_gainprm[mjNGAIN * a] * Clamped(m, a, u[a]);
     force += 0.0;  // MuJoCo adds the (zero) bias of a biastype="none" actuator
-    d->actuator_force[a] = force;
+    d->actuator_force[m->actuator_outadr[a]] = force;
   }
 }
 

@@ -36,6 +36,21 @@ runner::ExperimentConfig Sections(const VehicleHostConfig& c) {
   return runner::ParseExperiment(toml, c.where);
 }
 
+// Actuator `a`'s facts: MuJoCo 4 keeps per-actuator arrays by actuator id, gear by the
+// actuator's first force output (actuator_outadr) and ctrlrange by its first control
+// (actuator_ctrladr); a rotor has one of each.
+mjfActuatorInfo ActuatorInfo(const mjModel* m, int a) {
+  mjfActuatorInfo info{};
+  const int out = m->actuator_outadr[a], ctrl = m->actuator_ctrladr[a];
+  std::memcpy(info.gear, m->actuator_gear + 6 * out, sizeof(info.gear));
+  info.ctrl_min = m->actuator_ctrllimited[ctrl] ? m->actuator_ctrlrange[2 * ctrl]
+                                                : -std::numeric_limits<double>::infinity();
+  info.ctrl_max = m->actuator_ctrllimited[ctrl] ? m->actuator_ctrlrange[2 * ctrl + 1]
+                                                : std::numeric_limits<double>::infinity();
+  info.time_constant = m->actuator_dyntype[a] == mjDYN_FILTER ? m->actuator_dynprm[mjNDYN * a] : 0;
+  return info;
+}
+
 // What the runner's vehicle binding reads of each driven actuator (gear, control range, motor
 // lag, site relative to the centre of mass in body axes), from the compiled model.
 void ReadActuators(const mjModel* m, const std::string& where, int body,
@@ -47,23 +62,38 @@ void ReadActuators(const mjModel* m, const std::string& where, int body,
       throw std::runtime_error(where + ": <config key=\"actuators\">: no actuator named '" + name +
                                "' in this model");
     }
+    if (m->actuator_ctrlnum[a] != 1 || m->actuator_outnum[a] != 1) {
+      throw std::runtime_error(where + ": <config key=\"actuators\">: actuator '" + name +
+                               "' takes " + std::to_string(m->actuator_ctrlnum[a]) +
+                               " controls and has " + std::to_string(m->actuator_outnum[a]) +
+                               " force outputs; a rotor has one of each: name the rotors");
+    }
     ids->push_back(a);
-    mjfActuatorInfo info{};
-    std::memcpy(info.gear, m->actuator_gear + 6 * a, sizeof(info.gear));
-    info.ctrl_min = m->actuator_ctrllimited[a] ? m->actuator_ctrlrange[2 * a]
-                                               : -std::numeric_limits<double>::infinity();
-    info.ctrl_max = m->actuator_ctrllimited[a] ? m->actuator_ctrlrange[2 * a + 1]
-                                               : std::numeric_limits<double>::infinity();
-    info.time_constant =
-        m->actuator_dyntype[a] == mjDYN_FILTER ? m->actuator_dynprm[mjNDYN * a] : 0;
+    mjfActuatorInfo info = ActuatorInfo(m, a);
     if (m->actuator_trntype[a] == mjTRN_SITE) {
-      // Site relative to the centre of mass, body axes (the site's body is the vehicle's).
+      // Site relative to the centre of mass, body axes: site_pos and body_ipos are both in the
+      // body frame (the site's body is the vehicle's).
       const int site = m->actuator_trnid[2 * a];
       for (int k = 0; k < 3; ++k) {
         info.site_pos[k] = m->site_pos[3 * site + k] - m->body_ipos[3 * body + k];
       }
     }
     infos->push_back(info);
+  }
+}
+
+// The diagonal of the body-frame inertia tensor J_body = R(iquat) diag(body_inertia) R(iquat)^T:
+// MuJoCo gives the principal moments in the principal-axis frame (body_iquat), our controllers
+// work in body axes (state.gyro, actuator sites), and the plugin ABI carries three moments, so
+// the products of inertia of a body whose principal axes are not its own are dropped.
+void BodyAxisInertia(const mjModel* m, int body, double out[3]) {
+  mjtNum r[9];
+  mju_quat2Mat(r, m->body_iquat + 4 * body);
+  const mjtNum* principal = m->body_inertia + 3 * body;
+  for (int i = 0; i < 3; ++i) {
+    // J_ii = sum_k R_ik^2 I_k
+    out[i] = 0;
+    for (int k = 0; k < 3; ++k) out[i] += r[3 * i + k] * r[3 * i + k] * principal[k];
   }
 }
 
@@ -147,7 +177,7 @@ VehicleHost::VehicleHost(const mjModel* m, VehicleHostConfig config)
   }
   ReadActuators(m, where, s.body, s.config.actuators, &s.actuators, &s.actuator_info);
   s.info.mass = m->body_subtreemass[s.body];
-  std::memcpy(s.info.inertia, m->body_inertia + 3 * s.body, sizeof(s.info.inertia));
+  BodyAxisInertia(m, s.body, s.info.inertia);
   s.info.gravity = std::sqrt(mju_dot3(m->opt.gravity, m->opt.gravity));
   s.info.n_actuators = d.n_actuators;
   s.info.actuators = s.actuator_info.data();
@@ -206,13 +236,14 @@ void VehicleHost::SetState(const double* in) {
 void VehicleHost::Tick(int64_t step, const mjModel* m, const mjData* d, double* controls) {
   Impl& s = *impl_;
   // The body's state as the vehicle contract's sensors report it: position and world velocity
-  // of the body frame, attitude, body-frame rates.
+  // of the body frame, attitude, body-frame rates. mjOBJ_XBODY is the body frame (xpos, xmat);
+  // mjOBJ_BODY would be the principal-axis frame at the centre of mass (xipos, ximat).
   mjfVehicleState state{};
   std::memcpy(state.pos, d->xpos + 3 * s.body, sizeof(state.pos));
   std::memcpy(state.quat, d->xquat + 4 * s.body, sizeof(state.quat));
   mjtNum world[6], local[6];
-  mj_objectVelocity(m, d, mjOBJ_BODY, s.body, world, 0);
-  mj_objectVelocity(m, d, mjOBJ_BODY, s.body, local, 1);
+  mj_objectVelocity(m, d, mjOBJ_XBODY, s.body, world, 0);
+  mj_objectVelocity(m, d, mjOBJ_XBODY, s.body, local, 1);
   std::memcpy(state.vel, world + 3, sizeof(state.vel));
   std::memcpy(state.gyro, local, sizeof(state.gyro));
   mjfStepContext ctx{};

@@ -1,0 +1,166 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// mjformation.attitude on drones written as MuJoCo users write them: an inertia whose principal
+// axes are not the body's (a rotated <inertial>, a full inertia), and an actuator that is not a
+// rotor (a gimbal's orientation servo, 4 controls and 3 force outputs) declared before the
+// rotors. Each drone starts tilted and yawed 0.4 m from (0, 0, 1) m, which it then holds: its
+// rates and inertia matter. MuJoCo's C API alone flies it.
+#include <gtest/gtest.h>
+#include <mujoco/mujoco.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace mjf::native {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Our drone's inertia, as the body's own axes see it (kg m^2).
+constexpr char kBodyAligned[] =
+    R"(<inertial pos="0 0 0" mass="1.2" diaginertia="0.012 0.012 0.022"/>)";
+
+// The drone's MJCF: `inertial` its <inertial> element, `gimbal` true for a camera gimbal on a
+// ball joint driven by an orientation actuator declared before the rotors.
+std::string DroneXml(const std::string& inertial, bool gimbal) {
+  const std::string gimbal_body = gimbal ? R"(<body name="gimbal" pos="0 0 -0.05">
+          <joint name="gimbal" type="ball" damping="0.001"/>
+          <geom type="sphere" size="0.02" mass="0.02" contype="0" conaffinity="0"/>
+        </body>)"
+                                         : "";
+  const std::string gimbal_actuator =
+      gimbal ? R"(<orientation name="gimbal" joint="gimbal" kp="0.01" input="quat"/>)" : "";
+  return R"(<mujoco model="drone">
+  <extension>
+    <plugin plugin="mjformation.attitude">
+      <instance name="autopilot">
+        <config key="body" value="quad"/>
+        <config key="actuators" value="m_front_right m_back_left m_front_left m_back_right"/>
+        <config key="attitude" value="plugin = 'geometric', tilt_max = 0.5"/>
+        <config key="guidance" value="plugin = 'hover', position = '0 0 1'"/>
+      </instance>
+    </plugin>
+  </extension>
+  <option timestep="0.002"/>
+  <default>
+    <default class="motor">
+      <general dyntype="filter" dynprm="0.03" ctrllimited="true" ctrlrange="0 9"/>
+    </default>
+  </default>
+  <worldbody>
+    <body name="quad" pos="0.3 -0.2 0.8" euler="0.2 0.1 0.3">
+      <freejoint/>
+      )" +
+         inertial +
+         R"(
+      <geom type="box" size="0.09 0.09 0.03" mass="0" contype="0" conaffinity="0"/>
+      <site name="s_front_right" pos="0.16 -0.16 0.03"/>
+      <site name="s_back_left" pos="-0.16 0.16 0.03"/>
+      <site name="s_front_left" pos="0.16 0.16 0.03"/>
+      <site name="s_back_right" pos="-0.16 -0.16 0.03"/>
+      )" +
+         gimbal_body +
+         R"(
+    </body>
+  </worldbody>
+  <actuator>
+    )" + gimbal_actuator +
+         R"(
+    <general name="m_front_right" class="motor" site="s_front_right" gear="0 0 1 0 0 -0.02"/>
+    <general name="m_back_left" class="motor" site="s_back_left" gear="0 0 1 0 0 -0.02"/>
+    <general name="m_front_left" class="motor" site="s_front_left" gear="0 0 1 0 0 0.02"/>
+    <general name="m_back_right" class="motor" site="s_back_right" gear="0 0 1 0 0 0.02"/>
+  </actuator>
+</mujoco>
+)";
+}
+
+struct Flight {
+  bool flew = false;   // the model compiled and its data (the plugin's init) was made
+  double hold = 1e9;   // m, largest distance from (0, 0, 1) over the last second
+  double final_z = 0;  // m
+  std::string error;   // the compiler's, when it refused
+};
+
+// Flies the drone for `seconds` with mj_step.
+Flight Fly(const std::string& xml, double seconds) {
+  static const bool loaded = [] {
+    mj_loadPluginLibrary(MJF_NATIVE_PLUGIN_LIBRARY);
+    return true;
+  }();
+  (void)loaded;
+  // A name per flight: no two models are ever read from one path.
+  static int flights = 0;
+  const fs::path path = fs::temp_directory_path() / ("mjf_attitude_" + std::to_string(getpid()) +
+                                                     "_" + std::to_string(++flights) + ".xml");
+  std::ofstream(path) << xml;
+  Flight f;
+  char error[1024] = {0};
+  mjModel* m = mj_loadXML(path.c_str(), nullptr, error, sizeof(error));
+  fs::remove(path);
+  f.error = error;
+  if (!m) return f;
+  mjData* d = mj_makeData(m);
+  if (d) {
+    f.flew = true;
+    f.hold = 0;
+    const int body = mj_name2id(m, mjOBJ_BODY, "quad");
+    const double target[3] = {0, 0, 1};
+    // Counted steps, not d->time: MuJoCo resets a diverging simulation to time 0.
+    const int steps = static_cast<int>(std::lround(seconds / m->opt.timestep));
+    const int last_second = static_cast<int>(std::lround(1.0 / m->opt.timestep));
+    for (int k = 0; k < steps; ++k) {
+      mj_step(m, d);
+      if (k >= steps - last_second) {
+        f.hold = std::max(f.hold, mju_dist3(d->xpos + 3 * body, target));
+      }
+    }
+    f.final_z = d->xpos[3 * body + 2];
+    mj_deleteData(d);
+  }
+  mj_deleteModel(m);
+  return f;
+}
+
+constexpr double kSeconds = 12.0;
+
+// The same drone, its inertia given in principal axes turned 90 degrees about x: the body-frame
+// tensor is the body-aligned one exactly, so the flight is the same to rounding.
+TEST(NativeAttitude, RotatedInertialIsTheSameDrone) {
+  const Flight aligned = Fly(DroneXml(kBodyAligned, false), kSeconds);
+  const Flight rotated = Fly(DroneXml(R"(<inertial pos="0 0 0" quat="1 1 0 0" mass="1.2"
+      diaginertia="0.012 0.022 0.012"/>)",
+                                      false),
+                             kSeconds);
+  ASSERT_TRUE(aligned.flew) << aligned.error;
+  EXPECT_LT(aligned.hold, 0.005) << "final z " << aligned.final_z;
+  ASSERT_TRUE(rotated.flew) << rotated.error;
+  EXPECT_LT(rotated.hold, 0.005) << "final z " << rotated.final_z;
+  EXPECT_NEAR(rotated.final_z, aligned.final_z, 1e-6);
+}
+
+// A full inertia with products (principal axes 45 degrees off the body's): the controller
+// takes the body-axis moments and still holds the point.
+TEST(NativeAttitude, FullInertiaHolds) {
+  const Flight f = Fly(DroneXml(R"(<inertial pos="0 0 0" mass="1.2"
+      fullinertia="0.012 0.012 0.022 0.002 0 0"/>)",
+                                false),
+                       kSeconds);
+  ASSERT_TRUE(f.flew) << f.error;
+  EXPECT_LT(f.hold, 0.005) << "final z " << f.final_z;
+}
+
+// A gimbal servo (4 controls, 3 force outputs) before the rotors: the rotors' gear, ctrlrange
+// and force are found at their own addresses, and the drone flies.
+TEST(NativeAttitude, GimbalActuatorBeforeTheRotorsFlies) {
+  const Flight f = Fly(DroneXml(kBodyAligned, true), kSeconds);
+  ASSERT_TRUE(f.flew) << f.error;
+  EXPECT_LT(f.hold, 0.005) << "final z " << f.final_z;
+}
+
+}  // namespace
+}  // namespace mjf::native
