@@ -133,6 +133,9 @@ static const mjfPlugin kConsensus = {MJF_ABI_VERSION,
                                      Compute,
                                      NULL, /* reset: nothing is remembered between steps */
                                      Destroy,
+                                     NULL,
+                                     NULL, /* state_size (ABI 4): no state */
+                                     NULL,
                                      NULL};
 static const mjfPlugin* const kPlugins[] = {&kConsensus};
 
