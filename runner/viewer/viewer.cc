@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "mjformation/app/cli.hpp"
 #include "mjformation/app/replay.hpp"
 #include "mjformation/config/config.hpp"
 #include "mjformation/record/frame_view.hpp"
@@ -504,7 +505,7 @@ int Main(int argc, char** argv) {
   app.add_option("--speed", o.speed, "simulated seconds per second (default 1)")
       ->check(CLI::Range(1e-3, 1e3));
   app.add_option("--screenshot", o.screenshot,
-                 "save the window to this PNG, then close it (see --keep-open)");
+                 "save the window to this PNG (and FILE.json), then close it (see --keep-open); never replaces a file");
   app.add_option("--screenshot-at", o.screenshot_at, "... at this simulated time, s")
       ->check(CLI::Range(0.0, 1e7));
   app.add_flag("--keep-open", o.keep_open, "after --screenshot, keep the window open");
@@ -522,6 +523,16 @@ int Main(int argc, char** argv) {
     return 2;
   }
   if (!o.screenshot.empty() && o.screenshot_at < 0) o.screenshot_at = 0;
+  // One rule for every output file, as replay and bench --json: an existing file is never
+  // replaced. Looked at before the window opens, so nothing is run for a shot that cannot be kept.
+  if (!o.screenshot.empty()) {
+    try {
+      RefuseExistingFiles({o.screenshot, o.screenshot + ".json"});
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "mjformation view: --screenshot %s\n", e.what());
+      return 1;
+    }
+  }
 
   std::unique_ptr<Source> source = MakeSource(o);
   if (!source) return 1;

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <set>
@@ -328,6 +329,10 @@ void ParseRunSection(const Reporter& reporter, SectionReader run, const std::str
   if (c.duration / c.timestep > 1e10) {  // step counts stay far inside int64
     run.Fail("duration", "is more than 1e10 physics steps of [run] timestep");
   }
+  // 0 (or no key) stands for the law's own band; a negative band would be read the same way.
+  if (c.reaching_band < 0) {
+    run.Fail("reaching_band", "must be >= 0 (0 or no key: the formation law's delta)");
+  }
   if (c.record_rate <= 0 || c.record_rate > 1.0 / c.timestep) {
     run.Fail("record_rate", "must be in (0, 1/timestep] Hz");
   }
@@ -583,6 +588,13 @@ ExperimentConfig ParseExperiment(const std::string& text, const std::string& pat
 
 ExperimentConfig LoadExperiment(const std::string& path, const std::vector<std::string>& overrides,
                                 ExperimentChecks checks) {
+  // A folder opens as a stream that reads as empty, which would be refused for its first
+  // missing key rather than for what it is.
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    throw ConfigError(path + ": is a folder, not an experiment file (name a .toml file, e.g. " +
+                      "experiments/exp2.toml)");
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw ConfigError(path + ": cannot open the experiment file");
   std::ostringstream text;
