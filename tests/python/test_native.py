@@ -96,3 +96,18 @@ def test_sigma_f_from_mjdata_alone_is_the_runners(source, exp2, tmp_path):
         assert abs(row[0] - t) < 1e-9
         assert s == pytest.approx(row[1], rel=1e-8), t  # the CSV keeps 9 significant digits
     assert sigma[0] == pytest.approx(53.8, abs=0.05)  # exp2.toml: sigma_f(0) = 53.8
+
+
+def test_export_takes_a_folder_and_a_bool(exp2, tmp_path, monkeypatch):
+    """str(None) was the folder ./None and bool("no") is True: both refused before anything is
+    written, as run refuses them."""
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(TypeError, match=r"out= takes a folder \(str or os.PathLike\), not None"):
+        mjformation.export(exp2, None)
+    mine = tmp_path / "mine"
+    mine.mkdir()
+    (mine / "notes.txt").write_text("mine")
+    with pytest.raises(TypeError, match=r"overwrite= takes True or False, not 'no'"):
+        mjformation.export(exp2, mine, overwrite="no")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["mine"]
+    assert sorted(p.name for p in mine.iterdir()) == ["notes.txt"]

@@ -235,6 +235,10 @@ case="a self-including MJCF names the including line and the cycle"
 printf '<mujoco>\n  <worldbody/>\n  <include file="self.xml"/>\n</mujoco>\n' > self.xml
 refused 1 'self.xml:3: <include file="self.xml"> is an include cycle' -- run e.toml -o out -q --no-render \
   --set 'vehicles.model="self.xml"' --set 'vehicles.body="b"' --set 'vehicles.rotors=["a","b","c","d"]'
+case="a vehicle model with no joint (welded to the world)"
+grep -v "<freejoint" "$source/mjcf/quadrotor.xml" > welded.xml
+refused 1 "welded.xml: body 'vehicle' has no joint, so it is welded to the world" -- run e.toml -o out -q --no-render \
+  --set "vehicles.model=\"$work/welded.xml\"" --set 'attitude={plugin="pd_cascade"}'
 case="[vehicles] followers = 4294967297"
 refused 1 "[vehicles] followers: must be in [1, 100000]" -- run e.toml -o out -q --set vehicles.followers=4294967297
 case="[run] stop_on with an unknown kind"
