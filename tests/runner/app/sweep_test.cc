@@ -150,9 +150,15 @@ TEST(SweepSeeds, NearMissesAreKeptAndFlipsLeftOut) {
   EXPECT_THAT(csv, HasSubstr("seeds,runs_with_safety_events,runs_left_out,statistics_over,runs,"));
   EXPECT_THAT(csv, HasSubstr("1.0,3,2,1,valid_runs,2,1.5,"));
   const std::string text = sweep::SummaryText(plan, outcomes);
-  EXPECT_THAT(text, HasSubstr("sigma_f_mean 1.5, 95 % CI"));
+  // sigma_f >= 0: the t interval over {1, 2}, 1.5 -+ 12.7062 * 0.7071 / sqrt(2) = [-4.853,
+  // 7.853], is cut at 0, and the summary and sweep.json say how the interval was made.
+  EXPECT_THAT(text, HasSubstr("sigma_f_mean 1.5, 95 % CI [0, 7.853] over 2 runs (Student t, cut "
+                              "at 0)"));
+  EXPECT_EQ(cell["metrics_valid"]["sigma_f_mean"]["ci95"][0].get<double>(), 0.0);
+  EXPECT_THAT(json["ci95_method"].get<std::string>(), HasSubstr("Student t"));
+  EXPECT_THAT(csv, HasSubstr("1.0,3,2,1,valid_runs,2,1.5,0.707107,0,7.85311"));
   EXPECT_THAT(text, HasSubstr("1 of 3 complete runs left out (a flip, ground impact or collision"));
-  EXPECT_THAT(text, HasSubstr("1 runs with near misses or region exits only (reported, kept)"));
+  EXPECT_THAT(text, HasSubstr("; 1 run with near misses or region exits only (reported, kept)"));
 }
 
 // Values with commas inside [], {} or quotes are one value; the CSV quotes them.
