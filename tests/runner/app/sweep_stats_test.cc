@@ -52,7 +52,7 @@ TEST(SweepStatsTest, TwoSamplesUseTheOneDegreeOfFreedomFactor) {
 }
 
 TEST(SweepStatsTest, AnIntervalOfNonNegativeSamplesStopsAtZero) {
-  // {0.5, 1, 10}: mean 3.8333, s = 5.3697, t_{0.975, 2} = 4.3027: [-9.505, 17.17] as a plain t
+  // {0.5, 1, 10}: mean 3.8333, s = 5.3463, t_{0.975, 2} = 4.3027: [-9.448, 17.11] as a plain t
   // interval; every sample >= 0, so the mean cannot be negative and the low end is 0.
   const SampleStats s = Describe({0.5, 1, 10});
   EXPECT_NEAR(s.mean, 11.5 / 3, 1e-14);

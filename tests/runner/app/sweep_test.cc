@@ -156,7 +156,7 @@ TEST(SweepSeeds, NearMissesAreKeptAndFlipsLeftOut) {
                               "at 0)"));
   EXPECT_EQ(cell["metrics_valid"]["sigma_f_mean"]["ci95"][0].get<double>(), 0.0);
   EXPECT_THAT(json["ci95_method"].get<std::string>(), HasSubstr("Student t"));
-  EXPECT_THAT(csv, HasSubstr("1.0,3,2,1,valid_runs,2,1.5,0.707107,0,7.85311"));
+  EXPECT_THAT(csv, HasSubstr("1.0,3,2,1,valid_runs,2,1.5,0.707107,0,7.8531"));
   EXPECT_THAT(text, HasSubstr("1 of 3 complete runs left out (a flip, ground impact or collision"));
   EXPECT_THAT(text, HasSubstr("; 1 run with near misses or region exits only (reported, kept)"));
 }
