@@ -161,6 +161,23 @@ TEST(SweepSeeds, NearMissesAreKeptAndFlipsLeftOut) {
   EXPECT_THAT(text, HasSubstr("; 1 run with near misses or region exits only (reported, kept)"));
 }
 
+// A comma inside a TOML string does not split, whichever its quotes: a literal string '...'
+// (no escapes; a " inside is a plain character) and a basic string with an escaped quote.
+TEST(SweepSeeds, CommasInsideTomlStringsDoNotSplit) {
+  using Values = std::vector<std::string>;
+  EXPECT_EQ(sweep::ParseAxis("run.name='a,b','c'").values, (Values{"'a,b'", "'c'"}));
+  EXPECT_EQ(sweep::ParseAxis("run.name='say \"hi, there','c'").values,
+            (Values{"'say \"hi, there'", "'c'"}));
+  EXPECT_EQ(sweep::ParseAxis(R"(run.name="a\",b","c")").values, (Values{R"("a\",b")", R"("c")"}));
+  EXPECT_EQ(sweep::ParseAxis(R"(run.name="it's,x","y")").values, (Values{R"("it's,x")", R"("y")"}));
+  try {
+    sweep::ParseAxis("run.name='a,b");
+    ADD_FAILURE() << "an unterminated literal string was accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("--vary 'run.name='a,b': unbalanced [ { or a string's quote"));
+  }
+}
+
 // Values with commas inside [], {} or quotes are one value; the CSV quotes them.
 TEST(SweepSeeds, TableAndArrayValuesOnAnAxis) {
   const std::string dir = TempDir("axis");
