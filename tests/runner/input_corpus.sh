@@ -230,7 +230,7 @@ case="[run] record_rate = 1e-20 records the first and the last step, not every s
 [ $code = 0 ] && [ "$(tail -n +2 rare/timeseries.csv | wc -l)" = 2 ] && ok "2 rows" ||
   fail "exit $code, $(tail -n +2 rare/timeseries.csv | wc -l) rows: $(head -c 300 err.txt)"
 case="a misspelt plugin name"
-refused 1 "[leader]: unknown plugin 'circel'; did you mean 'circle'?" -- run e.toml -o out -q --set 'leader={plugin="circel"}'
+refused 1 "unknown plugin 'circel'; did you mean 'circle'?" -- run e.toml -o out -q --set 'leader={plugin="circel"}'
 case="a misspelt command"
 refused 2 "unknown command 'rnu'; did you mean 'run'? (commands: run, check" -- rnu e.toml -o out
 case="formation.k = [\"3\", \"1\"]"
