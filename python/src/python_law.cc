@@ -54,7 +54,8 @@ int64_t StepsPerSample(const mjfCreateContext* ctx) {
     std::snprintf(step, sizeof(step), "%g", ctx->timestep);
     throw std::invalid_argument("attribute 'period': T = " + text +
                                 " s must be 0 (every physics step) or a positive whole number "
-                                "of physics steps of " + step + " s");
+                                "of physics steps of " +
+                                step + " s");
   }
   return steps;
 }
@@ -122,8 +123,8 @@ void ReadInput(const py::object& result, const std::vector<py::ssize_t>& shape, 
     const char kind = any.dtype().kind();
     if (kind != 'f' && kind != 'i' && kind != 'u') {
       throw std::runtime_error("the formation law returned an array of " +
-                               py::str(any.dtype()).cast<std::string>() + ", expected numbers: " +
-                               expected);
+                               py::str(any.dtype()).cast<std::string>() +
+                               ", expected numbers: " + expected);
     }
   }
   auto u = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(result);

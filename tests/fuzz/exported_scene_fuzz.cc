@@ -2,11 +2,11 @@
 //
 // An exported scene (`mjformation export`, mujoco_plugin/export) after a user edited it by hand:
 // the scene is compiled by MuJoCo with the native plugins (libmjformation_mujoco.so, loaded
-// once with mj_loadPluginLibrary as a user's program does), which read their <config> while the model compiles, build
-// their hosts in mj_makeData and fly a few steps. The input is the scene's text; `@SOURCE@` in
-// it stands for the source tree (the seeds were exported there: the vehicle model's path in
-// <config key="vehicles">). A refusal is MuJoCo's compile error (nothing returned) or a
-// MujocoError from the handlers the runner installs; anything else escaping is a finding.
+// once with mj_loadPluginLibrary as a user's program does), which read their <config> while the
+// model compiles, build their hosts in mj_makeData and fly a few steps. The input is the scene's
+// text; `@SOURCE@` in it stands for the source tree (the seeds were exported there: the vehicle
+// model's path in <config key="vehicles">). A refusal is MuJoCo's compile error (nothing returned)
+// or a MujocoError from the handlers the runner installs; anything else escaping is a finding.
 #include <mujoco/mujoco.h>
 
 #include <memory>
@@ -53,7 +53,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string path = Scratch().Write("scene.xml", WithSource(mjf::fuzz::AsText(data, size)));
   try {
     char error[1024] = {0};
-    std::unique_ptr<mjModel, ModelDeleter> m(mj_loadXML(path.c_str(), nullptr, error, sizeof(error)));
+    std::unique_ptr<mjModel, ModelDeleter> m(
+        mj_loadXML(path.c_str(), nullptr, error, sizeof(error)));
     if (!m) return 0;  // refused while compiling, with MuJoCo's message
     std::unique_ptr<mjData, DataDeleter> d(mj_makeData(m.get()));
     if (!d) return 0;  // a plugin refused in its init (the warning says why)

@@ -297,6 +297,22 @@ void ReadThreads(SectionReader& run, ExperimentConfig& c) {
   c.threads_origin = OriginOf(run.Node("threads"));
 }
 
+// [run]'s duration, time step, record rate and reaching band, each against its range.
+void CheckRunTiming(const SectionReader& run, const ExperimentConfig& c) {
+  if (c.duration <= 0) run.Fail("duration", "must be > 0 s");
+  if (c.timestep <= 0 || c.timestep > 0.01) run.Fail("timestep", "must be in (0, 0.01] s");
+  if (c.duration / c.timestep > 1e10) {  // step counts stay far inside int64
+    run.Fail("duration", "is more than 1e10 physics steps of [run] timestep");
+  }
+  // 0 (or no key) stands for the law's own band; a negative band would be read the same way.
+  if (c.reaching_band < 0) {
+    run.Fail("reaching_band", "must be >= 0 (0 or no key: the formation law's delta)");
+  }
+  if (c.record_rate <= 0 || c.record_rate > 1.0 / c.timestep) {
+    run.Fail("record_rate", "must be in (0, 1/timestep] Hz");
+  }
+}
+
 void ParseRunSection(const Reporter& reporter, SectionReader run, const std::string& path,
                      ExperimentConfig& c) {
   c.name = run.String("name", "");
@@ -324,18 +340,7 @@ void ParseRunSection(const Reporter& reporter, SectionReader run, const std::str
     }
   }
   run.RejectUnknown();
-  if (c.duration <= 0) run.Fail("duration", "must be > 0 s");
-  if (c.timestep <= 0 || c.timestep > 0.01) run.Fail("timestep", "must be in (0, 0.01] s");
-  if (c.duration / c.timestep > 1e10) {  // step counts stay far inside int64
-    run.Fail("duration", "is more than 1e10 physics steps of [run] timestep");
-  }
-  // 0 (or no key) stands for the law's own band; a negative band would be read the same way.
-  if (c.reaching_band < 0) {
-    run.Fail("reaching_band", "must be >= 0 (0 or no key: the formation law's delta)");
-  }
-  if (c.record_rate <= 0 || c.record_rate > 1.0 / c.timestep) {
-    run.Fail("record_rate", "must be in (0, 1/timestep] Hz");
-  }
+  CheckRunTiming(run, c);
   if (!(c.metric_window[0] < c.metric_window[1])) {
     run.Fail("metric_window", "expected [start, end] with start < end");
   }

@@ -166,8 +166,8 @@ void Simulation::CheckImuSite() {
                   "vehicle model %s: the site 'imu' is at %.6g %.6g %.6g in the body's axes, "
                   "not a finite position: give <site name=\"imu\"> a finite pos (at the centre "
                   "of mass, %.6g %.6g %.6g, docs/VEHICLES.md, \"The imu site\")",
-                  config_.model_path.c_str(), site_body[0], site_body[1], site_body[2],
-                  com_body[0], com_body[1], com_body[2]);
+                  config_.model_path.c_str(), site_body[0], site_body[1], site_body[2], com_body[0],
+                  com_body[1], com_body[2]);
     throw SceneError(text);
   }
   if (distance <= kImuOffsetTolerance) return;

@@ -14,18 +14,18 @@ namespace {
 
 TEST(NearestWordTest, EditDistanceCountsEachKindOfEditOnce) {
   EXPECT_EQ(EditDistance("run", "run"), 0u);
-  EXPECT_EQ(EditDistance("rnu", "run"), 1u);       // two neighbours swapped
+  EXPECT_EQ(EditDistance("rnu", "run"), 1u);  // two neighbours swapped
   EXPECT_EQ(EditDistance("circel", "circle"), 1u);
-  EXPECT_EQ(EditDistance("chek", "check"), 1u);    // a letter left out
-  EXPECT_EQ(EditDistance("Hover", "hover"), 0u);   // case does not count
+  EXPECT_EQ(EditDistance("chek", "check"), 1u);   // a letter left out
+  EXPECT_EQ(EditDistance("Hover", "hover"), 0u);  // case does not count
   EXPECT_EQ(EditDistance("kitten", "sitting"), 3u);
   EXPECT_EQ(EditDistance("", "abc"), 3u);
   EXPECT_EQ(EditDistance("abc", ""), 3u);
 }
 
 TEST(NearestWordTest, ASlipGetsTheNearestWordAndAStrangerNothing) {
-  const std::vector<std::string> commands = {"run", "check", "plugins", "keys", "bench",
-                                             "sweep", "replay", "view", "export"};
+  const std::vector<std::string> commands = {"run",   "check",  "plugins", "keys",  "bench",
+                                             "sweep", "replay", "view",    "export"};
   EXPECT_EQ(NearestWord("rnu", commands), "run");
   EXPECT_EQ(NearestWord("swep", commands), "sweep");
   EXPECT_EQ(NearestWord("exprot", commands), "export");

@@ -69,7 +69,8 @@ TEST(SceneTest, VehicleWithoutVehicleBodyIsRefused) {
 // MuJoCo's default 0.002 (the model wrote it; comparing with the default hid it).
 TEST(SceneTest, AReplacedTimestepIsNotedEvenAtMuJoCosDefault) {
   const std::string dir = mjf::testing::TempDir("scene_dt");
-  const std::string quad = mjf::testing::ReadFile(std::string(MJF_SOURCE_DIR) + "/mjcf/quadrotor.xml");
+  const std::string quad =
+      mjf::testing::ReadFile(std::string(MJF_SOURCE_DIR) + "/mjcf/quadrotor.xml");
   const std::string ours = "timestep=\"0.001\"";
   ASSERT_NE(quad.find(ours), std::string::npos);
   for (const char* dt : {"0.002", "0.004"}) {
