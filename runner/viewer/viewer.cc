@@ -519,8 +519,7 @@ int Main(int argc, char** argv) {
   app.add_option("--speed", o.speed, "simulated seconds per second (default 1)")
       ->check(CLI::Range(1e-3, 1e3));
   app.add_option("--screenshot", o.screenshot,
-                 "save the window to this PNG (and FILE.json), then close it (see --keep-open); "
-                 "never replaces a file");
+                 "save the window to this new PNG and FILE.json, then close (--keep-open)");
   app.add_option("--screenshot-at", o.screenshot_at, "... at this simulated time, s")
       ->check(CLI::Range(0.0, 1e7));
   app.add_flag("--keep-open", o.keep_open, "after --screenshot, keep the window open");
@@ -538,9 +537,8 @@ int Main(int argc, char** argv) {
     return 2;
   }
   if (!o.screenshot.empty() && o.screenshot_at < 0) o.screenshot_at = 0;
-  if (ScreenshotWouldReplace(o)) return 1;
 
-  std::unique_ptr<Source> source = MakeSource(o);
+  std::unique_ptr<Source> source = ScreenshotWouldReplace(o) ? nullptr : MakeSource(o);
   if (!source) return 1;
   const char* display = std::getenv("DISPLAY");
   const char* wayland = std::getenv("WAYLAND_DISPLAY");
