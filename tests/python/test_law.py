@@ -178,6 +178,7 @@ def test_a_law_returning_strings_is_refused_not_converted(exp2, tmp_path):
     def law(t, states, offsets, graph):
         return np.full((6, 2), "0.0")
 
-    run = mjformation.run(exp2, set=short(0.1), formation=law, out=tmp_path / "r")
+    with pytest.warns(RuntimeWarning, match="returned an array of <U3, expected numbers"):
+        run = mjformation.run(exp2, set=short(0.1), formation=law, out=tmp_path / "r")
     assert not run.complete
     assert "the formation law returned an array of <U3, expected numbers" in run.summary["error"]
