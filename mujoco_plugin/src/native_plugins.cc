@@ -27,6 +27,7 @@
 #include <mujoco/mujoco.h>
 
 #include <cmath>
+#include <cstdio>
 #include <exception>
 #include <limits>
 #include <memory>
@@ -136,6 +137,21 @@ void CheckVehicle(const mjModel* m, int instance) {
 }
 
 // ---- the shared mechanics, one set of callbacks per plugin
+
+// Runs `body` and raises what it throws as MuJoCo's error. mju_error does not return: MuJoCo's
+// handler longjmp()s (the compiler's) or exits, so no C++ object may be alive in this frame
+// when it is called; the message waits in a plain buffer.
+template <typename Body>
+void ErrorFromException(Body body) {
+  char message[1024] = {0};
+  try {
+    body();
+  } catch (const std::exception& e) {
+    std::snprintf(message, sizeof(message), "%s", e.what());
+  }
+  if (message[0]) mju_error("%s", message);
+}
+
 struct Kind {
   const char* name;
   std::unique_ptr<Holder> (*make)(const mjModel*, int);
@@ -146,13 +162,7 @@ struct Kind {
 // compiler here; in Init, mju_warning + -1, which MuJoCo appends to its error).
 template <const Kind& K>
 int NState(const mjModel* m, int instance) {
-  std::string error;
-  try {
-    K.check(m, instance);
-  } catch (const std::exception& e) {
-    error = e.what();
-  }
-  if (!error.empty()) mju_error("%s", error.c_str());
+  ErrorFromException([&] { K.check(m, instance); });
   return kHeader + m->nu;
 }
 
@@ -188,13 +198,7 @@ template <const Kind& K>
 void Reset(const mjModel* m, mjtNum* plugin_state, void* plugin_data, int instance) {
   ClearState(m, plugin_state);
   if (!plugin_data) return;  // mj_makeData resets before init
-  std::string error;
-  try {
-    static_cast<Holder*>(plugin_data)->Restart(m, instance);
-  } catch (const std::exception& e) {
-    error = e.what();
-  }
-  if (!error.empty()) mju_error("%s", error.c_str());
+  ErrorFromException([&] { static_cast<Holder*>(plugin_data)->Restart(m, instance); });
 }
 
 mjtNum* State(const mjModel* m, mjData* d, int instance) {
@@ -209,13 +213,7 @@ mjtNum* HeldControls(const mjModel* m, mjData* d, int instance) {
   // an intermediate stage of RK4 (t + h/2) belongs to its step.
   const int64_t step = static_cast<int64_t>(std::floor(d->time / m->opt.timestep + 1e-3));
   if (state[0] != static_cast<double>(step)) {
-    std::string error;
-    try {
-      HolderOf(d, instance)->Tick(step, m, d, state + kHeader);
-    } catch (const std::exception& e) {
-      error = e.what();
-    }
-    if (!error.empty()) mju_error("%s", error.c_str());
+    ErrorFromException([&] { HolderOf(d, instance)->Tick(step, m, d, state + kHeader); });
     state[0] = static_cast<double>(step);
   }
   return state + kHeader;

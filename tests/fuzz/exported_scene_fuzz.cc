@@ -7,6 +7,8 @@
 // text; `@SOURCE@` in it stands for the source tree (the seeds were exported there: the vehicle
 // model's path in <config key="vehicles">). A refusal is MuJoCo's compile error (nothing returned)
 // or a MujocoError from the handlers the runner installs; anything else escaping is a finding.
+#include <dirent.h>
+#include <dlfcn.h>
 #include <mujoco/mujoco.h>
 
 #include <memory>
@@ -33,6 +35,23 @@ std::string WithSource(std::string text) {
   return text;
 }
 
+// Each host's plugin registry dlopen()s our plugin families and dlclose()s them when it goes;
+// libFuzzer keeps the coverage counters of every instrumented library it saw, and reads them
+// after each input, so a family unmapped between inputs would be read after it is gone. Opened
+// once here with RTLD_NODELETE, the families stay mapped for the process's life.
+void PinPluginFamilies() {
+  DIR* dir = opendir(MJF_PLUGIN_BUILD_DIR);
+  if (!dir) return;
+  while (const dirent* entry = readdir(dir)) {
+    const std::string name = entry->d_name;
+    if (name.rfind("lib", 0) != 0 || name.size() < 4 || name.substr(name.size() - 3) != ".so") {
+      continue;
+    }
+    dlopen((std::string(MJF_PLUGIN_BUILD_DIR) + "/" + name).c_str(), RTLD_NOW | RTLD_NODELETE);
+  }
+  closedir(dir);
+}
+
 struct ModelDeleter {
   void operator()(mjModel* m) const { mj_deleteModel(m); }
 };
@@ -47,6 +66,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   static const bool installed = [] {
     mjf::runner::InstallMujocoHandlers();
     mj_loadPluginLibrary(MJF_NATIVE_PLUGIN_LIBRARY);
+    PinPluginFamilies();
     return true;
   }();
   (void)installed;
