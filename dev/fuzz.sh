@@ -6,7 +6,8 @@
 # BUILD/tests/fuzz/work/<target>/; nothing in the source tree is written. Exit 1 when any target
 # found something.
 # Usage: dev/fuzz.sh [--seconds N] [--build DIR] [TARGET...]
-#   TARGET: experiment vehicle_mjcf timeseries trajectory sweep_vary (default: all)
+#   TARGET: experiment vehicle_mjcf timeseries trajectory sweep_vary native_config
+#           exported_scene (default: all)
 #   --seconds N: per target (default 900, the once-per-change long run; the test suite's
 #                fuzz_run_* tests run 15 s each: MJF_FUZZ_SECONDS)
 #   --build DIR: the instrumented tree (default build-asan)
@@ -17,11 +18,12 @@ while (($#)); do
   case $1 in
     --seconds) seconds=$2; shift 2 ;;
     --build) build=$2; shift 2 ;;
-    -h|--help) sed -n 2,12p "$0"; exit 0 ;;
+    -h|--help) sed -n 2,13p "$0"; exit 0 ;;
     *) targets+=("$1"); shift ;;
   esac
 done
-((${#targets[@]})) || targets=(experiment vehicle_mjcf timeseries trajectory sweep_vary)
+((${#targets[@]})) || targets=(experiment vehicle_mjcf timeseries trajectory sweep_vary native_config
+                                  exported_scene)
 target_args=()
 for t in "${targets[@]}"; do target_args+=(--target "fuzz_$t"); done
 bash "$root/dev/sanitizer_build.sh" "$build" --fuzz-seconds "$seconds" "${target_args[@]}"

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 namespace mjf {
 
@@ -40,9 +41,14 @@ inline int64_t StepsAtOrAfter(double seconds, double timestep) {
 }
 
 // The nearest whole number of steps (at least 1) of a period that need not be whole, such as an
-// output's frame rate: it is sampled as closely as the physics steps allow.
+// output's frame rate: it is sampled as closely as the physics steps allow. A period of more
+// steps than int64_t holds (a rate of 1e-20 Hz) is the largest count, so it is sampled never
+// again after step 0, rather than overflowing llround into a count of 1 (every step).
 inline int64_t NearestSteps(double seconds, double timestep) {
-  return std::max<int64_t>(1, std::llround(seconds / timestep));
+  const double steps = seconds / timestep;
+  constexpr double kBeyond = 9.2e18;  // below INT64_MAX (9.22e18), above any run's length
+  if (!(steps < kBeyond)) return std::numeric_limits<int64_t>::max();
+  return std::max<int64_t>(1, std::llround(steps));
 }
 
 }  // namespace mjf

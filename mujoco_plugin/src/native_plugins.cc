@@ -40,6 +40,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <exception>
 #include <limits>
 #include <map>
@@ -257,29 +258,32 @@ size_t VehicleStateSize(const mjModel* m, int instance) {
 }
 
 // ---- the shared mechanics, one set of callbacks per plugin
+
+// Runs `body` and raises what it throws as MuJoCo's error. mju_error does not return: MuJoCo's
+// handler longjmp()s (the compiler's) or exits, so no C++ object may be alive in this frame
+// when it is called; the message waits in a plain buffer.
+template <typename Body>
+void ErrorFromException(Body body) {
+  char message[1024] = {0};
+  try {
+    body();
+  } catch (const std::exception& e) {
+    std::snprintf(message, sizeof(message), "%s", e.what());
+  }
+  if (message[0]) mju_error("%s", message);
+}
+
 struct Kind {
   const char* name;
   std::unique_ptr<Holder> (*make)(const mjModel*, int);
   size_t (*state_size)(const mjModel*, int);
 };
 
-// Runs f; a C++ exception becomes a MuJoCo error (mju_error: the user's handler, or exit).
-template <typename F>
-void OrMujocoError(F f) {
-  std::string error;
-  try {
-    f();
-  } catch (const std::exception& e) {
-    error = e.what();
-  }
-  if (!error.empty()) mju_error("%s", error.c_str());
-}
-
 // Called while the model compiles: a refusal becomes the compile error.
 template <const Kind& K>
 int NState(const mjModel* m, int instance) {
   size_t blocks = 0;
-  OrMujocoError([&] { blocks = K.state_size(m, instance); });
+  ErrorFromException([&] { blocks = K.state_size(m, instance); });
   return kHeader + static_cast<int>(m->nactuator + blocks);
 }
 
@@ -339,7 +343,7 @@ mjtNum* HeldControls(const mjModel* m, mjData* d, int instance) {
   mjtNum* state = State(m, d, instance);
   mjtNum* controls = state + kHeader;
   if (state[kHeld] == state[kCommitted]) return controls;
-  OrMujocoError([&] {
+  ErrorFromException([&] {
     if (state[kLayout] != kLayoutVersion) {
       throw std::runtime_error(InstanceWhere(K.name, m, instance) + ": plugin_state has layout " +
                                std::to_string(state[kLayout]) + ", this library reads layout " +

@@ -313,11 +313,27 @@ def check(experiment, set=None, formation=None, plugin_path=None, render=True) -
                            _plugin_path(plugin_path), bool(render))
 
 
+def _require_bool(name: str, value) -> bool:
+    """A yes/no argument: bool("no") is True, so anything but a bool is refused, as run does."""
+    if not isinstance(value, (bool, np.bool_)):
+        raise TypeError(f"{name}= takes True or False, not {value!r}")
+    return bool(value)
+
+
+def _require_path(name: str, value) -> str:
+    """A folder argument: str(None) would be the folder ./None."""
+    if not isinstance(value, (str, os.PathLike)):
+        raise TypeError(f"{name}= takes a folder (str or os.PathLike), not {value!r}")
+    return os.fspath(value)
+
+
 def export(experiment, out, overwrite=False) -> Path:
     """Writes OUT/scene.xml: the experiment as a MuJoCo scene whose controllers are the native
     plugins of native_plugin_library() (docs/PLUGINS.md). What the native path cannot carry is
-    refused naming the key; notes on what is not carried (e.g. [render]) go to stderr."""
-    scene, notes = _core.export(str(experiment), str(out), bool(overwrite))
+    refused naming the key; notes on what is not carried (e.g. [render]) go to stderr.
+    out: a folder (str or os.PathLike); overwrite: True or False (anything else: TypeError)."""
+    scene, notes = _core.export(str(experiment), _require_path("out", out),
+                                _require_bool("overwrite", overwrite))
     for note in notes:
         print(f"note: {note}", file=sys.stderr)
     return Path(scene)

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <mjformation/plugin_contract.hpp>
 #include <mjformation/plugin_util.hpp>
@@ -38,12 +39,23 @@ const mjfAttribute kAttributes[] = {
 // Physics steps per sample: period 0 is every step; else a whole number of steps.
 int64_t StepsPerSample(const mjfCreateContext* ctx) {
   const std::string text = plugin::Attributes(ctx).String(plugin::contract::kPeriod);
-  const double period = std::stod(text);
+  // strtod, not stod: stod throws "stod" for a period below the smallest normal double
+  // (1e-320), where strtod gives the number and WholeSteps finds it zero steps.
+  char* end = nullptr;
+  const double period = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0') {
+    throw std::invalid_argument("attribute 'period': expected a number of seconds, got '" + text +
+                                "'");
+  }
   if (period == 0.0) return 1;
   const int64_t steps = WholeSteps(period, ctx->timestep);
   if (!(period > 0.0) || steps < 1) {
+    char step[32];
+    std::snprintf(step, sizeof(step), "%g", ctx->timestep);
     throw std::invalid_argument("attribute 'period': T = " + text +
-                                " s must be a positive whole number of physics steps");
+                                " s must be 0 (every physics step) or a positive whole number "
+                                "of physics steps of " +
+                                step + " s");
   }
   return steps;
 }
@@ -106,6 +118,15 @@ py::array_t<double> Copy(const double* data, std::vector<py::ssize_t> shape) {
 // finite-or-not doubles (the runner checks finiteness).
 void ReadInput(const py::object& result, const std::vector<py::ssize_t>& shape, double* out,
                const char* expected) {
+  // forcecast alone would read the strings "0.0" as numbers: only numbers are numbers.
+  if (const py::array any = py::array::ensure(result)) {
+    const char kind = any.dtype().kind();
+    if (kind != 'f' && kind != 'i' && kind != 'u') {
+      throw std::runtime_error("the formation law returned an array of " +
+                               py::str(any.dtype()).cast<std::string>() +
+                               ", expected numbers: " + expected);
+    }
+  }
   auto u = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(result);
   const bool same_shape =
       u && u.ndim() == static_cast<py::ssize_t>(shape.size()) &&

@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "mjformation/app/cli.hpp"
 #include "mjformation/app/replay.hpp"
 #include "mjformation/config/config.hpp"
 #include "mjformation/record/frame_view.hpp"
@@ -494,6 +495,20 @@ std::string UsageProblem(const Options& o) {
   return "";
 }
 
+// One rule for every output file, as replay and bench --json: an existing file is never
+// replaced. Looked at before the window opens, so nothing runs for a shot that cannot be kept.
+// True (after the message) when --screenshot FILE or FILE.json exists.
+bool ScreenshotWouldReplace(const Options& o) {
+  if (o.screenshot.empty()) return false;
+  try {
+    RefuseExistingFiles({o.screenshot, o.screenshot + ".json"});
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "mjformation view: --screenshot %s\n", e.what());
+    return true;
+  }
+  return false;
+}
+
 int Main(int argc, char** argv) {
   CLI::App app("mjformation-view: fly an experiment live, or replay a run, in a window");
   Options o;
@@ -504,7 +519,7 @@ int Main(int argc, char** argv) {
   app.add_option("--speed", o.speed, "simulated seconds per second (default 1)")
       ->check(CLI::Range(1e-3, 1e3));
   app.add_option("--screenshot", o.screenshot,
-                 "save the window to this PNG, then close it (see --keep-open)");
+                 "save the window to this new PNG and FILE.json, then close (--keep-open)");
   app.add_option("--screenshot-at", o.screenshot_at, "... at this simulated time, s")
       ->check(CLI::Range(0.0, 1e7));
   app.add_flag("--keep-open", o.keep_open, "after --screenshot, keep the window open");
@@ -523,7 +538,7 @@ int Main(int argc, char** argv) {
   }
   if (!o.screenshot.empty() && o.screenshot_at < 0) o.screenshot_at = 0;
 
-  std::unique_ptr<Source> source = MakeSource(o);
+  std::unique_ptr<Source> source = ScreenshotWouldReplace(o) ? nullptr : MakeSource(o);
   if (!source) return 1;
   const char* display = std::getenv("DISPLAY");
   const char* wayland = std::getenv("WAYLAND_DISPLAY");

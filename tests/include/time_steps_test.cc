@@ -54,5 +54,15 @@ TEST(TimeStepsTest, NearestStepsRoundsAndNeverGivesZero) {
   EXPECT_EQ(NearestSteps(0.25, 0.375), 1);    // 0.67
 }
 
+TEST(TimeStepsTest, NearestStepsOfAnAstronomicalPeriodIsNeverAgainNotEveryStep) {
+  // 1 / 1e-20 Hz at 1 kHz is 1e23 steps: past int64_t, where llround overflowed to a count the
+  // clamp made 1, so timeseries.csv recorded every step.
+  constexpr int64_t kNever = std::numeric_limits<int64_t>::max();
+  EXPECT_EQ(NearestSteps(1.0 / 1e-20, 0.001), kNever);
+  EXPECT_EQ(NearestSteps(1.0 / 1e-17, 0.001), kNever);
+  EXPECT_EQ(NearestSteps(std::numeric_limits<double>::infinity(), 0.001), kNever);
+  EXPECT_EQ(NearestSteps(1e15, 0.001), 1000000000000000000);  // 1e18: still a count
+}
+
 }  // namespace
 }  // namespace mjf

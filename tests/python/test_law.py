@@ -161,3 +161,24 @@ def test_a_short_run_without_render_needs_no_snapshot_override(exp2):
     with pytest.raises(ValueError, match="snapshots"):
         mjformation.run(exp2, set={"run.duration": 0.2, "run.metric_window": [0.0, 0.2]},
                         render=True)
+
+
+def test_a_period_below_the_smallest_normal_double_is_named_not_stod(exp2, tmp_path):
+    """1e-320 s is a number (subnormal) of zero physics steps: refused for what it is, where
+    std::stod threw "stod"."""
+    law = mjformation.FormationLaw(lambda t, s, f, g: np.zeros((6, 2)), period=1e-320)
+    with pytest.raises(ValueError, match=r"attribute 'period': T = 1e-320 s must be 0 \(every "
+                                         r"physics step\) or a positive whole number of physics "
+                                         r"steps of 0.001 s"):
+        mjformation.run(exp2, set=short(0.1), formation=law, out=tmp_path / "r")
+
+
+def test_a_law_returning_strings_is_refused_not_converted(exp2, tmp_path):
+    """numpy would read the strings "0.0" as numbers: a law returns numbers or its run stops."""
+    def law(t, states, offsets, graph):
+        return np.full((6, 2), "0.0")
+
+    with pytest.warns(RuntimeWarning, match="returned an array of <U3, expected numbers"):
+        run = mjformation.run(exp2, set=short(0.1), formation=law, out=tmp_path / "r")
+    assert not run.complete
+    assert "the formation law returned an array of <U3, expected numbers" in run.summary["error"]

@@ -126,3 +126,18 @@ def test_fly_exported_refuses_bad_input_in_one_line(source, exp2, tmp_path):
         source, "fly_exported.py", str(scene), "--seconds", "-1")
     assert "--plot /proc/none/s.png: cannot write into /proc/none" in run_example_failing(
         source, "fly_exported.py", str(scene), "--plot", "/proc/none/s.png")
+
+
+def test_export_takes_a_folder_and_a_bool(exp2, tmp_path, monkeypatch):
+    """str(None) was the folder ./None and bool("no") is True: both refused before anything is
+    written, as run refuses them."""
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(TypeError, match=r"out= takes a folder \(str or os.PathLike\), not None"):
+        mjformation.export(exp2, None)
+    mine = tmp_path / "mine"
+    mine.mkdir()
+    (mine / "notes.txt").write_text("mine")
+    with pytest.raises(TypeError, match=r"overwrite= takes True or False, not 'no'"):
+        mjformation.export(exp2, mine, overwrite="no")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["mine"]
+    assert sorted(p.name for p in mine.iterdir()) == ["notes.txt"]

@@ -186,6 +186,14 @@ for spec in "--size -100|--size: Value -100 not in range" "--bogus-flag|--bogus-
   # shellcheck disable=SC2086
   DISPLAY= refused 2 "${spec#*|}" -- view e.toml $args
 done
+# view --screenshot FILE writes FILE and FILE.json: neither is replaced (as replay, bench --json),
+# and the refusal comes before any window, so it holds without a display.
+for existing in shot.png shot.png.json; do
+  case="view --screenshot onto an existing $existing"
+  rm -f shot.png shot.png.json && echo "my picture" > "$existing"
+  DISPLAY= refused 1 "--screenshot $existing: exists; this command never replaces a file" -- view e.toml --screenshot shot.png
+  [ "$(cat "$existing")" = "my picture" ] || fail "$existing was replaced"
+done
 
 # ---- bounded inputs: [sensors], [wind], [leader], [formation], files ----
 case="[sensors] scale = 1e6"
@@ -210,12 +218,35 @@ case="a folder given as the trajectory file"
 refused 1 "is a folder, not a CSV file" -- run e.toml -o out -q --set "leader={plugin=\"trajectory\", file=\"$work/afolder\"}"
 case="a folder given as the model file"
 refused 1 "is a folder" -- run e.toml -o out -q --set "vehicles.model=\"$work/afolder\""
+for command in run check export; do
+  case="a folder given as the experiment file ($command)"
+  extra=(-o out) && [ $command = check ] && extra=()
+  refused 1 "afolder: is a folder, not an experiment file" -- $command afolder "${extra[@]}"
+done
+case="[run] reaching_band = -0.5"
+refused 1 "--set run.reaching_band=-0.5: [run] reaching_band: must be >= 0" -- run e.toml -o out -q --set run.reaching_band=-0.5
+case="[run] record_rate = 1e-20 records the first and the last step, not every step"
+"$bin" run e.toml -o rare -q --no-render --set run.record_rate=1e-20 2>err.txt; code=$?
+[ $code = 0 ] && [ "$(tail -n +2 rare/timeseries.csv | wc -l)" = 2 ] && ok "2 rows" ||
+  fail "exit $code, $(tail -n +2 rare/timeseries.csv | wc -l) rows: $(head -c 300 err.txt)"
+case="a misspelt plugin name"
+refused 1 "unknown plugin 'circel'; did you mean 'circle'?" -- run e.toml -o out -q --set 'leader={plugin="circel"}'
+case="a misspelt command"
+refused 2 "unknown command 'rnu'; did you mean 'run'? (commands: run, check" -- rnu e.toml -o out
 case="formation.k = [\"3\", \"1\"]"
 refused 1 '--set formation.k=["3","1"]: [formation] k: an array attribute holds numbers or booleans' -- run e.toml -o out -q --set 'formation.k=["3","1"]'
 case="a self-including MJCF names the including line and the cycle"
 printf '<mujoco>\n  <worldbody/>\n  <include file="self.xml"/>\n</mujoco>\n' > self.xml
 refused 1 'self.xml:3: <include file="self.xml"> is an include cycle' -- run e.toml -o out -q --no-render \
   --set 'vehicles.model="self.xml"' --set 'vehicles.body="b"' --set 'vehicles.rotors=["a","b","c","d"]'
+case="a vehicle model with no joint (welded to the world)"
+grep -v "<freejoint" "$source/mjcf/quadrotor.xml" > welded.xml
+refused 1 "welded.xml: body 'vehicle' has no joint, so it is welded to the world" -- run e.toml -o out -q --no-render \
+  --set "vehicles.model=\"$work/welded.xml\"" --set 'attitude={plugin="pd_cascade"}'
+case="an imu site at NaN"
+sed 's|<site name="imu" pos="0 0 0"|<site name="imu" pos="nan 0 0"|' "$source/mjcf/pointmass.xml" > nan_imu.xml
+refused 1 "nan_imu.xml: the site 'imu' is at nan" -- run e.toml -o out -q --no-render \
+  --set "vehicles.model=\"$work/nan_imu.xml\""
 case="[vehicles] followers = 4294967297"
 refused 1 "[vehicles] followers: must be in [1, 100000]" -- run e.toml -o out -q --set vehicles.followers=4294967297
 case="[run] stop_on with an unknown kind"

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
@@ -12,6 +13,7 @@
 
 #include "mjformation/config/config.hpp"
 #include "mjformation/config/key_reference.hpp"
+#include "mjformation/config/nearest_word.hpp"
 #include "mjformation/config/paths.hpp"
 #include "mjformation/config/source_location.hpp"
 #include "mjformation/control/plugin_host.hpp"
@@ -294,10 +296,33 @@ int Dispatch(const CLI::App& app, const CliCommands& c) {
   return 2;
 }
 
+namespace {
+
+// The first argument names the command (only --help and --version come before one): a word
+// that is none of them is named, with the nearest command, where CLI11 would say only "A
+// subcommand is required". Empty when the first argument is a command or an option.
+std::string UnknownCommand(const CLI::App& app, int argc, const char* const* argv) {
+  if (argc < 2 || argv[1][0] == '-') return "";
+  std::vector<std::string> names;
+  for (const CLI::App* command : app.get_subcommands({})) names.push_back(command->get_name());
+  const std::string word = argv[1];
+  if (std::find(names.begin(), names.end(), word) != names.end()) return "";
+  std::string list;
+  for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
+  return "unknown command '" + word + "'" + DidYouMean(word, names) + " (commands: " + list +
+         "; mjformation --help)";
+}
+
+}  // namespace
+
 int RunCommandLine(int argc, const char* const* argv) {
   CLI::App app{"mjformation: distributed formation control of quadrotor swarms in MuJoCo"};
   CliCommands commands;
   AddCommands(app, &commands);
+  if (const std::string unknown = UnknownCommand(app, argc, argv); !unknown.empty()) {
+    std::fprintf(stderr, "mjformation: %s\n", EscapeControl(unknown).c_str());
+    return 2;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

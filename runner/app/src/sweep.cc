@@ -37,8 +37,9 @@ int SweepCommand(const CliCommands& c) {
   std::fprintf(
       stderr, "sweep: tables in %s/sweep.csv and sweep.json%s%s%s\n", plan.out.c_str(),
       plan.seeds ? " (per cell; per run: sweep_runs.csv)" : "",
-      failures ? fmt::format(" ({} runs failed or stopped early)", failures).c_str() : "",
-      not_run ? fmt::format("; interrupted: {} runs not run, finish with --resume", not_run).c_str()
+      failures ? fmt::format(" ({} failed or stopped early)", RunCount(failures)).c_str() : "",
+      not_run ? fmt::format("; interrupted: {} not run, finish with --resume", RunCount(not_run))
+                    .c_str()
               : "");
   if (not_run) return InterruptRequested() ? InterruptExitCode() : 3;
   return failures ? 3 : 0;

@@ -69,6 +69,9 @@ SweepPlan PlanSweep(const CliCommands& c);
 // quotes (none); numbers, arrays and tables as written.
 std::string DisplayValue(const std::string& toml);
 
+// "1 run", "3 runs": a count of runs as the messages write it.
+inline std::string RunCount(size_t n) { return std::to_string(n) + (n == 1 ? " run" : " runs"); }
+
 // A CSV field: as is, or quoted (RFC 4180) when it holds a comma, quote, CR or LF.
 std::string CsvField(const std::string& v);
 

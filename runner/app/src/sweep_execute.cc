@@ -280,7 +280,7 @@ int ThreadsPerRun(const SweepPlan& plan, int jobs) {
 void RunThreaded(const SweepPlan& plan, const CliCommands& c, const std::vector<size_t>& todo,
                  Progress* progress) {
   const int jobs = std::max(1, std::min<int>(c.sweep_jobs, static_cast<int>(todo.size())));
-  std::fprintf(stderr, "sweep: %zu runs, %d at a time, into %s\n", todo.size(), jobs,
+  std::fprintf(stderr, "sweep: %s, %d at a time, into %s\n", RunCount(todo.size()).c_str(), jobs,
                plan.out.c_str());
   const int max_threads = ThreadsPerRun(plan, jobs);
   std::atomic<size_t> next{0};
@@ -371,7 +371,7 @@ int RunMpi(const SweepPlan& plan, const CliCommands& c, std::vector<RunOutcome>*
   if (rc != 0)
     throw OutputError(std::string("sweep (MPI rank ") + std::to_string(rank) + "): " + error);
   if (rank == 0) {
-    std::fprintf(stderr, "sweep: %zu runs over %d MPI ranks\n", ctx.todo.size(), size);
+    std::fprintf(stderr, "sweep: %s over %d MPI ranks\n", RunCount(ctx.todo.size()).c_str(), size);
   }
   return rank;
 }

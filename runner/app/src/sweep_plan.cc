@@ -21,8 +21,10 @@ constexpr double kMaxRuns = 100000;  // runs in one sweep
 
 }  // namespace
 
-// "formation.q=1,2.5,4.5" -> {formation.q, [1, 2.5, 4.5]}. Commas inside [], {} or quotes do
-// not split: "wind.mean=[3,0,0],[6,0,0]" or "sensors={preset=\"typical\", scale=3.0},{...}".
+// "formation.q=1,2.5,4.5" -> {formation.q, [1, 2.5, 4.5]}. Commas inside [], {} or a TOML
+// string do not split: "wind.mean=[3,0,0],[6,0,0]", "sensors={preset=\"typical\", scale=3.0},
+// {...}" or "run.name='a,b','c'". A string is TOML's: "..." (where \" does not end it) or '...'
+// (a literal string: no escapes, and the other quote is a plain character inside it).
 Axis ParseAxis(const std::string& text) {
   const auto eq = text.find('=');
   if (eq == std::string::npos || eq == 0 || eq + 1 == text.size()) {
@@ -31,11 +33,21 @@ Axis ParseAxis(const std::string& text) {
   Axis axis{text.substr(0, eq), {}};
   const std::string rest = text.substr(eq + 1);
   int depth = 0;
-  bool quoted = false;
+  char quote = 0;  // the quote of the string the scan is in; 0 outside strings
   std::string value;
   for (size_t i = 0; i <= rest.size(); ++i) {
     const char ch = i < rest.size() ? rest[i] : ',';
-    if (ch == '"') quoted = !quoted;
+    if (quote == '"' && ch == '\\' && i + 1 < rest.size()) {  // an escape: \" or \\ stays inside
+      value += ch;
+      value += rest[++i];
+      continue;
+    }
+    if (!quote && (ch == '"' || ch == '\'')) {
+      quote = ch;
+    } else if (ch == quote) {
+      quote = 0;
+    }
+    const bool quoted = quote != 0;
     if (!quoted && (ch == '[' || ch == '{')) ++depth;
     if (!quoted && (ch == ']' || ch == '}')) --depth;
     if (ch == ',' && depth == 0 && !quoted) {
@@ -46,7 +58,9 @@ Axis ParseAxis(const std::string& text) {
       value += ch;
     }
   }
-  if (depth != 0 || quoted) throw ConfigError("--vary '" + text + "': unbalanced [ { or \"");
+  if (depth != 0 || quote) {
+    throw ConfigError("--vary '" + text + "': unbalanced [ { or a string's quote (\" or ')");
+  }
   return axis;
 }
 

@@ -1,6 +1,7 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 #include "mjformation/app/sweep_stats.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -42,6 +43,12 @@ SampleStats Describe(const std::vector<double>& samples) {
   const double half = StudentT975(s.n - 1) * s.std / std::sqrt(static_cast<double>(s.n));
   s.ci95_low = s.mean - half;
   s.ci95_high = s.mean + half;
+  const bool non_negative =
+      std::all_of(samples.begin(), samples.end(), [](double v) { return v >= 0; });
+  if (non_negative && s.ci95_low < 0) {
+    s.ci95_low = 0;
+    s.cut_at_zero = true;
+  }
   return s;
 }
 

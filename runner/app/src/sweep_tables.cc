@@ -258,8 +258,8 @@ std::string MeanText(const SampleStats& s) {
   if (s.n == 0 || !std::isfinite(s.mean)) return "n/a";
   if (s.n < 2) return fmt::format("{:.4g} (1 run)", s.mean);
   if (s.std == 0) return fmt::format("{:.4g} (the same in all {} runs)", s.mean, s.n);
-  return fmt::format("{:.4g}, 95 % CI [{:.4g}, {:.4g}] over {} runs", s.mean, s.ci95_low,
-                     s.ci95_high, s.n);
+  return fmt::format("{:.4g}, 95 % CI [{:.4g}, {:.4g}] over {} runs (Student t{})", s.mean,
+                     s.ci95_low, s.ci95_high, s.n, s.cut_at_zero ? ", cut at 0" : "");
 }
 
 // The varied values of a cell as "key=value, key=value" (the table's plain values).
@@ -305,8 +305,8 @@ std::string SummaryText(const SweepPlan& plan, const std::vector<RunOutcome>& ou
             left_out[cell], completed[cell], MeanText(stats[cell][0]));
       }
       if (reported_only[cell] > 0) {
-        text += fmt::format("; {} runs with near misses or region exits only (reported, kept)",
-                            reported_only[cell]);
+        text += fmt::format("; {} with near misses or region exits only (reported, kept)",
+                            RunCount(reported_only[cell]));
       }
       text += "\n";
     }
@@ -331,6 +331,7 @@ void WriteTables(const SweepPlan& plan, const std::vector<RunOutcome>& outcomes)
   bool complete = true;
   Json runs = RunsJson(plan, outcomes, &complete);
   Json table = {{"complete", complete}, {"seeds", plan.seeds}, {"runs", runs}};
+  if (plan.seeds) table["ci95_method"] = kCi95Method;
   if (AnyEvents(outcomes)) {
     Json kinds = Json::array();
     for (const char* kind : kInvalidatingKinds) kinds.push_back(kind);

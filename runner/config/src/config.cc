@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <set>
@@ -296,6 +297,22 @@ void ReadThreads(SectionReader& run, ExperimentConfig& c) {
   c.threads_origin = OriginOf(run.Node("threads"));
 }
 
+// [run]'s duration, time step, record rate and reaching band, each against its range.
+void CheckRunTiming(const SectionReader& run, const ExperimentConfig& c) {
+  if (c.duration <= 0) run.Fail("duration", "must be > 0 s");
+  if (c.timestep <= 0 || c.timestep > 0.01) run.Fail("timestep", "must be in (0, 0.01] s");
+  if (c.duration / c.timestep > 1e10) {  // step counts stay far inside int64
+    run.Fail("duration", "is more than 1e10 physics steps of [run] timestep");
+  }
+  // 0 (or no key) stands for the law's own band; a negative band would be read the same way.
+  if (c.reaching_band < 0) {
+    run.Fail("reaching_band", "must be >= 0 (0 or no key: the formation law's delta)");
+  }
+  if (c.record_rate <= 0 || c.record_rate > 1.0 / c.timestep) {
+    run.Fail("record_rate", "must be in (0, 1/timestep] Hz");
+  }
+}
+
 void ParseRunSection(const Reporter& reporter, SectionReader run, const std::string& path,
                      ExperimentConfig& c) {
   c.name = run.String("name", "");
@@ -323,14 +340,7 @@ void ParseRunSection(const Reporter& reporter, SectionReader run, const std::str
     }
   }
   run.RejectUnknown();
-  if (c.duration <= 0) run.Fail("duration", "must be > 0 s");
-  if (c.timestep <= 0 || c.timestep > 0.01) run.Fail("timestep", "must be in (0, 0.01] s");
-  if (c.duration / c.timestep > 1e10) {  // step counts stay far inside int64
-    run.Fail("duration", "is more than 1e10 physics steps of [run] timestep");
-  }
-  if (c.record_rate <= 0 || c.record_rate > 1.0 / c.timestep) {
-    run.Fail("record_rate", "must be in (0, 1/timestep] Hz");
-  }
+  CheckRunTiming(run, c);
   if (!(c.metric_window[0] < c.metric_window[1])) {
     run.Fail("metric_window", "expected [start, end] with start < end");
   }
@@ -589,6 +599,13 @@ ExperimentConfig ParseExperiment(const std::string& text, const std::string& pat
 
 ExperimentConfig LoadExperiment(const std::string& path, const std::vector<std::string>& overrides,
                                 ExperimentChecks checks) {
+  // A folder opens as a stream that reads as empty, which would be refused for its first
+  // missing key rather than for what it is.
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    throw ConfigError(path + ": is a folder, not an experiment file (name a .toml file, e.g. " +
+                      "experiments/exp2.toml)");
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw ConfigError(path + ": cannot open the experiment file");
   std::ostringstream text;

@@ -9,6 +9,7 @@
 #include <mutex>
 #include <set>
 
+#include "mjformation/config/nearest_word.hpp"
 #include "mjformation/config/paths.hpp"
 #include "mjformation/config/source_location.hpp"
 
@@ -154,7 +155,9 @@ const LoadedPlugin& PluginRegistry::Find(const std::string& name, const std::str
   for (const auto& p : plugins_) {
     if (name == p.descriptor->name) return p;
   }
-  std::string message = where + ": unknown plugin '" + name + "'";
+  std::vector<std::string> names;
+  for (const auto& p : plugins_) names.push_back(p.descriptor->name);
+  std::string message = where + ": unknown plugin '" + name + "'" + DidYouMean(name, names);
   std::string available;
   for (const auto& p : plugins_) {
     available += (available.empty() ? "" : ", ") + std::string(p.descriptor->name) + " (" +

@@ -53,7 +53,20 @@ TorqueAuthority ComputeTorqueAuthority(const mjfVehicleInfo& info) {
     return out;
   }
   const Eigen::Matrix4d inv = lu.inverse();
-  const Eigen::Vector4d hover = inv.col(0) * (info.mass * info.gravity);
+  const double weight = info.mass * info.gravity;
+  const Eigen::Vector4d hover = inv.col(0) * weight;
+  // A vehicle whose actuators cannot hold its weight has no margin to give torques from: said
+  // as such, rather than as an authority of 0 that asks for an infinitely wider range.
+  for (int k = 0; k < kActuators; ++k) {
+    if (hover[k] < lo[k] || hover[k] > hi[k]) {
+      out.cannot_hover = true;
+      out.why = fmt::format(
+          "the actuators cannot hold its weight ({:.3g} kg x {:.3g} m/s^2 = {:.3g} N): hovering "
+          "takes actuator {} to {:.3g}, outside its ctrlrange [{:.3g}, {:.3g}]",
+          info.mass, info.gravity, weight, k, hover[k], lo[k], hi[k]);
+      return out;
+    }
+  }
   out.known = true;
   for (int axis = 0; axis < 3; ++axis) {
     out.inertia[axis] = info.inertia[axis];
@@ -144,6 +157,12 @@ std::string ShortAxisWarning(const TorqueAuthority& a, const AttitudeDemand& d,
 std::vector<std::string> AuthorityWarnings(const TorqueAuthority& a, const AttitudeDemand& d,
                                            const std::string& vehicle) {
   std::vector<std::string> out;
+  if (a.cannot_hover) {
+    out.push_back(vehicle + ": " + a.why +
+                  ": it cannot hover, so it falls; lower the model's mass or raise the "
+                  "actuators' ctrlrange (or the rotors' gear)");
+    return out;
+  }
   const double bw = d.Reference();
   const double demand = DemandedTiltAcceleration(bw, d.tilt_max);
   if (!a.known || !std::isfinite(demand) || !(demand > 0)) return out;

@@ -174,10 +174,14 @@ void AttachCopies(mjSpec* scene, mjSpec* vehicle, mjsBody* body, const SceneRequ
 // physics settings the vehicle sets (they differ from MuJoCo's defaults) hold for the whole
 // scene, every vehicle alike.
 std::vector<std::string> ContractOptionNotes(const mjOption& v, const mjOption& d,
-                                             const SceneRequest& request) {
+                                             uint64_t authored, const SceneRequest& request) {
   std::vector<std::string> notes;
   char text[200];
-  if (v.timestep != d.timestep && v.timestep != request.timestep) {
+  // A timestep the model writes is replaced even when it equals MuJoCo's default (0.002), so
+  // the parser's authored mask (bit 0: timestep, the first field of MJOPTION_FIELDS) says
+  // whether the model gave one.
+  const bool timestep_given = (authored & 1u) != 0 || v.timestep != d.timestep;
+  if (timestep_given && v.timestep != request.timestep) {
     std::snprintf(text, sizeof(text),
                   "the model's <option timestep=\"%g\"> is replaced by the experiment's ([run] "
                   "timestep = %g)",
@@ -240,7 +244,8 @@ ComposedScene ComposeScene(const SceneRequest& request, const std::string& name)
   ComposedScene out;
   if (!adapted) {
     const SpecPtr defaults(mj_makeSpec());
-    out.notes = ContractOptionNotes(vehicle->option, defaults->option, request);
+    out.notes =
+        ContractOptionNotes(vehicle->option, defaults->option, vehicle->authored.option, request);
   }
   SetGlobals(scene.get(), vehicle.get(), request);
   AttachCopies(scene.get(), vehicle.get(), body, request);

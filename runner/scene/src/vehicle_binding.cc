@@ -131,6 +131,13 @@ VehicleModelInfo ReadVehicleModel(const ExperimentConfig& config, const mjfPlugi
   try {
     const int body = mj_name2id(vehicle, mjOBJ_BODY, "vehicle");
     if (body < 0) throw SceneError(config.model_path + ": no body named 'vehicle'");
+    // A body without a joint is welded to the world: the run would complete with the vehicle
+    // fixed in place (the foreign-vehicle adapter refuses the same model for its free joint).
+    if (vehicle->body_dofnum[body] == 0) {
+      throw SceneError(config.model_path +
+                       ": body 'vehicle' has no joint, so it is welded to the world: give it "
+                       "<freejoint/> (or the slide joints of mjcf/pointmass.xml)");
+    }
     info.actuators =
         ActuatorInfo(vehicle, attitude, config.model_path, &info.site_names, &info.gains);
     info.mass = vehicle->body_subtreemass[body];

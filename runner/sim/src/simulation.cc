@@ -158,6 +158,18 @@ void Simulation::CheckImuSite() {
   double offset[3];
   mju_sub3(offset, site_body, com_body);
   const double distance = mju_norm3(offset);
+  // MuJoCo compiles a site at NaN; every sensor of it would then read NaN, and the run would
+  // stop at t = 0 blaming the vehicle's state instead of the model.
+  if (!std::isfinite(distance)) {
+    char text[400];
+    std::snprintf(text, sizeof(text),
+                  "vehicle model %s: the site 'imu' is at %.6g %.6g %.6g in the body's axes, "
+                  "not a finite position: give <site name=\"imu\"> a finite pos (at the centre "
+                  "of mass, %.6g %.6g %.6g, docs/VEHICLES.md, \"The imu site\")",
+                  config_.model_path.c_str(), site_body[0], site_body[1], site_body[2], com_body[0],
+                  com_body[1], com_body[2]);
+    throw SceneError(text);
+  }
   if (distance <= kImuOffsetTolerance) return;
   char text[600];
   std::snprintf(text, sizeof(text),

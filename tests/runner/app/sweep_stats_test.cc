@@ -42,12 +42,28 @@ TEST(SweepStatsTest, EightSamplesByHand) {
 }
 
 TEST(SweepStatsTest, TwoSamplesUseTheOneDegreeOfFreedomFactor) {
-  // {0, 2}: s = sqrt(2), half width = 12.7062 sqrt(2) / sqrt(2).
-  const SampleStats s = Describe({0, 2});
-  EXPECT_DOUBLE_EQ(s.mean, 1.0);
+  // {-1, 1}: s = sqrt(2), half width = 12.7062 sqrt(2) / sqrt(2); a sample below 0: not cut.
+  const SampleStats s = Describe({-1, 1});
+  EXPECT_DOUBLE_EQ(s.mean, 0.0);
   EXPECT_NEAR(s.std, std::sqrt(2.0), 1e-15);
   EXPECT_NEAR(s.ci95_high - s.mean, 12.7062, 1e-12);
   EXPECT_NEAR(s.mean - s.ci95_low, 12.7062, 1e-12);
+  EXPECT_FALSE(s.cut_at_zero);
+}
+
+TEST(SweepStatsTest, AnIntervalOfNonNegativeSamplesStopsAtZero) {
+  // {0.5, 1, 10}: mean 3.8333, s = 5.3463, t_{0.975, 2} = 4.3027: [-9.448, 17.11] as a plain t
+  // interval; every sample >= 0, so the mean cannot be negative and the low end is 0.
+  const SampleStats s = Describe({0.5, 1, 10});
+  EXPECT_NEAR(s.mean, 11.5 / 3, 1e-14);
+  const double half = 4.3027 * s.std / std::sqrt(3.0);
+  EXPECT_NEAR(s.ci95_high, s.mean + half, 1e-12);
+  EXPECT_EQ(s.ci95_low, 0.0);
+  EXPECT_TRUE(s.cut_at_zero);
+  // An interval already above 0 is the plain t interval.
+  const SampleStats above = Describe({2, 4, 4, 4, 5, 5, 7, 9});
+  EXPECT_GT(above.ci95_low, 0.0);
+  EXPECT_FALSE(above.cut_at_zero);
 }
 
 TEST(SweepStatsTest, IdenticalSamplesGiveExactlyThatValue) {

@@ -150,9 +150,32 @@ TEST(SweepSeeds, NearMissesAreKeptAndFlipsLeftOut) {
   EXPECT_THAT(csv, HasSubstr("seeds,runs_with_safety_events,runs_left_out,statistics_over,runs,"));
   EXPECT_THAT(csv, HasSubstr("1.0,3,2,1,valid_runs,2,1.5,"));
   const std::string text = sweep::SummaryText(plan, outcomes);
-  EXPECT_THAT(text, HasSubstr("sigma_f_mean 1.5, 95 % CI"));
+  // sigma_f >= 0: the t interval over {1, 2}, 1.5 -+ 12.7062 * 0.7071 / sqrt(2) = [-4.853,
+  // 7.853], is cut at 0, and the summary and sweep.json say how the interval was made.
+  EXPECT_THAT(text, HasSubstr("sigma_f_mean 1.5, 95 % CI [0, 7.853] over 2 runs (Student t, cut "
+                              "at 0)"));
+  EXPECT_EQ(cell["metrics_valid"]["sigma_f_mean"]["ci95"][0].get<double>(), 0.0);
+  EXPECT_THAT(json["ci95_method"].get<std::string>(), HasSubstr("Student t"));
+  EXPECT_THAT(csv, HasSubstr("1.0,3,2,1,valid_runs,2,1.5,0.707107,0,7.8531"));
   EXPECT_THAT(text, HasSubstr("1 of 3 complete runs left out (a flip, ground impact or collision"));
-  EXPECT_THAT(text, HasSubstr("1 runs with near misses or region exits only (reported, kept)"));
+  EXPECT_THAT(text, HasSubstr("; 1 run with near misses or region exits only (reported, kept)"));
+}
+
+// A comma inside a TOML string does not split, whichever its quotes: a literal string '...'
+// (no escapes; a " inside is a plain character) and a basic string with an escaped quote.
+TEST(SweepSeeds, CommasInsideTomlStringsDoNotSplit) {
+  using Values = std::vector<std::string>;
+  EXPECT_EQ(sweep::ParseAxis("run.name='a,b','c'").values, (Values{"'a,b'", "'c'"}));
+  EXPECT_EQ(sweep::ParseAxis("run.name='say \"hi, there','c'").values,
+            (Values{"'say \"hi, there'", "'c'"}));
+  EXPECT_EQ(sweep::ParseAxis(R"(run.name="a\",b","c")").values, (Values{R"("a\",b")", R"("c")"}));
+  EXPECT_EQ(sweep::ParseAxis(R"(run.name="it's,x","y")").values, (Values{R"("it's,x")", R"("y")"}));
+  try {
+    sweep::ParseAxis("run.name='a,b");
+    ADD_FAILURE() << "an unterminated literal string was accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("--vary 'run.name='a,b': unbalanced [ { or a string's quote"));
+  }
 }
 
 // Values with commas inside [], {} or quotes are one value; the CSV quotes them.

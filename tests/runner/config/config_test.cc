@@ -126,6 +126,19 @@ TEST(ConfigTest, ReplacingASectionKeepsItsSubTables) {
   EXPECT_NE(d.shape.omega, 0.5);
 }
 
+// 0 or no key means "the law's delta"; a negative band was read the same way and widened.
+TEST(ConfigTest, NegativeReachingBandIsRefused) {
+  EXPECT_THAT(ErrorOf([] { Parse(HoverExperiment(2, 2.0, "reaching_band = -0.5\n")); }),
+              AllOf(HasSubstr("[run] reaching_band"), HasSubstr("must be >= 0")));
+}
+
+// A folder opens as a stream that reads as empty: it was refused as "[formation] plugin: missing".
+TEST(ConfigTest, FolderAsExperimentFileIsNamed) {
+  const std::string dir = mjf::testing::TempDir("folder_exp");
+  EXPECT_THAT(ErrorOf([&] { LoadExperiment(dir); }),
+              AllOf(HasSubstr(dir), HasSubstr("is a folder, not an experiment file")));
+}
+
 TEST(ConfigTest, MissingModelFile) {
   EXPECT_THAT(ErrorOf([] { Parse("[vehicles]\nmodel = \"nothere.xml\"\n"); }),
               AllOf(HasSubstr("nothere.xml"), HasSubstr("not found")));

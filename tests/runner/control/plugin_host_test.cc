@@ -97,6 +97,13 @@ TEST(PluginHostTest, AnUnknownPluginListsTheValidNamesWithTheirKindsAndTheFolder
   for (const auto& p : registry.plugins()) EXPECT_THAT(message, HasSubstr(p.descriptor->name));
 }
 
+TEST(PluginHostTest, AMisspeltPluginNameGetsTheNearestName) {
+  PluginRegistry registry({kTestPlugins});
+  EXPECT_THAT(ErrorOf([&] { registry.Find("test_requierd", "e.toml:9: [leader]"); }),
+              HasSubstr("e.toml:9: [leader]: unknown plugin 'test_requierd'; did you mean "
+                        "'test_required'?; available: "));
+}
+
 TEST(PluginHostTest, NoPluginsAtAll) {
   const std::string empty = TempDir("ph_empty");
   PluginRegistry registry({empty});

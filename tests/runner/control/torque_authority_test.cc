@@ -95,6 +95,31 @@ TEST(TorqueAuthority, NotComputedWithoutFourActuatorsOrWithASingularLayout) {
   EXPECT_FALSE(ComputeTorqueAuthority(Vehicle(1, {1, 1, 1}, centre)).known);
 }
 
+// A 1e30 kg vehicle on 10 N rotors: the warning said "0 rad/s^2 ... infx ... att_bw 0"; it
+// says the rotors cannot hold the weight, with the numbers, and nothing about torques.
+TEST(TorqueAuthority, AVehicleTooHeavyToHoverIsSaidToBeSo) {
+  const double c = 0.05;
+  const std::vector<mjfActuatorInfo> rotors = {
+      Actuator({0.2, -0.1, 0}, {0, 0, 1, 0, 0, -c}, 0, 10),
+      Actuator({-0.2, 0.1, 0}, {0, 0, 1, 0, 0, -c}, 0, 10),
+      Actuator({0.2, 0.1, 0}, {0, 0, 1, 0, 0, c}, 0, 10),
+      Actuator({-0.2, -0.1, 0}, {0, 0, 1, 0, 0, c}, 0, 10)};
+  const TorqueAuthority a = ComputeTorqueAuthority(Vehicle(1e30, {1e30, 1e30, 1e30}, rotors));
+  EXPECT_FALSE(a.known);
+  EXPECT_TRUE(a.cannot_hover);
+  AttitudeDemand d;
+  d.att_bw = 8.0;
+  d.tilt_max = 0.5;
+  const auto w = AuthorityWarnings(a, d, "vehicle model heavy.xml");
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_THAT(w[0], HasSubstr("vehicle model heavy.xml: the actuators cannot hold its weight "
+                              "(1e+30 kg x 9.81 m/s^2 = 9.81e+30 N): hovering takes actuator 0 "
+                              "to 2.45e+30, outside its ctrlrange [0, 10]: it cannot hover"));
+  EXPECT_THAT(w[0], HasSubstr("lower the model's mass or raise the actuators' ctrlrange"));
+  EXPECT_THAT(w[0], ::testing::Not(HasSubstr("inf")));
+  EXPECT_THAT(AuthorityText(a), HasSubstr("not computed (the actuators cannot hold its weight"));
+}
+
 TEST(TorqueAuthority, DemandIsBandwidthSquaredTimesTiltLimit) {
   EXPECT_DOUBLE_EQ(DemandedTiltAcceleration(8.0, 0.5), 32.0);
   AttitudeDemand d;

@@ -65,6 +65,29 @@ TEST(SceneTest, VehicleWithoutVehicleBodyIsRefused) {
   }
 }
 
+// `check` lists a model's <option timestep> that [run] timestep replaces, also one equal to
+// MuJoCo's default 0.002 (the model wrote it; comparing with the default hid it).
+TEST(SceneTest, AReplacedTimestepIsNotedEvenAtMuJoCosDefault) {
+  const std::string dir = mjf::testing::TempDir("scene_dt");
+  const std::string quad =
+      mjf::testing::ReadFile(std::string(MJF_SOURCE_DIR) + "/mjcf/quadrotor.xml");
+  const std::string ours = "timestep=\"0.001\"";
+  ASSERT_NE(quad.find(ours), std::string::npos);
+  for (const char* dt : {"0.002", "0.004"}) {
+    std::string text = quad;
+    text.replace(text.find(ours), ours.size(), std::string("timestep=\"") + dt + "\"");
+    SceneRequest r = Request(1);
+    r.vehicle_path = mjf::testing::WriteFile(dir + "/v" + dt + ".xml", text);
+    const ComposedScene scene = ComposeScene(r, "test");
+    EXPECT_THAT(scene.notes, ::testing::Contains(HasSubstr(
+                                 std::string("the model's <option timestep=\"") + dt +
+                                 "\"> is replaced by the experiment's ([run] timestep = 0.001)")))
+        << dt;
+  }
+  // The stock model's own 0.001 is the experiment's: nothing to say.
+  EXPECT_TRUE(ComposeScene(Request(1), "test").notes.empty());
+}
+
 // The written scene is the composed spec as MuJoCo writes it: alone, it compiles to the very
 // model the run uses, byte for byte.
 TEST(SceneTest, WrittenSceneCompilesToTheSameModel) {

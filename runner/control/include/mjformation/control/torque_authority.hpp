@@ -16,7 +16,8 @@
 namespace mjf::runner {
 
 struct TorqueAuthority {
-  bool known = false;  // false: not a four-actuator vehicle with body torques (why says so)
+  bool known = false;         // false: not a four-actuator vehicle with body torques (why says so)
+  bool cannot_hover = false;  // the actuators cannot hold m g within their ctrlrange (why)
   std::string why;
   std::array<double, 3> torque{};   // N m, largest torque about body x, y, z (either sign)
   std::array<double, 3> inertia{};  // kg m^2
