@@ -40,6 +40,21 @@ inline int64_t StepsAtOrAfter(double seconds, double timestep) {
       0, static_cast<int64_t>(std::ceil(steps - kWholeStepTolerance * std::max(1.0, steps))));
 }
 
+// The last step at or before `seconds`: seconds / timestep rounded down, except that a count
+// within the tolerance below a whole number is that number (a clock that reads 0.3 s on a
+// 0.1 s grid, 2.9999999999999996 periods, is on period 3, not 2). StepsAtOrAfter's mirror.
+inline int64_t StepsAtOrBefore(double seconds, double timestep) {
+  const double steps = seconds / timestep;
+  return static_cast<int64_t>(
+      std::floor(steps + kWholeStepTolerance * std::max(1.0, std::abs(steps))));
+}
+
+// The step nearest to `seconds`, for a time that lies on a step give or take round-off (a
+// measurement's time stamp, a snapshot time, a run's duration checked whole by WholeSteps).
+inline int64_t NearestStep(double seconds, double timestep) {
+  return std::llround(seconds / timestep);
+}
+
 // The nearest whole number of steps (at least 1) of a period that need not be whole, such as an
 // output's frame rate: it is sampled as closely as the physics steps allow. A period of more
 // steps than int64_t holds (a rate of 1e-20 Hz) is the largest count, so it is sampled never

@@ -32,6 +32,7 @@
 #include "mjformation/record/safety_events.hpp"
 #include "mjformation/render.hpp"
 #include "mjformation/sim/simulation.hpp"
+#include "mjformation/time_steps.hpp"
 
 namespace mjf::runner {
 namespace {
@@ -142,7 +143,7 @@ class LiveSource : public Source {
       }
       marks_.push_back(MakeEventMark(e.kind, e.time_s, e.vehicles, at));
     }
-    const int64_t trail_every = std::max<int64_t>(1, std::llround(kTrailPeriod / config_.timestep));
+    const int64_t trail_every = NearestSteps(kTrailPeriod, config_.timestep);
     if (sim_->step_index() % trail_every == 0) trails_.Add(positions_);
   }
 

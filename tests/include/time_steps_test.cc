@@ -45,6 +45,21 @@ TEST(TimeStepsTest, StepsAtOrAfterRoundsUpButNotAWholeCount) {
   EXPECT_EQ(StepsAtOrAfter(0.0, 0.001), 0);
 }
 
+TEST(TimeStepsTest, StepsAtOrBeforeRoundsDownButNotAWholeCount) {
+  EXPECT_EQ(StepsAtOrBefore(0.3, 0.1), 3);  // 2.9999999999999996: not 2 for the round-off
+  EXPECT_EQ(StepsAtOrBefore(0.0199, 0.001), 19);
+  EXPECT_EQ(StepsAtOrBefore(0.0005, 0.001), 0);
+  EXPECT_EQ(StepsAtOrBefore(0.0, 0.001), 0);
+  EXPECT_EQ(StepsAtOrBefore(-0.0015, 0.001), -2);  // a clock running behind the start
+}
+
+TEST(TimeStepsTest, NearestStepRoundsAndMayBeZero) {
+  EXPECT_EQ(NearestStep(0.0, 0.001), 0);  // a snapshot at t = 0 is step 0 (NearestSteps: 1)
+  EXPECT_EQ(NearestStep(40.0, 0.001), 40000);
+  EXPECT_EQ(NearestStep(0.0014, 0.001), 1);
+  EXPECT_EQ(NearestStep(0.0016, 0.001), 2);
+}
+
 TEST(TimeStepsTest, NearestStepsRoundsAndNeverGivesZero) {
   EXPECT_EQ(NearestSteps(0.01, 0.001), 10);  // 100 Hz at 1 kHz
   EXPECT_EQ(NearestSteps(0.1, 0.001), 100);  // rounded, not truncated

@@ -7,6 +7,8 @@
 #include <string>
 #include <utility>
 
+#include "mjformation/time_steps.hpp"
+
 namespace mjf::estimator {
 namespace {
 
@@ -71,7 +73,7 @@ KfIns::KfIns(const KfInsConfig& c) : config_(c) {
   P_.diagonal() << Vec3::Constant(c.initial_position_std * c.initial_position_std),
       Vec3::Constant(c.initial_velocity_std * c.initial_velocity_std),
       Vec3::Constant(c.initial_bias_std * c.initial_bias_std), Vec3::Constant(s2);
-  window_steps_ = static_cast<int64_t>(std::ceil(c.history / dt - 1e-9)) + 1;
+  window_steps_ = StepsAtOrAfter(c.history, dt) + 1;
   history_.resize(static_cast<size_t>(window_steps_));
   // A correction lives one window; one per fused late sample (ten at 200 Hz over 50 ms): no
   // allocation in flight below that.
@@ -165,7 +167,7 @@ bool KfIns::Update(const AidingSample& m) {
 }
 
 bool KfIns::Fuse(const AidingSample& m) {
-  const int64_t taken = std::llround(m.time_taken / config_.timestep);
+  const int64_t taken = NearestStep(m.time_taken, config_.timestep);
   if (taken > step_) throw std::logic_error("KfIns::Fuse: a measurement from the future");
   if (taken == step_) {
     const bool ok = Update(m);

@@ -7,6 +7,8 @@
 #include <string>
 #include <utility>
 
+#include "mjformation/time_steps.hpp"
+
 namespace mjf::formation {
 namespace {
 
@@ -211,7 +213,7 @@ void CheckShapeConsistency(const Shape& shape, double t0, double t1, double dt, 
   if (!(tol >= 0.0)) throw std::invalid_argument("shape consistency: tol must be >= 0");
   const int n = shape.num_followers();
   std::vector<double> now(6 * n), middle(6 * n), next(6 * n);
-  const long steps = static_cast<long>(std::floor((t1 - t0) / dt + 1e-9));
+  const long steps = static_cast<long>(StepsAtOrBefore(t1 - t0, dt));
   shape.Evaluate(t0, now.data());
   for (long k = 0; k < steps; ++k) {
     const double t = t0 + k * dt;

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "mjformation/network/link.hpp"
+#include "mjformation/time_steps.hpp"
 
 namespace mjf::runner {
 namespace {
@@ -34,8 +35,8 @@ double AgentClocks::Local(int vehicle, double time) const {
 }
 
 int64_t AgentClocks::LocalStep(int follower, double time) const {
-  // The 1e-9 keeps a clock reading that is a whole step (in intent) on that step.
-  return static_cast<int64_t>(std::floor(Local(follower + 1, time) / timestep_ + 1e-9));
+  // A clock reading that is a whole step (in intent) stays on that step.
+  return StepsAtOrBefore(Local(follower + 1, time), timestep_);
 }
 
 }  // namespace mjf::runner

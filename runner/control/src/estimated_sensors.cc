@@ -10,6 +10,7 @@
 #include "mjformation/config/experiment.hpp"
 #include "mjformation/control/errors.hpp"
 #include "mjformation/realism/gaussian.hpp"
+#include "mjformation/time_steps.hpp"
 
 namespace mjf::runner {
 namespace {
@@ -107,7 +108,7 @@ void EstimatedSensors::MeasureOne(int vehicle, int64_t step, double time,
   std::vector<mjfMeasurement>& arrived = arrived_[vehicle];
   arrived.clear();
   for (const auto& f : model.fresh()) {
-    if (arrived.empty() || std::llround(arrived.back().time_taken / timestep_) != f.taken_step) {
+    if (arrived.empty() || NearestStep(arrived.back().time_taken, timestep_) != f.taken_step) {
       arrived.push_back(mjfMeasurement{});
       arrived.back().time_taken = static_cast<double>(f.taken_step) * timestep_;
     }

@@ -47,8 +47,7 @@ SensorModel::SensorModel(const SensorParams& params, double timestep, uint64_t s
     ch.dim = static_cast<Channel>(k) == Channel::kAttitude ? 4 : 3;
     ch.period_steps = ch.noise.rate_hz > 0 ? WholeSteps(1.0 / ch.noise.rate_hz, timestep) : 1;
     ch.latency_steps = WholeSteps(ch.noise.latency_s, timestep);
-    ch.bias_every = std::max<int64_t>(
-        1, static_cast<int64_t>(std::floor(0.01 / (ch.period_steps * timestep) + 1e-9)));
+    ch.bias_every = std::max<int64_t>(1, StepsAtOrBefore(0.01, ch.period_steps * timestep));
     ch.history.assign(static_cast<size_t>(ch.latency_steps + 1) * ch.dim, 0.0);
     ch.wander_phi = std::exp(-ch.period_steps * timestep / ch.noise.wander_tau);
   }

@@ -130,7 +130,7 @@ class SnapshotRecorder final : public Recorder {
         renderer_(sim.model(), sim.config().render.width, sim.config().render.height,
                   sim.config().render.shadows) {
     for (double t : sim.config().render.snapshots) {
-      steps_.push_back(std::llround(t / sim.config().timestep));
+      steps_.push_back(NearestStep(t, sim.config().timestep));
     }
   }
   bool Wants(int64_t step) const override {

@@ -12,6 +12,7 @@
 #include "mjformation/scene/vehicle_adapter.hpp"
 #include "mjformation/sim/mujoco_errors.hpp"
 #include "mjformation/sim/step_checks.hpp"
+#include "mjformation/time_steps.hpp"
 
 namespace mjf::runner {
 namespace {
@@ -62,7 +63,7 @@ Simulation::Simulation(const ExperimentConfig& config) : config_(config) {
   if (vehicle_xml_.empty()) vehicle_notes_ = std::move(scene.notes);
   model_.reset(scene.model.release());
   data_.reset(mj_makeData(model_.get()));
-  total_steps_ = std::llround(config_.duration / config_.timestep);
+  total_steps_ = NearestStep(config_.duration, config_.timestep);
 
   bindings_ = BindVehicles(model_.get(), config_, *attitude.descriptor, vehicle_xml_);
   truth_.resize(config_.followers + 1);
