@@ -6,13 +6,13 @@
 #include <stdexcept>
 #include <string>
 
+#include "mjformation/euler_zyx.hpp"
+
 namespace mjf::attitude {
 
 Vec3 EulerZYX(const std::array<double, 4>& q) {
-  const double w = q[0], x = q[1], y = q[2], z = q[3];
-  return {std::atan2(2 * (w * x + y * z), 1 - 2 * (x * x + y * y)),
-          std::asin(std::clamp(2 * (w * y - z * x), -1.0, 1.0)),
-          std::atan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z))};
+  const std::array<double, 3> e = mjf::EulerZYX(q.data());
+  return {e[0], e[1], e[2]};
 }
 
 double WrapPi(double angle) {

@@ -37,14 +37,6 @@ SceneRequest MakeSceneRequest(const ExperimentConfig& c,
 
 }  // namespace
 
-std::array<double, 3> EulerZYX(const double q[4]) {
-  const double w = q[0], x = q[1], y = q[2], z = q[3];
-  const double roll = std::atan2(2 * (w * x + y * z), 1 - 2 * (x * x + y * y));
-  const double pitch = std::asin(std::clamp(2 * (w * y - z * x), -1.0, 1.0));
-  const double yaw = std::atan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z));
-  return {roll, pitch, yaw};
-}
-
 Simulation::Simulation(const ExperimentConfig& config) : config_(config) {
   InstallMujocoHandlers();
   registry_ = std::make_unique<PluginRegistry>(PluginSearchPath(config_.plugin_path));

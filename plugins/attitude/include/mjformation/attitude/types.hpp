@@ -27,8 +27,8 @@ struct Setpoint {
   double yaw = 0;  // rad
 };
 
-// Roll, pitch, yaw (rad) of a body -> world quaternion, ZYX convention: R = Rz(yaw) Ry(pitch)
-// Rx(roll). Same formulae as the runner's EulerZYX (timeseries.csv).
+// Roll, pitch, yaw (rad) of a body -> world quaternion: mjf::EulerZYX (euler_zyx.hpp, the
+// runner's too) as an Eigen vector.
 Vec3 EulerZYX(const std::array<double, 4>& quat);
 
 // Angle wrapped to [-pi, pi), rad.

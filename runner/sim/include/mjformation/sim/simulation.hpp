@@ -26,6 +26,7 @@
 #include "mjformation/control/plugin_host.hpp"
 #include "mjformation/control/stages.hpp"
 #include "mjformation/control/torque_authority.hpp"
+#include "mjformation/euler_zyx.hpp"
 #include "mjformation/scene/vehicle_binding.hpp"
 #include "mjformation/sim/actuation.hpp"
 #include "mjformation/sim/partitioned_physics.hpp"
@@ -189,8 +190,8 @@ class Simulation {
   mutable bool whole_data_stale_ = false;
 };
 
-// Euler angles (roll, pitch, yaw; ZYX convention, rad) of a w-x-y-z quaternion.
-std::array<double, 3> EulerZYX(const double quat[4]);
+// EulerZYX (roll, pitch, yaw of a w-x-y-z quaternion) is mjf::EulerZYX, euler_zyx.hpp.
+using ::mjf::EulerZYX;
 
 }  // namespace mjf::runner
 
