@@ -16,38 +16,7 @@
 #include <string>
 #include <vector>
 
-// Counting replaces malloc, which a sanitizer owns: tests/no_allocation is not built there.
-#if defined(__SANITIZE_ADDRESS__)
-#error "allocation counting needs the uninstrumented allocator: build without MJF_SANITIZE"
-#endif
-#define MJF_COUNT_MALLOC 1
-
-namespace {
-std::atomic<bool> counting{false};
-std::atomic<long> allocations{0};
-}  // namespace
-
-#if MJF_COUNT_MALLOC
-extern "C" {
-void* __libc_malloc(size_t);
-void* __libc_calloc(size_t, size_t);
-void* __libc_realloc(void*, size_t);
-void __libc_free(void*);
-void* malloc(size_t size) {
-  if (counting.load(std::memory_order_relaxed)) ++allocations;
-  return __libc_malloc(size);
-}
-void* calloc(size_t n, size_t size) {
-  if (counting.load(std::memory_order_relaxed)) ++allocations;
-  return __libc_calloc(n, size);
-}
-void* realloc(void* p, size_t size) {
-  if (counting.load(std::memory_order_relaxed)) ++allocations;
-  return __libc_realloc(p, size);
-}
-void free(void* p) { __libc_free(p); }
-}
-#endif
+#include "count_allocations.hpp"
 
 namespace {
 
