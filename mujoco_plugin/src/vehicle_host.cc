@@ -193,14 +193,6 @@ VehicleHost::VehicleHost(const mjModel* m, VehicleHostConfig config)
   ctx.model = reinterpret_cast<const struct mjModel_*>(m);
   s.guidance = std::make_unique<runner::PluginInstance>(guidance, s.sections.leader, where, ctx);
   s.attitude = std::make_unique<runner::PluginInstance>(attitude, s.sections.attitude, where, ctx);
-  for (const runner::PluginInstance* p : {s.guidance.get(), s.attitude.get()}) {
-    if (!p->declares_state()) {
-      throw std::runtime_error(where + ": plugin '" + p->descriptor().name +
-                               "' declares no state (mjfPlugin.state_size is NULL): MuJoCo "
-                               "could not copy or checkpoint it (docs/PLUGINS.md, \"Plugin "
-                               "state\")");
-    }
-  }
   s.setpoint.sliding[0] = s.setpoint.sliding[1] = kNaN;
   for (int k = 0; k < 3; ++k) s.setpoint.pos[k] = s.initial_pos[k];
   s.controls.assign(d.n_actuators, 0.0);

@@ -112,12 +112,17 @@ class _Swarm:
             obs = self.sim.step(actions, steps=self.action_steps)
         except SimulationError as e:
             info["error"] = str(e)
-            return None, np.full(self.n, -self.crash_penalty), True, False, info
+            return None, np.full(self.n, -self.crash_penalty * (1 + self.steps_left())), True, \
+                False, info
         self.steps += 1
         rewards = self.rewards()
         events = self.sim.events
         fresh, self.events_seen = events[self.events_seen:], len(events)
         ending = [e for e in fresh if e["kind"] in self.terminate_on]
+        if ending:
+            # The steps the flight will not fly are charged at this step's reward: otherwise an
+            # early crash, which ends the sum of negative rewards, would pay better than flying on.
+            rewards = rewards * (1 + self.steps_left())
         for e in ending:
             for v in e["vehicles"]:
                 if v > 0:
@@ -126,6 +131,11 @@ class _Swarm:
             info["events"] = fresh
         truncated = self.sim.step_index >= self.sim.total_steps
         return obs, rewards, bool(ending), truncated, info
+
+    def steps_left(self) -> int:
+        """Environment steps from now to the end of [run] duration."""
+        left = max(0, self.sim.total_steps - self.sim.step_index)
+        return -(-left // self.action_steps)
 
 
 class FormationParallelEnv(ParallelEnv):

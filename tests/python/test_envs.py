@@ -108,6 +108,23 @@ def test_a_ground_impact_ends_the_episode(exp2):
     assert rewards["uav2"] < rewards["uav1"] - 5  # the crash penalty
 
 
+def test_a_crash_is_charged_the_steps_it_does_not_fly(exp2):
+    """A learner that holds still is rammed within a second: the step that ends the episode
+    charges its reward for every step left to the horizon, so ending early is not a way out of
+    the sum of negative rewards."""
+    env = FormationEnv(exp2, follower=0, set=short(6.0))
+    env.reset(seed=3)
+    while True:
+        _, reward, terminated, truncated, _ = env.step(np.zeros(3))
+        if terminated or truncated:
+            break
+    assert terminated
+    left = env.swarm.steps_left()
+    assert left > 50  # rammed in the first second of six, 0.05 s steps
+    base = env.swarm.rewards()[0]
+    assert reward == pytest.approx(base * (1 + left) - env.swarm.crash_penalty, rel=1e-12)
+
+
 def test_the_parallel_env_flown_by_the_law_is_the_runners_flight(exp2):
     env = FormationParallelEnv(exp2, set=noisy(0.3))
     runner = mjformation.Simulation(exp2, set=noisy(0.3))
@@ -138,3 +155,17 @@ def test_the_parallel_env_passes_pettingzoos_api_test(exp2):
     from pettingzoo.test import parallel_api_test
 
     parallel_api_test(FormationParallelEnv(exp2, set=short(0.5)), num_cycles=20)
+
+
+def test_the_random_search_example_trains_and_compares_with_the_law(source):
+    """examples/python/train_random_search.py, one short iteration: it runs end to end and
+    reports the learned policy beside the SMC law."""
+    import subprocess
+    import sys
+    done = subprocess.run(
+        [sys.executable, str(source / "examples/python/train_random_search.py"),
+         "--iterations", "1", "--directions", "1", "--seconds", "1"],
+        capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr
+    assert "iteration  1/1: return" in done.stdout
+    assert "learned" in done.stdout and "SMC law (eq. 48)" in done.stdout

@@ -27,7 +27,8 @@ static int Compute(void* instance, const mjfStepContext* ctx) {
 }
 static void Destroy(void* instance) { free(instance); }
 static const mjfPlugin kHold = {MJF_ABI_VERSION, "oot_hold", MJF_KIND_GUIDANCE,
-  "out-of-tree test plugin", 1, kAttributes, 0, NULL, Create, Compute, NULL, Destroy, NULL};
+  "out-of-tree test plugin", 1, kAttributes, 0, NULL, Create, Compute, NULL, Destroy, NULL,
+  NULL, NULL, NULL};  /* ABI 4: no state */
 /* ABI 3: an estimator plugin (the held samples, as passthrough does). */
 static void* EstCreate(const mjfCreateContext* ctx) { (void)ctx; return malloc(1); }
 static int EstCompute(void* instance, const mjfStepContext* ctx) {
@@ -36,7 +37,8 @@ static int EstCompute(void* instance, const mjfStepContext* ctx) {
   return 0;
 }
 static const mjfPlugin kEst = {MJF_ABI_VERSION, "oot_estimator", MJF_KIND_ESTIMATOR,
-  "out-of-tree estimator", 0, NULL, 0, NULL, EstCreate, EstCompute, NULL, Destroy, NULL};
+  "out-of-tree estimator", 0, NULL, 0, NULL, EstCreate, EstCompute, NULL, Destroy, NULL,
+  NULL, NULL, NULL};
 static const mjfPlugin* const kPlugins[] = {&kHold, &kEst};
 const mjfPlugin* const* mjf_plugin_entry(int* count) { *count = 2; return kPlugins; }
 C
@@ -63,8 +65,8 @@ plugin = "pd_cascade"
 T
 "$work/prefix/bin/mjformation" plugins --plugin-path "$work/plugins" > "$work/plugins.txt"
 grep -q "oot_hold" "$work/plugins.txt" || { cat "$work/plugins.txt"; false; }
-# The installed header is ABI 3 and lists the estimator kind, with the C estimator under it.
-grep -q "#define MJF_ABI_VERSION 3u" "$work/prefix/include/mjformation/plugin.h"
+# The installed header is ABI 4 and lists the estimator kind, with the C estimator under it.
+grep -q "#define MJF_ABI_VERSION 4u" "$work/prefix/include/mjformation/plugin.h"
 sed -n '/^estimator plugins:/,$p' "$work/plugins.txt" | grep -q "oot_estimator" \
   || { cat "$work/plugins.txt"; false; }
 "$work/prefix/bin/mjformation" run "$work/exp.toml" --out "$work/run" \

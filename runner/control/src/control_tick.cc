@@ -260,14 +260,6 @@ void ControlTick::RequireSavable() const {
         "the sensor stage ([sensors], [estimator]) does not declare its state yet: a tick with "
         "it cannot be copied or checkpointed");
   }
-  for (const PluginInstance* p : Instances()) {
-    if (!p->declares_state()) {
-      throw SimulationError(std::string("plugin '") + p->descriptor().name +
-                            "' declares no state (mjfPlugin.state_size is NULL): a tick with "
-                            "it cannot be copied or checkpointed (docs/PLUGINS.md, \"Plugin "
-                            "state\")");
-    }
-  }
 }
 
 // The bus: every mjfSetpoint is doubles only (plugin.h), written as its kSetpointDoubles.

@@ -69,7 +69,7 @@ class ControlTick {
   // instance's declared state (leader, formation, follower guidance, per-agent formation,
   // attitude; ABI 4). After SetState(GetState()) of another tick built from the same
   // configuration, Run gives the same bits. RequireSavable() throws naming the first stage
-  // whose state is not declared (a plugin without state_size, a communication channel, a
+  // whose state is not declared (a communication channel, a
   // sensor stage other than ideal); StateSize() etc. are meaningful only when it passes.
   void RequireSavable() const;
   size_t StateSize() const;

@@ -16,38 +16,7 @@
 #include <string>
 #include <vector>
 
-#if defined(__SANITIZE_ADDRESS__)
-#define MJF_COUNT_MALLOC 0
-#else
-#define MJF_COUNT_MALLOC 1
-#endif
-
-namespace {
-std::atomic<bool> counting{false};
-std::atomic<long> allocations{0};
-}  // namespace
-
-#if MJF_COUNT_MALLOC
-extern "C" {
-void* __libc_malloc(size_t);
-void* __libc_calloc(size_t, size_t);
-void* __libc_realloc(void*, size_t);
-void __libc_free(void*);
-void* malloc(size_t size) {
-  if (counting.load(std::memory_order_relaxed)) ++allocations;
-  return __libc_malloc(size);
-}
-void* calloc(size_t n, size_t size) {
-  if (counting.load(std::memory_order_relaxed)) ++allocations;
-  return __libc_calloc(n, size);
-}
-void* realloc(void* p, size_t size) {
-  if (counting.load(std::memory_order_relaxed)) ++allocations;
-  return __libc_realloc(p, size);
-}
-void free(void* p) { __libc_free(p); }
-}
-#endif
+#include "count_allocations.hpp"
 
 namespace {
 
@@ -67,7 +36,6 @@ struct Swarm {
 };
 
 TEST(NoAllocationTest, PluginComputeDoesNotAllocate) {
-  if (!MJF_COUNT_MALLOC) GTEST_SKIP() << "malloc is not replaceable under AddressSanitizer";
   void* handle = dlopen(MJF_FORMATION_PLUGIN_PATH, RTLD_NOW | RTLD_LOCAL);
   ASSERT_NE(handle, nullptr) << dlerror();
   auto entry = reinterpret_cast<mjfEntryFn>(dlsym(handle, MJF_ENTRY_SYMBOL));
@@ -149,7 +117,6 @@ TEST(NoAllocationTest, PluginComputeDoesNotAllocate) {
 }
 
 TEST(NoAllocationTest, CoreUpdateDoesNotAllocate) {
-  if (!MJF_COUNT_MALLOC) GTEST_SKIP() << "malloc is not replaceable under AddressSanitizer";
   const mjf::formation::Graph graph(6, {1, 0, 0, 0, 0, 0},
                                     {{0, 1}, {1, 2}, {2, 3}, {3, 4}, {4, 5}});
   mjf::formation::ContinuousSmc continuous(graph, {});

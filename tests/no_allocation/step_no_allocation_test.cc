@@ -1,10 +1,10 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
 // A physics step allocates nothing, on any thread: this binary replaces malloc/calloc/realloc
-// (as tests/formation/no_allocation_test.cc does for the plugins' compute()) and counts the calls
-// made while Simulation::ComputeControls and Integrate run, with one model and with partitioned
-// physics (whose worker threads' allocations count too), for both rotor models with wind and
-// sensors on.
+// (count_allocations.hpp, as formation_no_allocation_test.cc does for the laws) and counts the
+// calls made while Simulation::ComputeControls and Integrate run, with one model and with
+// partitioned physics (whose worker threads' allocations count too), for both rotor models with
+// wind and sensors on.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -12,42 +12,10 @@
 #include <string>
 #include <vector>
 
+#include "count_allocations.hpp"
 #include "mjformation/config/config.hpp"
 #include "mjformation/sim/simulation.hpp"
 #include "test_util.hpp"
-
-#if defined(__SANITIZE_ADDRESS__)
-#define MJF_COUNT_MALLOC 0
-#else
-#define MJF_COUNT_MALLOC 1
-#endif
-
-namespace {
-std::atomic<bool> counting{false};
-std::atomic<long> allocations{0};
-}  // namespace
-
-#if MJF_COUNT_MALLOC
-extern "C" {
-void* __libc_malloc(size_t);
-void* __libc_calloc(size_t, size_t);
-void* __libc_realloc(void*, size_t);
-void __libc_free(void*);
-void* malloc(size_t size) {
-  if (counting.load(std::memory_order_relaxed)) ++allocations;
-  return __libc_malloc(size);
-}
-void* calloc(size_t n, size_t size) {
-  if (counting.load(std::memory_order_relaxed)) ++allocations;
-  return __libc_calloc(n, size);
-}
-void* realloc(void* p, size_t size) {
-  if (counting.load(std::memory_order_relaxed)) ++allocations;
-  return __libc_realloc(p, size);
-}
-void free(void* p) { __libc_free(p); }
-}
-#endif
 
 namespace mjf::runner {
 namespace {
@@ -75,7 +43,6 @@ long AllocationsPerSteps(const std::string& rotor_model, int threads) {
 }
 
 TEST(StepNoAllocationTest, OneModelAndPartitionsAllocateNothingPerStep) {
-  if (!MJF_COUNT_MALLOC) GTEST_SKIP() << "malloc is not replaceable under AddressSanitizer";
   for (const char* rotor : {"actuator", "wrench"}) {
     for (int threads : {1, 2}) {
       EXPECT_EQ(AllocationsPerSteps(rotor, threads), 0)
