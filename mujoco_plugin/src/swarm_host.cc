@@ -1,6 +1,8 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 #include "swarm_host.hpp"
 
+#include <toml++/toml.h>
+
 #include <sstream>
 #include <stdexcept>
 
@@ -37,13 +39,33 @@ std::string WithoutLine(const std::string& message, const std::string& where) {
   return out;
 }
 
+// A <config> value is the body of one inline table. Read alone first, so that a value which
+// closes its table and goes on (`1 }&#10;[run]&#10;...`) is refused instead of becoming other
+// sections of the text below. A value that does not parse alone is left to the parser below,
+// which words the syntax error.
+void RequireOneTable(const std::string& key, const std::string& value, const std::string& where) {
+  toml::table alone;
+  try {
+    alone = toml::parse(key + " = {" + value + "}\n");
+  } catch (const toml::parse_error&) {
+    return;
+  }
+  if (alone.size() != 1 || !alone.get_as<toml::table>(key)) {
+    throw runner::ConfigError(where + ": <config key=\"" + key +
+                              "\">: the value must be the keys of one table (a = 1, b = \"x\"); "
+                              "this one closes the table and goes on");
+  }
+}
+
 runner::ExperimentConfig ConfigFromPairs(
     const std::vector<std::pair<std::string, std::string>>& pairs, const std::string& where) {
   // Each section becomes `section = { ... }`: the runner's parser then checks every name and
   // value and words its messages as it does for an experiment file.
   std::ostringstream toml;
   for (const auto& [key, value] : pairs) {
-    if (!value.empty()) toml << key << " = {" << value << "}\n";
+    if (value.empty()) continue;
+    RequireOneTable(key, value, where);
+    toml << key << " = {" << value << "}\n";
   }
   try {
     return runner::ParseExperiment(toml.str(), where);

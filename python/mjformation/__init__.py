@@ -327,13 +327,15 @@ def _require_path(name: str, value) -> str:
     return os.fspath(value)
 
 
-def export(experiment, out, overwrite=False) -> Path:
+def export(experiment, out, overwrite=False, set=None, plugin_path=None) -> Path:
     """Writes OUT/scene.xml: the experiment as a MuJoCo scene whose controllers are the native
     plugins of native_plugin_library() (docs/PLUGINS.md). What the native path cannot carry is
     refused naming the key; notes on what is not carried (e.g. [render]) go to stderr.
-    out: a folder (str or os.PathLike); overwrite: True or False (anything else: TypeError)."""
+    out: a folder (str or os.PathLike); overwrite: True or False (anything else: TypeError);
+    set and plugin_path: as for run() (the CLI's --set and --plugin-path)."""
     scene, notes = _core.export(str(experiment), _require_path("out", out),
-                                _require_bool("overwrite", overwrite))
+                                _require_bool("overwrite", overwrite), _overrides(set),
+                                _plugin_path(plugin_path))
     for note in notes:
         print(f"note: {note}", file=sys.stderr)
     return Path(scene)

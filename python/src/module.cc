@@ -456,11 +456,17 @@ PYBIND11_MODULE(_core, m) {
   m.def("command_line", &CommandLine, py::arg("args"));
   m.def(
       "export",
-      [](const std::string& experiment, const std::string& out, bool overwrite) {
-        const rn::ExportResult r = rn::ExportExperiment(experiment, out, overwrite);
+      [](const std::string& experiment, const std::string& out, bool overwrite,
+         const std::vector<std::string>& overrides, const std::vector<std::string>& plugin_path) {
+        rn::ExportOptions options;
+        options.overrides = overrides;
+        options.plugin_path = plugin_path;
+        options.overwrite = overwrite;
+        const rn::ExportResult r = rn::ExportExperiment(experiment, out, options);
         return py::make_tuple(r.scene_path, r.notes);
       },
-      py::arg("experiment"), py::arg("out"), py::arg("overwrite"));
+      py::arg("experiment"), py::arg("out"), py::arg("overwrite"), py::arg("overrides"),
+      py::arg("plugin_path"));
   m.def("native_plugin_library", [] { return std::string(MJF_NATIVE_PLUGIN_LIBRARY); });
   m.def("check", &Check, py::arg("experiment"), py::arg("overrides"), py::arg("plugin_path"),
         py::arg("render") = true);

@@ -93,7 +93,7 @@ Comparison FlyBoth(const std::string& experiment, double seconds, int pause_ever
   ExperimentConfig config = LoadExperiment(experiment, {}, ExperimentChecks::Rendering(false));
   Simulation runner(config);
   Scratch out("scene");
-  ExportExperiment(experiment, out / "export", false);
+  ExportExperiment(experiment, out / "export");
   mjModel* m = LoadNative(out / "export/scene.xml");
   EXPECT_NE(m, nullptr);
   Comparison c;
@@ -150,7 +150,7 @@ TEST(NativeFlight, PausedViewerLeavesHeldCommands) {
   Scratch dir("paused");
   const std::string experiment = Variant("exp2.toml", "", "", dir);
   Scratch out("paused_scene");
-  ExportExperiment(experiment, out / "export", false);
+  ExportExperiment(experiment, out / "export");
   mjModel* m = LoadNative(out / "export/scene.xml");
   ASSERT_NE(m, nullptr);
   mjData* d = mj_makeData(m);
@@ -175,7 +175,7 @@ std::string CompileWith(const std::string& key, const std::string& from, const s
   Scratch dir("refusal");
   const std::string experiment = Variant("exp2.toml", "", "", dir);
   std::vector<std::string> notes;
-  std::string xml = ExportedSceneXml(experiment, &notes);
+  std::string xml = ExportedSceneXml(experiment, {}, &notes);
   const std::string anchor = "<config key=\"" + key + "\" value=\"";
   const size_t at = xml.find(anchor);
   EXPECT_NE(at, std::string::npos) << key;
@@ -206,6 +206,16 @@ TEST(NativeConfig, UnknownKeyIsRefusedAtCompile) {
   EXPECT_NE(error.find("radios"), std::string::npos) << error;
 }
 
+// A value is one table's keys: one that closes its table and opens a section of its own (a
+// newline written as &#10;) is refused, not read as more of the experiment.
+TEST(NativeConfig, ValueThatOpensASectionIsRefused) {
+  const std::string error = CompileWith("leader", "radius = 20.0",
+                                        "radius = 20.0 }&#10;[wind]&#10;mean = [5.0, 0.0, 0.0]"
+                                        "&#10;gust = { a = 1");
+  EXPECT_NE(error.find("<config key=\"leader\">"), std::string::npos) << error;
+  EXPECT_NE(error.find("closes the table"), std::string::npos) << error;
+}
+
 TEST(NativeConfig, UnknownConfigKeyIsRefusedByMuJoCo) {
   const std::string error =
       CompileWith("leader", "<config key=\"leader\"", "<config key=\"leeder\"");
@@ -224,7 +234,7 @@ std::string ExportRefusal(const std::string& append, const std::string& after = 
   }
   std::ofstream(dir / "experiment.toml") << text;
   try {
-    ExportExperiment(dir / "experiment.toml", dir / "out", false);
+    ExportExperiment(dir / "experiment.toml", dir / "out");
   } catch (const ExportError& e) {
     EXPECT_FALSE(fs::exists(dir / "out")) << "nothing is written on a refusal";
     return e.what();
@@ -255,7 +265,7 @@ TEST(NativeExport, NeverWritesIntoAUsersDirectory) {
   fs::create_directories(dir / "out");
   std::ofstream(dir / "out/mine.txt") << "mine";
   try {
-    ExportExperiment(experiment, dir / "out", false);
+    ExportExperiment(experiment, dir / "out");
     ADD_FAILURE() << "wrote into a non-empty directory";
   } catch (const ExportError& e) {
     EXPECT_NE(std::string(e.what()).find("exists and is not empty; pass --overwrite"),
@@ -263,7 +273,7 @@ TEST(NativeExport, NeverWritesIntoAUsersDirectory) {
         << e.what();
   }
   EXPECT_FALSE(fs::exists(dir / "out/scene.xml"));
-  ExportExperiment(experiment, dir / "out", true);
+  ExportExperiment(experiment, dir / "out", {{}, {}, /*overwrite=*/true});
   EXPECT_TRUE(fs::exists(dir / "out/scene.xml"));
   EXPECT_EQ(ReadText(dir / "out/mine.txt"), "mine");
 }

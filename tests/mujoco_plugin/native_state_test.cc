@@ -73,7 +73,7 @@ mjModel* LoadExp2(const Scratch& dir, const std::string& vehicle = "") {
                               "\nmodel = \"" + vehicle + "\"");
   }
   std::ofstream(dir / "exp2.toml") << text;
-  ExportExperiment(dir / "exp2.toml", dir / "export", true);
+  ExportExperiment(dir / "exp2.toml", dir / "export", {{}, {}, /*overwrite=*/true});
   char error[2048] = {0};
   mjModel* m = mj_loadXML((dir / "export/scene.xml").c_str(), nullptr, error, sizeof(error));
   EXPECT_NE(m, nullptr) << error;

@@ -54,6 +54,13 @@ def test_export_refuses_what_the_native_path_cannot_carry(source, tmp_path):
     assert not (tmp_path / "out").exists()
 
 
+def test_export_takes_set_as_run_does(exp2, tmp_path):
+    scene = mjformation.export(exp2, tmp_path / "out", set={"formation.shape.radius": 7.25})
+    assert "radius = 7.25" in scene.read_text()
+    with pytest.raises(ValueError, match=r"stop_on: not carried"):
+        mjformation.export(exp2, tmp_path / "stop", set={"run.stop_on": ["flip"]})
+
+
 def test_export_never_replaces_a_users_directory(exp2, tmp_path):
     out = tmp_path / "mine"
     out.mkdir()

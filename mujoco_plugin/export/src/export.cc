@@ -16,6 +16,8 @@
 #include <sstream>
 
 #include "mjformation/config/config.hpp"
+#include "mjformation/config/overrides.hpp"
+#include "mjformation/config/paths.hpp"
 #include "mjformation/sim/simulation.hpp"
 
 namespace mjf::runner {
@@ -155,30 +157,67 @@ std::string Where(const std::string& file, const toml::node& node, const std::st
   return file + ":" + std::to_string(r.begin.line) + ": [" + key + "]";
 }
 
-// Reads the experiment file's sections, refusing what the native path cannot carry.
-// Paths are written resolved (the runner reads them relative to the experiment file; the
-// native plugin has no file to be relative to). `config` is null for the refusal pass.
-void ResolvePaths(toml::table& doc, const ExperimentConfig& config) {
-  if (toml::table* run = doc["run"].as_table(); run && run->contains("plugin_path")) {
+// Paths are written resolved: the runner reads them relative to the experiment file, and the
+// native plugin has no file to be relative to (a relative name would fly whatever file of that
+// name sits in the viewer's working folder).
+void ResolvePaths(toml::table& doc, const std::string& file, const ExperimentConfig& config) {
+  if (!config.plugin_path.empty()) {
     toml::array folders;
     for (const std::string& folder : config.plugin_path) folders.push_back(folder);
-    run->insert_or_assign("plugin_path", std::move(folders));
+    if (!doc.contains("run")) doc.insert("run", toml::table{});
+    doc["run"].as_table()->insert_or_assign("plugin_path", std::move(folders));
   }
   if (toml::table* vehicles = doc["vehicles"].as_table(); vehicles && vehicles->contains("model")) {
     vehicles->insert_or_assign("model", config.model_path);
   }
+  // A plugin's `file` attribute ([leader] file = "path.csv") and the shape table.
+  auto resolve_file = [&](toml::table* table) {
+    if (!table) return;
+    if (auto name = table->get_as<std::string>("file")) {
+      table->insert_or_assign("file", ResolveRelative(name->get(), file));
+    }
+  };
+  for (const char* section : {"leader", "formation", "attitude"}) {
+    resolve_file(doc[section].as_table());
+  }
+  resolve_file(doc["formation"]["shape"].as_table());
 }
 
-std::vector<std::pair<std::string, std::string>> CarriedPairs(const std::string& file,
-                                                              const ExperimentConfig* config,
-                                                              std::vector<std::string>* notes) {
+// The experiment file's document with the overrides applied, as LoadExperiment reads it.
+toml::table ExperimentTable(const std::string& file, const std::vector<std::string>& overrides) {
   toml::table doc;
   try {
-    doc = toml::parse_file(file);
+    doc = toml::parse(ReadExperimentText(file), file);
   } catch (const toml::parse_error& e) {
-    throw ConfigError(file + ": " + std::string(e.description()));
+    throw ConfigError(file + ":" + std::to_string(e.source().begin.line) + ":" +
+                      std::to_string(e.source().begin.column) +
+                      ": TOML syntax error: " + std::string(e.description()));
   }
-  if (config) ResolvePaths(doc, *config);
+  ApplyOverrides(doc, overrides);
+  return doc;
+}
+
+// A run that stops at a safety event has no counterpart in a scene: MuJoCo's stepping goes on
+// whatever the plugin reports, so the scene would fly on where the run ended.
+void RefuseStopOn(const std::string& file, const toml::table& doc) {
+  const toml::node* stop_on = doc.at_path("run.stop_on").node();
+  const toml::array* events = stop_on ? stop_on->as_array() : nullptr;
+  if (events && !events->empty()) {
+    throw ExportError(Where(file, *stop_on, "run") +
+                      " stop_on: not carried by the native MuJoCo plugins (nothing ends "
+                      "MuJoCo's stepping at a safety event); export with --set "
+                      "'run.stop_on=[]' or fly it with `mjformation run`");
+  }
+}
+
+// Reads the experiment file's sections, refusing what the native path cannot carry. `config`
+// is null for the refusal pass.
+std::vector<std::pair<std::string, std::string>> CarriedPairs(
+    const std::string& file, const std::vector<std::string>& overrides,
+    const ExperimentConfig* config, std::vector<std::string>* notes) {
+  toml::table doc = ExperimentTable(file, overrides);
+  RefuseStopOn(file, doc);
+  if (config) ResolvePaths(doc, file, *config);
   std::vector<std::pair<std::string, std::string>> pairs;
   for (auto&& [key, node] : doc) {
     const std::string section(key.str());
@@ -223,12 +262,15 @@ bool NonEmptyDirectory(const std::string& dir) {
 
 }  // namespace
 
-std::string ExportedSceneXml(const std::string& experiment, std::vector<std::string>* notes) {
-  CarriedPairs(experiment, nullptr, nullptr);  // refusals first: they name what to remove
-  const ExperimentConfig config =
-      LoadExperiment(experiment, {}, ExperimentChecks::Rendering(false));
+std::string ExportedSceneXml(const std::string& experiment, const ExportOptions& options,
+                             std::vector<std::string>* notes) {
+  // Refusals first: they name what to remove.
+  CarriedPairs(experiment, options.overrides, nullptr, nullptr);
+  ExperimentConfig config =
+      LoadExperiment(experiment, options.overrides, ExperimentChecks::Rendering(false));
+  for (const std::string& folder : options.plugin_path) config.plugin_path.push_back(folder);
   const std::vector<std::pair<std::string, std::string>> pairs =
-      CarriedPairs(experiment, &config, notes);
+      CarriedPairs(experiment, options.overrides, &config, notes);
   // The scene the runner composes for this experiment, vehicles, leader and all.
   Simulation simulation(config);
   std::string xml = simulation.scene_xml();
@@ -240,13 +282,13 @@ std::string ExportedSceneXml(const std::string& experiment, std::vector<std::str
 }
 
 ExportResult ExportExperiment(const std::string& experiment, const std::string& out_dir,
-                              bool overwrite) {
-  if (NonEmptyDirectory(out_dir) && !overwrite) {
+                              const ExportOptions& options) {
+  if (NonEmptyDirectory(out_dir) && !options.overwrite) {
     throw ExportError(out_dir + ": exists and is not empty; pass --overwrite to replace " +
                       "scene.xml in it");
   }
   ExportResult result;
-  const std::string xml = ExportedSceneXml(experiment, &result.notes);
+  const std::string xml = ExportedSceneXml(experiment, options, &result.notes);
   std::error_code ec;
   fs::create_directories(out_dir, ec);
   if (ec) throw ExportError(out_dir + ": cannot create it: " + ec.message());

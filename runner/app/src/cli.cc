@@ -221,7 +221,11 @@ CLI::Validator IntegerOption(long long min, long long max) {
 }
 
 int ExportCommand(const CliCommands& c) {
-  const ExportResult result = ExportExperiment(c.experiment, c.out, c.overwrite);
+  ExportOptions options;
+  options.overrides = c.overrides;
+  options.plugin_path = c.plugin_path;
+  options.overwrite = c.overwrite;
+  const ExportResult result = ExportExperiment(c.experiment, c.out, options);
   for (const std::string& note : result.notes) std::fprintf(stderr, "note: %s\n", note.c_str());
   std::printf("%s\n", result.scene_path.c_str());
   return 0;
@@ -234,6 +238,9 @@ void AddExportCommand(CLI::App& app, CliCommands* c) {
                          "(libmjformation_mujoco.so; docs/PLUGINS.md)");
   c->export_scene->add_option("experiment", c->experiment, "experiment file (TOML)")->required();
   c->export_scene->add_option("--out,-o", c->out, "output directory (gets scene.xml)")->required();
+  c->export_scene->add_option("--set", c->overrides, "override a value: section.key=value");
+  c->export_scene->add_option("--plugin-path", c->plugin_path,
+                              "extra folder to search for plugins (carried into the scene)");
   c->export_scene->add_flag("--overwrite", c->overwrite,
                             "write into an existing non-empty directory");
 }

@@ -13,6 +13,7 @@
 #include <set>
 #include <sstream>
 
+#include "mjformation/config/overrides.hpp"
 #include "mjformation/config/paths.hpp"
 #include "mjformation/config/source_location.hpp"
 #include "network_config.hpp"
@@ -183,6 +184,8 @@ PluginSection ReadPluginSection(const Reporter& reporter, const toml::table& roo
   return out;
 }
 
+}  // namespace
+
 // Applies "section.key=value" overrides by parsing the value as TOML.
 void ApplyOverrides(toml::table& root, const std::vector<std::string>& overrides) {
   for (const std::string& item : overrides) {
@@ -227,8 +230,6 @@ void ApplyOverrides(toml::table& root, const std::vector<std::string>& overrides
     table->insert_or_assign(key, std::move(replacement));
   }
 }
-
-}  // namespace
 
 std::vector<ExperimentConfig::Edge> GeneratedEdges(int n, bool ring) {
   std::vector<ExperimentConfig::Edge> edges;
@@ -597,8 +598,7 @@ ExperimentConfig ParseExperiment(const std::string& text, const std::string& pat
   return c;
 }
 
-ExperimentConfig LoadExperiment(const std::string& path, const std::vector<std::string>& overrides,
-                                ExperimentChecks checks) {
+std::string ReadExperimentText(const std::string& path) {
   // A folder opens as a stream that reads as empty, which would be refused for its first
   // missing key rather than for what it is.
   std::error_code ec;
@@ -610,7 +610,12 @@ ExperimentConfig LoadExperiment(const std::string& path, const std::vector<std::
   if (!in) throw ConfigError(path + ": cannot open the experiment file");
   std::ostringstream text;
   text << in.rdbuf();
-  return ParseExperiment(text.str(), path, overrides, checks);
+  return text.str();
+}
+
+ExperimentConfig LoadExperiment(const std::string& path, const std::vector<std::string>& overrides,
+                                ExperimentChecks checks) {
+  return ParseExperiment(ReadExperimentText(path), path, overrides, checks);
 }
 
 }  // namespace mjf::runner

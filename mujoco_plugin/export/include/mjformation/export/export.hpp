@@ -21,14 +21,22 @@ struct ExportResult {
   std::vector<std::string> notes;  // what was not carried because it does not shape the flight
 };
 
+// How to read the experiment file, as for `mjformation run`.
+struct ExportOptions {
+  std::vector<std::string> overrides;    // "section.key=value" (--set)
+  std::vector<std::string> plugin_path;  // extra plugin folders (--plugin-path), carried
+  bool overwrite = false;                // write into an existing non-empty folder
+};
+
 // Writes DIR/scene.xml for the experiment file. Refuses, naming the file and the key, whatever
 // the native path cannot carry (see the list in export.cc), and refuses to write into an
-// existing non-empty DIR unless `overwrite`. Throws ExportError or ConfigError.
+// existing non-empty DIR unless `options.overwrite`. Throws ExportError or ConfigError.
 ExportResult ExportExperiment(const std::string& experiment, const std::string& out_dir,
-                              bool overwrite);
+                              const ExportOptions& options = {});
 
 // The scene text alone (what ExportExperiment writes), for the Python module and the tests.
-std::string ExportedSceneXml(const std::string& experiment, std::vector<std::string>* notes);
+std::string ExportedSceneXml(const std::string& experiment, const ExportOptions& options,
+                             std::vector<std::string>* notes);
 
 }  // namespace mjf::runner
 

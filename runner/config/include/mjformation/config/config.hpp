@@ -35,6 +35,10 @@ ExperimentConfig LoadExperiment(const std::string& path,
                                 const std::vector<std::string>& overrides = {},
                                 ExperimentChecks checks = {});
 
+// The experiment file's text; a folder or an unreadable file is refused by name. Throws
+// ConfigError.
+std::string ReadExperimentText(const std::string& path);
+
 // Same from text already in memory (tests); `path` names it in messages.
 ExperimentConfig ParseExperiment(const std::string& text, const std::string& path,
                                  const std::vector<std::string>& overrides = {},
