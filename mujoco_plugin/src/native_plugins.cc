@@ -46,6 +46,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <utility>
@@ -70,10 +71,13 @@ struct Holder {
   std::vector<double> initial;  // the state before the first tick (what a reset restores)
 };
 
-std::string InstanceWhere(const char* plugin, const mjModel* m, int instance) {
+std::string InstanceName(const mjModel* m, int instance) {
   const char* name = mj_id2name(m, mjOBJ_PLUGIN, instance);
-  return std::string("MJCF plugin '") + plugin + "' instance '" +
-         (name && name[0] ? name : std::to_string(instance)) + "'";
+  return name && name[0] ? name : std::to_string(instance);
+}
+
+std::string InstanceWhere(const char* plugin, const mjModel* m, int instance) {
+  return std::string("MJCF plugin '") + plugin + "' instance '" + InstanceName(m, instance) + "'";
 }
 
 // Builds on a thread of its own. A bridge may load a vehicle model (a compile of its own), and
@@ -279,11 +283,48 @@ struct Kind {
   size_t (*state_size)(const mjModel*, int);
 };
 
+std::vector<std::string> ActuatorNames(const mjModel* m, int instance) {
+  const char* names = mj_getPluginConfig(m, instance, "actuators");
+  std::vector<std::string> words;
+  std::istringstream in(names ? names : "");
+  for (std::string word; in >> word;) words.push_back(word);
+  return words;
+}
+
+// No vehicle driven twice, refused while the model compiles: a scene holds one swarm (it flies
+// every vehicle of the scene), and no actuator is named by two attitude instances (the later
+// instance's controls would silently replace the earlier's).
+void RefuseDrivingTwice(const char* plugin, const mjModel* m, int instance) {
+  const bool swarm = std::string(plugin) == kSwarm;
+  const std::vector<std::string> mine =
+      swarm ? std::vector<std::string>{} : ActuatorNames(m, instance);
+  for (int other = 0; other < m->nplugin; ++other) {
+    const mjpPlugin* kind = mjp_getPluginAtSlot(m->plugin[other]);
+    if (other == instance || !kind || std::string(kind->name) != plugin) continue;
+    if (swarm) {
+      throw std::runtime_error(InstanceWhere(plugin, m, instance) + ": a second swarm instance ('" +
+                               InstanceName(m, other) +
+                               "' is the other): one flies every vehicle " +
+                               "of the scene; remove one of them");
+    }
+    for (const std::string& name : ActuatorNames(m, other)) {
+      if (std::find(mine.begin(), mine.end(), name) == mine.end()) continue;
+      throw std::runtime_error(InstanceWhere(plugin, m, instance) +
+                               ": <config key=\"actuators\">: '" + name +
+                               "' is driven by instance '" + InstanceName(m, other) +
+                               "' too; an actuator takes one instance's controls");
+    }
+  }
+}
+
 // Called while the model compiles: a refusal becomes the compile error.
 template <const Kind& K>
 int NState(const mjModel* m, int instance) {
   size_t blocks = 0;
-  ErrorFromException([&] { blocks = K.state_size(m, instance); });
+  ErrorFromException([&] {
+    RefuseDrivingTwice(K.name, m, instance);
+    blocks = K.state_size(m, instance);
+  });
   return kHeader + static_cast<int>(m->nactuator + blocks);
 }
 
@@ -386,7 +427,9 @@ void Compute(const mjModel* m, mjData* d, int instance, int) {
   for (int a = 0; a < m->nactuator; ++a) {
     if (std::isnan(u[a]) || m->actuator_actnum[a] != 0) continue;
     mjtNum force = m->actuator_gainprm[mjNGAIN * a] * Clamped(m, a, u[a]);
-    force += 0.0;  // MuJoCo adds the (zero) bias of a biastype="none" actuator
+    // Not dead: MuJoCo computes gain * ctrl + bias, and the (zero) bias of a biastype="none"
+    // actuator turns a -0.0 force into +0.0. The same bits as the runner's need the same sum.
+    force += 0.0;
     d->actuator_force[m->actuator_outadr[a]] = force;
   }
 }

@@ -200,7 +200,6 @@ VehicleHost::VehicleHost(const mjModel* m, VehicleHostConfig config)
 
 VehicleHost::~VehicleHost() = default;
 
-const std::vector<int>& VehicleHost::actuator_ids() const { return impl_->actuators; }
 
 namespace {
 constexpr size_t kSetpointDoubles = sizeof(mjfSetpoint) / sizeof(double);

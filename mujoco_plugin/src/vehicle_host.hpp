@@ -38,7 +38,6 @@ class VehicleHost {
 
   // One tick (guidance, then attitude) on the body's state in `d`; controls[actuator id].
   void Tick(int64_t step, const mjModel* m, const mjData* d, double* controls);
-  const std::vector<int>& actuator_ids() const;
   // What a tick leaves for the next: the setpoint, then the guidance's and the attitude
   // plugin's declared state (ABI 4).
   size_t state_size() const;

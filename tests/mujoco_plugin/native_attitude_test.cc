@@ -162,5 +162,22 @@ TEST(NativeAttitude, GimbalActuatorBeforeTheRotorsFlies) {
   EXPECT_LT(f.hold, 0.005) << "final z " << f.final_z;
 }
 
+// Two instances naming one actuator: refused while the model compiles, naming both.
+TEST(NativeAttitude, AnActuatorDrivenTwiceIsRefused) {
+  std::string xml = DroneXml(kBodyAligned, false);
+  const std::string second = R"(<instance name="copilot">
+        <config key="body" value="quad"/>
+        <config key="actuators" value="m_back_right"/>
+        <config key="attitude" value="plugin = 'geometric'"/>
+      </instance>
+    </plugin>)";
+  xml.replace(xml.find("</plugin>"), 9, second);
+  const Flight f = Fly(xml, 0.1);
+  EXPECT_FALSE(f.flew);
+  EXPECT_NE(f.error.find("'m_back_right' is driven by instance"), std::string::npos) << f.error;
+  EXPECT_NE(f.error.find("autopilot"), std::string::npos) << f.error;
+  EXPECT_NE(f.error.find("copilot"), std::string::npos) << f.error;
+}
+
 }  // namespace
 }  // namespace mjf::native

@@ -216,6 +216,23 @@ TEST(NativeConfig, ValueThatOpensASectionIsRefused) {
   EXPECT_NE(error.find("closes the table"), std::string::npos) << error;
 }
 
+// One swarm flies every vehicle of a scene: a second instance is refused, naming both.
+TEST(NativeConfig, ASecondSwarmIsRefused) {
+  Scratch dir("second_swarm");
+  std::vector<std::string> notes;
+  std::string xml = ExportedSceneXml(Variant("exp2.toml", "", "", dir), {}, &notes);
+  const std::string open = "<instance name=\"swarm\">";
+  xml.replace(xml.find(open), open.size(), "<instance name=\"second\"/>\n      " + open);
+  std::ofstream(dir / "scene.xml") << xml;
+  std::string error;
+  mjModel* m = LoadNative(dir / "scene.xml", &error);
+  EXPECT_EQ(m, nullptr);
+  if (m) mj_deleteModel(m);
+  EXPECT_NE(error.find("a second swarm instance"), std::string::npos) << error;
+  EXPECT_NE(error.find("'second'"), std::string::npos) << error;
+  EXPECT_NE(error.find("'swarm'"), std::string::npos) << error;
+}
+
 TEST(NativeConfig, UnknownConfigKeyIsRefusedByMuJoCo) {
   const std::string error =
       CompileWith("leader", "<config key=\"leader\"", "<config key=\"leeder\"");
