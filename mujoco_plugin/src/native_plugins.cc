@@ -362,7 +362,11 @@ int Init(const mjModel* m, mjData* d, int instance) {
   try {
     HolderFor<K>(m, d, instance);
   } catch (const std::exception& e) {
-    mju_warning("%s", e.what());
+    // MuJoCo's own error names only the plugin's slot: the warning names the instance.
+    const std::string where = InstanceWhere(K.name, m, instance);
+    const std::string message = e.what();
+    mju_warning("%s",
+                message.rfind(where, 0) == 0 ? message.c_str() : (where + ": " + message).c_str());
     return -1;
   }
   ClearState(m, State(m, d, instance));

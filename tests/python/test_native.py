@@ -61,6 +61,18 @@ def test_export_takes_set_as_run_does(exp2, tmp_path):
         mjformation.export(exp2, tmp_path / "stop", set={"run.stop_on": ["flip"]})
 
 
+def test_a_scene_whose_rotor_was_deleted_is_refused_naming_it(exp2, tmp_path, native_library):
+    import re
+    scene = mjformation.export(exp2, tmp_path / "out").read_text()
+    edited = re.sub(r'\s*<general name="uav1_rotor0"[^>]*/>', "", scene)
+    assert edited != scene
+    # The compiler makes an mjData, so the plugin's init runs and refuses while compiling; the
+    # mujoco package puts MuJoCo's warnings (the instance's message) into the error.
+    with pytest.raises(ValueError, match="plugin->init failed(.|\n)*instance 'swarm': the scene "
+                                         "has no actuator named 'uav1_rotor0'"):
+        mujoco.MjModel.from_xml_string(edited)
+
+
 def test_export_never_replaces_a_users_directory(exp2, tmp_path):
     out = tmp_path / "mine"
     out.mkdir()

@@ -39,9 +39,11 @@ std::vector<mjfActuatorInfo> ActuatorInfo(const mjModel* m, const mjfPlugin& plu
     }
     mjfActuatorInfo info{};
     std::memcpy(info.gear, m->actuator_gear + 6 * a, sizeof(info.gear));
-    if (m->actuator_ctrllimited[a]) {
-      info.ctrl_min = m->actuator_ctrlrange[2 * a];
-      info.ctrl_max = m->actuator_ctrlrange[2 * a + 1];
+    // Per control in MuJoCo 4 (an actuator may take several): the rotor's own control's row.
+    const int c = m->actuator_ctrladr[a];
+    if (m->actuator_ctrllimited[c]) {
+      info.ctrl_min = m->actuator_ctrlrange[2 * c];
+      info.ctrl_max = m->actuator_ctrlrange[2 * c + 1];
     } else {
       info.ctrl_min = -std::numeric_limits<double>::infinity();
       info.ctrl_max = std::numeric_limits<double>::infinity();
@@ -63,6 +65,18 @@ std::vector<mjfActuatorInfo> ActuatorInfo(const mjModel* m, const mjfPlugin& plu
   }
   mj_deleteData(d);
   return out;
+}
+
+// The id of a vehicle's element in the composed scene. A scene edited by hand (an exported one
+// whose rotor was deleted) would otherwise give -1, and a control written at index -1 lands in
+// another vehicle's slot; refused naming the element instead.
+int SceneId(const mjModel* composed, mjtObj type, const std::string& name) {
+  const int id = mj_name2id(composed, type, name.c_str());
+  if (id < 0) {
+    throw SceneError("the scene has no " + std::string(mju_type2Str(type)) + " named '" + name +
+                     "', which its vehicle needs (was it removed from the scene?)");
+  }
+  return id;
 }
 
 // The vehicle model alone: mass, inertia and the attitude plugin's actuators.
@@ -227,11 +241,9 @@ VehicleBindings Bind(const mjModel* composed, const ExperimentConfig& config,
     b.actuator_info = vehicle.actuators;
     for (int k = 0; bind_ids && k < attitude.n_actuators; ++k) {
       if (config.rotor_model == RotorModel::kWrench) {
-        b.sites.push_back(
-            mj_name2id(composed, mjOBJ_SITE, (prefix + vehicle.site_names[k]).c_str()));
+        b.sites.push_back(SceneId(composed, mjOBJ_SITE, prefix + vehicle.site_names[k]));
       } else {
-        b.actuators.push_back(
-            mj_name2id(composed, mjOBJ_ACTUATOR, (prefix + attitude.actuators[k]).c_str()));
+        b.actuators.push_back(SceneId(composed, mjOBJ_ACTUATOR, prefix + attitude.actuators[k]));
       }
     }
     b.info.mass = vehicle.mass;
@@ -243,7 +255,7 @@ VehicleBindings Bind(const mjModel* composed, const ExperimentConfig& config,
                            ? MJF_ACTUATION_THRUST_MOMENTS
                            : MJF_ACTUATION_ROTORS;
     if (!bind_ids) continue;
-    b.body = mj_name2id(composed, mjOBJ_BODY, (prefix + "vehicle").c_str());
+    b.body = SceneId(composed, mjOBJ_BODY, prefix + "vehicle");
     BindSensors(composed, prefix, config.model_path, &b);
   }
   return out;
