@@ -200,7 +200,6 @@ VehicleHost::VehicleHost(const mjModel* m, VehicleHostConfig config)
 
 VehicleHost::~VehicleHost() = default;
 
-
 namespace {
 constexpr size_t kSetpointDoubles = sizeof(mjfSetpoint) / sizeof(double);
 static_assert(sizeof(mjfSetpoint) == 12 * sizeof(double), "mjfSetpoint holds doubles only");
