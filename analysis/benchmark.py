@@ -28,6 +28,8 @@ def parse(argv):
                    "runs/benchmark_<NAME>); cells done there before are skipped")
     p.add_argument("--law", help="fly this one law on every scenario and print its row beside "
                    "the stored board (experiments/benchmark/leaderboard.json)")
+    p.add_argument("--baseline", default=str(b.BASELINE),
+                   help="the stored board --law is placed on (default: %(default)s)")
     p.add_argument("--set", dest="sets", action="append", default=[],
                    help="an override for every run, as mjformation run --set (repeat)")
     p.add_argument("--plugin-path", action="append", default=[],
@@ -59,7 +61,7 @@ def plan_of(args, baseline_meta) -> b.Plan:
 
 def main(argv):
     args = parse(argv)
-    stored, stored_meta = b.baseline_records() if args.law else ([], {})
+    stored, stored_meta = b.baseline_records(args.baseline) if args.law else ([], {})
     plan = plan_of(args, stored_meta)
     records = b.fly_all(plan)
     info = b.meta(plan, [shlex.quote(a) for a in argv if a != "--mjformation"
@@ -68,10 +70,10 @@ def main(argv):
         info["baseline"] = stored_meta
         records = [r for r in stored if r["law"] != args.law] + records
         if not stored:
-            print("benchmark: no stored board (experiments/benchmark/leaderboard.json): the "
-                  "row below stands alone", file=sys.stderr)
+            print(f"benchmark: no stored board ({args.baseline}): the row below stands alone",
+                  file=sys.stderr)
         else:
-            print(f"Stored board: benchmark version {stored_meta['benchmark_version']}, "
+            print(f"Stored board {args.baseline}: benchmark version {stored_meta['benchmark_version']}, "
                   f"{stored_meta['date']}, {stored_meta['mjformation']}")
     b.write_board(records, info, plan.out)
     print((plan.out / "leaderboard.md").read_text())

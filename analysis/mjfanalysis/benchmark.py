@@ -131,6 +131,8 @@ def fly_all(plan: Plan) -> list:
     results = {k: done_metrics(run_dir(plan, *k)) for k in keys}
     todo = [k for k in keys if results[k] is None]
     progress = Progress(len(keys), len(keys) - len(todo), plan.jobs)
+    if not todo:
+        print(f"benchmark: all {len(keys)} runs done before ({plan.out})", file=sys.stderr)
     with ThreadPoolExecutor(max_workers=plan.jobs) as pool:
         futures = {pool.submit(fly, plan, *k): k for k in todo}
         for f in as_completed(futures):

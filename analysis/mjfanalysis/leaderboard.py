@@ -192,7 +192,7 @@ def markdown(board: dict, meta: dict) -> str:
     """leaderboard.md: what was run, the board, the metrics per cell."""
     seeds = meta.get("seeds", [])
     text = [f"# Formation-tracking benchmark board ({meta.get('date', '')})", "",
-            f"Benchmark version {meta.get('benchmark_version')}, mjformation "
+            f"Benchmark version {meta.get('benchmark_version')}, "
             f"{meta.get('mjformation')}; command: `{meta.get('command', '')}`.",
             f"Score: `{board['score']}` (lower is better; docs/BENCHMARK.md), mean over "
             f"{len(seeds)} seed(s) {seeds} with its 95 % Student-t interval; #k is the rank, "
