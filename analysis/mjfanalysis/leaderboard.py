@@ -27,15 +27,17 @@ T975 = (12.7062, 4.3027, 3.1824, 2.7764, 2.5706, 2.4469, 2.3646, 2.3060, 2.2622,
 
 
 def interval95(samples) -> tuple[float, float, float]:
-    """(mean, low, high): Student-t 95 % interval of the mean; with one sample low = high =
-    mean (no interval can be stated, so no tie can be called)."""
+    """(mean, low, high): Student-t 95 % interval of the mean, cut at 0 for non-negative
+    samples; with one sample low = high = mean (no interval can be stated)."""
     x = np.asarray(samples, dtype=float)
     mean = float(np.mean(x))
     if len(x) < 2:
         return mean, mean, mean
     t = T975[len(x) - 2] if len(x) <= 31 else 1.96  # normal quantile beyond df = 30
     half = t * float(np.std(x, ddof=1)) / math.sqrt(len(x))
-    return mean, mean - half, mean + half
+    # Scores are never negative: a low end below zero says only "near zero" (as sweep_stats.cc).
+    low = max(mean - half, 0.0) if np.all(x >= 0) else mean - half
+    return mean, low, mean + half
 
 
 def rank_by_interval(entries: dict) -> dict:

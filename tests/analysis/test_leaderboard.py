@@ -30,6 +30,7 @@ def test_interval_is_student_t():
     half = 4.3027 * 0.1 / math.sqrt(3)  # t_{0.975, 2} sd / sqrt(n)
     assert (mean, lo, hi) == pytest.approx((1.0, 1.0 - half, 1.0 + half))
     assert lb.interval95([2.5]) == (2.5, 2.5, 2.5)
+    assert lb.interval95([0.1, 5.0])[1] == 0.0  # non-negative scores: cut at zero
 
 
 def test_ties_ranks_and_failed_cells():
