@@ -2,7 +2,8 @@
 # Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 """The formation-tracking benchmark (docs/BENCHMARK.md): laws x scenarios x seeds, the board.
 
-Usually started as `mjformation benchmark ...`, which passes its own path as --mjformation.
+Usually started as `mjformation benchmark ...`, which passes its own path as --mjformation and
+puts analysis/ on PYTHONPATH (analysis/README.md).
   mjformation benchmark [--laws a,b] [--scenarios x,y] [--seeds N] [--out DIR]
   mjformation benchmark --law NAME [--plugin-path DIR]   # NAME's row beside the stored board
 """
@@ -12,9 +13,7 @@ import shlex
 import sys
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-
-from mjfanalysis import benchmark as b  # noqa: E402
+from mjfanalysis import benchmark as b
 
 
 def parse(argv):

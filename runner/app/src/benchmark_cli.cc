@@ -27,10 +27,10 @@ void AddBenchmarkCommand(CLI::App& app, CliCommands* c) {
 }
 
 int BenchmarkCommand(const CliCommands& c) {
-  // The interpreter of the build's Python environment (numpy, matplotlib), unless MJF_PYTHON
-  // names another.
+  // analysis/ runs on Debian's Python with numpy and matplotlib (analysis/README.md), unless
+  // MJF_PYTHON names another.
   const char* env = std::getenv("MJF_PYTHON");
-  const std::string python = env && *env ? env : MJF_BENCHMARK_PYTHON;
+  const std::string python = env && *env ? env : "/usr/bin/python3";
   const std::string script = MJF_BENCHMARK_SCRIPT;
   if (!IsFile(script)) {
     std::fprintf(stderr,
@@ -39,13 +39,17 @@ int BenchmarkCommand(const CliCommands& c) {
                  script.c_str());
     return 1;
   }
+  // The package mjfanalysis beside the script, found as analysis/README.md says: PYTHONPATH.
+  const std::string analysis = script.substr(0, script.find_last_of('/'));
+  const char* path = std::getenv("PYTHONPATH");
+  setenv("PYTHONPATH", (path && *path ? analysis + ":" + path : analysis).c_str(), 1);
   std::vector<std::string> args = {python, script, "--mjformation",
                                    ExecutableDir() + "/mjformation"};
   for (const std::string& a : c.benchmark->remaining()) args.push_back(a);
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
-  execvp(python.c_str(), argv.data());
+  execv(python.c_str(), argv.data());
   std::perror(("mjformation benchmark: cannot start " + python +
                " (set MJF_PYTHON to a Python with numpy and matplotlib)")
                   .c_str());
