@@ -13,6 +13,7 @@ import datetime
 import json
 import subprocess
 import sys
+import threading
 import time
 import tomllib
 from concurrent.futures import ThreadPoolExecutor, as_completed
@@ -90,16 +91,24 @@ def command(plan: Plan, law: str, scenario: str, seed: int) -> list:
     return cmd
 
 
-def fly(plan: Plan, law: str, scenario: str, seed: int) -> dict:
-    """Runs one cell and seed and scores it. A run that ends without summary.json (a bad
-    experiment or law, not a bad flight) stops the benchmark with the runner's message."""
+def fly(plan: Plan, law: str, scenario: str, seed: int, stop: threading.Event) -> dict | None:
+    """Runs one cell and seed and scores it (None: not started, the board is stopping). A run
+    that ends without summary.json (a bad experiment or law, not a bad flight) or is
+    interrupted stops the benchmark."""
+    if stop.is_set():
+        return None
     d = run_dir(plan, law, scenario, seed)
     cmd = command(plan, law, scenario, seed)
     proc = subprocess.run(cmd, capture_output=True, text=True)
     if not (d / "summary.json").is_file():
+        stop.set()
         raise SystemExit(f"benchmark: {law} on {scenario} (seed {seed}) wrote no summary.json "
                          f"(exit code {proc.returncode}): {proc.stderr.strip()[-800:]}\n"
                          f"command: {' '.join(cmd)}")
+    if "interrupted_by_signal" in bm.read_summary(d / "summary.json"):
+        # Stopped by the user, not by its flight: left unscored, so that it is flown again.
+        stop.set()
+        raise SystemExit(f"benchmark: interrupted ({d}); the same command resumes")
     return bm.write_run_metrics(d, plan.band)
 
 
@@ -133,11 +142,17 @@ def fly_all(plan: Plan) -> list:
     progress = Progress(len(keys), len(keys) - len(todo), plan.jobs)
     if not todo:
         print(f"benchmark: all {len(keys)} runs done before ({plan.out})", file=sys.stderr)
+    stop = threading.Event()
     with ThreadPoolExecutor(max_workers=plan.jobs) as pool:
-        futures = {pool.submit(fly, plan, *k): k for k in todo}
-        for f in as_completed(futures):
-            results[futures[f]] = f.result()
-            progress.tick()
+        futures = {pool.submit(fly, plan, *k, stop): k for k in todo}
+        try:
+            for f in as_completed(futures):
+                results[futures[f]] = f.result()
+                progress.tick()
+        except BaseException:
+            stop.set()
+            pool.shutdown(cancel_futures=True)  # start nothing more; finished runs stay done
+            raise
     return [{"law": law, "scenario": s, "seed": seed, "metrics": results[(law, s, seed)]}
             for law, s, seed in keys]
 
