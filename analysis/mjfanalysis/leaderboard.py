@@ -81,11 +81,12 @@ def _rank_scenario(cells: list) -> None:
 
 def _overall(law: str, cells: list, best: dict) -> dict:
     """A law's overall score: per seed, the mean over scenarios of score / the scenario's best
-    mean; its mean and interval over seeds. None when any of its cells failed."""
+    mean; its mean and interval over seeds. None when any of its cells failed, and when it was
+    not flown on every scenario or with the same seeds on each (not comparable)."""
     failed = [c["scenario"] for c in cells if c["failed"]]
     row = {"law": law, "failed_cells": failed, "mean": None, "ci95": None, "rank": None,
            "tie": False}
-    if failed or not cells:
+    if failed or len(cells) < len(best) or len({tuple(c["seeds"]) for c in cells}) != 1:
         return row
     per_seed = np.mean([np.asarray(c["per_seed"]) / best[c["scenario"]] for c in cells], axis=0)
     mean, lo, hi = interval95(per_seed)
@@ -161,7 +162,7 @@ def overall_text(o: dict) -> str:
     if o["failed_cells"]:
         return f"**FAILED** in {len(o['failed_cells'])} scenario(s)"
     if o["mean"] is None:
-        return "n/a"
+        return "n/a (not every scenario, or other seeds)"
     lo, hi = o["ci95"]
     interval = f" [{_fmt(lo)}, {_fmt(hi)}]" if lo != hi else ""
     return f"{_fmt(o['mean'])}{interval} {_rank_text(o['rank'], o['tie'])}"

@@ -70,3 +70,13 @@ def test_markdown_json_and_figure(tmp_path):
     img = mpimg.imread(str(tmp_path / "board.png"))[:, :, :3]
     grey = (abs(img[:, :, 0] - 0.8) < 0.02) & (abs(img[:, :, 1] - 0.8) < 0.02)
     assert grey.sum() > 200  # the failed cell's grey
+
+
+def test_a_law_missing_a_scenario_gets_no_overall_score():
+    records = [r for r in _records() if (r["law"], r["scenario"]) != ("z", "B")]
+    board = lb.build(records)
+    overall = {o["law"]: o for o in board["overall"]}
+    assert overall["z"]["mean"] is None and overall["z"]["rank"] is None
+    assert overall["x"]["rank"] == 1
+    row = next(line for line in lb.board_table(board) if line.startswith("| `z`"))
+    assert "n/a (not every scenario" in row and "not run" in row
