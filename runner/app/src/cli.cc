@@ -282,6 +282,7 @@ void AddCommands(CLI::App& app, CliCommands* c) {
   AddReplayCommand(app, c);
   AddViewCommand(app, c);
   AddExportCommand(app, c);
+  AddBenchmarkCommand(app, c);
 }
 
 int Dispatch(const CLI::App& app, const CliCommands& c) {
@@ -296,6 +297,7 @@ int Dispatch(const CLI::App& app, const CliCommands& c) {
     if (c.replay && c.replay->parsed()) return ReplayCommand(c);
     if (c.view && c.view->parsed()) return ViewCommand(c);
     if (c.export_scene->parsed()) return ExportCommand(c);
+    if (c.benchmark->parsed()) return BenchmarkCommand(c);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "mjformation: error: %s\n", EscapeControl(e.what()).c_str());
     return 1;

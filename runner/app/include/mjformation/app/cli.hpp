@@ -40,6 +40,7 @@ struct CliCommands {
   CLI::App* replay = nullptr;
   CLI::App* view = nullptr;
   CLI::App* export_scene = nullptr;  // `export`: a scene flown by the native MuJoCo plugins
+  CLI::App* benchmark = nullptr;     // `benchmark`: analysis/benchmark.py (benchmark_cli.cc)
   std::string replay_dir, replay_video, replay_out;
   std::string replay_video_size;  // --video-size WxH; empty: the run's snapshot size
   std::vector<double> replay_snapshots;
@@ -71,6 +72,10 @@ int RunCommandLine(int argc, const char* const* argv);
 // `mjformation bench` (runner/app/src/bench.cc).
 void AddBenchCommand(CLI::App& app, CliCommands* commands);
 int BenchCommand(const CliCommands& commands);
+
+// `mjformation benchmark` (runner/app/src/benchmark_cli.cc): starts analysis/benchmark.py.
+void AddBenchmarkCommand(CLI::App& app, CliCommands* commands);
+int BenchmarkCommand(const CliCommands& commands);
 
 // `mjformation sweep` (runner/app/src/sweep.cc).
 void AddSweepCommand(CLI::App& app, CliCommands* commands);

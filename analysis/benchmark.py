@@ -1,0 +1,84 @@
+#!/usr/bin/env python3
+# Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+"""The formation-tracking benchmark (docs/BENCHMARK.md): laws x scenarios x seeds, the board.
+
+Usually started as `mjformation benchmark ...`, which passes its own path as --mjformation and
+puts analysis/ on PYTHONPATH (analysis/README.md).
+  mjformation benchmark [--laws a,b] [--scenarios x,y] [--seeds N] [--out DIR]
+  mjformation benchmark --law NAME [--plugin-path DIR]   # NAME's row beside the stored board
+"""
+
+import argparse
+import shlex
+import sys
+from pathlib import Path
+
+from mjfanalysis import benchmark as b
+
+
+def parse(argv):
+    p = argparse.ArgumentParser(prog="mjformation benchmark", description=__doc__.splitlines()[0])
+    p.add_argument("--laws", help="comma-separated laws of experiments/benchmark/laws.toml "
+                   "(default: all)")
+    p.add_argument("--scenarios", help="comma-separated scenarios of experiments/benchmark/ "
+                   "(default: all)")
+    p.add_argument("--seeds", type=int, default=3, help="seeds per cell: run.seed = 1..N")
+    p.add_argument("--out", help="output folder (default runs/benchmark, with --law "
+                   "runs/benchmark_<NAME>); cells done there before are skipped")
+    p.add_argument("--law", help="fly this one law on every scenario and print its row beside "
+                   "the stored board (experiments/benchmark/leaderboard.json)")
+    p.add_argument("--baseline", default=str(b.BASELINE),
+                   help="the stored board --law is placed on (default: %(default)s)")
+    p.add_argument("--set", dest="sets", action="append", default=[],
+                   help="an override for every run, as mjformation run --set (repeat)")
+    p.add_argument("--plugin-path", action="append", default=[],
+                   help="extra folder to search for plugins (a law of your own)")
+    p.add_argument("--jobs", type=int, default=2, help="runs at once (default 2)")
+    p.add_argument("--band", type=float, default=b.bm.DEFAULT_BAND_M,
+                   help="reaching band b of the reaching time, m (default 1)")
+    p.add_argument("--mjformation", default="mjformation", help="the runner to fly with")
+    return p.parse_args(argv)
+
+
+def plan_of(args, baseline_meta) -> b.Plan:
+    known = b.known_laws()
+    if args.law:
+        laws = {args.law: known.get(args.law, f'{{plugin="{args.law}"}}')}
+        # The stored board's seeds and overrides, so that the new row is comparable.
+        seeds = baseline_meta.get("seeds") or list(range(1, args.seeds + 1))
+        sets = args.sets or baseline_meta.get("sets") or []
+        out = Path(args.out or f"runs/benchmark_{args.law}")
+    else:
+        laws = {n: known[n] for n in b.pick(args.laws, known, "law")}
+        seeds, sets, out = list(range(1, args.seeds + 1)), args.sets, Path(args.out or
+                                                                          "runs/benchmark")
+    return b.Plan(mjformation=args.mjformation, laws=laws,
+                  scenarios=b.pick(args.scenarios, b.known_scenarios(), "scenario"),
+                  seeds=seeds, out=out, sets=sets, plugin_path=args.plugin_path,
+                  jobs=max(1, args.jobs), band=args.band)
+
+
+def main(argv):
+    args = parse(argv)
+    stored, stored_meta = b.baseline_records(args.baseline) if args.law else ([], {})
+    plan = plan_of(args, stored_meta)
+    records = b.fly_all(plan)
+    info = b.meta(plan, [shlex.quote(a) for a in argv if a != "--mjformation"
+                         and a != args.mjformation])
+    if args.law:
+        info["baseline"] = stored_meta
+        records = [r for r in stored if r["law"] != args.law] + records
+        if not stored:
+            print(f"benchmark: no stored board ({args.baseline}): the row below stands alone",
+                  file=sys.stderr)
+        else:
+            print(f"Stored board {args.baseline}: benchmark version {stored_meta['benchmark_version']}, "
+                  f"{stored_meta['date']}, {stored_meta['mjformation']}")
+    b.write_board(records, info, plan.out)
+    print((plan.out / "leaderboard.md").read_text())
+    print(f"benchmark: board in {plan.out}/leaderboard.md, .json and .png", file=sys.stderr)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))

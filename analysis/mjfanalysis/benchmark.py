@@ -1,0 +1,187 @@
+# Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+"""`mjformation benchmark`: flies laws x scenarios x seeds (one `mjformation run` per cell and
+seed, several at once), resumable, then writes the board (leaderboard.md, leaderboard.json,
+leaderboard.png; docs/BENCHMARK.md).
+
+Layout of --out: runs/<law>/<scenario>/seed<S>/ (a run directory plus benchmark_metrics.json,
+written last: a run with it is done and is skipped when the benchmark is run again).
+"""
+
+from __future__ import annotations
+
+import datetime
+import json
+import subprocess
+import sys
+import threading
+import time
+import tomllib
+from concurrent.futures import ThreadPoolExecutor, as_completed
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from . import benchmark_metrics as bm
+from . import leaderboard
+
+BENCHMARK_VERSION = 1
+REPO = Path(__file__).resolve().parents[2]
+SCENARIO_DIR = REPO / "experiments" / "benchmark"
+LAWS_FILE = SCENARIO_DIR / "laws.toml"
+BASELINE = SCENARIO_DIR / "leaderboard.json"
+
+
+@dataclass
+class Plan:
+    """What to fly: laws {name: inline [formation] table}, scenario names, seeds, and how."""
+    mjformation: str
+    laws: dict
+    scenarios: list
+    seeds: list
+    out: Path
+    sets: list = field(default_factory=list)
+    plugin_path: list = field(default_factory=list)
+    jobs: int = 2
+    band: float = bm.DEFAULT_BAND_M
+
+
+def known_laws(path=LAWS_FILE) -> dict:
+    """{law: inline formation table} from experiments/benchmark/laws.toml, in file order."""
+    with open(path, "rb") as f:
+        return {name: entry["formation"] for name, entry in tomllib.load(f)["laws"].items()}
+
+
+def known_scenarios(folder=SCENARIO_DIR) -> list:
+    """Scenario names (file stems) of experiments/benchmark/*.toml but laws.toml, sorted."""
+    return sorted(p.stem for p in folder.glob("*.toml") if p.name != LAWS_FILE.name)
+
+
+def pick(names: str | None, known, what: str) -> list:
+    """The comma-separated subset of known names (all when names is None); an unknown name is
+    an error that lists the known ones."""
+    if not names:
+        return list(known)
+    picked = [n.strip() for n in names.split(",") if n.strip()]
+    for n in picked:
+        if n not in known:
+            raise SystemExit(f"benchmark: unknown {what} '{n}' (known: {', '.join(known)})")
+    return picked
+
+
+def run_dir(plan: Plan, law: str, scenario: str, seed: int) -> Path:
+    return plan.out / "runs" / law / scenario / f"seed{seed}"
+
+
+def done_metrics(d: Path) -> dict | None:
+    """The cell's stored metrics when its run finished and was scored, else None."""
+    try:
+        return json.loads((d / bm.METRICS_FILE).read_text())
+    except (OSError, json.JSONDecodeError):
+        return None
+
+
+def command(plan: Plan, law: str, scenario: str, seed: int) -> list:
+    """The `mjformation run` command line of one cell and seed."""
+    cmd = [plan.mjformation, "run", str(SCENARIO_DIR / f"{scenario}.toml"),
+           "--out", str(run_dir(plan, law, scenario, seed)), "--overwrite", "--no-render", "-q",
+           "--set", f"formation={plan.laws[law]}", "--set", f"run.seed={seed}"]
+    for s in plan.sets:
+        cmd += ["--set", s]
+    for p in plan.plugin_path:
+        cmd += ["--plugin-path", p]
+    return cmd
+
+
+def fly(plan: Plan, law: str, scenario: str, seed: int, stop: threading.Event) -> dict | None:
+    """Runs one cell and seed and scores it (None: not started, the board is stopping). A run
+    that ends without summary.json (a bad experiment or law, not a bad flight) or is
+    interrupted stops the benchmark."""
+    if stop.is_set():
+        return None
+    d = run_dir(plan, law, scenario, seed)
+    cmd = command(plan, law, scenario, seed)
+    proc = subprocess.run(cmd, capture_output=True, text=True)
+    if not (d / "summary.json").is_file():
+        stop.set()
+        raise SystemExit(f"benchmark: {law} on {scenario} (seed {seed}) wrote no summary.json "
+                         f"(exit code {proc.returncode}): {proc.stderr.strip()[-800:]}\n"
+                         f"command: {' '.join(cmd)}")
+    if "interrupted_by_signal" in bm.read_summary(d / "summary.json"):
+        # Stopped by the user, not by its flight: left unscored, so that it is flown again.
+        stop.set()
+        raise SystemExit(f"benchmark: interrupted ({d}); the same command resumes")
+    return bm.write_run_metrics(d, plan.band)
+
+
+class Progress:
+    """One stderr line: runs done of total, the mean wall time per run and the ETA."""
+
+    def __init__(self, total: int, skipped: int, jobs: int):
+        self.total, self.skipped, self.jobs = total, skipped, jobs
+        self.flown, self.start = 0, time.monotonic()
+
+    def line(self) -> str:
+        elapsed = time.monotonic() - self.start
+        todo = self.total - self.skipped - self.flown
+        per_run = elapsed / self.flown if self.flown else float("nan")
+        eta = f"{todo * per_run:.0f} s" if self.flown else "?"
+        return (f"benchmark: {self.skipped + self.flown}/{self.total} runs "
+                f"({self.skipped} done before), {per_run * self.jobs:.1f} s per run, "
+                f"elapsed {elapsed:.0f} s, ETA {eta}")
+
+    def tick(self) -> None:
+        self.flown += 1
+        end = "\n" if self.skipped + self.flown == self.total else "\r"
+        print(self.line(), end=end, file=sys.stderr, flush=True)
+
+
+def fly_all(plan: Plan) -> list:
+    """Every record of the plan, flying only the cells not done before."""
+    keys = [(law, s, seed) for law in plan.laws for s in plan.scenarios for seed in plan.seeds]
+    results = {k: done_metrics(run_dir(plan, *k)) for k in keys}
+    todo = [k for k in keys if results[k] is None]
+    progress = Progress(len(keys), len(keys) - len(todo), plan.jobs)
+    if not todo:
+        print(f"benchmark: all {len(keys)} runs done before ({plan.out})", file=sys.stderr)
+    stop = threading.Event()
+    with ThreadPoolExecutor(max_workers=plan.jobs) as pool:
+        futures = {pool.submit(fly, plan, *k, stop): k for k in todo}
+        try:
+            for f in as_completed(futures):
+                results[futures[f]] = f.result()
+                progress.tick()
+        except BaseException:
+            stop.set()
+            pool.shutdown(cancel_futures=True)  # start nothing more; finished runs stay done
+            raise
+    return [{"law": law, "scenario": s, "seed": seed, "metrics": results[(law, s, seed)]}
+            for law, s, seed in keys]
+
+
+def meta(plan: Plan, argv: list) -> dict:
+    """The board's header: benchmark version, date, mjformation version, seeds, command."""
+    version = subprocess.run([plan.mjformation, "--version"], capture_output=True,
+                             text=True).stdout.strip().splitlines()
+    return {"benchmark_version": BENCHMARK_VERSION,
+            "date": datetime.date.today().isoformat(), "mjformation": version[0] if version else "unknown",
+            "seeds": plan.seeds, "band_m": plan.band, "sets": plan.sets,
+            "command": " ".join(["mjformation", "benchmark", *argv])}
+
+
+def write_board(records: list, info: dict, out: Path) -> dict:
+    """leaderboard.json, leaderboard.md and leaderboard.png in out; returns the board."""
+    board = leaderboard.build(records)
+    out.mkdir(parents=True, exist_ok=True)
+    leaderboard.write_json(board, out / "leaderboard.json", info, records)
+    (out / "leaderboard.md").write_text(leaderboard.markdown(board, info))
+    leaderboard.heatmap(board, out / "leaderboard.png")
+    return board
+
+
+def baseline_records(path=BASELINE) -> tuple[list, dict]:
+    """The stored board's per-run records and header ([] and {} when there is none)."""
+    try:
+        stored = json.loads(Path(path).read_text())
+    except OSError:
+        return [], {}
+    keys = ("benchmark_version", "date", "mjformation", "seeds", "band_m", "sets")
+    return stored.get("runs", []), {k: stored.get(k) for k in keys}

@@ -1,0 +1,100 @@
+# Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+"""The benchmark's flying loop (mjfanalysis.benchmark) with a stand-in for `mjformation run`
+that writes a tiny run directory and logs its calls: resume, interrupted runs, the command
+line of a cell."""
+import json
+import sys
+from pathlib import Path
+
+import pytest
+
+from mjfanalysis import benchmark as b
+
+# Writes --out as a two-sample run of one follower whose slot error is the seed (in m); the
+# law "crashes" flips; a run of the law "stop" is interrupted. Every call is logged.
+FAKE = r'''
+import json, sys
+from pathlib import Path
+args = sys.argv[1:]
+out = Path(args[args.index("--out") + 1])
+sets = [args[i + 1] for i, a in enumerate(args) if a == "--set"]
+seed = int(next(s for s in sets if s.startswith("run.seed=")).split("=")[1])
+law = next(s for s in sets if s.startswith("formation=")).split('"')[1]
+with open(Path(__file__).with_name("calls.log"), "a") as f:
+    f.write(" ".join(args) + "\n")
+out.mkdir(parents=True, exist_ok=True)
+rows = "\n".join(f"{t},0,0,,,0,0,{seed},0,1,0,0,0" for t in (0.0, 1.0))
+(out / "timeseries.csv").write_text(
+    "t,uav0_px,uav0_py,uav0_ax_cmd,uav0_ay_cmd,uav0_slot_x,uav0_slot_y,"
+    "uav1_px,uav1_py,uav1_ax_cmd,uav1_ay_cmd,uav1_slot_x,uav1_slot_y\n" + rows + "\n")
+s = {"complete": True, "metrics": {"sigma_f_window": [0.0, 1.0], "sigma_f_mean": 1.0,
+                                   "min_separation_m": 3.0}}
+if law == "crashes":
+    s["events"] = {"count": 1, "by_kind": {"flip": 1}, "list": []}
+if law == "stop":
+    s.update(complete=False, interrupted_by_signal=2)
+(out / "summary.json").write_text(json.dumps(s))
+'''
+
+
+@pytest.fixture
+def fake(tmp_path):
+    script = tmp_path / "fake_mjformation.py"
+    script.write_text(FAKE)
+    runner = tmp_path / "mjformation"
+    runner.write_text(f"#!/bin/sh\nexec {sys.executable} {script} \"$@\"\n")
+    runner.chmod(0o755)
+    return runner
+
+
+def _plan(fake, tmp_path, laws):
+    return b.Plan(mjformation=str(fake), laws={law: f'{{plugin="{law}"}}' for law in laws},
+                  scenarios=["b01_paper_circle"], seeds=[1, 2], out=tmp_path / "board",
+                  sets=["run.duration=1.0"], jobs=2)
+
+
+def _calls(tmp_path):
+    log = tmp_path / "calls.log"
+    return log.read_text().splitlines() if log.exists() else []
+
+
+def test_flies_each_cell_once_and_resumes(fake, tmp_path, capsys):
+    plan = _plan(fake, tmp_path, ["good", "crashes"])
+    records = b.fly_all(plan)
+    assert len(_calls(tmp_path)) == 4
+    assert "4/4 runs (0 done before)" in capsys.readouterr().err
+    score = {(r["law"], r["seed"]): r["metrics"] for r in records}
+    assert score[("good", 2)]["rms_slot_error_m"] == 2.0 and score[("good", 2)]["failed"] is None
+    assert score[("crashes", 1)]["failed"] == "safety: 1 flip"
+    again = b.fly_all(plan)
+    assert len(_calls(tmp_path)) == 4  # nothing flown again
+    assert "all 4 runs done before" in capsys.readouterr().err
+    assert again == records
+    (b.run_dir(plan, "good", "b01_paper_circle", 1) / b.bm.METRICS_FILE).unlink()
+    b.fly_all(plan)
+    assert len(_calls(tmp_path)) == 5  # only the unscored run
+
+
+def test_an_interrupted_run_stops_the_board_unscored(fake, tmp_path):
+    plan = _plan(fake, tmp_path, ["stop"])
+    plan.jobs = 1
+    with pytest.raises(SystemExit, match="the same command resumes"):
+        b.fly_all(plan)
+    assert len(_calls(tmp_path)) == 1  # the second seed was never started
+    assert b.done_metrics(b.run_dir(plan, "stop", "b01_paper_circle", 1)) is None
+
+
+def test_cell_command_line(tmp_path):
+    plan = b.Plan(mjformation="mjf", laws={"x": '{plugin="x", k=1.0}'}, scenarios=["s"],
+                  seeds=[3], out=Path("o"), sets=["run.duration=2.0"], plugin_path=["p"])
+    cmd = b.command(plan, "x", "s", 3)
+    assert cmd[:3] == ["mjf", "run", str(b.SCENARIO_DIR / "s.toml")]
+    assert cmd[3:5] == ["--out", "o/runs/x/s/seed3"]
+    text = " ".join(cmd)
+    assert '--set formation={plugin="x", k=1.0} --set run.seed=3 --set run.duration=2.0' in text
+    assert text.endswith("--plugin-path p")
+    assert set(b.known_laws()) >= {"smc_discrete", "vs_tracking", "terminal_smc"}
+    assert "b01_paper_circle" in b.known_scenarios() and "laws" not in b.known_scenarios()
+    assert json.dumps(b.pick("b01_paper_circle", b.known_scenarios(), "scenario"))
+    with pytest.raises(SystemExit, match="unknown law 'nope'"):
+        b.pick("nope", b.known_laws(), "law")
