@@ -1,6 +1,6 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
-// What the three formation adapters share: reading the swarm from the step context into the
+// What the formation adapters share: reading the swarm from the step context into the
 // core's layout, writing follower setpoints, and building graph/shape/gains from create().
 #ifndef MJFORMATION_PLUGINS_FORMATION_ADAPTER_HPP_
 #define MJFORMATION_PLUGINS_FORMATION_ADAPTER_HPP_
@@ -182,6 +182,21 @@ constexpr mjfPlugin SwarmPlugin(const char* name, const char* doc,
           &plugin::GetStateOf<Instance>,
           &plugin::SetStateOf<Instance>};
 }
+
+// The descriptors, one per file (register.cc lists them).
+extern const mjfPlugin kSmcContinuous;    // smc_continuous.cc: eq. (30) / (33)
+extern const mjfPlugin kSmcDiscrete;      // smc_discrete.cc: eq. (48) / (53), zero-order hold
+extern const mjfPlugin kConsensusLinear;  // consensus_linear.cc: linear baseline
+// Their per-agent versions (AgentPlugin<Law>, agent_adapter.hpp):
+extern const mjfPlugin kSmcDiscreteAgent;      // smc_discrete_agent.cc: eq. (48), per follower
+extern const mjfPlugin kSmcContinuousAgent;    // smc_continuous_agent.cc: eq. (30), per follower
+extern const mjfPlugin kConsensusLinearAgent;  // consensus_linear_agent.cc: linear, per follower
+// The laws from the literature (one file each, the maths in src/ of the same name):
+extern const mjfPlugin kVsTracking;        // vs_tracking.cc: Cao & Ren, IEEE TAC 2012
+extern const mjfPlugin kSuperTwisting;     // super_twisting.cc: Levant 1993 on s_i = K e_i
+extern const mjfPlugin kAdaptiveTracking;  // adaptive_tracking.cc: Li, Liu, Ren & Xie, TAC 2013
+extern const mjfPlugin kObserverTracking;  // observer_tracking.cc: Hong, Hu & Gao, Aut. 2006
+extern const mjfPlugin kTerminalSmc;       // terminal_smc.cc: Feng, Yu & Man, Automatica 2002
 
 }  // namespace mjf::formation::adapter
 

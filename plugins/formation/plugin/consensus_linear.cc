@@ -5,7 +5,6 @@
 #include <mjformation/formation/linear_consensus.hpp>
 
 #include "adapter.hpp"
-#include "plugins.hpp"
 
 namespace mjf::formation::adapter {
 

@@ -7,7 +7,6 @@
 #include <mjformation/formation/observer_tracking.hpp>
 
 #include "adapter.hpp"
-#include "plugins.hpp"
 
 namespace mjf::formation::adapter {
 namespace {

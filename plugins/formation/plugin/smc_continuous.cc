@@ -5,7 +5,6 @@
 #include <mjformation/formation/continuous_smc.hpp>
 
 #include "adapter.hpp"
-#include "plugins.hpp"
 
 namespace mjf::formation::adapter {
 

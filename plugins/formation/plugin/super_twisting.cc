@@ -6,7 +6,6 @@
 #include <mjformation/formation/super_twisting.hpp>
 
 #include "adapter.hpp"
-#include "plugins.hpp"
 
 namespace mjf::formation::adapter {
 namespace {

@@ -9,7 +9,6 @@
 #include <string>
 
 #include "adapter.hpp"
-#include "plugins.hpp"
 
 namespace mjf::formation::adapter {
 namespace {

@@ -5,7 +5,6 @@
 #include <mjformation/formation/vs_tracking.hpp>
 
 #include "adapter.hpp"
-#include "plugins.hpp"
 
 namespace mjf::formation::adapter {
 namespace {
