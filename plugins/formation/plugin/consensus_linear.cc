@@ -32,7 +32,6 @@ struct Instance : SwarmInstance<formation::LinearConsensus> {
   }
   using SwarmInstance::SwarmInstance;
   const double* sliding() const { return nullptr; }  // no sliding variable: it stays NaN
-  void Reset() {}
 };
 
 }  // namespace

@@ -47,7 +47,6 @@ struct Instance : SwarmInstance<formation::ContinuousSmc> {
     return ParseContinuousParams(plugin::Attributes(ctx));
   }
   using SwarmInstance::SwarmInstance;
-  const double* sliding() const { return controller.sliding().data(); }
   void Reset() { controller.ResetReachingTime(); }
 };
 
