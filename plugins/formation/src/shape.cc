@@ -107,7 +107,7 @@ class SampledShape : public Shape {
     at.h = times_[at.k + 1] - times_[at.k];
     const double u = (t - times_[at.k]) / at.h;
     at.u = u;
-    at.basis = CubicHermite(u);
+    at.basis = CubicHermiteHorner(u);
     return at;
   }
   void Fill(const Interval& at, int i, double* f) const {
