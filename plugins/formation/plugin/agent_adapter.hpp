@@ -79,6 +79,16 @@ struct AgentInstance {
 // execution only).
 void RequireNeighbourhood(const mjfCreateContext* ctx);
 
+// The create of a per-agent law evaluated every physics step (no sample period, no look-ahead),
+// with the params Parse reads (its swarm-level version's).
+template <typename Law, auto Parse>
+void* EveryStepAgentCreate(const mjfCreateContext* ctx) {
+  return plugin::CreateOrExplain(ctx, [&]() -> void* {
+    RequireNeighbourhood(ctx);
+    return new AgentInstance<Law>(ctx, Parse(plugin::Attributes(ctx)), 1, 0.0);
+  });
+}
+
 // w_j for every neighbour: this round's iterate when it got through, else from u_j.
 template <typename Law>
 void AgentCoupling(AgentInstance<Law>& a, const mjfAgentInput& in) {

@@ -8,20 +8,10 @@
 #include "agent_adapter.hpp"
 
 namespace mjf::formation::adapter {
-namespace {
-
-void* Create(const mjfCreateContext* ctx) {
-  return plugin::CreateOrExplain(ctx, [&]() -> void* {
-    RequireNeighbourhood(ctx);
-    const formation::LinearConsensusParams params = ParseConsensusParams(plugin::Attributes(ctx));
-    return new AgentInstance<formation::LinearConsensusAgent>(ctx, params, 1, 0.0);
-  });
-}
-
-}  // namespace
 
 const mjfPlugin kConsensusLinearAgent = AgentPlugin<formation::LinearConsensusAgent>(
     "consensus_linear_agent", "linear consensus formation tracking, one instance per follower",
-    kConsensusAttributeCount, kConsensusAttributes, &Create);
+    kConsensusAttributeCount, kConsensusAttributes,
+    &EveryStepAgentCreate<formation::LinearConsensusAgent, &ParseConsensusParams>);
 
 }  // namespace mjf::formation::adapter

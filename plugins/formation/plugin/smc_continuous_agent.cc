@@ -8,21 +8,11 @@
 #include "agent_adapter.hpp"
 
 namespace mjf::formation::adapter {
-namespace {
-
-void* Create(const mjfCreateContext* ctx) {
-  return plugin::CreateOrExplain(ctx, [&]() -> void* {
-    RequireNeighbourhood(ctx);
-    const formation::ContinuousSmcParams params = ParseContinuousParams(plugin::Attributes(ctx));
-    return new AgentInstance<formation::ContinuousSmcAgent>(ctx, params, 1, 0.0);
-  });
-}
-
-}  // namespace
 
 const mjfPlugin kSmcContinuousAgent = AgentPlugin<formation::ContinuousSmcAgent>(
     "smc_continuous_agent",
     "continuous sliding-mode formation tracking, eq. (30), one instance per follower",
-    kContinuousAttributeCount, kContinuousAttributes, &Create);
+    kContinuousAttributeCount, kContinuousAttributes,
+    &EveryStepAgentCreate<formation::ContinuousSmcAgent, &ParseContinuousParams>);
 
 }  // namespace mjf::formation::adapter
