@@ -11,59 +11,28 @@
 #include <filesystem>
 #include <fstream>
 #include <regex>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "mjformation/config/config.hpp"
 #include "mjformation/export/export.hpp"
 #include "mjformation/sim/simulation.hpp"
+#include "native_fixture.hpp"
 
 namespace mjf::runner {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string ReadText(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-void LoadPluginLibraryOnce() {
-  static const bool loaded = [] {
-    mj_loadPluginLibrary(MJF_NATIVE_PLUGIN_LIBRARY);
-    return true;
-  }();
-  (void)loaded;
-}
-
-// A scratch folder per test, removed at the end.
-class Scratch {
- public:
-  explicit Scratch(const std::string& name)
-      : path_(fs::temp_directory_path() / ("mjf_native_" + name + "_" + std::to_string(getpid()))) {
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~Scratch() { fs::remove_all(path_); }
-  std::string operator/(const std::string& leaf) const { return (path_ / leaf).string(); }
-
- private:
-  fs::path path_;
-};
+using mjf::testing::LoadNativePluginsOnce;
+using mjf::testing::NativeExperimentText;
+using mjf::testing::ReadFile;
+using mjf::testing::Scratch;
 
 // The experiment file, with [vehicles] model and [attitude] plugin changed when asked and
 // [render] removed (the runner would render; the export notes it).
 std::string Variant(const std::string& experiment, const std::string& model,
                     const std::string& attitude, const Scratch& dir) {
-  std::string text = ReadText(std::string(MJF_SOURCE_DIR) + "/experiments/" + experiment);
-  text = text.substr(0, text.find("\n[render]"));
-  if (!model.empty()) {
-    text = std::regex_replace(text, std::regex("\nmodel = \"quadrotor\""),
-                              "\nmodel = \"" + model + "\"");
-  }
+  std::string text = NativeExperimentText(experiment, model);
   if (!attitude.empty()) {
     text = std::regex_replace(text, std::regex("\\[attitude\\][^\\[]*"),
                               "[attitude]\nplugin = \"" + attitude + "\"\n\n");
@@ -74,7 +43,7 @@ std::string Variant(const std::string& experiment, const std::string& model,
 }
 
 mjModel* LoadNative(const std::string& scene, std::string* error_text = nullptr) {
-  LoadPluginLibraryOnce();
+  LoadNativePluginsOnce();
   char error[2048] = {0};
   mjModel* m = mj_loadXML(scene.c_str(), nullptr, error, sizeof(error));
   if (error_text) *error_text = error;
@@ -243,7 +212,7 @@ TEST(NativeConfig, UnknownConfigKeyIsRefusedByMuJoCo) {
 // is the user's only notice, so each is checked.
 std::string ExportRefusal(const std::string& append, const std::string& after = "") {
   Scratch dir("export_refusal");
-  std::string text = ReadText(Variant("exp2.toml", "", "", dir));
+  std::string text = ReadFile(Variant("exp2.toml", "", "", dir));
   if (after.empty()) {
     text += append;
   } else {
@@ -292,7 +261,7 @@ TEST(NativeExport, NeverWritesIntoAUsersDirectory) {
   EXPECT_FALSE(fs::exists(dir / "out/scene.xml"));
   ExportExperiment(experiment, dir / "out", {{}, {}, /*overwrite=*/true});
   EXPECT_TRUE(fs::exists(dir / "out/scene.xml"));
-  EXPECT_EQ(ReadText(dir / "out/mine.txt"), "mine");
+  EXPECT_EQ(ReadFile(dir / "out/mine.txt"), "mine");
 }
 
 }  // namespace

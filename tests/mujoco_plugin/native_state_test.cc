@@ -6,7 +6,6 @@
 // flies the exported Exp 2 for a few seconds with MuJoCo's C API alone.
 #include <gtest/gtest.h>
 #include <mujoco/mujoco.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <cstdio>
@@ -14,42 +13,23 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
-#include <regex>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "mjformation/export/export.hpp"
+#include "native_fixture.hpp"
 
 namespace mjf::runner {
 namespace {
 
 namespace fs = std::filesystem;
+using mjf::testing::LoadNativePluginsOnce;
+using mjf::testing::NativeExperimentText;
+using mjf::testing::Scratch;
 
 // The plugin_state header of mujoco_plugin/src/native_plugins.cc.
 constexpr int kCommitted = 1, kHeld = 2;
-
-std::string ReadText(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-class Scratch {
- public:
-  explicit Scratch(const std::string& name)
-      : path_(fs::temp_directory_path() / ("mjf_state_" + name + "_" + std::to_string(getpid()))) {
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~Scratch() { fs::remove_all(path_); }
-  std::string operator/(const std::string& leaf) const { return (path_ / leaf).string(); }
-
- private:
-  fs::path path_;
-};
 
 // MuJoCo's errors as exceptions (as the runner and Python have them), so that a refusal is
 // seen by the test instead of ending the process.
@@ -60,19 +40,9 @@ void Raise(const char* message) { throw MujocoRaised(message); }
 
 // Exp 2 exported, [render] dropped; `vehicle`: a [vehicles] model to fly instead.
 mjModel* LoadExp2(const Scratch& dir, const std::string& vehicle = "") {
-  static const bool loaded = [] {
-    mj_loadPluginLibrary(MJF_NATIVE_PLUGIN_LIBRARY);
-    mju_user_error = Raise;
-    return true;
-  }();
-  (void)loaded;
-  std::string text = ReadText(std::string(MJF_SOURCE_DIR) + "/experiments/exp2.toml");
-  text = text.substr(0, text.find("\n[render]"));
-  if (!vehicle.empty()) {
-    text = std::regex_replace(text, std::regex("\nmodel = \"quadrotor\""),
-                              "\nmodel = \"" + vehicle + "\"");
-  }
-  std::ofstream(dir / "exp2.toml") << text;
+  LoadNativePluginsOnce();
+  mju_user_error = Raise;
+  std::ofstream(dir / "exp2.toml") << NativeExperimentText("exp2.toml", vehicle);
   ExportExperiment(dir / "exp2.toml", dir / "export", {{}, {}, /*overwrite=*/true});
   char error[2048] = {0};
   mjModel* m = mj_loadXML((dir / "export/scene.xml").c_str(), nullptr, error, sizeof(error));

@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "agent_adapter.hpp"
+
 namespace mjf::formation::adapter {
 namespace {
 
@@ -114,6 +116,14 @@ void WriteCommands(int n, const double* acceleration, const double* sliding,
       sp.acc[axis] = acceleration[2 * i + axis];
       if (sliding != nullptr) sp.sliding[axis] = sliding[2 * i + axis];
     }
+  }
+}
+
+void RequireNeighbourhood(const mjfCreateContext* ctx) {
+  if (!ctx->neighbourhood || !ctx->shape) {
+    throw std::invalid_argument(
+        "per-agent formation plugin: the host passed no neighbourhood or shape (per-agent "
+        "execution)");
   }
 }
 

@@ -1,6 +1,6 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
-// What the three formation adapters share: reading the swarm from the step context into the
+// What the formation adapters share: reading the swarm from the step context into the
 // core's layout, writing follower setpoints, and building graph/shape/gains from create().
 #ifndef MJFORMATION_PLUGINS_FORMATION_ADAPTER_HPP_
 #define MJFORMATION_PLUGINS_FORMATION_ADAPTER_HPP_
@@ -16,6 +16,8 @@
 #include <mjformation/formation/sliding.hpp>
 #include <mjformation/plugin_contract.hpp>
 #include <mjformation/plugin_util.hpp>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace mjf::formation::adapter {
@@ -83,16 +85,50 @@ class SwarmBuffers {
   int n_;
 };
 
+// What a law offers that the defaults of SwarmInstance and SwarmCreate use when it is there.
+namespace law_detail {
+template <typename Law, typename = void>
+struct UpdatesWithTime : std::false_type {};
+template <typename Law>
+struct UpdatesWithTime<Law, std::void_t<decltype(std::declval<Law&>().Update(
+                                std::declval<const formation::FormationInput&>(), 0.0))>>
+    : std::true_type {};
+template <typename Law, typename = void>
+struct HasReset : std::false_type {};
+template <typename Law>
+struct HasReset<Law, std::void_t<decltype(std::declval<Law&>().Reset())>> : std::true_type {};
+template <typename Instance, typename = void>
+struct HasConfigure : std::false_type {};
+template <typename Instance>
+struct HasConfigure<
+    Instance, std::void_t<decltype(Instance::Configure(std::declval<const mjfCreateContext*>()))>>
+    : std::true_type {};
+}  // namespace law_detail
+
 // What a formation plugin instance holds: its copy of the shape, the pure controller and the
-// buffers its compute() fills.
+// buffers its compute() fills; with the defaults of a law evaluated every physics step.
 template <typename Controller>
 struct SwarmInstance {
   using Law = Controller;
   template <typename Params>
   SwarmInstance(const SwarmSetup& setup, const Params& params)
       : shape(setup.shape), controller(setup.graph, params), buffers(setup.graph.num_followers()) {}
-  // A law evaluated every physics step updates on each; a sampled law hides this (SwarmPlugin).
-  void Sample(const mjfStepContext*) { controller.Update(buffers.Input()); }
+  // A law evaluated every physics step updates on each, with the host's time when its state
+  // advances with it (an integral, an adaptive gain, an estimate); a sampled law hides this.
+  void Sample(const mjfStepContext* ctx) {
+    if constexpr (law_detail::UpdatesWithTime<Controller>::value) {
+      controller.Update(buffers.Input(), ctx->time);
+    } else {
+      controller.Update(buffers.Input());
+    }
+  }
+  // The law's s_i; a law without a sliding variable hides this with nullptr.
+  const double* sliding() const { return controller.sliding().data(); }
+  // Back to the state before the first step: the law's Reset(), or nothing for a law whose
+  // output is a function of each step's input alone (no Reset()).
+  void Reset() {
+    if constexpr (law_detail::HasReset<Controller>::value) controller.Reset();
+  }
   // The law's state; the buffers are filled from the step before they are read (not state). A
   // law with state of its own (a sample phase) visits it after this.
   template <typename Visit>
@@ -113,19 +149,34 @@ void WriteCommands(int n, const double* acceleration, const double* sliding,
 
 // The create, compute, reset and destroy every swarm-level law shares; the law's own part is its
 // Instance (one file per law), a SwarmInstance<Controller> with:
-//   Config, static Config Configure(const mjfCreateContext*): its attributes, read and checked
-//     before the graph and shape are;
-//   Instance(const SwarmSetup&, const Config&);
+//   Config, and either static void Read(const plugin::Attributes&, Config*): its attributes,
+//     which SwarmCreate then checks (Config::Validate()), or, for a Config that needs more than
+//     the attributes, static Config Configure(const mjfCreateContext*), which reads and checks
+//     it; either way before the graph and shape are read;
+//   Instance(const SwarmSetup&, const Config&) (SwarmInstance's when Config is the law's params);
 //   void Sample(const mjfStepContext*): updates the controller once F(t) is in buffers.shape_now
 //     (SwarmInstance's: every step);
-//   const double* sliding() const: the s_i to write, or nullptr for a law without one;
-//   void Reset(): back to the state before the first step;
+//   const double* sliding() const: the s_i to write, or nullptr for a law without one
+//     (SwarmInstance's: the law's sliding());
+//   void Reset(): back to the state before the first step (SwarmInstance's: the law's Reset());
 //   template <typename Visit> void VisitState(Visit&): its state (SwarmInstance's: the law's,
 //     which must have one: a law without VisitState does not compile here).
 template <typename Instance>
+typename Instance::Config Configure(const mjfCreateContext* ctx) {
+  if constexpr (law_detail::HasConfigure<Instance>::value) {
+    return Instance::Configure(ctx);
+  } else {
+    typename Instance::Config config;
+    Instance::Read(plugin::Attributes(ctx), &config);
+    config.Validate();
+    return config;
+  }
+}
+
+template <typename Instance>
 void* SwarmCreate(const mjfCreateContext* ctx) {
   return plugin::CreateOrExplain(ctx, [&]() -> void* {
-    const typename Instance::Config config = Instance::Configure(ctx);
+    const typename Instance::Config config = Configure<Instance>(ctx);
     const SwarmSetup setup(ctx);
     return new Instance(setup, config);
   });
@@ -182,6 +233,21 @@ constexpr mjfPlugin SwarmPlugin(const char* name, const char* doc,
           &plugin::GetStateOf<Instance>,
           &plugin::SetStateOf<Instance>};
 }
+
+// The descriptors, one per file (register.cc lists them).
+extern const mjfPlugin kSmcContinuous;    // smc_continuous.cc: eq. (30) / (33)
+extern const mjfPlugin kSmcDiscrete;      // smc_discrete.cc: eq. (48) / (53), zero-order hold
+extern const mjfPlugin kConsensusLinear;  // consensus_linear.cc: linear baseline
+// Their per-agent versions (AgentPlugin<Law>, agent_adapter.hpp):
+extern const mjfPlugin kSmcDiscreteAgent;      // smc_discrete_agent.cc: eq. (48), per follower
+extern const mjfPlugin kSmcContinuousAgent;    // smc_continuous_agent.cc: eq. (30), per follower
+extern const mjfPlugin kConsensusLinearAgent;  // consensus_linear_agent.cc: linear, per follower
+// The laws from the literature (one file each, the maths in src/ of the same name):
+extern const mjfPlugin kVsTracking;        // vs_tracking.cc: Cao & Ren, IEEE TAC 2012
+extern const mjfPlugin kSuperTwisting;     // super_twisting.cc: Levant 1993 on s_i = K e_i
+extern const mjfPlugin kAdaptiveTracking;  // adaptive_tracking.cc: Li, Liu, Ren & Xie, TAC 2013
+extern const mjfPlugin kObserverTracking;  // observer_tracking.cc: Hong, Hu & Gao, Aut. 2006
+extern const mjfPlugin kTerminalSmc;       // terminal_smc.cc: Feng, Yu & Man, Automatica 2002
 
 }  // namespace mjf::formation::adapter
 

@@ -6,7 +6,6 @@
 #include <mjformation/formation/adaptive_tracking.hpp>
 
 #include "adapter.hpp"
-#include "plugins.hpp"
 
 namespace mjf::formation::adapter {
 namespace {
@@ -20,20 +19,13 @@ const mjfAttribute kAttributes[] = {
 
 struct Instance : SwarmInstance<formation::AdaptiveTracking> {
   using Config = formation::AdaptiveTrackingParams;
-  static Config Configure(const mjfCreateContext* ctx) {
-    const plugin::Attributes attributes(ctx);
-    Config params;
-    params.tau = attributes.Number("tau");
-    params.phi = attributes.Number("phi");
-    params.kappa = attributes.Number("kappa");
-    params.d0 = attributes.Number("d0");
-    params.Validate();
-    return params;
+  static void Read(const plugin::Attributes& attributes, Config* params) {
+    params->tau = attributes.Number("tau");
+    params->phi = attributes.Number("phi");
+    params->kappa = attributes.Number("kappa");
+    params->d0 = attributes.Number("d0");
   }
   using SwarmInstance::SwarmInstance;
-  void Sample(const mjfStepContext* ctx) { controller.Update(buffers.Input(), ctx->time); }
-  const double* sliding() const { return controller.sliding().data(); }
-  void Reset() { controller.Reset(); }
 };
 
 void Report(void* instance, mjfReportFn emit, void* user) {

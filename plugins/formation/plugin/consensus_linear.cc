@@ -5,7 +5,6 @@
 #include <mjformation/formation/linear_consensus.hpp>
 
 #include "adapter.hpp"
-#include "plugins.hpp"
 
 namespace mjf::formation::adapter {
 
@@ -33,7 +32,6 @@ struct Instance : SwarmInstance<formation::LinearConsensus> {
   }
   using SwarmInstance::SwarmInstance;
   const double* sliding() const { return nullptr; }  // no sliding variable: it stays NaN
-  void Reset() {}
 };
 
 }  // namespace

@@ -7,7 +7,6 @@
 #include <mjformation/formation/observer_tracking.hpp>
 
 #include "adapter.hpp"
-#include "plugins.hpp"
 
 namespace mjf::formation::adapter {
 namespace {
@@ -20,19 +19,12 @@ const mjfAttribute kAttributes[] = {
 
 struct Instance : SwarmInstance<formation::ObserverTracking> {
   using Config = formation::ObserverTrackingParams;
-  static Config Configure(const mjfCreateContext* ctx) {
-    const plugin::Attributes attributes(ctx);
-    Config params;
-    params.k = attributes.Number("k");
-    params.gamma = attributes.Number("gamma");
-    params.kv = attributes.Number(kKeyKv);
-    params.Validate();
-    return params;
+  static void Read(const plugin::Attributes& attributes, Config* params) {
+    params->k = attributes.Number("k");
+    params->gamma = attributes.Number("gamma");
+    params->kv = attributes.Number(kKeyKv);
   }
   using SwarmInstance::SwarmInstance;
-  void Sample(const mjfStepContext* ctx) { controller.Update(buffers.Input(), ctx->time); }
-  const double* sliding() const { return controller.sliding().data(); }
-  void Reset() { controller.Reset(); }
 };
 
 }  // namespace

@@ -1,14 +1,14 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// libmjf_formation.so: the list of its plugins, one file each. A new law is one file and one
+// line here.
 #include <mjformation/plugin_util.hpp>
 
-#include "plugins.hpp"
+#include "adapter.hpp"
 
-MJF_EXPORT_PLUGINS(&mjf::formation::adapter::kSmcContinuous, &mjf::formation::adapter::kSmcDiscrete,
-                   &mjf::formation::adapter::kConsensusLinear,
-                   &mjf::formation::adapter::kSmcDiscreteAgent,
-                   &mjf::formation::adapter::kSmcContinuousAgent,
-                   &mjf::formation::adapter::kConsensusLinearAgent,
-                   &mjf::formation::adapter::kVsTracking, &mjf::formation::adapter::kSuperTwisting,
-                   &mjf::formation::adapter::kAdaptiveTracking,
-                   &mjf::formation::adapter::kObserverTracking,
-                   &mjf::formation::adapter::kTerminalSmc)
+namespace adapter = mjf::formation::adapter;
+
+MJF_EXPORT_PLUGINS(&adapter::kSmcContinuous, &adapter::kSmcDiscrete, &adapter::kConsensusLinear,
+                   &adapter::kSmcDiscreteAgent, &adapter::kSmcContinuousAgent,
+                   &adapter::kConsensusLinearAgent, &adapter::kVsTracking, &adapter::kSuperTwisting,
+                   &adapter::kAdaptiveTracking, &adapter::kObserverTracking, &adapter::kTerminalSmc)

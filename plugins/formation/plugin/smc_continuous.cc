@@ -5,7 +5,6 @@
 #include <mjformation/formation/continuous_smc.hpp>
 
 #include "adapter.hpp"
-#include "plugins.hpp"
 
 namespace mjf::formation::adapter {
 
@@ -48,7 +47,6 @@ struct Instance : SwarmInstance<formation::ContinuousSmc> {
     return ParseContinuousParams(plugin::Attributes(ctx));
   }
   using SwarmInstance::SwarmInstance;
-  const double* sliding() const { return controller.sliding().data(); }
   void Reset() { controller.ResetReachingTime(); }
 };
 

@@ -12,7 +12,6 @@
 #include <stdexcept>
 
 #include "adapter.hpp"
-#include "plugins.hpp"
 
 namespace mjf::formation::adapter {
 

@@ -6,7 +6,6 @@
 #include <mjformation/formation/super_twisting.hpp>
 
 #include "adapter.hpp"
-#include "plugins.hpp"
 
 namespace mjf::formation::adapter {
 namespace {
@@ -19,19 +18,12 @@ const mjfAttribute kAttributes[] = {
 
 struct Instance : SwarmInstance<formation::SuperTwisting> {
   using Config = formation::SuperTwistingParams;
-  static Config Configure(const mjfCreateContext* ctx) {
-    const plugin::Attributes attributes(ctx);
-    Config params;
-    params.gains = ParseGains(attributes);
-    params.lambda = attributes.Number("lambda");
-    params.alpha = attributes.Number("alpha");
-    params.Validate();
-    return params;
+  static void Read(const plugin::Attributes& attributes, Config* params) {
+    params->gains = ParseGains(attributes);
+    params->lambda = attributes.Number("lambda");
+    params->alpha = attributes.Number("alpha");
   }
   using SwarmInstance::SwarmInstance;
-  void Sample(const mjfStepContext* ctx) { controller.Update(buffers.Input(), ctx->time); }
-  const double* sliding() const { return controller.sliding().data(); }
-  void Reset() { controller.Reset(); }
 };
 
 void Report(void* instance, mjfReportFn emit, void* user) {

@@ -9,7 +9,6 @@
 #include <string>
 
 #include "adapter.hpp"
-#include "plugins.hpp"
 
 namespace mjf::formation::adapter {
 namespace {
@@ -37,21 +36,15 @@ int ParseOddExponent(const plugin::Attributes& attributes, const char* key) {
 
 struct Instance : SwarmInstance<formation::TerminalSmc> {
   using Config = formation::TerminalSmcParams;
-  static Config Configure(const mjfCreateContext* ctx) {
-    const plugin::Attributes attributes(ctx);
-    Config params;
-    params.beta = attributes.Number("beta");
-    params.p = ParseOddExponent(attributes, "p");
-    params.q = ParseOddExponent(attributes, "q");
-    params.rho = attributes.Number(kKeyRho);
-    params.sign = formation::ParseSignFunction(attributes.String(kKeySign));
-    params.boundary_layer = attributes.Number(kKeyBoundaryLayer);
-    params.Validate();
-    return params;
+  static void Read(const plugin::Attributes& attributes, Config* params) {
+    params->beta = attributes.Number("beta");
+    params->p = ParseOddExponent(attributes, "p");
+    params->q = ParseOddExponent(attributes, "q");
+    params->rho = attributes.Number(kKeyRho);
+    params->sign = formation::ParseSignFunction(attributes.String(kKeySign));
+    params->boundary_layer = attributes.Number(kKeyBoundaryLayer);
   }
   using SwarmInstance::SwarmInstance;
-  const double* sliding() const { return controller.sliding().data(); }
-  void Reset() {}
 };
 
 void Report(void* instance, mjfReportFn emit, void* user) {

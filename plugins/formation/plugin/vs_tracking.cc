@@ -5,7 +5,6 @@
 #include <mjformation/formation/vs_tracking.hpp>
 
 #include "adapter.hpp"
-#include "plugins.hpp"
 
 namespace mjf::formation::adapter {
 namespace {
@@ -20,20 +19,14 @@ const mjfAttribute kAttributes[] = {
 
 struct Instance : SwarmInstance<formation::VsTracking> {
   using Config = formation::VsTrackingParams;
-  static Config Configure(const mjfCreateContext* ctx) {
-    const plugin::Attributes attributes(ctx);
-    Config params;
-    params.alpha = attributes.Number("alpha");
-    params.beta = attributes.Number("beta");
-    params.gamma = attributes.Number("gamma");
-    params.sign = formation::ParseSignFunction(attributes.String(kKeySign));
-    params.boundary_layer = attributes.Number(kKeyBoundaryLayer);
-    params.Validate();
-    return params;
+  static void Read(const plugin::Attributes& attributes, Config* params) {
+    params->alpha = attributes.Number("alpha");
+    params->beta = attributes.Number("beta");
+    params->gamma = attributes.Number("gamma");
+    params->sign = formation::ParseSignFunction(attributes.String(kKeySign));
+    params->boundary_layer = attributes.Number(kKeyBoundaryLayer);
   }
   using SwarmInstance::SwarmInstance;
-  const double* sliding() const { return controller.sliding().data(); }
-  void Reset() {}
 };
 
 }  // namespace

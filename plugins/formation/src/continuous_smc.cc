@@ -37,13 +37,7 @@ Reaching ParseReaching(const std::string& text) {
 }
 
 ContinuousSmc::ContinuousSmc(const Graph& graph, const ContinuousSmcParams& params)
-    : graph_(WithSpanningTree(graph)),
-      params_(Validated(params)),
-      solver_(graph_.laplacian_h()),
-      acceleration_(2 * graph_.num_followers(), 0.0),
-      sliding_(2 * graph_.num_followers(), 0.0),
-      error_(4 * graph_.num_followers(), 0.0),
-      rhs_(graph_.num_followers(), 2) {}
+    : SolvedLaw(graph), params_(Validated(params)) {}
 
 void ContinuousSmc::Update(const FormationInput& input) {
   const int n = graph_.num_followers();

@@ -7,6 +7,7 @@
 #include <string>
 #include <utility>
 
+#include "mjformation/cubic_hermite.hpp"
 #include "mjformation/time_steps.hpp"
 
 namespace mjf::formation {
@@ -86,11 +87,12 @@ class SampledShape : public Shape {
 
  private:
   // Where t falls in the table: beyond an end (extrapolate from sample k by dt) or in
-  // [t_k, t_k+1] at u = (t - t_k) / h with the cubic Hermite basis h00, h10, h01, h11.
+  // [t_k, t_k+1] at u = (t - t_k) / h with the cubic Hermite basis (mjformation/cubic_hermite.hpp).
   struct Interval {
     bool beyond = false;
     int k = 0;
-    double dt = 0.0, h = 0.0, u = 0.0, h00 = 0.0, h10 = 0.0, h01 = 0.0, h11 = 0.0;
+    double dt = 0.0, h = 0.0, u = 0.0;
+    HermiteBasis basis{};
   };
   Interval Locate(double t) const {
     Interval at;
@@ -105,10 +107,7 @@ class SampledShape : public Shape {
     at.h = times_[at.k + 1] - times_[at.k];
     const double u = (t - times_[at.k]) / at.h;
     at.u = u;
-    at.h00 = (2 * u - 3) * u * u + 1;
-    at.h10 = ((u - 2) * u + 1) * u;
-    at.h01 = (3 - 2 * u) * u * u;
-    at.h11 = (u - 1) * u * u;
+    at.basis = CubicHermiteHorner(u);
     return at;
   }
   void Fill(const Interval& at, int i, double* f) const {
@@ -126,8 +125,8 @@ class SampledShape : public Shape {
     const double h = at.h;
     for (int axis = 0; axis < 2; ++axis) {
       const double p0 = s0[axis], p1 = s1[axis], v0 = s0[2 + axis], v1 = s1[2 + axis];
-      f[kShapePx + axis] =
-          at.h00 * p0 + at.h10 * h * v0 + at.h01 * p1 + at.h11 * h * v1;  // Hermite
+      f[kShapePx + axis] = at.basis.h00 * p0 + at.basis.h10 * h * v0 + at.basis.h01 * p1 +
+                           at.basis.h11 * h * v1;  // Hermite
       f[kShapeVx + axis] = v0 + at.u * (v1 - v0);
       f[kShapeAx + axis] = (v1 - v0) / h;
     }

@@ -30,14 +30,7 @@ bool LevantConditionHolds(double lambda, double alpha, double c) {
 }
 
 SuperTwisting::SuperTwisting(const Graph& graph, const SuperTwistingParams& params)
-    : graph_(WithSpanningTree(graph)),
-      params_(Validated(params)),
-      solver_(graph_.laplacian_h()),
-      acceleration_(2 * graph_.num_followers(), 0.0),
-      sliding_(2 * graph_.num_followers(), 0.0),
-      error_(4 * graph_.num_followers(), 0.0),
-      w_(2 * graph_.num_followers(), 0.0),
-      rhs_(graph_.num_followers(), 2) {}
+    : SolvedLaw(graph), params_(Validated(params)), w_(2 * graph_.num_followers(), 0.0) {}
 
 void SuperTwisting::Reset() {
   std::fill(w_.begin(), w_.end(), 0.0);

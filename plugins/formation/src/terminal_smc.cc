@@ -27,14 +27,9 @@ double TerminalSlidingTime(const TerminalSmcParams& params, double x1) {
 }
 
 TerminalSmc::TerminalSmc(const Graph& graph, const TerminalSmcParams& params)
-    : graph_(WithSpanningTree(graph)),
+    : SolvedLaw(graph),
       params_(Validated(params)),
-      solver_(graph_.laplacian_h()),
-      acceleration_(2 * graph_.num_followers(), 0.0),
-      sliding_(2 * graph_.num_followers(), 0.0),
-      error_(4 * graph_.num_followers(), 0.0),
-      unused_sliding_(2 * graph_.num_followers(), 0.0),
-      rhs_(graph_.num_followers(), 2) {}
+      unused_sliding_(2 * graph_.num_followers(), 0.0) {}
 
 void TerminalSmc::Update(const FormationInput& input) {
   const int n = graph_.num_followers();

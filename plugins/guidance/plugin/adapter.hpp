@@ -9,8 +9,10 @@
 
 #include <mjformation/plugin.h>
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
+#include <iterator>
 #include <mjformation/plugin_contract.hpp>
 #include <mjformation/plugin_util.hpp>
 #include <string>
@@ -69,6 +71,24 @@ AccelBounds ReadBounds(const mjf::plugin::Attributes& attributes);         // a_
 uint64_t ReadSeed(const mjf::plugin::Attributes& attributes);              // seed
 Envelope::Config ReadEnvelope(const mjf::plugin::Attributes& attributes);  // speed_max, area, ramp
 
+// The attribute table of a maneuvering leader (bang_bang, random_accel): its acceleration bounds,
+// the one row of its own (what times its random signal), the envelope, the seed and the setpoints.
+constexpr std::array<mjfAttribute, 9> ManeuveringAttributes(mjfAttribute own) {
+  return {rows::kAMin, rows::kAMax,     own,       rows::kSpeedMax, rows::kArea, rows::kRamp,
+          rows::kSeed, rows::kAltitude, rows::kYaw};
+}
+
+// Reads the attributes every maneuvering leader's Config shares (bounds, envelope, seed,
+// altitude, yaw); the law's own row is read by its adapter.
+template <typename Config>
+void ReadManeuvering(const mjf::plugin::Attributes& attributes, Config* config) {
+  config->bounds = ReadBounds(attributes);
+  config->envelope = ReadEnvelope(attributes);
+  config->seed = ReadSeed(attributes);
+  config->altitude = attributes.Number(kAltitude);
+  config->yaw = attributes.Number(kYaw);
+}
+
 // The instance of a law with Update(t, pos, vel) for one vehicle.
 template <typename Law>
 struct LeaderInstance {
@@ -99,10 +119,11 @@ void LeaderDestroy(void* instance) {
 }
 
 // The descriptor of a leader guidance plugin whose instance is LeaderInstance<Guidance>
-// (reset: null for a stateless law).
-template <typename Guidance, size_t kAttributes>
+// (reset: null for a stateless law); attributes: an array of static storage (a C array, or
+// ManeuveringAttributes' std::array).
+template <typename Guidance, typename AttributeArray>
 constexpr mjfPlugin LeaderPlugin(const char* name, const char* doc,
-                                 const mjfAttribute (&attributes)[kAttributes],
+                                 const AttributeArray& attributes,
                                  void* (*create)(const mjfCreateContext*),
                                  void (*reset)(void*) = nullptr) {
   static_assert(mjf::plugin::kHasVisitState<Guidance>,
@@ -112,8 +133,8 @@ constexpr mjfPlugin LeaderPlugin(const char* name, const char* doc,
           name,
           MJF_KIND_GUIDANCE,
           doc,
-          static_cast<int>(kAttributes),
-          attributes,
+          static_cast<int>(std::size(attributes)),
+          std::data(attributes),
           0,
           nullptr,
           create,

@@ -9,30 +9,17 @@ namespace mjf::guidance::adapter {
 namespace {
 
 constexpr const char* kDwell = "dwell";
-const mjfAttribute kBangBangAttributes[] = {
-    rows::kAMin,
-    rows::kAMax,
-    {kDwell, "0.5 3", "s: 'min max' of the uniform random time between switches (min > 0)"},
-    rows::kSpeedMax,
-    rows::kArea,
-    rows::kRamp,
-    rows::kSeed,
-    rows::kAltitude,
-    rows::kYaw,
-};
+constexpr auto kBangBangAttributes = ManeuveringAttributes(
+    {kDwell, "0.5 3", "s: 'min max' of the uniform random time between switches (min > 0)"});
 
 void* BangBangCreate(const mjfCreateContext* ctx) {
   return mjf::plugin::CreateOrExplain(ctx, [ctx]() -> void* {
     const mjf::plugin::Attributes attributes(ctx);
     BangBangGuidance::Config config;
-    config.bounds = ReadBounds(attributes);
+    ReadManeuvering(attributes, &config);
     const auto dwell = attributes.Numbers(kDwell, 2);
     config.dwell_min = dwell[0];
     config.dwell_max = dwell[1];
-    config.envelope = ReadEnvelope(attributes);
-    config.seed = ReadSeed(attributes);
-    config.altitude = attributes.Number(kAltitude);
-    config.yaw = attributes.Number(kYaw);
     return new LeaderInstance<BangBangGuidance>{CheckVehicle(ctx), BangBangGuidance(config)};
   });
 }

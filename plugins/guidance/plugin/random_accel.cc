@@ -9,28 +9,15 @@ namespace mjf::guidance::adapter {
 namespace {
 
 constexpr const char* kCorrelationTime = "correlation_time";
-const mjfAttribute kRandomAccelAttributes[] = {
-    rows::kAMin,
-    rows::kAMax,
-    {kCorrelationTime, "2", "s: spacing of the random knots (band limit ~ 1 / (2 x it) Hz)"},
-    rows::kSpeedMax,
-    rows::kArea,
-    rows::kRamp,
-    rows::kSeed,
-    rows::kAltitude,
-    rows::kYaw,
-};
+constexpr auto kRandomAccelAttributes = ManeuveringAttributes(
+    {kCorrelationTime, "2", "s: spacing of the random knots (band limit ~ 1 / (2 x it) Hz)"});
 
 void* RandomAccelCreate(const mjfCreateContext* ctx) {
   return mjf::plugin::CreateOrExplain(ctx, [ctx]() -> void* {
     const mjf::plugin::Attributes attributes(ctx);
     RandomAccelGuidance::Config config;
-    config.bounds = ReadBounds(attributes);
+    ReadManeuvering(attributes, &config);
     config.correlation_time = attributes.Number(kCorrelationTime);
-    config.envelope = ReadEnvelope(attributes);
-    config.seed = ReadSeed(attributes);
-    config.altitude = attributes.Number(kAltitude);
-    config.yaw = attributes.Number(kYaw);
     return new LeaderInstance<RandomAccelGuidance>{CheckVehicle(ctx), RandomAccelGuidance(config)};
   });
 }

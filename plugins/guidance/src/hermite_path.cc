@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "check.hpp"
+#include "mjformation/cubic_hermite.hpp"
 
 namespace mjf::guidance {
 
@@ -71,10 +72,9 @@ GuidanceOutput HermitePath::Evaluate(double t) const {
   const size_t k =
       static_cast<size_t>(std::upper_bound(times_.begin(), times_.end(), t) - times_.begin()) - 1;
   const double h = times_[k + 1] - times_[k];
-  const double s = (t - times_[k]) / h, s2 = s * s, s3 = s2 * s;
+  const double s = (t - times_[k]) / h, s2 = s * s;
   // Cubic Hermite basis and its derivatives in s.
-  const double h00 = 2 * s3 - 3 * s2 + 1, h10 = s3 - 2 * s2 + s, h01 = -2 * s3 + 3 * s2,
-               h11 = s3 - s2;
+  const auto [h00, h10, h01, h11] = CubicHermite(s);
   const double d00 = 6 * s2 - 6 * s, d10 = 3 * s2 - 4 * s + 1, d01 = -6 * s2 + 6 * s,
                d11 = 3 * s2 - 2 * s;
   const double e00 = 12 * s - 6, e10 = 6 * s - 4, e01 = -12 * s + 6, e11 = 6 * s - 2;

@@ -9,6 +9,8 @@
 
 #include <string>
 
+#include "error_of.hpp"
+
 namespace mjf::attitude {
 namespace {
 
@@ -30,12 +32,7 @@ Rotors XQuad(const std::array<double, 4>& yaw_sign) {
 }
 
 std::string ErrorOf(const Rotors& r) {
-  try {
-    Mixer m(r);
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  return "(no error)";
+  return mjf::testing::ErrorOf<std::invalid_argument>([&] { Mixer m(r); }, "(no error)");
 }
 
 TEST(MixerTest, CentreOfMassLayoutHasNoRollAuthority) {

@@ -7,6 +7,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "error_of.hpp"
 #include "test_util.hpp"
 
 namespace mjf::runner {
@@ -17,16 +18,7 @@ using mjf::testing::Parse;
 using ::testing::AllOf;
 using ::testing::HasSubstr;
 
-// The message of the exception `statement` throws (empty if none).
-template <typename F>
-std::string ErrorOf(F statement) {
-  try {
-    statement();
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "";
-}
+using mjf::testing::ErrorOf;
 
 TEST(ConfigTest, ValidFileParses) {
   ExperimentConfig c = Parse(HoverExperiment(3, 5.0));

@@ -5,6 +5,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "error_of.hpp"
 #include "mjformation/config/experiment.hpp"
 #include "test_util.hpp"
 
@@ -27,12 +28,7 @@ std::string Experiment(const std::string& execution, const std::string& extra) {
 const char kPerAgent[] = "[execution]\nmode = \"per_agent\"\n";
 
 std::string ErrorOf(const std::string& text) {
-  try {
-    mjf::testing::Parse(text, "net.toml");
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "";
+  return mjf::testing::ErrorOf([&] { mjf::testing::Parse(text, "net.toml"); });
 }
 
 TEST(NetworkConfigTest, DefaultsAreCentralAndIdeal) {

@@ -9,6 +9,7 @@
 
 #include <filesystem>
 
+#include "error_of.hpp"
 #include "mjformation/config/config_error.hpp"
 #include "mjformation/config/experiment.hpp"
 #include "test_util.hpp"
@@ -23,12 +24,8 @@ using ::testing::EndsWith;
 using ::testing::HasSubstr;
 
 std::string ConfigErrorOf(const std::string& name, const std::string& experiment) {
-  try {
-    ResolveModel(name, experiment);
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "(nothing thrown)";
+  return mjf::testing::ErrorOf<ConfigError>([&] { ResolveModel(name, experiment); },
+                                            "(nothing thrown)");
 }
 
 // Sets an environment variable for one scope, restoring the previous value.

@@ -12,6 +12,7 @@
 
 #include <cmath>
 
+#include "error_of.hpp"
 #include "mjformation/config/config_error.hpp"
 #include "mjformation/config/experiment.hpp"
 #include "mjformation/run/run.hpp"
@@ -29,12 +30,7 @@ using ::testing::AllOf;
 using ::testing::HasSubstr;
 
 std::string ErrorOf(const std::string& text) {
-  try {
-    Parse(text);
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "";
+  return mjf::testing::ErrorOf([&] { Parse(text); });
 }
 
 // The sensor and estimator keys: each refused with FILE:LINE: [sensors] key and the reason.

@@ -13,6 +13,7 @@
 #include <functional>
 #include <thread>
 
+#include "error_of.hpp"
 #include "mjformation/config/experiment.hpp"
 #include "point_mass_util.hpp"
 #include "test_util.hpp"
@@ -27,12 +28,7 @@ using ::testing::HasSubstr;
 constexpr double kG = 9.81;
 
 std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "(no error)";
+  return mjf::testing::ErrorOf(f, "(no error)");
 }
 
 ExperimentConfig Config(const std::string& sensors) {

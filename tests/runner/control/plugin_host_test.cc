@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "error_of.hpp"
 #include "test_util.hpp"
 
 namespace mjf::runner {
@@ -29,12 +30,7 @@ using ::testing::Not;
 const std::string kTestPlugins = MJF_TEST_PLUGIN_DIR;
 
 std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const PluginError& e) {
-    return e.what();
-  }
-  return "(nothing thrown)";
+  return mjf::testing::ErrorOf<PluginError>(f, "(nothing thrown)");
 }
 
 bool AnyContains(const std::vector<std::string>& list, const std::string& part) {

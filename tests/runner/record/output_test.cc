@@ -23,6 +23,7 @@
 #include <random>
 #include <string>
 
+#include "error_of.hpp"
 #include "test_util.hpp"
 
 namespace mjf::runner {
@@ -90,12 +91,7 @@ using ::testing::AllOf;
 using ::testing::HasSubstr;
 
 std::string OutputErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const OutputError& e) {
-    return e.what();
-  }
-  return "(nothing thrown)";
+  return mjf::testing::ErrorOf<OutputError>(f, "(nothing thrown)");
 }
 
 TEST(OutputTest, Sha256OfKnownTexts) {

@@ -8,6 +8,7 @@
 
 #include <string>
 
+#include "error_of.hpp"
 #include "mjformation/scene/scene.hpp"
 
 namespace mjf::runner {
@@ -69,12 +70,8 @@ TEST(ActuatorMappingTest, PermutationAndSteppingAsideWork) {
 
 std::string ErrorOf(const VehicleMapping& m) {
   Fixture f;
-  try {
-    MapRotors(f.root, f.body, m, &f.notes);
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "(no error)";
+  return mjf::testing::ErrorOf<SceneError>([&] { MapRotors(f.root, f.body, m, &f.notes); },
+                                           "(no error)");
 }
 
 TEST(ActuatorMappingTest, BadRotorsAreRefusedNamingTheKey) {

@@ -10,6 +10,7 @@
 
 #include <string>
 
+#include "error_of.hpp"
 #include "mjformation/config/config.hpp"
 #include "mjformation/run/run.hpp"
 #include "mjformation/scene/scene.hpp"
@@ -52,12 +53,7 @@ std::string EditedModel(const std::string& from, const std::string& to) {
 }
 
 std::string ErrorOf(const VehicleMapping& m) {
-  try {
-    AdaptVehicle(m);
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "(no error)";
+  return mjf::testing::ErrorOf<SceneError>([&] { AdaptVehicle(m); }, "(no error)");
 }
 
 TEST(VehicleAdapterTest, BumblebeeBecomesAContractVehicle) {

@@ -14,18 +14,15 @@
 #include <string>
 #include <thread>
 
+#include "error_of.hpp"
+
 namespace mjf::runner {
 namespace {
 
 using ::testing::HasSubstr;
 
 std::string ErrorOf(void (*raise)()) {
-  try {
-    raise();
-  } catch (const MujocoError& e) {
-    return e.what();
-  }
-  return "(nothing thrown)";
+  return mjf::testing::ErrorOf<MujocoError>(raise, "(nothing thrown)");
 }
 
 TEST(MujocoErrorsTest, AnEngineErrorThrowsWithMujocosMessage) {

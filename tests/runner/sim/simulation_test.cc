@@ -15,6 +15,7 @@
 #include <cstring>
 #include <limits>
 
+#include "error_of.hpp"
 #include "mjformation/config/config.hpp"
 #include "mjformation/control/plugin_host.hpp"
 #include "mjformation/scene/scene.hpp"
@@ -29,16 +30,7 @@ using mjf::testing::Parse;
 using ::testing::AllOf;
 using ::testing::HasSubstr;
 
-// The message of the exception `statement` throws (empty if none).
-template <typename F>
-std::string ErrorOf(F statement) {
-  try {
-    statement();
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "";
-}
+using mjf::testing::ErrorOf;
 
 TEST(SetupErrorTest, UnknownPluginListsAvailable) {
   std::string text = HoverExperiment();

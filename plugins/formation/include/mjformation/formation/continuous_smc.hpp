@@ -9,6 +9,7 @@
 #include <mjformation/formation/graph.hpp>
 #include <mjformation/formation/laplacian_solver.hpp>
 #include <mjformation/formation/sliding.hpp>
+#include <mjformation/formation/solved_law.hpp>
 #include <vector>
 
 namespace mjf::formation {
@@ -44,7 +45,7 @@ struct ContinuousSmcParams {
 Compensation ParseCompensation(const std::string& text);  // "lower_bound" / "switching"
 Reaching ParseReaching(const std::string& text);          // "constant" / "exponential"
 
-class ContinuousSmc {
+class ContinuousSmc : public SolvedLaw {
  public:
   // Validates params, requires a spanning tree and factors L_H (throws std::invalid_argument).
   ContinuousSmc(const Graph& graph, const ContinuousSmcParams& params);
@@ -53,11 +54,7 @@ class ContinuousSmc {
   // O(N + edges + nnz(factor)), no heap allocation.
   void Update(const FormationInput& input);
 
-  // Outputs of the last Update: acceleration()[2i + axis] = u_i (m/s^2), sliding()[2i + axis]
-  // = s_i, error()[4i + k] = e_i (k = px, py, vx, vy).
-  const std::vector<double>& acceleration() const { return acceleration_; }
-  const std::vector<double>& sliding() const { return sliding_; }
-  const std::vector<double>& error() const { return error_; }
+  // Outputs of the last Update (SolvedLaw): acceleration() u_i, sliding() s_i, error() e_i.
 
   // Reaching-time bound from the first Update's s_i(0): max_i |s_i(0)| / rho (constant) or
   // max_i ln(1 + q |s_i(0)| / rho) / q (exponential); < 0 before the first Update. Valid only
@@ -65,9 +62,7 @@ class ContinuousSmc {
   // loop (35) does not satisfy when k2 a_i0 (u_0 - u_min) > rho.
   double reaching_time_bound() const { return reaching_time_bound_; }
   void ResetReachingTime() { reaching_time_bound_ = -1.0; }
-  double norm_inv_lh() const { return solver_.InverseTwoNorm(); }
   const ContinuousSmcParams& params() const { return params_; }
-  const Graph& graph() const { return graph_; }
   long factor_nonzeros() const { return solver_.factor_nonzeros(); }
 
   // The last outputs and the reaching-time bound of the first Update (plugin_state.hpp).
@@ -77,11 +72,7 @@ class ContinuousSmc {
   }
 
  private:
-  Graph graph_;
   ContinuousSmcParams params_;
-  LaplacianSolver solver_;
-  std::vector<double> acceleration_, sliding_, error_;
-  Eigen::Matrix<double, Eigen::Dynamic, 2> rhs_;
   double reaching_time_bound_ = -1.0;
 };
 

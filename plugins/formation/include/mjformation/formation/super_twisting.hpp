@@ -28,6 +28,7 @@
 #include <mjformation/formation/laplacian_solver.hpp>
 #include <mjformation/formation/literature_laws.hpp>
 #include <mjformation/formation/sliding.hpp>
+#include <mjformation/formation/solved_law.hpp>
 #include <vector>
 
 namespace mjf::formation {
@@ -46,20 +47,16 @@ double SuperTwistingTimeBound(double lambda, double alpha, double s0, double w0)
 // Levant's sufficient condition for a perturbation with |d'| <= c.
 bool LevantConditionHolds(double lambda, double alpha, double c);
 
-class SuperTwisting {
+class SuperTwisting : public SolvedLaw {
  public:
   SuperTwisting(const Graph& graph, const SuperTwistingParams& params);
   // Evaluates u at `time` (s) and advances w_i over the time since the previous call.
   void Update(const FormationInput& input, double time);
   void Reset();  // w_i = 0, the clock and the bound as before the first Update
-  const std::vector<double>& acceleration() const { return acceleration_; }  // [2i + axis]
-  const std::vector<double>& sliding() const { return sliding_; }            // s_i = K e_i
-  const std::vector<double>& error() const { return error_; }
+  // acceleration(), sliding() (s_i = K e_i), error(): SolvedLaw's.
   const std::vector<double>& integral() const { return w_; }  // w_i, [2i + axis]
   // max over i, axis of SuperTwistingTimeBound from the first Update's s_i (w_i = 0); < 0 before.
   double reaching_time_bound() const { return reaching_time_bound_; }
-  double norm_inv_lh() const { return solver_.InverseTwoNorm(); }
-  const Graph& graph() const { return graph_; }
   template <typename Visit>
   void VisitState(Visit& visit) {
     visit(w_);
@@ -68,11 +65,8 @@ class SuperTwisting {
   }
 
  private:
-  Graph graph_;
   SuperTwistingParams params_;
-  LaplacianSolver solver_;
-  std::vector<double> acceleration_, sliding_, error_, w_;
-  Eigen::Matrix<double, Eigen::Dynamic, 2> rhs_;
+  std::vector<double> w_;
   StepClock clock_;
   double reaching_time_bound_ = -1.0;
 };

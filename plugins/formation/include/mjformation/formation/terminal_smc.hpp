@@ -25,6 +25,7 @@
 #include <mjformation/formation/graph.hpp>
 #include <mjformation/formation/laplacian_solver.hpp>
 #include <mjformation/formation/sliding.hpp>
+#include <mjformation/formation/solved_law.hpp>
 #include <vector>
 
 namespace mjf::formation {
@@ -43,24 +44,17 @@ struct TerminalSmcParams {
 // Feng et al.'s sliding-phase time from x1(t_r) = x1 on s = 0.
 double TerminalSlidingTime(const TerminalSmcParams& params, double x1);
 
-class TerminalSmc {
+class TerminalSmc : public SolvedLaw {
  public:
   TerminalSmc(const Graph& graph, const TerminalSmcParams& params);
   void Update(const FormationInput& input);  // shape_now needed; no heap allocation
-  const std::vector<double>& acceleration() const { return acceleration_; }  // [2i + axis]
-  const std::vector<double>& sliding() const { return sliding_; }  // s_i of the NTSM surface
-  const std::vector<double>& error() const { return error_; }
-  double norm_inv_lh() const { return solver_.InverseTwoNorm(); }
-  const Graph& graph() const { return graph_; }
+  // acceleration(), sliding() (s_i of the NTSM surface), error(): SolvedLaw's.
   template <typename Visit>
   void VisitState(Visit&) {}  // stateless
 
  private:
-  Graph graph_;
   TerminalSmcParams params_;
-  LaplacianSolver solver_;
-  std::vector<double> acceleration_, sliding_, error_, unused_sliding_;
-  Eigen::Matrix<double, Eigen::Dynamic, 2> rhs_;
+  std::vector<double> unused_sliding_;
 };
 
 }  // namespace mjf::formation

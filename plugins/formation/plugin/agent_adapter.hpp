@@ -1,36 +1,34 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
-// The per-agent formation plugins, for distributed execution ([execution] mode = "per_agent"):
-// smc_discrete_agent (eq. (48), formation::DiscreteSmcAgent, sampled every T and held),
-// smc_continuous_agent (eq. (30), formation::ContinuousSmcAgent, every step) and
-// consensus_linear_agent (formation::LinearConsensusAgent, every step), with the attributes of
-// their swarm-level versions. One adapter, a template over the law. The u_j coupling is closed by
-// what the host hands the instance (docs/NETWORK.md):
+// What the per-agent formation plugins share, for distributed execution ([execution] mode =
+// "per_agent"; one file each: smc_discrete_agent.cc, smc_continuous_agent.cc,
+// consensus_linear_agent.cc): AgentPlugin<Law>, the descriptor with the compute, reset and destroy
+// of one instance per follower, over the law's per-agent core (formation::DiscreteSmcAgent,
+// ContinuousSmcAgent, LinearConsensusAgent). The u_j coupling is closed by what the host hands
+// the instance (docs/NETWORK.md):
 //   - agent->solved (coupling = central_solve): the host's exact solve, the reference;
 //   - round r > 0 (coupling = jacobi): the neighbours' round r-1 iterates w_j (payload[0..1]);
 //   - otherwise (round 0, or a round message lost): the neighbours' last inputs u_j.
 // Outgoing payload, on sample steps only (n_payload = 0 in between): [0..1] w_i of this round,
 // [2..3] R_i, [4..7] the leader's px, py, vx, vy as this follower knows it (relayed, one hop per
 // sample, for the reference slots of followers without a leader link).
+#ifndef MJFORMATION_PLUGINS_FORMATION_AGENT_ADAPTER_HPP_
+#define MJFORMATION_PLUGINS_FORMATION_AGENT_ADAPTER_HPP_
+
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <mjformation/formation/agent_laws.hpp>
-#include <mjformation/formation/discrete_smc_agent.hpp>
 #include <vector>
 
 #include "adapter.hpp"
-#include "plugins.hpp"
 
 namespace mjf::formation::adapter {
-namespace {
-
-using plugin::kPayloadUsed;
 
 template <typename Law>
-struct Agent {
+struct AgentInstance {
   // horizon: the law's look-ahead (T for the discrete law: F(k+1) at t + T), 0 otherwise.
   template <typename Params>
-  Agent(const mjfCreateContext* ctx, const Params& params, int64_t steps, double horizon_s)
+  AgentInstance(const mjfCreateContext* ctx, const Params& params, int64_t steps, double horizon_s)
       : follower(ctx->neighbourhood->follower),
         leader_weight(ctx->neighbourhood->leader_weight),
         inbox(std::vector<int>(ctx->neighbourhood->neighbours,
@@ -77,49 +75,23 @@ struct Agent {
   }
 };
 
-void RequireNeighbourhood(const mjfCreateContext* ctx) {
-  if (!ctx->neighbourhood || !ctx->shape) {
-    throw std::invalid_argument(
-        "per-agent formation plugin: the host passed no neighbourhood or shape (per-agent "
-        "execution)");
-  }
-}
+// Throws unless the host handed a per-agent create its neighbourhood and shape (per-agent
+// execution only).
+void RequireNeighbourhood(const mjfCreateContext* ctx);
 
-void* CreateDiscrete(const mjfCreateContext* ctx) {
+// The create of a per-agent law evaluated every physics step (no sample period, no look-ahead),
+// with the params Parse reads (its swarm-level version's).
+template <typename Law, auto Parse>
+void* EveryStepAgentCreate(const mjfCreateContext* ctx) {
   return plugin::CreateOrExplain(ctx, [&]() -> void* {
     RequireNeighbourhood(ctx);
-    const formation::DiscreteSmcParams params = ParseDiscreteParams(plugin::Attributes(ctx));
-    if (std::isfinite(params.accel_limit)) {
-      // The constrained law needs c_i and z_i = (L_H^-1 e)_i, the swarm-wide solve (C1).
-      throw std::invalid_argument(
-          "attribute 'accel_limit': the per-agent protocol has no input-constrained variant "
-          "(it needs the swarm-wide solve with L_H); use mode = \"central\" or accel_limit = "
-          "\"none\"");
-    }
-    return new Agent<formation::DiscreteSmcAgent>(
-        ctx, params, StepsPerSample(params.period, ctx->timestep), params.period);
-  });
-}
-
-void* CreateContinuous(const mjfCreateContext* ctx) {
-  return plugin::CreateOrExplain(ctx, [&]() -> void* {
-    RequireNeighbourhood(ctx);
-    const formation::ContinuousSmcParams params = ParseContinuousParams(plugin::Attributes(ctx));
-    return new Agent<formation::ContinuousSmcAgent>(ctx, params, 1, 0.0);
-  });
-}
-
-void* CreateConsensus(const mjfCreateContext* ctx) {
-  return plugin::CreateOrExplain(ctx, [&]() -> void* {
-    RequireNeighbourhood(ctx);
-    const formation::LinearConsensusParams params = ParseConsensusParams(plugin::Attributes(ctx));
-    return new Agent<formation::LinearConsensusAgent>(ctx, params, 1, 0.0);
+    return new AgentInstance<Law>(ctx, Parse(plugin::Attributes(ctx)), 1, 0.0);
   });
 }
 
 // w_j for every neighbour: this round's iterate when it got through, else from u_j.
 template <typename Law>
-void NeighbourCoupling(Agent<Law>& a, const mjfAgentInput& in) {
+void AgentCoupling(AgentInstance<Law>& a, const mjfAgentInput& in) {
   for (size_t m = 0; m < a.inbox.neighbours().size(); ++m) {
     const mjfMessage& msg = *a.inbox.message(m);
     // The host marks a neighbour's message with round r - 1 only when that round's message got
@@ -135,7 +107,7 @@ void NeighbourCoupling(Agent<Law>& a, const mjfAgentInput& in) {
 }
 
 template <typename Law>
-void Sample(Agent<Law>& a, const mjfStepContext& ctx) {
+void AgentSample(AgentInstance<Law>& a, const mjfStepContext& ctx) {
   const mjfAgentInput& in = *ctx.agent;
   const int i = a.follower;
   const double next = ctx.time + a.horizon;  // F(k+1) for the discrete law
@@ -153,16 +125,16 @@ void Sample(Agent<Law>& a, const mjfStepContext& ctx) {
   if (in.solved) {
     a.core.UseSolved(in.solved);
   } else {
-    NeighbourCoupling(a, in);
+    AgentCoupling(a, in);
     a.core.Solve(a.neighbour_w.data());
   }
   a.has_sample = true;
 }
 
 template <typename Law>
-int Compute(void* instance, const mjfStepContext* ctx) {
+int AgentCompute(void* instance, const mjfStepContext* ctx) {
   return plugin::ComputeOrExplain(ctx, [&] {
-    auto& a = *static_cast<Agent<Law>*>(instance);
+    auto& a = *static_cast<AgentInstance<Law>*>(instance);
     if (!ctx->agent || !ctx->agent->self || !ctx->setpoints || !ctx->agent->outgoing) {
       return plugin::Fail(ctx,
                           "a per-agent formation plugin needs per-agent execution (ctx->agent)");
@@ -188,7 +160,7 @@ int Compute(void* instance, const mjfStepContext* ctx) {
     // A sample needs a message from every neighbour (and the leader when a_i0 > 0): until
     // each has been heard once, the initial setpoint holds.
     const bool sampled = ready && sample_step;
-    if (sampled) Sample(a, *ctx);
+    if (sampled) AgentSample(a, *ctx);
     if (in.round == 0 && sample_step) a.last_round = sampled ? 0 : -1;
     if (in.round > 0 && sampled) a.last_round = in.round;
     mjfSetpoint& sp = *ctx->setpoints;
@@ -204,7 +176,7 @@ int Compute(void* instance, const mjfStepContext* ctx) {
     }
     mjfMessage& out = *in.outgoing;
     // Between samples there is nothing new to exchange (no Jacobi round, no central solve).
-    out.n_payload = sampled ? kPayloadUsed : 0;
+    out.n_payload = sampled ? plugin::kPayloadUsed : 0;
     out.payload[0] = a.core.coupling()[0];
     out.payload[1] = a.core.coupling()[1];
     out.payload[2] = a.core.rhs()[0];
@@ -215,31 +187,23 @@ int Compute(void* instance, const mjfStepContext* ctx) {
 }
 
 template <typename Law>
-void Reset(void* instance) {
-  static_cast<Agent<Law>*>(instance)->has_sample = false;
-  static_cast<Agent<Law>*>(instance)->last_round = -1;
+void AgentReset(void* instance) {
+  static_cast<AgentInstance<Law>*>(instance)->has_sample = false;
+  static_cast<AgentInstance<Law>*>(instance)->last_round = -1;
 }
 
 template <typename Law>
-void Destroy(void* instance) {
-  delete static_cast<Agent<Law>*>(instance);
+void AgentDestroy(void* instance) {
+  delete static_cast<AgentInstance<Law>*>(instance);
 }
 
-void ReportDiscrete(void* instance, mjfReportFn emit, void* user) {
-  const auto& a = *static_cast<const Agent<formation::DiscreteSmcAgent>*>(instance);
-  emit(user, plugin::contract::kDelta,
-       a.core.delta());  // the host reports the largest over the followers
-  emit(user, plugin::contract::kPeriod, a.core.params().period);
-  emit(user, "steps_per_sample", static_cast<double>(a.steps_per_sample));
-  emit(user, plugin::contract::kQ,
-       a.core.params().q);  // for the predicted delay margin (docs/NETWORK.md)
-}
-
+// The descriptor of a per-agent formation plugin whose instance is AgentInstance<Law>, with the
+// attributes of its swarm-level version (report: null for a law with nothing to report).
 template <typename Law>
 constexpr mjfPlugin AgentPlugin(const char* name, const char* doc, int n_attributes,
                                 const mjfAttribute* attributes,
                                 void* (*create)(const mjfCreateContext*),
-                                void (*report)(void*, mjfReportFn, void*)) {
+                                void (*report)(void*, mjfReportFn, void*) = nullptr) {
   static_assert(plugin::kHasVisitState<Law>,
                 "a per-agent formation law lists its state: template <typename Visit> void "
                 "VisitState(Visit&) (mjformation/plugin_state.hpp)");
@@ -252,27 +216,15 @@ constexpr mjfPlugin AgentPlugin(const char* name, const char* doc, int n_attribu
           0,
           nullptr,
           create,
-          &Compute<Law>,
-          &Reset<Law>,
-          &Destroy<Law>,
+          &AgentCompute<Law>,
+          &AgentReset<Law>,
+          &AgentDestroy<Law>,
           report,
-          &plugin::StateSizeOf<Agent<Law>>,
-          &plugin::GetStateOf<Agent<Law>>,
-          &plugin::SetStateOf<Agent<Law>>};
+          &plugin::StateSizeOf<AgentInstance<Law>>,
+          &plugin::GetStateOf<AgentInstance<Law>>,
+          &plugin::SetStateOf<AgentInstance<Law>>};
 }
 
-}  // namespace
-
-const mjfPlugin kSmcDiscreteAgent = AgentPlugin<formation::DiscreteSmcAgent>(
-    "smc_discrete_agent",
-    "discrete sliding-mode formation tracking, eq. (48), one instance per follower",
-    kDiscreteAttributeCount, kDiscreteAttributes, &CreateDiscrete, &ReportDiscrete);
-const mjfPlugin kSmcContinuousAgent = AgentPlugin<formation::ContinuousSmcAgent>(
-    "smc_continuous_agent",
-    "continuous sliding-mode formation tracking, eq. (30), one instance per follower",
-    kContinuousAttributeCount, kContinuousAttributes, &CreateContinuous, nullptr);
-const mjfPlugin kConsensusLinearAgent = AgentPlugin<formation::LinearConsensusAgent>(
-    "consensus_linear_agent", "linear consensus formation tracking, one instance per follower",
-    kConsensusAttributeCount, kConsensusAttributes, &CreateConsensus, nullptr);
-
 }  // namespace mjf::formation::adapter
+
+#endif  // MJFORMATION_PLUGINS_FORMATION_AGENT_ADAPTER_HPP_

@@ -1,0 +1,62 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// What the tests of the native MuJoCo plugins share: a scratch folder per test, the plugin
+// library loaded once into MuJoCo, and an experiment of experiments/ made ready for export.
+#ifndef MJFORMATION_TESTS_MUJOCO_PLUGIN_NATIVE_FIXTURE_HPP_
+#define MJFORMATION_TESTS_MUJOCO_PLUGIN_NATIVE_FIXTURE_HPP_
+
+#include <mujoco/mujoco.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <regex>
+#include <string>
+
+#include "test_util.hpp"
+
+namespace mjf::testing {
+
+// A scratch folder per test, removed at the end.
+class Scratch {
+ public:
+  explicit Scratch(const std::string& name)
+      : path_(std::filesystem::temp_directory_path() /
+              ("mjf_native_" + name + "_" + std::to_string(getpid()))) {
+    std::filesystem::remove_all(path_);
+    std::filesystem::create_directories(path_);
+  }
+  ~Scratch() { std::filesystem::remove_all(path_); }
+  Scratch(const Scratch&) = delete;
+  Scratch& operator=(const Scratch&) = delete;
+  std::string operator/(const std::string& leaf) const { return (path_ / leaf).string(); }
+
+ private:
+  std::filesystem::path path_;
+};
+
+// libmjformation_mujoco.so into MuJoCo's plugin table, once per process (a second load would
+// register the plugins twice).
+inline void LoadNativePluginsOnce() {
+  static const bool loaded = [] {
+    mj_loadPluginLibrary(MJF_NATIVE_PLUGIN_LIBRARY);
+    return true;
+  }();
+  (void)loaded;
+}
+
+// experiments/<experiment> without [render] (the runner would render; the export notes it),
+// flying [vehicles] model = `model` instead of the quadrotor when one is given.
+inline std::string NativeExperimentText(const std::string& experiment,
+                                        const std::string& model = "") {
+  std::string text = ReadFile(std::string(MJF_SOURCE_DIR) + "/experiments/" + experiment);
+  text = text.substr(0, text.find("\n[render]"));
+  if (!model.empty()) {
+    text = std::regex_replace(text, std::regex("\nmodel = \"quadrotor\""),
+                              "\nmodel = \"" + model + "\"");
+  }
+  return text;
+}
+
+}  // namespace mjf::testing
+
+#endif  // MJFORMATION_TESTS_MUJOCO_PLUGIN_NATIVE_FIXTURE_HPP_
