@@ -183,8 +183,9 @@ class FormationParallelEnv(ParallelEnv):
     """PettingZoo ParallelEnv over an experiment: one agent per follower ("uav1".."uavN", the
     timeseries.csv names), every agent's action its acceleration command (x, y, vertical
     feedforward; m/s^2, world frame), held for action_steps physics steps (default: the
-    formation law's sample period, else one step). See docs/PYTHON.md for the observation,
-    reward, termination and truncation."""
+    formation law's sample period, else one step); with action="thrust_moment" its collective
+    thrust (N) and body moments (N m), its attitude plugin bypassed (default one physics step).
+    See docs/PYTHON.md for the observation, reward, termination and truncation."""
 
     metadata = {"name": "mjformation_formation_v0", "render_modes": []}
 
@@ -278,7 +279,8 @@ class FormationEnv(gymnasium.Env):
     "uav<follower + 1>"), the others flown by `others`: None (default) the experiment's own
     formation law (Exp 2's: smc_discrete, eq. (48)), or a callable others(obs) -> (N, 3)
     commands, obs being Simulation.observe()'s dict (the learner's row is replaced). The same
-    observation, action, reward and episode end as FormationParallelEnv, for that follower."""
+    observation, action (action="acceleration" or "thrust_moment"), reward and episode end as
+    FormationParallelEnv, for that follower."""
 
     metadata = {"render_modes": []}
 
