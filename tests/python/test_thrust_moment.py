@@ -126,3 +126,25 @@ def test_the_parallel_env_passes_pettingzoos_api_test_with_thrust_and_moments(ex
     env = FormationParallelEnv(exp2, set=short(0.3), action=THRUST_MOMENT)
     assert env.action_space("uav1").shape == (4,)
     parallel_api_test(env, num_cycles=20)
+
+
+def test_partitioned_physics_flies_the_same_wrenches_bit_for_bit(exp2):
+    """With [run] threads = 2 the followers' controls reach their partitions' models: the same
+    flight as the single model's, some followers on wrenches and the others on their plugins."""
+    def fly(threads):
+        overrides = {**short(0.3), "run.threads": threads}
+        sim = mjformation.Simulation(exp2, set=overrides, driven=True, seed=0)
+        _, _, hover = sim.thrust_moment_bounds()
+        wrench = np.column_stack([hover * 1.02, np.full((6, 3), 0.01)])
+        given = [True, False, True, False, True, True]
+        for _ in range(10):
+            sim.step(wrench, steps=20, action=THRUST_MOMENT, given=given)
+        return sim.states
+
+    single = fly(1)
+    assert np.array_equal(single, fly(2))
+    # the same wrench from the same rest gives the four wrench-flown followers one body rate,
+    # about +x, +y, +z as the moments; the two on their attitude plugins fly the law
+    gyro = single[1:, 10:13]
+    assert np.all(gyro[0] > 0) and all(np.array_equal(gyro[0], gyro[i]) for i in (2, 4, 5))
+    assert not np.array_equal(gyro[0], gyro[1])
