@@ -47,6 +47,9 @@ void WrenchAllocation::Bounds(double low[4], double high[4]) const {
   for (int j = 0; j < kActuators; ++j) {
     low[j] = high[j] = 0;
     for (int k = 0; k < kActuators; ++k) {
+      // An actuator without effect on this component adds nothing, even when its range is
+      // unlimited (0 x inf would be NaN).
+      if (b_[4 * j + k] == 0) continue;
       const double a = b_[4 * j + k] * lo_[k], c = b_[4 * j + k] * hi_[k];
       low[j] += std::min(a, c);
       high[j] += std::max(a, c);

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <limits>
 #include <stdexcept>
 #include <vector>
 
@@ -104,6 +105,23 @@ TEST(WrenchAllocation, ThrustAndMomentActuatorsAreDividedByTheirGears) {
   EXPECT_DOUBLE_EQ(u[1], -0.1);
   EXPECT_DOUBLE_EQ(u[2], -0.2);
   EXPECT_DOUBLE_EQ(u[3], 0.3);
+}
+
+TEST(WrenchAllocation, AnUnlimitedRangeBoundsOnlyWhatItActsOn) {
+  const double inf = std::numeric_limits<double>::infinity();
+  const std::vector<mjfActuatorInfo> actuators = {
+      Actuator({0, 0, 0}, {0, 0, 1, 0, 0, 0}, 0, 0.35),
+      Actuator({0, 0, 0}, {0, 0, 0, 1, 0, 0}, -inf, inf),
+      Actuator({0, 0, 0}, {0, 0, 0, 0, 1, 0}, -1, 1),
+      Actuator({0, 0, 0}, {0, 0, 0, 0, 0, 1}, -1, 1)};
+  const WrenchAllocation allocation(Vehicle(actuators));
+  double low[4], high[4];
+  allocation.Bounds(low, high);
+  EXPECT_EQ(low[0], 0.0);
+  EXPECT_EQ(high[0], 0.35);
+  EXPECT_EQ(low[1], -inf);
+  EXPECT_EQ(high[1], inf);
+  EXPECT_EQ(high[2], 1.0);
 }
 
 TEST(WrenchAllocation, RefusesWhatItCannotInvert) {
