@@ -4,7 +4,9 @@
 follower 1, the default start ring, the formation circle widened so slots stay 1.5 m apart, as
 `mjformation bench` resizes it), every agent flying the SMC law's own command, which the
 environment hands out (law_actions). Each environment step holds the command for
-`action_steps` physics steps of 1 ms (50: the law's sample period T = 0.05 s).
+`action_steps` physics steps of 1 ms (50: the law's sample period T = 0.05 s). Then the lower
+level (action="thrust_moment"): every agent its hover thrust and zero moments, one physics step
+per environment step, the attitude plugins bypassed.
 
     PYTHONPATH=build/python .venv/bin/python examples/python/env_speed.py [--seconds 5]
 """
@@ -35,14 +37,17 @@ def resized(followers: int, duration: float) -> dict:
     }
 
 
-def measure(followers: int, action_steps: int, seconds: float) -> tuple[float, float]:
+def measure(followers: int, action_steps: int, seconds: float,
+            action: str = "acceleration") -> tuple[float, float]:
     """(environment steps per second, simulated seconds per wall second)."""
-    env = FormationParallelEnv(EXP2, set=resized(followers, 1000.0), action_steps=action_steps)
+    env = FormationParallelEnv(EXP2, set=resized(followers, 1000.0), action_steps=action_steps,
+                               action=action)
     env.reset(seed=0)
-    env.step(env.law_actions())  # warm
+    actions = env.law_actions if action == "acceleration" else env.hover_actions
+    env.step(actions())  # warm
     steps, start = 0, time.perf_counter()
     while time.perf_counter() - start < seconds:
-        env.step(env.law_actions())
+        env.step(actions())
         steps += 1
     wall = time.perf_counter() - start
     return steps / wall, steps * action_steps * 1e-3 / wall
@@ -58,6 +63,10 @@ def main() -> None:
             rate, real = measure(followers, action_steps, args.seconds)
             print(f"{followers:3d} followers, {action_steps:2d} physics steps per env step: "
                   f"{rate:8.1f} env steps/s ({real:.2f}x real time)")
+    for followers in (7, 49):
+        rate, real = measure(followers, 1, args.seconds, action="thrust_moment")
+        print(f"{followers:3d} followers, thrust and moments, 1 physics step per env step: "
+              f"{rate:8.1f} env steps/s ({real:.2f}x real time)")
     print(f"load average after:  {' '.join(f'{x:.2f}' for x in os.getloadavg())}")
 
 

@@ -409,13 +409,21 @@ class Simulation:
         self.driven = True
         return self.observe()
 
-    def step(self, actions=1, steps: int | None = None):
+    def step(self, actions=1, steps: int | None = None, action: str = "acceleration",
+             given=None, commands=None):
         """step(n): n >= 0 physics steps flown by the experiment's own laws (fewer at the end of
         the experiment); returns the Simulation. step(actions), after reset(): the followers'
         acceleration commands, an (N, 3) array (x, y and the vertical feedforward on the
         altitude hold, m/s^2, world frame; (N, 2): no feedforward) held for `steps` physics
         steps (default action_steps, the law's sample period); returns observe().
         The GIL is released while it flies.
+
+        action="thrust_moment": the lower level. actions is (N, 4), each follower's collective
+        thrust along its body z (N) and body moments about x, y, z (N m); its attitude plugin is
+        bypassed and its allocation turns the wrench into actuator controls, clipped to their
+        ranges (thrust_moment_bounds()). given (N,) bool, default all: the followers so driven;
+        the others fly `commands` ((N, 3) accelerations, default the law's) through their
+        attitude plugins.
 
         Once a step has failed (a law's exception, a non-finite state or command:
         SimulationError), the simulation stays where it stopped and every later step raises
@@ -438,7 +446,16 @@ class Simulation:
                 self._sim.act(None, int(actions))
                 return self
             n = self.action_steps if steps is None else int(steps)
-            self._sim.act(np.asarray(actions, dtype=np.float64), n)
+            if action == "thrust_moment":
+                mask = [True] * (self.n_vehicles - 1) if given is None else \
+                    [bool(g) for g in given]
+                self._sim.act_thrust_moment(
+                    None if commands is None else np.asarray(commands, dtype=np.float64),
+                    np.asarray(actions, dtype=np.float64), mask, n)
+            elif action == "acceleration":
+                self._sim.act(np.asarray(actions, dtype=np.float64), n)
+            else:
+                raise ValueError(f'step(action={action!r}): "acceleration" or "thrust_moment"')
         except SimulationError as e:
             self._stopped = e
             raise
@@ -452,6 +469,15 @@ class Simulation:
         if np.isfinite(period) and period > 0:
             return max(1, round(period / self._sim.timestep))
         return 1
+
+    def thrust_moment_bounds(self) -> tuple:
+        """(low, high, hover) of step(action="thrust_moment") (driven): low and high (N, 4), the
+        range of each follower's collective thrust (N) and body moments x, y, z (N m) over its
+        actuator ranges (each component alone); hover (N,) its weight m g (N). ValueError for a
+        vehicle without four actuators (the point mass)."""
+        if not self.driven:
+            raise RuntimeError("thrust_moment_bounds() needs a driven Simulation: call reset()")
+        return self._sim.thrust_moment_bounds()
 
     def observe(self, truth: bool = False) -> dict:
         """What the followers know at `time` (driven simulations), followers 0..N-1:

@@ -27,6 +27,7 @@ STATE = len(STATE_COLUMNS)  # 13
 OFFSET = 6  # f_i(t): px py vx vy ax ay
 NEIGHBOUR = STATE + OFFSET + 1  # a neighbour's state, its offset, heard (1) or not (0)
 TERMINATE_ON = ("flip", "ground_impact", "collision")
+ACTIONS = ("acceleration", "thrust_moment")
 
 
 def observation_layout(max_neighbours: int) -> dict:
@@ -47,10 +48,14 @@ class _Swarm:
 
     def __init__(self, experiment, set=None, plugin_path=None, action_steps=None,
                  accel_max=5.0, vertical_max=2.0, terminate_on=TERMINATE_ON,
-                 crash_penalty=10.0, velocity_weight=0.1, truth=False):
+                 crash_penalty=10.0, velocity_weight=0.1, truth=False, action="acceleration"):
+        if action not in ACTIONS:
+            raise ValueError(f"action={action!r}: one of {ACTIONS}")
         self.sim = Simulation(experiment, set=set, plugin_path=plugin_path, driven=True)
         self.n = self.sim.n_vehicles - 1
-        self._action_steps = action_steps
+        self.action = action
+        # Thrust and moments replace the attitude loop, which runs every physics step.
+        self._action_steps = action_steps or (1 if action == "thrust_moment" else None)
         self.terminate_on = tuple(terminate_on)
         self.crash_penalty = float(crash_penalty)
         self.velocity_weight = float(velocity_weight)
@@ -63,8 +68,13 @@ class _Swarm:
             self.neighbours[i, :len(h)] = h
         self.layout = observation_layout(self.max_neighbours)
         self.observation_space = spaces.Box(-np.inf, np.inf, (self.layout["size"],), np.float64)
-        bound = np.array([accel_max, accel_max, vertical_max], dtype=np.float64)
-        self.action_space = spaces.Box(-bound, bound, (3,), np.float64)
+        if action == "thrust_moment":
+            low, high, self.hover = self.sim.thrust_moment_bounds()
+            self.action_spaces = [spaces.Box(low[i], high[i], (4,), np.float64)
+                                  for i in range(self.n)]
+        else:
+            bound = np.array([accel_max, accel_max, vertical_max], dtype=np.float64)
+            self.action_spaces = [spaces.Box(-bound, bound, (3,), np.float64)] * self.n
         self.events_seen = 0
         self.steps = 0
 
@@ -104,12 +114,43 @@ class _Swarm:
         e_v = x[1:, 3:5] - x[0, 3:5] - f[:, 2:4]
         return -(np.linalg.norm(e_p, axis=1) + self.velocity_weight * np.linalg.norm(e_v, axis=1))
 
-    def advance(self, actions: np.ndarray):
+    def checked(self, i: int, action) -> np.ndarray:
+        """Follower i's action as float64 of the action space's shape, finite; ValueError
+        naming the follower otherwise."""
+        a = np.asarray(action, dtype=np.float64)
+        shape = self.action_spaces[i].shape
+        if a.shape != shape:
+            raise ValueError(f"the action of uav{i + 1} (follower {i}) has shape {a.shape}, "
+                             f"expected {shape}: {self.meaning()}")
+        if not np.all(np.isfinite(a)):
+            raise ValueError(f"the action of uav{i + 1} (follower {i}) is not finite: {a}")
+        return a
+
+    def meaning(self) -> str:
+        if self.action == "thrust_moment":
+            return "collective thrust (N), body moments x, y, z (N m)"
+        return "acceleration x, y and vertical feedforward (m/s^2, world frame)"
+
+    def hover_actions(self) -> np.ndarray:
+        """(N, 4): each follower's weight as thrust, no moments (action="thrust_moment")."""
+        out = np.zeros((self.n, 4))
+        out[:, 0] = self.hover
+        return out
+
+    def fly(self, actions: np.ndarray, given=None, commands=None):
+        """One environment step of the simulation: accelerations (N, 3), or wrenches (N, 4) for
+        the followers `given` (the others fly `commands`, default the law's)."""
+        if self.action == "thrust_moment":
+            return self.sim.step(actions, steps=self.action_steps, action="thrust_moment",
+                                 given=given, commands=commands)
+        return self.sim.step(actions, steps=self.action_steps)
+
+    def advance(self, actions: np.ndarray, given=None, commands=None):
         """Flies one environment step; returns (obs or None, rewards, terminated, truncated,
         info)."""
         info = {}
         try:
-            obs = self.sim.step(actions, steps=self.action_steps)
+            obs = self.fly(actions, given, commands)
         except SimulationError as e:
             info["error"] = str(e)
             return None, np.full(self.n, -self.crash_penalty * (1 + self.steps_left())), True, \
@@ -142,16 +183,17 @@ class FormationParallelEnv(ParallelEnv):
     """PettingZoo ParallelEnv over an experiment: one agent per follower ("uav1".."uavN", the
     timeseries.csv names), every agent's action its acceleration command (x, y, vertical
     feedforward; m/s^2, world frame), held for action_steps physics steps (default: the
-    formation law's sample period, else one step). See docs/PYTHON.md for the observation,
-    reward, termination and truncation."""
+    formation law's sample period, else one step); with action="thrust_moment" its collective
+    thrust (N) and body moments (N m), its attitude plugin bypassed (default one physics step).
+    See docs/PYTHON.md for the observation, reward, termination and truncation."""
 
     metadata = {"name": "mjformation_formation_v0", "render_modes": []}
 
     def __init__(self, experiment, set=None, plugin_path=None, action_steps=None, accel_max=5.0,
                  vertical_max=2.0, terminate_on=TERMINATE_ON, crash_penalty=10.0,
-                 velocity_weight=0.1, truth=False):
+                 velocity_weight=0.1, truth=False, action="acceleration"):
         self.swarm = _Swarm(experiment, set, plugin_path, action_steps, accel_max, vertical_max,
-                            terminate_on, crash_penalty, velocity_weight, truth)
+                            terminate_on, crash_penalty, velocity_weight, truth, action)
         self.possible_agents = [f"uav{i + 1}" for i in range(self.swarm.n)]
         self.agents = list(self.possible_agents)
         self.render_mode = None
@@ -162,7 +204,7 @@ class FormationParallelEnv(ParallelEnv):
         return self.swarm.observation_space
 
     def action_space(self, agent):
-        return self.swarm.action_space
+        return self.swarm.action_spaces[self.possible_agents.index(agent)]
 
     @property
     def sim(self) -> Simulation:
@@ -190,12 +232,26 @@ class FormationParallelEnv(ParallelEnv):
         law = self._obs["law_actions"]
         return {a: law[i].copy() for i, a in enumerate(self.possible_agents)}
 
+    def hover_actions(self) -> dict:
+        """action="thrust_moment": each agent's weight m g as thrust, zero moments."""
+        hover = self.swarm.hover_actions()
+        return {a: hover[i] for i, a in enumerate(self.possible_agents)}
+
     def step(self, actions: dict):
-        commands = self._obs["law_actions"].copy()  # an agent without an action flies the law
-        for i, a in enumerate(self.possible_agents):
-            if a in actions:
-                commands[i] = np.asarray(actions[a], dtype=np.float64)
-        obs, rewards, terminated, truncated, info = self.swarm.advance(commands)
+        # An agent without an action flies the law's command through its attitude plugin.
+        commands = self._obs["law_actions"].copy()
+        given = [a in actions for a in self.possible_agents]
+        if self.swarm.action == "thrust_moment":
+            wrenches = np.zeros((self.swarm.n, 4))
+            for i, a in enumerate(self.possible_agents):
+                if given[i]:
+                    wrenches[i] = self.swarm.checked(i, actions[a])
+            obs, rewards, terminated, truncated, info = self.swarm.advance(wrenches, given)
+        else:
+            for i, a in enumerate(self.possible_agents):
+                if given[i]:
+                    commands[i] = self.swarm.checked(i, actions[a])
+            obs, rewards, terminated, truncated, info = self.swarm.advance(commands)
         if obs is None:
             observations = {a: np.zeros(self.swarm.layout["size"]) for a in self.agents}
             infos = {a: dict(info) for a in self.agents}
@@ -223,21 +279,23 @@ class FormationEnv(gymnasium.Env):
     "uav<follower + 1>"), the others flown by `others`: None (default) the experiment's own
     formation law (Exp 2's: smc_discrete, eq. (48)), or a callable others(obs) -> (N, 3)
     commands, obs being Simulation.observe()'s dict (the learner's row is replaced). The same
-    observation, action, reward and episode end as FormationParallelEnv, for that follower."""
+    observation, action (action="acceleration" or "thrust_moment"), reward and episode end as
+    FormationParallelEnv, for that follower."""
 
     metadata = {"render_modes": []}
 
     def __init__(self, experiment, follower: int = 0, others: Callable | None = None, set=None,
                  plugin_path=None, action_steps=None, accel_max=5.0, vertical_max=2.0,
-                 terminate_on=TERMINATE_ON, crash_penalty=10.0, velocity_weight=0.1, truth=False):
+                 terminate_on=TERMINATE_ON, crash_penalty=10.0, velocity_weight=0.1, truth=False,
+                 action="acceleration"):
         self.swarm = _Swarm(experiment, set, plugin_path, action_steps, accel_max, vertical_max,
-                            terminate_on, crash_penalty, velocity_weight, truth)
+                            terminate_on, crash_penalty, velocity_weight, truth, action)
         if not 0 <= follower < self.swarm.n:
             raise ValueError(f"follower={follower}: the experiment has followers 0..{self.swarm.n - 1}")
         self.follower = follower
         self.others = others
         self.observation_space = self.swarm.observation_space
-        self.action_space = self.swarm.action_space
+        self.action_space = self.swarm.action_spaces[follower]
         self.render_mode = None
         self._obs = None
 
@@ -258,6 +316,10 @@ class FormationEnv(gymnasium.Env):
         self._obs = self.swarm.reset(run_seed)
         return self.swarm.vectors(self._obs)[self.follower], self._info(self._obs)
 
+    def hover_action(self) -> np.ndarray:
+        """action="thrust_moment": the learner's weight m g as thrust, zero moments."""
+        return self.swarm.hover_actions()[self.follower]
+
     def law_action(self) -> np.ndarray:
         """The experiment's formation law's command for the learner at this tick."""
         return self._obs["law_actions"][self.follower].copy()
@@ -267,8 +329,16 @@ class FormationEnv(gymnasium.Env):
             commands = self._obs["law_actions"].copy()
         else:
             commands = np.array(self.others(self._obs), dtype=np.float64).reshape(self.swarm.n, 3)
-        commands[self.follower] = np.asarray(action, dtype=np.float64)
-        obs, rewards, terminated, truncated, info = self.swarm.advance(commands)
+        mine = self.swarm.checked(self.follower, action)
+        if self.swarm.action == "thrust_moment":
+            wrenches = np.zeros((self.swarm.n, 4))
+            wrenches[self.follower] = mine
+            given = [i == self.follower for i in range(self.swarm.n)]
+            obs, rewards, terminated, truncated, info = self.swarm.advance(wrenches, given,
+                                                                           commands)
+        else:
+            commands[self.follower] = mine
+            obs, rewards, terminated, truncated, info = self.swarm.advance(commands)
         reward = float(rewards[self.follower])
         if obs is None:
             return np.zeros(self.swarm.layout["size"]), reward, True, False, info

@@ -2,6 +2,7 @@
 #include "driven.hpp"
 
 #include <cstring>
+#include <stdexcept>
 
 #include "mjformation/control/agent_channel.hpp"
 #include "mjformation/record/recorders.hpp"
@@ -22,8 +23,18 @@ void CopyState(const mjfVehicleState& s, double* out) {
 DrivenSimulation::DrivenSimulation(const rn::ExperimentConfig& config)
     : sim_(std::make_unique<rn::Simulation>(config)) {
   monitor_ = std::make_unique<rn::SafetyMonitor>(config.safety, rn::VehicleRadii(*sim_));
+  MakeAllocations();
   sim_->ComputeSetpoints();
   monitor_->Check(sim_->time(), sim_->states());
+}
+
+void DrivenSimulation::MakeAllocations() {
+  try {
+    for (int i = 1; i < sim_->n_vehicles(); ++i) allocations_.emplace_back(sim_->binding(i).info);
+  } catch (const std::invalid_argument& e) {
+    allocations_.clear();
+    allocation_error_ = "vehicle model '" + sim_->config().model + "': " + e.what();
+  }
 }
 
 // The runner's loop (run.cc StepLoop) is ComputeControls, record, Integrate; here the tick is
@@ -33,6 +44,25 @@ int64_t DrivenSimulation::Act(const double* commands, int64_t steps) {
   for (; done < steps && sim_->step_index() < sim_->total_steps(); ++done) {
     if (commands != nullptr) sim_->CommandFollowers(commands);
     sim_->ComputeActuation();
+    sim_->Integrate();
+    sim_->ComputeSetpoints();
+    monitor_->Check(sim_->time(), sim_->states());
+  }
+  return done;
+}
+
+int64_t DrivenSimulation::ActThrustMoment(const double* commands, const double* wrenches,
+                                          const unsigned char* given, int64_t steps) {
+  if (!allocation_error_.empty()) throw std::invalid_argument(allocation_error_);
+  const int n = sim_->n_followers();
+  std::vector<double> controls(static_cast<size_t>(n) * rn::WrenchAllocation::kActuators, 0.0);
+  for (int i = 0; i < n; ++i) {
+    if (given[i]) allocations_[i].Controls(wrenches + 4 * i, controls.data() + 4 * i);
+  }
+  int64_t done = 0;
+  for (; done < steps && sim_->step_index() < sim_->total_steps(); ++done) {
+    if (commands != nullptr) sim_->CommandFollowers(commands);
+    sim_->ComputeActuation(controls.data(), given);
     sim_->Integrate();
     sim_->ComputeSetpoints();
     monitor_->Check(sim_->time(), sim_->states());

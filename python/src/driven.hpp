@@ -12,9 +12,11 @@
 
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "mjformation/config/experiment.hpp"
+#include "mjformation/control/wrench_allocation.hpp"
 #include "mjformation/record/safety_events.hpp"
 #include "mjformation/sim/simulation.hpp"
 
@@ -30,6 +32,18 @@ class DrivenSimulation {
   // frame) held, or the formation law's own when null. Returns the steps done. Throws
   // SimulationError (a non-finite command or state, a plugin's failure).
   int64_t Act(const double* commands, int64_t steps);
+  // The lower level: follower i with given[i] != 0 flies wrenches[i * 4 ..] (collective thrust
+  // along body z, N; body moments about x, y, z, N m), turned into its actuator controls by its
+  // allocation (clamped into the ctrlranges) in place of its attitude plugin, held for `steps`;
+  // the other followers fly `commands` (or the law's, when null) as Act does. The caller checks
+  // that every given wrench is finite. Throws std::invalid_argument when a vehicle has no
+  // allocation (why: WrenchAllocationError), SimulationError as Act.
+  int64_t ActThrustMoment(const double* commands, const double* wrenches,
+                          const unsigned char* given, int64_t steps);
+  // Why the followers have no thrust-and-moment allocation (empty: they have one).
+  const std::string& allocation_error() const { return allocation_error_; }
+  // Follower i's allocation; only when allocation_error() is empty.
+  const runner::WrenchAllocation& allocation(int follower) const { return allocations_[follower]; }
 
   runner::Simulation& sim() { return *sim_; }
   const runner::Simulation& sim() const { return *sim_; }
@@ -42,8 +56,12 @@ class DrivenSimulation {
   void Heard(double* states, double* heard) const;
 
  private:
+  void MakeAllocations();
+
   std::unique_ptr<runner::Simulation> sim_;
   std::unique_ptr<runner::SafetyMonitor> monitor_;
+  std::vector<runner::WrenchAllocation> allocations_;  // one per follower
+  std::string allocation_error_;
 };
 
 }  // namespace mjf::python

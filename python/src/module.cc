@@ -357,6 +357,69 @@ int64_t Act(mjf::python::DrivenSimulation& d, const std::optional<py::array_t<do
   return d.Act(actions ? commands.data() : nullptr, steps);
 }
 
+// Checks the followers' wrenches: an (N, 4) array, finite where `given` (collective thrust N,
+// body moments N m); returns them [follower][4].
+std::vector<double> Wrenches(const rn::Simulation& sim, const py::array_t<double>& actions,
+                             const std::vector<unsigned char>& given) {
+  const py::ssize_t n = sim.n_followers();
+  if (actions.ndim() != 2 || actions.shape(0) != n || actions.shape(1) != 4) {
+    std::string shape;
+    for (py::ssize_t k = 0; k < actions.ndim(); ++k)
+      shape += (k ? ", " : "") + std::to_string(actions.shape(k));
+    throw py::value_error("step(actions, action=\"thrust_moment\"): actions has shape (" + shape +
+                          "), expected (" + std::to_string(n) +
+                          ", 4): each follower's collective thrust (N) and body moments x, y, "
+                          "z (N m)");
+  }
+  std::vector<double> out(4 * static_cast<size_t>(n), 0.0);
+  for (py::ssize_t i = 0; i < n; ++i) {
+    for (py::ssize_t k = 0; given[i] && k < 4; ++k) {
+      const double w = actions.at(i, k);
+      if (!std::isfinite(w))
+        throw py::value_error("step(actions, action=\"thrust_moment\"): the " +
+                              std::string(k == 0 ? "thrust" : "moment") + " of follower " +
+                              std::to_string(i) + " (0-based) is not finite");
+      out[4 * i + k] = w;
+    }
+  }
+  return out;
+}
+
+// act_thrust_moment(commands or None, wrenches, given, steps) -> physics steps done.
+int64_t ActThrustMoment(mjf::python::DrivenSimulation& d,
+                        const std::optional<py::array_t<double>>& commands,
+                        const py::array_t<double>& wrenches, const std::vector<bool>& given,
+                        int64_t steps) {
+  if (steps < 0) throw py::value_error("steps is a number of physics steps >= 0");
+  if (!d.allocation_error().empty())
+    throw py::value_error("action=\"thrust_moment\" needs four actuators a wrench maps onto: " +
+                          d.allocation_error() + "; fly accelerations instead");
+  const size_t n = static_cast<size_t>(d.sim().n_followers());
+  if (given.size() != n)
+    throw py::value_error("given has " + std::to_string(given.size()) + " entries, expected " +
+                          std::to_string(n));
+  const std::vector<unsigned char> mask(given.begin(), given.end());
+  const std::vector<double> w = Wrenches(d.sim(), wrenches, mask);
+  std::vector<double> accel;
+  if (commands) accel = Commands(d.sim(), *commands);
+  py::gil_scoped_release nogil;
+  return d.ActThrustMoment(commands ? accel.data() : nullptr, w.data(), mask.data(), steps);
+}
+
+// (low, high): each follower's (N, 4) range of thrust and moments over its actuator ranges,
+// and (N,) its hover thrust m g.
+py::tuple ThrustMomentBounds(const mjf::python::DrivenSimulation& d) {
+  if (!d.allocation_error().empty()) throw py::value_error(d.allocation_error());
+  const py::ssize_t n = d.sim().n_followers();
+  py::array_t<double> low({n, py::ssize_t{4}}), high({n, py::ssize_t{4}}), hover(n);
+  for (py::ssize_t i = 0; i < n; ++i) {
+    d.allocation(static_cast<int>(i)).Bounds(low.mutable_data(i, 0), high.mutable_data(i, 0));
+    const mjfVehicleInfo& info = d.sim().binding(static_cast<int>(i) + 1).info;
+    hover.mutable_at(i) = info.mass * info.gravity;
+  }
+  return py::make_tuple(low, high, hover);
+}
+
 // f_i(t) of every follower, (N, 6): px py vx vy ax ay (Definition 1); zeros without a shape.
 py::array_t<double> Offsets(const rn::Simulation& sim, double t) {
   const py::ssize_t n = sim.n_followers();
@@ -415,6 +478,9 @@ void BindDriven(py::module_& m) {
         }),
         py::arg("experiment"), py::arg("overrides"), py::arg("plugin_path"))
       .def("act", &Act, py::arg("actions"), py::arg("steps"))
+      .def("act_thrust_moment", &ActThrustMoment, py::arg("commands"), py::arg("wrenches"),
+           py::arg("given"), py::arg("steps"))
+      .def("thrust_moment_bounds", &ThrustMomentBounds)
       .def(
           "offsets", [](const D& d, double t) { return Offsets(d.sim(), t); }, py::arg("t"))
       .def("heard", &Heard)

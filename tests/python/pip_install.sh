@@ -3,8 +3,8 @@
 #
 # `pip install .` as a user of a machine prepared by scripts/setup.sh would run it, offline: a
 # fresh virtual environment holding the project environment's packages (requirements.txt, copied
-# from it, so nothing is downloaded), then `pip install --no-build-isolation --no-deps --no-index
-# SOURCE`. Exp 2 then flies, briefly, through the `mjformation` command, through `import
+# from it, so nothing is downloaded), then `pip wheel --no-build-isolation --no-deps --no-index
+# SOURCE` and the wheel installed (pip install . builds the same wheel and installs it). Exp 2 then flies, briefly, through the `mjformation` command, through `import
 # mjformation`, and through stock MuJoCo (`import mujoco` loads our native plugins by its entry
 # point), from the installed package's own files: every folder the runner searches for plugins
 # and models lies in the package.
@@ -28,10 +28,15 @@ launcher=""
 if command -v ccache >/dev/null; then
   launcher="-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache"
 fi
-CMAKE_ARGS="$launcher" "$work/venv/bin/python" -m pip install -q --no-build-isolation --no-deps \
-  --no-index --config-settings=build-dir="$work/build" "$source_dir"
+# `pip wheel`, then the wheel alone installed: what another machine with the same runtime
+# packages would be handed (docs/PYTHON.md, "Installing with pip").
+rm -rf "$work/wheel"
+CMAKE_ARGS="$launcher" "$work/venv/bin/python" -m pip wheel -q --no-build-isolation --no-deps \
+  --no-index --config-settings=build-dir="$work/build" --wheel-dir "$work/wheel" "$source_dir"
+wheels=("$work"/wheel/mjformation-*.whl)
+"$work/venv/bin/python" -m pip install -q --no-deps --no-index "${wheels[0]}"
 built=$(date +%s)
-echo "pip install: $((built - start)) s"
+echo "pip wheel and install: $((built - start)) s"
 
 package="$site/mjformation"
 experiment="$package/share/mjformation/experiments/exp2.toml"

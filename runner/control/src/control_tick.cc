@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -196,6 +197,11 @@ void ControlTick::CommandFollowers(const double* acc) {
       setpoints_[i].acc[k] = a;
     }
   }
+}
+
+void ControlTick::SetControls(int vehicle, const double* controls) {
+  std::copy(controls, controls + actuators_per_vehicle_,
+            controls_.begin() + static_cast<ptrdiff_t>(vehicle) * actuators_per_vehicle_);
 }
 
 void ControlTick::RunAttitude(int first, int count, char* error, size_t error_size) {

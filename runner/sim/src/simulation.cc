@@ -260,6 +260,29 @@ void Simulation::ComputeActuation() {
     return;
   }
   tick_->RunAttitude();
+  HandOverControls();
+}
+
+void Simulation::ComputeActuation(const double* controls, const unsigned char* given) {
+  // On this thread, also with partitions: they take the tick's controls in Integrate.
+  tick_->RunAttitude(0, 1);
+  const int per = actuators_per_vehicle();
+  for (int i = 0; i < n_followers(); ++i) {
+    if (given[i]) {
+      tick_->SetControls(i + 1, controls + static_cast<ptrdiff_t>(i) * per);
+    } else {
+      tick_->RunAttitude(i + 1, 1);
+    }
+  }
+  if (partitions_) {
+    if (!force_stages_.empty()) ComputeForces();
+    return;
+  }
+  HandOverControls();
+}
+
+// The tick's controls and the force stages' forces to the single model's mjData.
+void Simulation::HandOverControls() {
   if (actuation_->UsesAppliedForces() || !force_stages_.empty()) {
     mju_zero(data_->qfrc_applied, model_->nv);
   }

@@ -59,6 +59,13 @@ class ControlTick {
   void RunAttitude(int first, int count, char* error, size_t error_size);
   // Every vehicle's attitude plugin, after RunSwarmStages (Run is the two in a row).
   void RunAttitude() { RunAttitude(0, n_vehicles(), plugin_error_.data(), plugin_error_.size()); }
+  // Vehicles [first, first + count)'s attitude plugins, on the caller's thread.
+  void RunAttitude(int first, int count) {
+    RunAttitude(first, count, plugin_error_.data(), plugin_error_.size());
+  }
+  // In place of vehicle i's attitude plugin: its actuator controls, as given (finite, checked
+  // by the caller), after RunSwarmStages.
+  void SetControls(int vehicle, const double* controls);
   // Replaces the followers' horizontal commands the formation stage wrote, between
   // RunSwarmStages and RunAttitude: acc[3 * (i - 1) + k] becomes setpoint i's acc[k] (followers
   // i = 1..N; k = 0, 1 the horizontal command, 2 the vertical feedforward on the altitude hold).

@@ -54,6 +54,11 @@ class Simulation {
   // [follower][3] (x, y horizontal; z the feedforward on the altitude hold), in place of the
   // formation stage's (ControlTick::CommandFollowers).
   void CommandFollowers(const double* acc) { tick_->CommandFollowers(acc); }
+  // In place of ComputeActuation, for followers driven below their attitude plugins: follower
+  // i (0-based) with given[i] != 0 gets controls[i * actuators_per_vehicle() ..] as its actuator
+  // controls (finite, within range: the caller's job); the leader and every other follower fly
+  // their attitude plugins as ComputeActuation flies them.
+  void ComputeActuation(const double* controls, const unsigned char* given);
   // Integrates one step (mj_step2) and checks the new state: non-finite values or MuJoCo
   // warnings throw SimulationError.
   void Integrate();
@@ -146,6 +151,7 @@ class Simulation {
   void CheckTorqueAuthority();
   void CheckImuSite();
   void ComputeForces();
+  void HandOverControls();
   void ApplyForces();
   void MakePartitions(const mjfPlugin& attitude);
   void CheckState() const;
