@@ -13,8 +13,10 @@ method is the basic random search of Mania, Guy and Recht (NeurIPS 2018, "Simple
 provides a competitive approach to reinforcement learning", their BRS, version V1): each
 iteration draws `--directions` Gaussian directions, flies W + s d and W - s d for one short
 episode each (same seed), and steps W along the return differences. It needs numpy alone.
-It prints each iteration's return, then the learned policy's and the SMC law's return on an
-unseen seed: a few minutes on 2 cores.
+It prints each iteration's return on a held-out evaluation seed, then the starting, the learned
+and the SMC law's return on that seed: a few minutes on 2 cores. With --plot FILE it draws the return of each iteration
+and, on the evaluation seed, the learner's distance to its slot over time under the starting, the
+learned and the SMC policy (matplotlib, Debian's, seen by the project's venv).
 
     PYTHONPATH=build/python .venv/bin/python examples/python/train_random_search.py
 """
@@ -31,6 +33,7 @@ import numpy as np
 from mjformation.envs import FormationEnv
 
 EXP2 = Path(__file__).resolve().parents[2] / "experiments/exp2.toml"
+EVALUATION_SEED = 10_000  # the seed every policy is compared on; no update ever flies it
 
 
 def features(env: FormationEnv, obs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -43,13 +46,17 @@ def features(env: FormationEnv, obs: np.ndarray) -> tuple[np.ndarray, np.ndarray
     return np.concatenate([e_p, e_v, e_z]), np.array([offset[4], offset[5], 0.0])
 
 
-def episode(env: FormationEnv, weights: np.ndarray | None, seed: int) -> float:
+def episode(env: FormationEnv, weights: np.ndarray | None, seed: int,
+            trace: list | None = None) -> float:
     """The return of one episode; weights None: the SMC law's own command for the learner.
-    env.ended_at holds when a safety event ended it (None: it flew to the end)."""
+    env.ended_at holds when a safety event ended it (None: it flew to the end). `trace`, when
+    given, receives (time, distance of the learner to its slot in the plane) at each step."""
     env.ended_at = None
     obs, _ = env.reset(seed=seed)
     total, done = 0.0, False
     while not done:
+        if trace is not None:
+            trace.append((env.swarm.sim.time, float(np.hypot(*features(env, obs)[0][0:2]))))
         if weights is None:
             action = env.law_action()
         else:
@@ -72,8 +79,9 @@ def pd_start(k: float) -> np.ndarray:
     return weights
 
 
-def train(env: FormationEnv, args) -> np.ndarray:
-    """Basic random search (BRS, V1); prints each iteration's return."""
+def train(env: FormationEnv, args, returns: list) -> np.ndarray:
+    """Basic random search (BRS, V1); prints each iteration's return and appends it to
+    `returns`."""
     rng = np.random.default_rng(args.seed)
     weights = pd_start(args.start_gain)
     for iteration in range(args.iterations):
@@ -85,11 +93,36 @@ def train(env: FormationEnv, args) -> np.ndarray:
         spread = np.concatenate([plus, minus]).std() or 1.0  # ARS's scaling by the returns' std
         weights += args.step / (args.directions * spread) * np.einsum(
             "k,kij->ij", plus - minus, deltas)
-        now = episode(env, weights, seed)
+        # Progress on the held-out evaluation seed (never used by the update): the training
+        # seeds differ from iteration to iteration, so their returns are not comparable.
+        now = episode(env, weights, EVALUATION_SEED)
+        returns.append(now)
         print(f"iteration {iteration + 1:2d}/{args.iterations}: return {now:9.2f} "
               f"(directions {plus.mean():8.2f} / {minus.mean():8.2f}, "
               f"{time.perf_counter() - start:4.1f} s)", flush=True)
     return weights
+
+
+def plot(path: Path, returns: list, traces: dict, results: dict) -> None:
+    """The return per iteration (0: the starting policy), and each policy's distance to the slot on the evaluation seed."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, (left, right) = plt.subplots(1, 2, figsize=(10, 3.8))
+    left.plot(range(len(returns)), returns, "o-")
+    left.set(xlabel="iteration", ylabel="return on the evaluation seed",
+             title="basic random search")
+    for name, trace in traces.items():
+        t, distance = np.array(trace).T
+        ended = results[name][1]
+        right.plot(t, distance, label=name + (f" (safety event at {ended:.2f} s)" if ended else ""))
+        if ended:
+            right.plot(t[-1], distance[-1], "kx")
+    right.set(xlabel="t (s)", ylabel="|e_p| of follower 1 (m)", title="evaluation seed")
+    right.legend(loc="lower left")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    print(f"figure: {path}")
 
 
 def main(argv=None) -> int:
@@ -101,6 +134,7 @@ def main(argv=None) -> int:
     parser.add_argument("--seconds", type=float, default=6.0, help="episode length, s")
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--start-gain", type=float, default=0.5, help="k of the starting PD law")
+    parser.add_argument("--plot", type=Path, help="write the returns and the flights as a PNG")
     args = parser.parse_args(argv)
     for name in ("iterations", "directions"):
         if getattr(args, name) < 1:
@@ -110,16 +144,21 @@ def main(argv=None) -> int:
     short = {"run.duration": args.seconds, "run.metric_window": [0.0, args.seconds],
              "render.snapshots": []}
     env = FormationEnv(EXP2, follower=0, set=short)
-    results = {"untrained": episode(env, pd_start(args.start_gain), seed=10_000)}
+    traces = {name: [] for name in ("untrained", "learned", "SMC law (eq. 48)")}
+    results = {"untrained": episode(env, pd_start(args.start_gain), EVALUATION_SEED,
+                                    traces["untrained"])}
     results["untrained"] = (results["untrained"], env.ended_at)
-    weights = train(env, args)
+    returns = [results["untrained"][0]]  # iteration 0: the starting policy
+    weights = train(env, args, returns)
     for name, w in (("learned", weights), ("SMC law (eq. 48)", None)):
-        results[name] = (episode(env, w, seed=10_000), env.ended_at)
-    print("unseen seed: " + ", ".join(
+        results[name] = (episode(env, w, EVALUATION_SEED, traces[name]), env.ended_at)
+    print("evaluation seed: " + ", ".join(
         f"{name} {total:.2f}" + (f" (ended by a safety event at {t:.2f} s)" if t else "")
         for name, (total, t) in results.items()))
     print("learned W (rows: a_x, a_y, a_z; columns: e_px e_py e_vx e_vy e_z e_vz):")
     print(np.array2string(weights, precision=2, suppress_small=True))
+    if args.plot:
+        plot(args.plot, returns, traces, results)
     return 0
 
 

@@ -157,15 +157,17 @@ def test_the_parallel_env_passes_pettingzoos_api_test(exp2):
     parallel_api_test(FormationParallelEnv(exp2, set=short(0.5)), num_cycles=20)
 
 
-def test_the_random_search_example_trains_and_compares_with_the_law(source):
-    """examples/python/train_random_search.py, one short iteration: it runs end to end and
-    reports the learned policy beside the SMC law."""
+def test_the_random_search_example_trains_and_compares_with_the_law(source, tmp_path):
+    """examples/python/train_random_search.py, one short iteration: it runs end to end, reports
+    the learned policy beside the SMC law and draws both flights."""
     import subprocess
     import sys
     done = subprocess.run(
         [sys.executable, str(source / "examples/python/train_random_search.py"),
-         "--iterations", "1", "--directions", "1", "--seconds", "1"],
+         "--iterations", "1", "--directions", "1", "--seconds", "1",
+         "--plot", str(tmp_path / "flights.png")],
         capture_output=True, text=True, timeout=300)
     assert done.returncode == 0, done.stderr
     assert "iteration  1/1: return" in done.stdout
     assert "learned" in done.stdout and "SMC law (eq. 48)" in done.stdout
+    assert (tmp_path / "flights.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
