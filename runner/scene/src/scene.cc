@@ -12,10 +12,13 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
+#include <optional>
+#include <unordered_map>
 
 #include "mjcf_util.hpp"
 #include "mjspec_util.hpp"
 #include "scene_assets.hpp"
+#include "scene_replication.hpp"
 
 namespace mjf::runner {
 namespace {
@@ -169,6 +172,58 @@ void AttachCopies(mjSpec* scene, mjSpec* vehicle, mjsBody* body, const SceneRequ
   ShareVehicleAssets(scene, assets, prefixes);
 }
 
+// The spec's MJCF as MuJoCo writes it (compiled first: MuJoCo writes only a compiled spec).
+std::string CompiledXml(mjSpec* s, const std::string& name) {
+  mjModel* m = mj_compile(s, nullptr);
+  if (!m) throw SceneError(name + ": MuJoCo cannot load the model: " + mjs_getError(s));
+  mj_deleteModel(m);
+  return spec::SaveXml(s, name);
+}
+
+// Each vehicle body (a child of the world named <prefix>vehicle) at its start position.
+void PlaceVehicles(mjSpec* s, const SceneRequest& request) {
+  std::unordered_map<std::string, size_t> index;
+  for (size_t i = 0; i < request.positions.size(); ++i) {
+    index[VehiclePrefix(request.first_vehicle + static_cast<int>(i)) + "vehicle"] = i;
+  }
+  // One pass over the world's children: finding each body by name would search the tree.
+  mjsBody* world = mjs_findBody(s, "world");
+  for (mjsElement* e = mjs_firstChild(world, mjOBJ_BODY, 0); e; e = mjs_nextChild(world, e, 0)) {
+    const auto it = index.find(spec::Name(e));
+    if (it == index.end()) continue;
+    const auto& p = request.positions[it->second];
+    std::copy(p.begin(), p.end(), mjs_asBody(e)->pos);
+  }
+}
+
+// Composition linear in N (scene_replication.hpp): the scene written by MuJoCo without and with
+// one vehicle, the vehicle's elements copied per vehicle, read once and compiled once. Nothing
+// when the scene does not lend itself to it (the caller then attaches vehicle by vehicle);
+// `scene` and `vehicle` are left as they were.
+std::optional<ComposedScene> ComposeByReplication(mjSpec* scene, mjSpec* vehicle,
+                                                  const SceneRequest& request,
+                                                  const std::string& name) {
+  const SpecPtr without(mj_copySpec(scene)), with(mj_copySpec(scene)), one(mj_copySpec(vehicle));
+  SceneRequest first = request;
+  first.positions.resize(1);
+  AttachCopies(with.get(), one.get(), VehicleBody(one.get(), request.vehicle_path), first);
+  std::vector<std::string> prefixes;
+  for (size_t i = 0; i < request.positions.size(); ++i) {
+    prefixes.push_back(VehiclePrefix(request.first_vehicle + static_cast<int>(i)));
+  }
+  const std::optional<std::string> text = ReplicateVehicle(
+      CompiledXml(without.get(), name), CompiledXml(with.get(), name), prefixes);
+  if (!text) return std::nullopt;
+  const SpecPtr composed = spec::Parse("", *text, name, "composed scene");
+  mjs_setString(composed->modelfiledir, mjs_getString(scene->modelfiledir));
+  PlaceVehicles(composed.get(), request);
+  ComposedScene out;
+  out.model.reset(mj_compile(composed.get(), nullptr));
+  if (!out.model) return std::nullopt;
+  out.xml = spec::SaveXml(composed.get(), name);
+  return out;
+}
+
 // What composition changes of a contract-form model's <option> (an adapted model's notes say it
 // from the MJCF, NoteModelOptions): the time step and integrator are the experiment's; the
 // physics settings the vehicle sets (they differ from MuJoCo's defaults) hold for the whole
@@ -248,6 +303,14 @@ ComposedScene ComposeScene(const SceneRequest& request, const std::string& name)
         ContractOptionNotes(vehicle->option, defaults->option, vehicle->authored.option, request);
   }
   SetGlobals(scene.get(), vehicle.get(), request);
+  if (request.positions.size() > 1) {
+    if (std::optional<ComposedScene> replicated =
+            ComposeByReplication(scene.get(), vehicle.get(), request, name)) {
+      out.model = std::move(replicated->model);
+      out.xml = Header(request) + replicated->xml;
+      return out;
+    }
+  }
   AttachCopies(scene.get(), vehicle.get(), body, request);
   out.model.reset(mj_compile(scene.get(), nullptr));
   if (!out.model) {
