@@ -18,7 +18,8 @@
 #include "mjcf_util.hpp"
 #include "mjspec_util.hpp"
 #include "scene_assets.hpp"
-#include "scene_replication.hpp"
+#include "scene_blocks.hpp"
+#include "scene_text.hpp"
 
 namespace mjf::runner {
 namespace {
@@ -116,6 +117,22 @@ void MergeCompilerAndSize(const mjSpec& v, const mjSpec& d, mjSpec& s) {
 }
 #undef MJF_MERGE
 
+// An attached body is compiled with its own model's settings: the scene's, as when it was one
+// MJCF file; and with equal settings mjs_attach has no conflict to warn about.
+void AdoptGlobals(mjSpec* scene, mjSpec* s) {
+  const SpecPtr defaults(mj_makeSpec());
+  mjString* meshdir = s->compiler.meshdir;
+  mjString* texturedir = s->compiler.texturedir;
+  s->compiler = scene->compiler;
+  s->compiler.meshdir = meshdir;
+  s->compiler.texturedir = texturedir;
+  s->option = scene->option;
+  s->visual = scene->visual;
+  s->stat = scene->stat;
+  s->authored = scene->authored;
+  MergeCompilerAndSize(*scene, *defaults, *s);
+}
+
 // The scene's global settings: the vehicle's merged in, then the experiment's time step,
 // integrator, contacts and offscreen size. mj_step1/mj_step2 (the split the controllers need to
 // read sensors of the current state) supports Euler and the implicit integrators, not RK4; the
@@ -130,18 +147,7 @@ void SetGlobals(mjSpec* scene, mjSpec* vehicle, const SceneRequest& request) {
   mjVisual& visual = scene->visual;
   visual.global.offwidth = std::max(request.offscreen_width, visual.global.offwidth);
   visual.global.offheight = std::max(request.offscreen_height, visual.global.offheight);
-  // An attached body is compiled with its own model's settings: the scene's, as when it was one
-  // MJCF file; and with equal settings mjs_attach has no conflict to warn about.
-  mjString* meshdir = vehicle->compiler.meshdir;
-  mjString* texturedir = vehicle->compiler.texturedir;
-  vehicle->compiler = scene->compiler;
-  vehicle->compiler.meshdir = meshdir;
-  vehicle->compiler.texturedir = texturedir;
-  vehicle->option = scene->option;
-  vehicle->visual = scene->visual;
-  vehicle->stat = scene->stat;
-  vehicle->authored = scene->authored;
-  MergeCompilerAndSize(*scene, *defaults, *vehicle);
+  AdoptGlobals(scene, vehicle);
 }
 
 // 1 + N prefixed copies of the vehicle body, each at its start position, with the elements that
@@ -196,31 +202,59 @@ void PlaceVehicles(mjSpec* s, const SceneRequest& request) {
   }
 }
 
-// Composition linear in N (scene_replication.hpp): the scene written by MuJoCo without and with
-// one vehicle, the vehicle's elements copied per vehicle, read once and compiled once. Nothing
-// when the scene does not lend itself to it (the caller then attaches vehicle by vehicle);
-// `scene` and `vehicle` are left as they were.
-std::optional<ComposedScene> ComposeByReplication(mjSpec* scene, mjSpec* vehicle,
-                                                  const SceneRequest& request,
-                                                  const std::string& name) {
-  const SpecPtr without(mj_copySpec(scene)), with(mj_copySpec(scene)), one(mj_copySpec(vehicle));
+// Whether the vehicle's default classes name assets (materials, meshes, textures).
+bool DefaultsReferToAssets(mjSpec* vehicle) {
+  bool refers = false;
+  auto check = [&](const mjString* s) { refers |= !spec::Str(s).empty(); };
+  for (mjsElement* e : spec::Elements(vehicle, mjOBJ_DEFAULT)) {
+    const mjsDefault* d = mjs_findDefault(vehicle, spec::Name(e).c_str());
+    if (!d) continue;
+    for (const mjString* s : {d->geom->material, d->geom->meshname, d->geom->hfieldname,
+                              d->site->material, d->site->meshname, d->light->texture,
+                              d->tendon->material}) {
+      check(s);
+    }
+  }
+  return refers;
+}
+
+// Whether the scene has default classes or settings of its own: the blocks' classes, which
+// hold MuJoCo's built-in defaults, then differ from the scene's main class they sit in, and the
+// text without them would change the vehicles' classes.
+bool SceneHasDefaults(mjSpec* scene, const std::string& name) {
+  const SpecPtr alone(mj_copySpec(scene));
+  return CompiledXml(alone.get(), name).find("<default") != std::string::npos;
+}
+
+// Enough MJCF text for one vehicle in most cases (the quadrotor takes 4 kB): MuJoCo then writes
+// the scene once.
+constexpr size_t kTextPerVehicle = 8192;
+
+// Composition in O(N log N): the first vehicle attached with the assets, the others in decimal
+// blocks (scene_blocks.hpp), their asset references pointed at the shared assets, each placed;
+// compiled once; the text without what the blocks left (scene_text.hpp). Nothing when that text
+// cannot be had; `scene` and `vehicle` are then spent.
+std::optional<ComposedScene> ComposeInBlocks(mjSpec* scene, mjSpec* vehicle, mjsBody* body,
+                                             const SceneRequest& request,
+                                             const std::string& name) {
+  const std::set<std::string> assets = spec::AssetNames(vehicle);
+  const bool defaults_refer = DefaultsReferToAssets(vehicle);
   SceneRequest first = request;
   first.positions.resize(1);
-  AttachCopies(with.get(), one.get(), VehicleBody(one.get(), request.vehicle_path), first);
-  std::vector<std::string> prefixes;
-  for (size_t i = 0; i < request.positions.size(); ++i) {
-    prefixes.push_back(VehiclePrefix(request.first_vehicle + static_cast<int>(i)));
-  }
-  const std::optional<std::string> text = ReplicateVehicle(
-      CompiledXml(without.get(), name), CompiledXml(with.get(), name), prefixes);
-  if (!text) return std::nullopt;
-  const SpecPtr composed = spec::Parse("", *text, name, "composed scene");
-  mjs_setString(composed->modelfiledir, mjs_getString(scene->modelfiledir));
-  PlaceVehicles(composed.get(), request);
+  AttachCopies(scene, vehicle, body, first);
+  const int last = request.first_vehicle + static_cast<int>(request.positions.size()) - 1;
+  const std::vector<SpecPtr> blocks =
+      AttachInBlocks(scene, body, request.first_vehicle, last,
+                     [scene](mjSpec* s) { AdoptGlobals(scene, s); }, request.vehicle_path);
+  ShareAssetReferences(scene, assets, defaults_refer);
+  PlaceVehicles(scene, request);
   ComposedScene out;
-  out.model.reset(mj_compile(composed.get(), nullptr));
-  if (!out.model) return std::nullopt;
-  out.xml = spec::SaveXml(composed.get(), name);
+  out.model.reset(mj_compile(scene, nullptr));
+  if (!out.model) throw SceneError(name + ": MuJoCo cannot load the model: " + mjs_getError(scene));
+  std::optional<std::string> xml = WithoutBlocks(
+      spec::SaveXml(scene, name, kTextPerVehicle * request.positions.size()), kBlockMarker);
+  if (!xml) return std::nullopt;
+  out.xml = std::move(*xml);
   return out;
 }
 
@@ -303,11 +337,13 @@ ComposedScene ComposeScene(const SceneRequest& request, const std::string& name)
         ContractOptionNotes(vehicle->option, defaults->option, vehicle->authored.option, request);
   }
   SetGlobals(scene.get(), vehicle.get(), request);
-  if (request.positions.size() > 1) {
-    if (std::optional<ComposedScene> replicated =
-            ComposeByReplication(scene.get(), vehicle.get(), request, name)) {
-      out.model = std::move(replicated->model);
-      out.xml = Header(request) + replicated->xml;
+  if (request.positions.size() > 1 && !SceneHasDefaults(scene.get(), name)) {
+    const SpecPtr scene_copy(mj_copySpec(scene.get())), vehicle_copy(mj_copySpec(vehicle.get()));
+    if (std::optional<ComposedScene> blocks =
+            ComposeInBlocks(scene_copy.get(), vehicle_copy.get(),
+                            VehicleBody(vehicle_copy.get(), request.vehicle_path), request, name)) {
+      out.model = std::move(blocks->model);
+      out.xml = Header(request) + blocks->xml;
       return out;
     }
   }
