@@ -311,22 +311,22 @@ Json PointRow(const ExperimentConfig& config, int n, const nlohmann::json& bare,
   if (with_threads) std::printf(" %7d %8.2f", threads, speed_up);
   std::printf("\n");
   std::fflush(stdout);
-  Json row = {{"followers", n},
-              {"steps", steps},
-              {"best_of", repeats},
-              {"bare_wall_s", bare_wall},
-              {"full_wall_s", full_wall},
-              {"ratio_full_over_bare", ratio},
-              {"pipeline_us_per_follower_step", per_follower_us},
-              {"real_time_factor_bare", config.duration / bare_wall},
-              {"real_time_factor_full", config.duration / full_wall},
-              {"peak_rss_mib_full", full["peak_rss_mib"]},
-              {"peak_rss_mib_bare", bare["peak_rss_mib"]},
-              {"compose_s", bare["compose_s"]},
-              {"peak_rss_kib_full_per_vehicle",
-               full["peak_rss_mib"].get<double>() * 1024.0 / (n + 1)},
-              {"bare_final_min_z_m", bare["final_min_z_m"]},
-              {"bare_final_min_tilt_rad", bare["final_min_tilt_rad"]}};
+  Json row = {
+      {"followers", n},
+      {"steps", steps},
+      {"best_of", repeats},
+      {"bare_wall_s", bare_wall},
+      {"full_wall_s", full_wall},
+      {"ratio_full_over_bare", ratio},
+      {"pipeline_us_per_follower_step", per_follower_us},
+      {"real_time_factor_bare", config.duration / bare_wall},
+      {"real_time_factor_full", config.duration / full_wall},
+      {"peak_rss_mib_full", full["peak_rss_mib"]},
+      {"peak_rss_mib_bare", bare["peak_rss_mib"]},
+      {"compose_s", bare["compose_s"]},
+      {"peak_rss_kib_full_per_vehicle", full["peak_rss_mib"].get<double>() * 1024.0 / (n + 1)},
+      {"bare_final_min_z_m", bare["final_min_z_m"]},
+      {"bare_final_min_tilt_rad", bare["final_min_tilt_rad"]}};
   if (with_threads) {
     row["threads"] = threads;
     row["speed_up"] = speed_up;

@@ -133,6 +133,26 @@ void AdoptGlobals(mjSpec* scene, mjSpec* s) {
   MergeCompilerAndSize(*scene, *defaults, *s);
 }
 
+// MuJoCo sizes the arena (contacts, constraints, stack) by a heuristic quadratic in the degrees
+// of freedom, 40 (njmax + nv)^2 bytes (user_model.cc): 146 GB for 10,000 quadrotors, which no
+// allocation gets, while a step of 1000 quadrotors with contacts used 41 MB of its 1.8 GB.
+// Where the heuristic passes kArenaHeuristicCap (about 3400 quadrotors) the arena grows
+// linearly instead; below, MuJoCo's own size is kept, the model as it always was.
+constexpr double kArenaHeuristicCap = 16.0 * (1ull << 30);  // bytes
+constexpr int64_t kArenaBase = int64_t{64} << 20;           // bytes
+constexpr int64_t kArenaPerVehicle = int64_t{256} << 10;    // bytes, six times the 41 kB used
+void SizeArena(mjSpec* scene, mjSpec* vehicle, size_t vehicles) {
+  if (scene->memory != -1 || scene->nstack != -1) return;  // the model sized it
+  int dofs = 0;
+  for (mjsElement* e : spec::Elements(vehicle, mjOBJ_JOINT)) {
+    const mjtJoint type = mjs_asJoint(e)->type;
+    dofs += type == mjJNT_FREE ? 6 : type == mjJNT_BALL ? 3 : 1;
+  }
+  const double n = (scene->njmax == -1 ? 500 : scene->njmax) + static_cast<double>(dofs) * vehicles;
+  if (40.0 * n * n <= kArenaHeuristicCap) return;
+  scene->memory = kArenaBase + kArenaPerVehicle * static_cast<int64_t>(vehicles);
+}
+
 // The scene's global settings: the vehicle's merged in, then the experiment's time step,
 // integrator, contacts and offscreen size. mj_step1/mj_step2 (the split the controllers need to
 // read sensors of the current state) supports Euler and the implicit integrators, not RK4; the
@@ -147,6 +167,7 @@ void SetGlobals(mjSpec* scene, mjSpec* vehicle, const SceneRequest& request) {
   mjVisual& visual = scene->visual;
   visual.global.offwidth = std::max(request.offscreen_width, visual.global.offwidth);
   visual.global.offheight = std::max(request.offscreen_height, visual.global.offheight);
+  SizeArena(scene, vehicle, request.positions.size());
   AdoptGlobals(scene, vehicle);
 }
 
@@ -209,9 +230,9 @@ bool DefaultsReferToAssets(mjSpec* vehicle) {
   for (mjsElement* e : spec::Elements(vehicle, mjOBJ_DEFAULT)) {
     const mjsDefault* d = mjs_findDefault(vehicle, spec::Name(e).c_str());
     if (!d) continue;
-    for (const mjString* s : {d->geom->material, d->geom->meshname, d->geom->hfieldname,
-                              d->site->material, d->site->meshname, d->light->texture,
-                              d->tendon->material}) {
+    for (const mjString* s :
+         {d->geom->material, d->geom->meshname, d->geom->hfieldname, d->site->material,
+          d->site->meshname, d->light->texture, d->tendon->material}) {
       check(s);
     }
   }
@@ -235,17 +256,16 @@ constexpr size_t kTextPerVehicle = 8192;
 // compiled once; the text without what the blocks left (scene_text.hpp). Nothing when that text
 // cannot be had; `scene` and `vehicle` are then spent.
 std::optional<ComposedScene> ComposeInBlocks(mjSpec* scene, mjSpec* vehicle, mjsBody* body,
-                                             const SceneRequest& request,
-                                             const std::string& name) {
+                                             const SceneRequest& request, const std::string& name) {
   const std::set<std::string> assets = spec::AssetNames(vehicle);
   const bool defaults_refer = DefaultsReferToAssets(vehicle);
   SceneRequest first = request;
   first.positions.resize(1);
   AttachCopies(scene, vehicle, body, first);
   const int last = request.first_vehicle + static_cast<int>(request.positions.size()) - 1;
-  const std::vector<SpecPtr> blocks =
-      AttachInBlocks(scene, body, request.first_vehicle, last,
-                     [scene](mjSpec* s) { AdoptGlobals(scene, s); }, request.vehicle_path);
+  const std::vector<SpecPtr> blocks = AttachInBlocks(
+      scene, body, request.first_vehicle, last, [scene](mjSpec* s) { AdoptGlobals(scene, s); },
+      request.vehicle_path);
   ShareAssetReferences(scene, assets, defaults_refer);
   PlaceVehicles(scene, request);
   ComposedScene out;

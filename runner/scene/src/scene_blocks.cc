@@ -20,8 +20,8 @@ SpecPtr BlockSpec(const std::function<void(mjSpec*)>& globals, mjsFrame** frame)
   return s;
 }
 
-void Attach(mjsElement* parent, const mjsElement* child, const std::string& prefix,
-            mjSpec* into, const std::string& vehicle_path) {
+void Attach(mjsElement* parent, const mjsElement* child, const std::string& prefix, mjSpec* into,
+            const std::string& vehicle_path) {
   if (!mjs_attach(parent, child, prefix.c_str(), "")) {
     throw SceneError(vehicle_path + ": MuJoCo cannot attach the vehicle: " + mjs_getError(into));
   }

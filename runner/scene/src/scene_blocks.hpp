@@ -31,8 +31,8 @@ inline constexpr char kBlockMarker[] = "mjf_block";
 // VehiclePrefix(i), in index order within every list (the order one attach per vehicle gives).
 // `globals` makes a new spec's global settings the scene's. Returns the block specs, which
 // must outlive the compilation of the scene. Throws SceneError with MuJoCo's message.
-std::vector<spec::SpecPtr> AttachInBlocks(mjSpec* scene, mjsBody* vehicle_body, int first,
-                                          int last, const std::function<void(mjSpec*)>& globals,
+std::vector<spec::SpecPtr> AttachInBlocks(mjSpec* scene, mjsBody* vehicle_body, int first, int last,
+                                          const std::function<void(mjSpec*)>& globals,
                                           const std::string& vehicle_path);
 
 // Every reference of the scene to a copy's asset (uav<i>_<asset>, `vehicle_assets` naming the

@@ -26,9 +26,9 @@ std::string PrintAsMujoco(const XMLDocument& doc) {
   doc.Print(&printer);
   std::string text = printer.CStr();
   static const char* const kSections[] = {
-      "<actuator", "<asset",      "<compiler", "<contact>",  "<custom",    "<default>",
-      "<deformable", "<equality", "<extension", "<keyframe", "<option",    "<sensor",
-      "<size",     "<statistic", "<tendon",    "<visual",    "<worldbody"};
+      "<actuator",   "<asset",     "<compiler",  "<contact>", "<custom",   "<default>",
+      "<deformable", "<equality",  "<extension", "<keyframe", "<option",   "<sensor",
+      "<size",       "<statistic", "<tendon",    "<visual",   "<worldbody"};
   size_t first_line = std::string::npos;
   for (const char* section : kSections) {
     const size_t length = std::strlen(section);
