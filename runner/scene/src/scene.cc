@@ -1,10 +1,11 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
 // The scene is composed with MuJoCo's model editing API: the world and the vehicle are read
-// into specs, the vehicle body attached once per vehicle with its prefix (mjs_attach brings its
-// actuators, sensors, contact pairs, tendons and equalities along, in attachment order, so the
-// compiled model orders them vehicle by vehicle as the MJCF composition did), compiled once and
-// written by MuJoCo's own MJCF writer.
+// into specs, the vehicle body attached with its prefix (mjs_attach brings its actuators,
+// sensors, contact pairs, tendons and equalities along, in attachment order, so the compiled
+// model orders them vehicle by vehicle as the MJCF composition did): the first vehicle alone,
+// the others in decimal blocks (scene_blocks.hpp; one attach per vehicle is quadratic in N),
+// compiled once and written by MuJoCo's own MJCF writer (scene_text.hpp).
 #include "mjformation/scene/scene.hpp"
 
 #include <mujoco/mujoco.h>
@@ -239,12 +240,13 @@ bool DefaultsReferToAssets(mjSpec* vehicle) {
   return refers;
 }
 
-// Whether the scene has default classes or settings of its own: the blocks' classes, which
-// hold MuJoCo's built-in defaults, then differ from the scene's main class they sit in, and the
-// text without them would change the vehicles' classes.
-bool SceneHasDefaults(mjSpec* scene, const std::string& name) {
+// Whether composing in blocks would change the scene's text: with default classes or settings
+// of its own, the blocks' classes (MuJoCo's built-in defaults) would differ from the scene's
+// main class they sit in; its own frames could look like the blocks' and go with them.
+bool BlocksWouldChangeTheText(mjSpec* scene, const std::string& name) {
   const SpecPtr alone(mj_copySpec(scene));
-  return CompiledXml(alone.get(), name).find("<default") != std::string::npos;
+  const std::string xml = CompiledXml(alone.get(), name);
+  return xml.find("<default") != std::string::npos || xml.find("<frame") != std::string::npos;
 }
 
 // Enough MJCF text for one vehicle in most cases (the quadrotor takes 4 kB): MuJoCo then writes
@@ -357,7 +359,7 @@ ComposedScene ComposeScene(const SceneRequest& request, const std::string& name)
         ContractOptionNotes(vehicle->option, defaults->option, vehicle->authored.option, request);
   }
   SetGlobals(scene.get(), vehicle.get(), request);
-  if (request.positions.size() > 1 && !SceneHasDefaults(scene.get(), name)) {
+  if (request.positions.size() > 1 && !BlocksWouldChangeTheText(scene.get(), name)) {
     const SpecPtr scene_copy(mj_copySpec(scene.get())), vehicle_copy(mj_copySpec(vehicle.get()));
     if (std::optional<ComposedScene> blocks =
             ComposeInBlocks(scene_copy.get(), vehicle_copy.get(),
