@@ -43,10 +43,10 @@ std::set<std::string> AssetNames(mjSpec* s) {
   return names;
 }
 
-std::string SaveXml(mjSpec* s, const std::string& name) {
+std::string SaveXml(mjSpec* s, const std::string& name, size_t size_hint) {
   s->compiler.savecompiled = 0;
   char error[1024] = {0};
-  std::string xml(1 << 16, '\0');
+  std::string xml(size_hint, '\0');
   int need = mj_saveXMLString(s, xml.data(), static_cast<int>(xml.size()), error, sizeof(error));
   if (need > 0) {  // the buffer was too small: MuJoCo said how large it must be
     xml.assign(need + 1, '\0');

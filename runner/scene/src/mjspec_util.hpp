@@ -44,8 +44,10 @@ inline constexpr mjtObj kAssetTypes[] = {mjOBJ_MESH, mjOBJ_SKIN, mjOBJ_HFIELD, m
 std::set<std::string> AssetNames(mjSpec* s);
 
 // The MJCF text of the spec as written (MuJoCo's own writer, compiler savecompiled="false", so
-// the text compiles to exactly the model the spec compiles to). Throws SceneError.
-std::string SaveXml(mjSpec* s, const std::string& name);
+// the text compiles to exactly the model the spec compiles to). `size_hint`: the text's
+// expected length; MuJoCo writes the whole text again when its buffer was too small. Throws
+// SceneError.
+std::string SaveXml(mjSpec* s, const std::string& name, size_t size_hint = 1 << 16);
 
 }  // namespace mjf::runner::spec
 

@@ -1,10 +1,11 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
 // The scene is composed with MuJoCo's model editing API: the world and the vehicle are read
-// into specs, the vehicle body attached once per vehicle with its prefix (mjs_attach brings its
-// actuators, sensors, contact pairs, tendons and equalities along, in attachment order, so the
-// compiled model orders them vehicle by vehicle as the MJCF composition did), compiled once and
-// written by MuJoCo's own MJCF writer.
+// into specs, the vehicle body attached with its prefix (mjs_attach brings its actuators,
+// sensors, contact pairs, tendons and equalities along, in attachment order, so the compiled
+// model orders them vehicle by vehicle as the MJCF composition did): the first vehicle alone,
+// the others in decimal blocks (scene_blocks.hpp; one attach per vehicle is quadratic in N),
+// compiled once and written by MuJoCo's own MJCF writer (scene_text.hpp).
 #include "mjformation/scene/scene.hpp"
 
 #include <mujoco/mujoco.h>
@@ -12,10 +13,14 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
+#include <optional>
+#include <unordered_map>
 
 #include "mjcf_util.hpp"
 #include "mjspec_util.hpp"
 #include "scene_assets.hpp"
+#include "scene_blocks.hpp"
+#include "scene_text.hpp"
 
 namespace mjf::runner {
 namespace {
@@ -113,6 +118,42 @@ void MergeCompilerAndSize(const mjSpec& v, const mjSpec& d, mjSpec& s) {
 }
 #undef MJF_MERGE
 
+// An attached body is compiled with its own model's settings: the scene's, as when it was one
+// MJCF file; and with equal settings mjs_attach has no conflict to warn about.
+void AdoptGlobals(mjSpec* scene, mjSpec* s) {
+  const SpecPtr defaults(mj_makeSpec());
+  mjString* meshdir = s->compiler.meshdir;
+  mjString* texturedir = s->compiler.texturedir;
+  s->compiler = scene->compiler;
+  s->compiler.meshdir = meshdir;
+  s->compiler.texturedir = texturedir;
+  s->option = scene->option;
+  s->visual = scene->visual;
+  s->stat = scene->stat;
+  s->authored = scene->authored;
+  MergeCompilerAndSize(*scene, *defaults, *s);
+}
+
+// MuJoCo sizes the arena (contacts, constraints, stack) by a heuristic quadratic in the degrees
+// of freedom, 40 (njmax + nv)^2 bytes (user_model.cc): 146 GB for 10,000 quadrotors, which no
+// allocation gets, while a step of 1000 quadrotors with contacts used 41 MB of its 1.8 GB.
+// Where the heuristic passes kArenaHeuristicCap (about 3400 quadrotors) the arena grows
+// linearly instead; below, MuJoCo's own size is kept, the model as it always was.
+constexpr double kArenaHeuristicCap = 16.0 * (1ull << 30);  // bytes
+constexpr int64_t kArenaBase = int64_t{64} << 20;           // bytes
+constexpr int64_t kArenaPerVehicle = int64_t{256} << 10;    // bytes, six times the 41 kB used
+void SizeArena(mjSpec* scene, mjSpec* vehicle, size_t vehicles) {
+  if (scene->memory != -1 || scene->nstack != -1) return;  // the model sized it
+  int dofs = 0;
+  for (mjsElement* e : spec::Elements(vehicle, mjOBJ_JOINT)) {
+    const mjtJoint type = mjs_asJoint(e)->type;
+    dofs += type == mjJNT_FREE ? 6 : type == mjJNT_BALL ? 3 : 1;
+  }
+  const double n = (scene->njmax == -1 ? 500 : scene->njmax) + static_cast<double>(dofs) * vehicles;
+  if (40.0 * n * n <= kArenaHeuristicCap) return;
+  scene->memory = kArenaBase + kArenaPerVehicle * static_cast<int64_t>(vehicles);
+}
+
 // The scene's global settings: the vehicle's merged in, then the experiment's time step,
 // integrator, contacts and offscreen size. mj_step1/mj_step2 (the split the controllers need to
 // read sensors of the current state) supports Euler and the implicit integrators, not RK4; the
@@ -127,18 +168,8 @@ void SetGlobals(mjSpec* scene, mjSpec* vehicle, const SceneRequest& request) {
   mjVisual& visual = scene->visual;
   visual.global.offwidth = std::max(request.offscreen_width, visual.global.offwidth);
   visual.global.offheight = std::max(request.offscreen_height, visual.global.offheight);
-  // An attached body is compiled with its own model's settings: the scene's, as when it was one
-  // MJCF file; and with equal settings mjs_attach has no conflict to warn about.
-  mjString* meshdir = vehicle->compiler.meshdir;
-  mjString* texturedir = vehicle->compiler.texturedir;
-  vehicle->compiler = scene->compiler;
-  vehicle->compiler.meshdir = meshdir;
-  vehicle->compiler.texturedir = texturedir;
-  vehicle->option = scene->option;
-  vehicle->visual = scene->visual;
-  vehicle->stat = scene->stat;
-  vehicle->authored = scene->authored;
-  MergeCompilerAndSize(*scene, *defaults, *vehicle);
+  SizeArena(scene, vehicle, request.positions.size());
+  AdoptGlobals(scene, vehicle);
 }
 
 // 1 + N prefixed copies of the vehicle body, each at its start position, with the elements that
@@ -167,6 +198,86 @@ void AttachCopies(mjSpec* scene, mjSpec* vehicle, mjsBody* body, const SceneRequ
     }
   }
   ShareVehicleAssets(scene, assets, prefixes);
+}
+
+// The spec's MJCF as MuJoCo writes it (compiled first: MuJoCo writes only a compiled spec).
+std::string CompiledXml(mjSpec* s, const std::string& name) {
+  mjModel* m = mj_compile(s, nullptr);
+  if (!m) throw SceneError(name + ": MuJoCo cannot load the model: " + mjs_getError(s));
+  mj_deleteModel(m);
+  return spec::SaveXml(s, name);
+}
+
+// Each vehicle body (a child of the world named <prefix>vehicle) at its start position.
+void PlaceVehicles(mjSpec* s, const SceneRequest& request) {
+  std::unordered_map<std::string, size_t> index;
+  for (size_t i = 0; i < request.positions.size(); ++i) {
+    index[VehiclePrefix(request.first_vehicle + static_cast<int>(i)) + "vehicle"] = i;
+  }
+  // One pass over the world's children: finding each body by name would search the tree.
+  mjsBody* world = mjs_findBody(s, "world");
+  for (mjsElement* e = mjs_firstChild(world, mjOBJ_BODY, 0); e; e = mjs_nextChild(world, e, 0)) {
+    const auto it = index.find(spec::Name(e));
+    if (it == index.end()) continue;
+    const auto& p = request.positions[it->second];
+    std::copy(p.begin(), p.end(), mjs_asBody(e)->pos);
+  }
+}
+
+// Whether the vehicle's default classes name assets (materials, meshes, textures).
+bool DefaultsReferToAssets(mjSpec* vehicle) {
+  bool refers = false;
+  auto check = [&](const mjString* s) { refers |= !spec::Str(s).empty(); };
+  for (mjsElement* e : spec::Elements(vehicle, mjOBJ_DEFAULT)) {
+    const mjsDefault* d = mjs_findDefault(vehicle, spec::Name(e).c_str());
+    if (!d) continue;
+    for (const mjString* s :
+         {d->geom->material, d->geom->meshname, d->geom->hfieldname, d->site->material,
+          d->site->meshname, d->light->texture, d->tendon->material}) {
+      check(s);
+    }
+  }
+  return refers;
+}
+
+// Whether composing in blocks would change the scene's text: with default classes or settings
+// of its own, the blocks' classes (MuJoCo's built-in defaults) would differ from the scene's
+// main class they sit in; its own frames could look like the blocks' and go with them.
+bool BlocksWouldChangeTheText(mjSpec* scene, const std::string& name) {
+  const SpecPtr alone(mj_copySpec(scene));
+  const std::string xml = CompiledXml(alone.get(), name);
+  return xml.find("<default") != std::string::npos || xml.find("<frame") != std::string::npos;
+}
+
+// Enough MJCF text for one vehicle in most cases (the quadrotor takes 4 kB): MuJoCo then writes
+// the scene once.
+constexpr size_t kTextPerVehicle = 8192;
+
+// Composition in O(N log N): the first vehicle attached with the assets, the others in decimal
+// blocks (scene_blocks.hpp), their asset references pointed at the shared assets, each placed;
+// compiled once; the text without what the blocks left (scene_text.hpp). Nothing when that text
+// cannot be had; `scene` and `vehicle` are then spent.
+std::optional<ComposedScene> ComposeInBlocks(mjSpec* scene, mjSpec* vehicle, mjsBody* body,
+                                             const SceneRequest& request, const std::string& name) {
+  const std::set<std::string> assets = spec::AssetNames(vehicle);
+  const bool defaults_refer = DefaultsReferToAssets(vehicle);
+  SceneRequest first = request;
+  first.positions.resize(1);
+  AttachCopies(scene, vehicle, body, first);
+  const int last = request.first_vehicle + static_cast<int>(request.positions.size()) - 1;
+  const std::vector<SpecPtr> blocks = AttachInBlocks(
+      scene, body, request.first_vehicle, last, [scene](mjSpec* s) { AdoptGlobals(scene, s); },
+      request.vehicle_path);
+  ShareAssetReferences(scene, assets, defaults_refer);
+  PlaceVehicles(scene, request);
+  ComposedScene out;
+  out.model.reset(mj_compile(scene, nullptr));
+  if (!out.model) throw SceneError(name + ": MuJoCo cannot load the model: " + mjs_getError(scene));
+  std::optional<std::string> xml = WithoutBlocks(
+      spec::SaveXml(scene, name, kTextPerVehicle * request.positions.size()), kBlockMarker);
+  if (!xml) return std::nullopt;
+  out.xml = std::move(*xml);
+  return out;
 }
 
 // What composition changes of a contract-form model's <option> (an adapted model's notes say it
@@ -248,6 +359,16 @@ ComposedScene ComposeScene(const SceneRequest& request, const std::string& name)
         ContractOptionNotes(vehicle->option, defaults->option, vehicle->authored.option, request);
   }
   SetGlobals(scene.get(), vehicle.get(), request);
+  if (request.positions.size() > 1 && !BlocksWouldChangeTheText(scene.get(), name)) {
+    const SpecPtr scene_copy(mj_copySpec(scene.get())), vehicle_copy(mj_copySpec(vehicle.get()));
+    if (std::optional<ComposedScene> blocks =
+            ComposeInBlocks(scene_copy.get(), vehicle_copy.get(),
+                            VehicleBody(vehicle_copy.get(), request.vehicle_path), request, name)) {
+      out.model = std::move(blocks->model);
+      out.xml = Header(request) + blocks->xml;
+      return out;
+    }
+  }
   AttachCopies(scene.get(), vehicle.get(), body, request);
   out.model.reset(mj_compile(scene.get(), nullptr));
   if (!out.model) {

@@ -2,6 +2,7 @@
 #include "mjformation/sim/simulation.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 
@@ -48,9 +49,12 @@ Simulation::Simulation(const ExperimentConfig& config) : config_(config) {
 
   std::vector<std::array<double, 3>> initial_positions = InitialPositions(config_);
   AdaptForeignVehicle(*attitude.descriptor);  // [vehicles] body / rotors (docs/VEHICLES.md)
+  const auto compose_start = std::chrono::steady_clock::now();
   ComposedScene scene =
       ComposeScene(MakeSceneRequest(config_, initial_positions, vehicle_xml_, vehicle_notes_),
                    "composed scene of " + config_.model_path);
+  compose_seconds_ =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - compose_start).count();
   scene_xml_ = std::move(scene.xml);
   if (vehicle_xml_.empty()) vehicle_notes_ = std::move(scene.notes);
   model_.reset(scene.model.release());

@@ -36,6 +36,7 @@ TEST(BenchTest, ReportOfTwoSizes) {
   EXPECT_THAT(out, ::testing::HasSubstr("RTF: real-time factor"));
   EXPECT_THAT(out, ::testing::HasSubstr("best of: runs per point"));
   EXPECT_THAT(out, ::testing::HasSubstr("overhead us/foll/step: (full - bare wall time)"));
+  EXPECT_THAT(out, ::testing::HasSubstr("compose s: wall time of composing and compiling"));
   EXPECT_THAT(out, ::testing::Not(::testing::HasSubstr("ratio full/bare")));
   const auto j = nlohmann::json::parse(ReadFile(dir + "/b.json"));
   EXPECT_EQ(j["contacts"], false);
@@ -56,6 +57,9 @@ TEST(BenchTest, ReportOfTwoSizes) {
                      (full - bare) / 20.0 / (k + 1) * 1e6);
     EXPECT_DOUBLE_EQ(p["real_time_factor_full"].get<double>(), 0.02 / full);
     EXPECT_GT(p["peak_rss_mib_full"].get<double>(), 1.0);
+    EXPECT_DOUBLE_EQ(p["peak_rss_kib_full_per_vehicle"].get<double>(),
+                     p["peak_rss_mib_full"].get<double>() * 1024.0 / (k + 2));
+    EXPECT_GT(p["compose_s"].get<double>(), 0.0);
     EXPECT_GE(p["best_of"].get<int>(), 1);
   }
   EXPECT_DOUBLE_EQ(j["per_follower_cost_growth"].get<double>(),

@@ -85,6 +85,8 @@ class Simulation {
   // Between ComputeControls and Integrate or after Integrate only (the partitions are idle).
   void ForEachVehicleRange(PartitionedPhysics::RangeJob job, void* context) const;
   const std::string& scene_xml() const { return scene_xml_; }
+  // Wall time of composing and compiling the scene (ComposeScene), s.
+  double compose_seconds() const { return compose_seconds_; }
   int64_t step_index() const { return step_; }
   int64_t total_steps() const { return total_steps_; }
   double time() const { return static_cast<double>(step_) * config_.timestep; }
@@ -167,6 +169,7 @@ class Simulation {
   ExperimentConfig config_;
   std::unique_ptr<PluginRegistry> registry_;  // outlives every plugin instance
   std::string scene_xml_;
+  double compose_seconds_ = 0;
   std::string vehicle_xml_;  // adapted foreign model ([vehicles] body/rotors), else empty
   std::vector<std::string> vehicle_notes_;
   TorqueAuthority authority_;
