@@ -108,7 +108,7 @@ def plot(path: Path, returns: list, traces: dict, results: dict) -> None:
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, (left, right) = plt.subplots(1, 2, figsize=(10, 3.8))
+    fig, (left, right) = plt.subplots(1, 2, figsize=(10, 4.4))
     left.plot(range(len(returns)), returns, "o-")
     left.set(xlabel="iteration", ylabel="return on the evaluation seed",
              title="basic random search")
@@ -119,7 +119,7 @@ def plot(path: Path, returns: list, traces: dict, results: dict) -> None:
         if ended:
             right.plot(t[-1], distance[-1], "kx")
     right.set(xlabel="t (s)", ylabel="|e_p| of follower 1 (m)", title="evaluation seed")
-    right.legend(loc="lower left")
+    right.legend(loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=2, fontsize=8)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     print(f"figure: {path}")
