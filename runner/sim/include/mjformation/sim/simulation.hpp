@@ -30,6 +30,7 @@
 #include "mjformation/scene/vehicle_binding.hpp"
 #include "mjformation/sim/actuation.hpp"
 #include "mjformation/sim/partitioned_physics.hpp"
+#include "mjformation/sim/state_archive.hpp"
 
 namespace mjf::runner {
 
@@ -57,6 +58,16 @@ class Simulation {
   // Integrates one step (mj_step2) and checks the new state: non-finite values or MuJoCo
   // warnings throw SimulationError.
   void Integrate();
+
+  // Checkpoints and Simulation.get_state (docs/ARCHITECTURE.md, "Checkpoint and resume"):
+  // throws ConfigError naming the first stage whose state is not saved yet and the key that
+  // switches it on; call before anything runs.
+  void RequireSavable() const;
+  // Everything the next step depends on, both ways (state_archive.hpp): the step index,
+  // MuJoCo's integration state (mj_getState, mjSTATE_INTEGRATION, plugin_state included), the
+  // control tick (its setpoint bus and every plugin instance's ABI state) and the actuation's
+  // own state. Between steps only (before ComputeControls); RequireSavable must pass.
+  void VisitState(StateArchive& archive);
 
   const ExperimentConfig& config() const { return config_; }
   const mjModel* model() const { return model_.get(); }
