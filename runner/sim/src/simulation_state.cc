@@ -61,4 +61,17 @@ void Simulation::VisitState(StateArchive& archive) {
   actuation_->VisitState(archive);
 }
 
+void Simulation::VisitStateAtTick(StateArchive& archive) {
+  VisitState(archive);
+  archive.Tag("tick outputs");
+  std::vector<mjfVehicleState> measured = tick_->measured();
+  std::vector<double> controls = tick_->controls();
+  archive(truth_, measured, controls);
+  if (!archive.loading()) return;
+  mj_step1(model_.get(), data_.get());
+  tick_->RestoreOutputs(step_, measured, controls,
+                        reinterpret_cast<const struct mjModel_*>(model_.get()),
+                        reinterpret_cast<const struct mjData_*>(data_.get()));
+}
+
 }  // namespace mjf::runner

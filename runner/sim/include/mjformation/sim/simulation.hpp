@@ -68,6 +68,12 @@ class Simulation {
   // control tick (its setpoint bus and every plugin instance's ABI state) and the actuation's
   // own state. Between steps only (before ComputeControls); RequireSavable must pass.
   void VisitState(StateArchive& archive);
+  // The same taken at a control tick (after ComputeControls or ComputeSetpoints, where the
+  // Python Simulation and DrivenSimulation stand): also the tick's outputs (true and measured
+  // states, controls); on load MuJoCo's derived quantities are recomputed (mj_step1: positions,
+  // velocities, sensors, which read only the restored state) without running a controller
+  // again, so that the next ComputeActuation or Integrate continues bit for bit.
+  void VisitStateAtTick(StateArchive& archive);
 
   const ExperimentConfig& config() const { return config_; }
   const mjModel* model() const { return model_.get(); }
