@@ -4,7 +4,8 @@
 # kills itself at that step, so the place is deterministic), with rows past the checkpoint left
 # in timeseries.csv, then resumed, ends with every file byte for byte as an uninterrupted
 # run's (summary.json apart from its timing); a resume with another configuration is refused
-# naming both hashes and changes nothing; a stage that cannot be saved is refused at startup.
+# naming both hashes and changes nothing; a stage that cannot be saved (per-agent execution) is
+# refused at startup.
 # Usage: checkpoint_resume.sh MJFORMATION SOURCE_DIR WORK_DIR
 set -uo pipefail
 bin=$1 src=$2 work=$3
@@ -44,10 +45,16 @@ resumed_equals_uninterrupted "$src/experiments/leaders/exp2_random_accel.toml" \
   --set 'vehicles.rotor_model="wrench"' --set 'render.snapshots=[0.4, 1.8]' \
   --set render.width=64 --set render.height=48
 
+rm -rf full killed
+case="sensors (noise, bias, latency, rate hold) and wind (Dryden turbulence) saved"
+resumed_equals_uninterrupted "$src/experiments/exp2.toml" --no-render \
+  --set 'sensors.preset="typical"' --set 'wind.turbulence="moderate"'
+
 case="another configuration is refused, naming both hashes, and nothing changes"
 cp killed/timeseries.csv before.csv
-message=$("$bin" run "$src/experiments/leaders/exp2_random_accel.toml" "${short[@]}" --no-render \
-  --set run.seed=7 --out killed --resume 2>&1)
+message=$("$bin" run "$src/experiments/exp2.toml" "${short[@]}" --no-render \
+  --set 'sensors.preset="typical"' --set 'wind.turbulence="moderate"' --set run.seed=7 \
+  --out killed --resume 2>&1)
 code=$?
 if [ $code != 1 ]; then
   fail "exit $code, not 1"
@@ -62,12 +69,12 @@ fi
 
 case="a stage that cannot be saved is refused before anything is written"
 message=$("$bin" run "$src/experiments/exp2.toml" "${short[@]}" --no-render \
-  --set 'sensors.preset="typical"' --out sensors --checkpoint-every 0.5 2>&1)
+  --set 'execution={mode="per_agent"}' --out agents --checkpoint-every 0.5 2>&1)
 code=$?
-if [ $code != 1 ] || ! grep -q "the sensor model does not save its state yet; \[sensors\]" \
+if [ $code != 1 ] || ! grep -q "the communication channel does not save its state yet; \[execution\] mode" \
   <<<"$message"; then
   fail "exit $code: $message"
-elif [ -e sensors ]; then
+elif [ -e agents ]; then
   fail "the run directory was created"
 else
   ok

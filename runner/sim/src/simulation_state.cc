@@ -37,12 +37,13 @@ void Simulation::RequireSavable() const {
   if (config_.network.execution == Execution::kPerAgent) {
     Unsavable("the communication channel", "[execution] mode = \"per_agent\" ([network])");
   }
-  if (config_.sensors.enabled()) Unsavable("the sensor model", "[sensors]");
   if (config_.estimator.plugin != "passthrough") {
     Unsavable("the estimator stage", "[estimator] plugin = \"" + config_.estimator.plugin + "\"");
   }
-  if (!force_stages_.empty()) Unsavable("the wind and drag stage", "[wind]");
-  tick_->RequireSavable();  // what the tick itself knows it cannot save
+  if (!tick_->sensors().saves_state()) Unsavable("the sensor stage", "[sensors]");
+  for (const auto& stage : force_stages_) {
+    if (!stage->saves_state()) Unsavable("a force stage", "[wind]");
+  }
 }
 
 void Simulation::VisitState(StateArchive& archive) {
@@ -59,6 +60,9 @@ void Simulation::VisitState(StateArchive& archive) {
   FixedBlock(archive, "control tick", &tick);
   if (archive.loading()) tick_->SetState(tick.data());
   actuation_->VisitState(archive);
+  archive.Tag("realism");
+  tick_->VisitSensorState(archive);
+  for (auto& stage : force_stages_) stage->VisitState(archive);
 }
 
 void Simulation::VisitStateAtTick(StateArchive& archive) {

@@ -75,6 +75,8 @@ class ControlTick {
   size_t StateSize() const;
   void GetState(double* out) const;
   void SetState(const double* in);
+  // The sensor stage's own state (noise streams, latency buffers), both ways (checkpoints).
+  void VisitSensorState(StateArchive& archive) { sensors_->VisitState(archive); }
   // A tick restored between its two parts (the Python Simulation stands after a tick): what it
   // measured and the controls it computed, and the context the attitude stage runs in, as
   // RunSwarmStages of `step` left them, without running a plugin.

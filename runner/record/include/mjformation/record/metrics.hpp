@@ -26,7 +26,7 @@ class OnlineMetrics {
   // Every physics step: counts time with any actuator at a limit of its range.
   void StepControls(const Simulation& sim);
   nlohmann::ordered_json Summary(const Simulation& sim) const;
-  // The accumulators, both ways (checkpoints: mjformation/sim/state_archive.hpp); what the
+  // The accumulators, both ways (checkpoints: mjformation/config/state_archive.hpp); what the
   // constructor fixes and the scratch of one sample are not state.
   template <typename Archive>
   void VisitState(Archive& a) {

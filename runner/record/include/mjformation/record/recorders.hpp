@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "mjformation/config/experiment.hpp"
-#include "mjformation/sim/state_archive.hpp"
+#include "mjformation/config/state_archive.hpp"
 
 namespace mjf::runner {
 

@@ -18,7 +18,7 @@
 #include "mjformation/record/metrics.hpp"
 #include "mjformation/record/recorders.hpp"
 #include "mjformation/sim/simulation.hpp"
-#include "mjformation/sim/state_archive.hpp"
+#include "mjformation/config/state_archive.hpp"
 
 namespace mjf::runner {
 

@@ -13,7 +13,7 @@
 
 #include "mjformation/config/experiment.hpp"
 #include "mjformation/scene/vehicle_binding.hpp"
-#include "mjformation/sim/state_archive.hpp"
+#include "mjformation/config/state_archive.hpp"
 
 namespace mjf::runner {
 

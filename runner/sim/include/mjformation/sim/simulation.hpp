@@ -30,7 +30,7 @@
 #include "mjformation/scene/vehicle_binding.hpp"
 #include "mjformation/sim/actuation.hpp"
 #include "mjformation/sim/partitioned_physics.hpp"
-#include "mjformation/sim/state_archive.hpp"
+#include "mjformation/config/state_archive.hpp"
 
 namespace mjf::runner {
 

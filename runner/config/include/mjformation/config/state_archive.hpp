@@ -12,8 +12,8 @@
 // accumulators grow (safety events, trails), so containers carry their length. Numbers are
 // stored as their bytes (exact); random engines as their textual state (exact, the standard's
 // operator<<). A truncated or foreign archive throws StateArchiveError, never reads past the end.
-#ifndef MJFORMATION_SIM_STATE_ARCHIVE_HPP_
-#define MJFORMATION_SIM_STATE_ARCHIVE_HPP_
+#ifndef MJFORMATION_CONFIG_STATE_ARCHIVE_HPP_
+#define MJFORMATION_CONFIG_STATE_ARCHIVE_HPP_
 
 #include <array>
 #include <complex>
@@ -122,7 +122,14 @@ class StateArchive {
   template <typename Container>
   void Sequence(Container& c) {
     const size_t n = Length(c.size(), 1);
-    if (loading_) c.resize(n);
+    if constexpr (std::is_default_constructible_v<typename Container::value_type>) {
+      if (loading_) c.resize(n);
+    } else if (n != c.size()) {
+      // Stages built from the configuration (one sensor model per vehicle): their number is
+      // fixed, never read from the archive.
+      throw StateArchiveError("the saved state holds " + std::to_string(n) + " stages where " +
+                              std::to_string(c.size()) + " were expected");
+    }
     for (auto& element : c) Visit(element);
   }
 
@@ -205,4 +212,4 @@ class StateArchive {
 
 }  // namespace mjf::runner
 
-#endif  // MJFORMATION_SIM_STATE_ARCHIVE_HPP_
+#endif  // MJFORMATION_CONFIG_STATE_ARCHIVE_HPP_
