@@ -19,7 +19,8 @@ def same(a, b):
     return all(np.array_equal(x, y, equal_nan=True) for x, y in zip(a, b))
 
 
-@pytest.mark.parametrize("extra", [{}, {"vehicles.rotor_model": "wrench"}])
+@pytest.mark.parametrize("extra", [{}, {"vehicles.rotor_model": "wrench"},
+                                   {"sensors.preset": "typical", "wind.turbulence": "moderate"}])
 def test_a_restored_state_flies_the_same_bits(source, extra):
     # Given Exp 2 with a seeded random leader, its state taken at t = 0.7 s
     experiment = source / "experiments/leaders/exp2_random_accel.toml"
@@ -65,6 +66,6 @@ def test_another_configuration_and_unsaved_stages_are_refused(exp2):
     driven = mjformation.Simulation(exp2, set=short(1.0), driven=True)
     with pytest.raises(ValueError, match="'no safety' was expected|'safety' was expected"):
         driven.set_state(state)
-    noisy = mjformation.Simulation(exp2, set={**short(1.0), "sensors.preset": "typical"})
-    with pytest.raises(ValueError, match=r"sensor model does not save its state yet; \[sensors\]"):
-        noisy.get_state()
+    agents = mjformation.Simulation(exp2, set={**short(1.0), "execution.mode": "per_agent"})
+    with pytest.raises(ValueError, match=r"communication channel does not save its state yet"):
+        agents.get_state()

@@ -14,7 +14,7 @@ failures=0
 fail() { echo "FAIL [$case]: $*" >&2; failures=$((failures + 1)); }
 ok() { echo "ok   [$case]"; }
 short=(--set run.duration=2 --set 'run.metric_window=[1, 2]' -q)
-untimed() { grep -v '"wall_time_s"\|"real_time_factor"\|"steps_per_second"' "$1"; }
+untimed() { grep -v '"wall_time_s"\|"real_time_factor"\|"steps_per_second"\|_wall_s"' "$1"; }
 
 # Kill after the checkpoint at 1.0 s (step 1300 of 2000), leave a torn row, resume, compare.
 resumed_equals_uninterrupted() {  # experiment, then extra arguments
@@ -46,14 +46,16 @@ resumed_equals_uninterrupted "$src/experiments/leaders/exp2_random_accel.toml" \
   --set render.width=64 --set render.height=48
 
 rm -rf full killed
-case="sensors (noise, bias, latency, rate hold) and wind (Dryden turbulence) saved"
+case="sensors (noise, bias, latency, rate hold), the kf_ins estimator and wind saved"
 resumed_equals_uninterrupted "$src/experiments/exp2.toml" --no-render \
-  --set 'sensors.preset="typical"' --set 'wind.turbulence="moderate"'
+  --set 'sensors.preset="consumer_gnss"' --set 'estimator.plugin="kf_ins"' \
+  --set 'wind.turbulence="moderate"'
 
 case="another configuration is refused, naming both hashes, and nothing changes"
 cp killed/timeseries.csv before.csv
 message=$("$bin" run "$src/experiments/exp2.toml" "${short[@]}" --no-render \
-  --set 'sensors.preset="typical"' --set 'wind.turbulence="moderate"' --set run.seed=7 \
+  --set 'sensors.preset="consumer_gnss"' --set 'estimator.plugin="kf_ins"' \
+  --set 'wind.turbulence="moderate"' --set run.seed=7 \
   --out killed --resume 2>&1)
 code=$?
 if [ $code != 1 ]; then

@@ -325,6 +325,7 @@ class EstimationRecorder final : public Recorder {
   }
   bool Wants(int64_t) const override { return false; }
   void Record(const Frame&) override {}
+  void VisitState(StateArchive& archive) override { archive(metrics_); }
   void Summarize(nlohmann::ordered_json* summary) const override {
     std::vector<std::array<double, 3>> counts;  // as the run ended
     for (const auto& plugin : sim_.estimation()->estimators()) counts.push_back(Counts(*plugin));

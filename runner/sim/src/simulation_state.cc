@@ -37,9 +37,6 @@ void Simulation::RequireSavable() const {
   if (config_.network.execution == Execution::kPerAgent) {
     Unsavable("the communication channel", "[execution] mode = \"per_agent\" ([network])");
   }
-  if (config_.estimator.plugin != "passthrough") {
-    Unsavable("the estimator stage", "[estimator] plugin = \"" + config_.estimator.plugin + "\"");
-  }
   if (!tick_->sensors().saves_state()) Unsavable("the sensor stage", "[sensors]");
   for (const auto& stage : force_stages_) {
     if (!stage->saves_state()) Unsavable("a force stage", "[wind]");
