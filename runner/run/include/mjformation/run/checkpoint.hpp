@@ -15,10 +15,10 @@
 #include <string>
 #include <vector>
 
+#include "mjformation/config/state_archive.hpp"
 #include "mjformation/record/metrics.hpp"
 #include "mjformation/record/recorders.hpp"
 #include "mjformation/sim/simulation.hpp"
-#include "mjformation/config/state_archive.hpp"
 
 namespace mjf::runner {
 

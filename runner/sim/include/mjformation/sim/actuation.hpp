@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "mjformation/config/experiment.hpp"
-#include "mjformation/scene/vehicle_binding.hpp"
 #include "mjformation/config/state_archive.hpp"
+#include "mjformation/scene/vehicle_binding.hpp"
 
 namespace mjf::runner {
 

@@ -19,6 +19,7 @@
 
 #include "mjformation/config/config_error.hpp"
 #include "mjformation/config/experiment.hpp"
+#include "mjformation/config/state_archive.hpp"
 #include "mjformation/control/control_tick.hpp"
 #include "mjformation/control/control_wiring.hpp"
 #include "mjformation/control/errors.hpp"
@@ -30,7 +31,6 @@
 #include "mjformation/scene/vehicle_binding.hpp"
 #include "mjformation/sim/actuation.hpp"
 #include "mjformation/sim/partitioned_physics.hpp"
-#include "mjformation/config/state_archive.hpp"
 
 namespace mjf::runner {
 
