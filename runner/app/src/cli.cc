@@ -245,9 +245,10 @@ namespace {
 // run --checkpoint-every S, --resume (docs/ARCHITECTURE.md, "Checkpoint and resume").
 void AddCheckpointOptions(CLI::App* run, CliCommands* c) {
   run->add_option("--checkpoint-every", c->checkpoint_every,
-                  "write a checkpoint every S simulated seconds into the run directory ("
-                  "checkpoint.mjfstate, replaced atomically); ideal sensors, central execution, "
-                  "no wind, threads = 1 and no video only (anything else is refused at startup)")
+                  "write a checkpoint every S simulated seconds into the run directory "
+                  "(checkpoint.mjfstate, replaced atomically): MuJoCo's state, every plugin's, "
+                  "the sensors, estimator, wind, metrics and outputs; per-agent execution, "
+                  "threads > 1 and video are refused at startup")
       ->check(CLI::PositiveNumber);
   run->add_flag("--resume", c->resume,
                 "continue a killed run from the last checkpoint in its run directory (the same "
