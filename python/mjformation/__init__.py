@@ -461,6 +461,24 @@ class Simulation:
             raise
         return self.observe()
 
+    def get_state(self) -> bytes:
+        """Everything the next step depends on, as bytes: MuJoCo's integration state (with
+        plugin_state), the control tick's setpoint bus and every plugin instance's ABI state,
+        the actuation's rotor lags, this tick's outputs and (driven) the safety events so far;
+        the same serialisation as `mjformation run --checkpoint-every`. set_state(state) on a
+        Simulation of the same experiment and set (this one or a new one) flies on bit for bit
+        as from where it was taken. A Python formation law's own objects are not in it (keep
+        them yourself). Raises ValueError naming the stage and key for what is not saved yet
+        ([sensors], [estimator], [wind], per-agent execution, threads > 1)."""
+        return self._sim.get_state()
+
+    def set_state(self, state: bytes) -> "Simulation":
+        """Back to a state of get_state() (ValueError: another experiment or set, or a state of a
+        driven Simulation into an undriven one or back); a stopped Simulation runs again."""
+        self._sim.set_state(bytes(state))
+        self._stopped = None
+        return self
+
     @property
     def action_steps(self) -> int:
         """Physics steps a step(actions) holds its commands by default: the formation law's

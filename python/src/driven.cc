@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "mjformation/control/agent_channel.hpp"
+#include "mjformation/record/output.hpp"
 #include "mjformation/record/recorders.hpp"
 
 namespace mjf::python {
@@ -94,6 +95,55 @@ void DrivenSimulation::Heard(double* states, double* heard) const {
     if (c.leader_weight[i] > 0) put(i, 0, measured[0]);
   }
   for (const auto& e : c.edges) put(e.to, e.from + 1, measured[e.from + 1]);
+}
+
+std::string DrivenSimulation::GetState() { return SimulationState(*sim_, monitor_.get()); }
+
+void DrivenSimulation::SetState(const std::string& state) {
+  RestoreSimulationState(*sim_, monitor_.get(), state);
+}
+
+namespace {
+
+constexpr const char* kStateFormat = "mjformation state 1";
+
+void VisitAll(rn::StateArchive& archive, rn::Simulation& sim, rn::SafetyMonitor* monitor) {
+  sim.VisitStateAtTick(archive);
+  archive.Tag(monitor ? "safety" : "no safety");
+  if (monitor) archive(*monitor);
+}
+
+}  // namespace
+
+std::string SimulationState(rn::Simulation& sim, rn::SafetyMonitor* monitor) {
+  sim.RequireSavable();
+  rn::StateArchive archive;
+  archive.Tag(kStateFormat);
+  std::string sha = rn::Sha256Hex(rn::ConfigEcho(sim.config()));
+  archive(sha);
+  VisitAll(archive, sim, monitor);
+  return archive.bytes();
+}
+
+void RestoreSimulationState(rn::Simulation& sim, rn::SafetyMonitor* monitor,
+                            const std::string& state) {
+  sim.RequireSavable();
+  rn::StateArchive archive(state);
+  try {
+    archive.Tag(kStateFormat);
+    std::string sha;
+    archive(sha);
+    const std::string own = rn::Sha256Hex(rn::ConfigEcho(sim.config()));
+    if (sha != own) {
+      throw rn::ConfigError(
+          "set_state: the state was taken from another configuration (config "
+          "sha256 " +
+          sha + "), this simulation's is " + own);
+    }
+    VisitAll(archive, sim, monitor);
+  } catch (const rn::StateArchiveError& e) {
+    throw rn::ConfigError(std::string("set_state: ") + e.what());
+  }
 }
 
 }  // namespace mjf::python

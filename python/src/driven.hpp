@@ -54,6 +54,10 @@ class DrivenSimulation {
   // execution: the measured states of the vehicles it hears in the graph (an ideal network);
   // per-agent execution: the newest messages it was handed through [network].
   void Heard(double* states, double* heard) const;
+  // get_state() / set_state(): the simulation at this tick and the safety events seen so far
+  // (SimulationState below).
+  std::string GetState();
+  void SetState(const std::string& state);
 
  private:
   void MakeAllocations();
@@ -63,6 +67,15 @@ class DrivenSimulation {
   std::vector<runner::WrenchAllocation> allocations_;  // one per follower
   std::string allocation_error_;
 };
+
+// Simulation.get_state() / set_state(state): the simulation as it stands at a control tick
+// (Simulation::VisitStateAtTick: the same serialisation as the runner's checkpoints), and the
+// safety monitor's when there is one, behind the config's sha256. A state restored into a
+// simulation of the same configuration continues bit for bit as from where it was taken.
+// Throws ConfigError for a stage that cannot be saved yet or a state of another configuration.
+std::string SimulationState(runner::Simulation& sim, runner::SafetyMonitor* monitor);
+void RestoreSimulationState(runner::Simulation& sim, runner::SafetyMonitor* monitor,
+                            const std::string& state);
 
 }  // namespace mjf::python
 

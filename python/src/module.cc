@@ -319,7 +319,15 @@ void BindSimulation(py::module_& m) {
             return out;
           })
       .def_property_readonly("graph", &GraphDict)
-      .def_property_readonly("scene_xml", &rn::Simulation::scene_xml);
+      .def_property_readonly("scene_xml", &rn::Simulation::scene_xml)
+      .def("get_state",
+           [](rn::Simulation& s) { return py::bytes(mjf::python::SimulationState(s, nullptr)); })
+      .def(
+          "set_state",
+          [](rn::Simulation& s, const py::bytes& state) {
+            mjf::python::RestoreSimulationState(s, nullptr, std::string(state));
+          },
+          py::arg("state"));
 }
 
 // Checks the followers' commands: an (N, 3) array of finite numbers (acceleration x, y and the
@@ -484,6 +492,10 @@ void BindDriven(py::module_& m) {
       .def(
           "offsets", [](const D& d, double t) { return Offsets(d.sim(), t); }, py::arg("t"))
       .def("heard", &Heard)
+      .def("get_state", [](D& d) { return py::bytes(d.GetState()); })
+      .def(
+          "set_state", [](D& d, const py::bytes& state) { d.SetState(std::string(state)); },
+          py::arg("state"))
       .def_property_readonly("events", &Events);
   BindViews(c);
 }
@@ -501,6 +513,8 @@ void RegisterExceptions(py::module_& m) {
     } catch (const rn::ExportError& e) {
       PyErr_SetString(PyExc_ValueError, e.what());
     } catch (const rn::SceneError& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    } catch (const rn::StateArchiveError& e) {
       PyErr_SetString(PyExc_ValueError, e.what());
     } catch (const rn::OutputError& e) {
       PyErr_SetString(PyExc_OSError, e.what());

@@ -72,6 +72,8 @@ int RunCommand(const CliCommands& c) {
   options.progress = !c.quiet;
   options.render = !c.no_render;
   options.warnings = true;
+  options.checkpoint_every = c.checkpoint_every;
+  options.resume = c.resume;
   const RunResult r = RunExperiment(config, options);
   const auto& m = r.summary["metrics"];
   const std::string sigma = m.is_object() && m["sigma_f_mean"].is_number()
@@ -245,6 +247,25 @@ void AddExportCommand(CLI::App& app, CliCommands* c) {
                             "write into an existing non-empty directory");
 }
 
+namespace {
+
+// run --checkpoint-every S, --resume (docs/ARCHITECTURE.md, "Checkpoint and resume").
+void AddCheckpointOptions(CLI::App* run, CliCommands* c) {
+  run->add_option("--checkpoint-every", c->checkpoint_every,
+                  "write a checkpoint every S simulated seconds into the run directory "
+                  "(checkpoint.mjfstate, replaced atomically): MuJoCo's state, every plugin's, "
+                  "the sensors, estimator, wind, metrics and outputs; per-agent execution, "
+                  "threads > 1 and video are refused at startup")
+      ->check(CLI::PositiveNumber);
+  run->add_flag("--resume", c->resume,
+                "continue a killed run from the last checkpoint in its run directory (the same "
+                "experiment file and --set options: the config's sha256 is checked); the output "
+                "files end byte for byte as an uninterrupted run's")
+      ->excludes("--overwrite");
+}
+
+}  // namespace
+
 void AddCommands(CLI::App& app, CliCommands* c) {
   app.set_version_flag("--version", VersionText);
   app.require_subcommand(1);
@@ -265,6 +286,7 @@ void AddCommands(CLI::App& app, CliCommands* c) {
       ->add_option("--threads", c->run_threads,
                    "physics partitions stepped in parallel (default: [run] threads, 1)")
       ->check(IntegerOption(1, kMaxThreads));
+  AddCheckpointOptions(c->run, c);
 
   c->check = app.add_subcommand(
       "check", "Check an experiment file (config, model, plugins, topology) without running it");

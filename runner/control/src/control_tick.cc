@@ -61,9 +61,16 @@ void ControlTick::RunSwarmStages(int64_t step, const std::vector<mjfVehicleState
                                  const struct mjModel_* model, const struct mjData_* data) {
   const double time = static_cast<double>(step) * timestep_;
   sensors_->Measure(step, time, truth, &measured_);
+  SetTickContext(step, model, data);
+  RunGuidanceAndFormation(tick_ctx_, truth);
+  RequireFiniteSetpoints(time);
+}
+
+void ControlTick::SetTickContext(int64_t step, const struct mjModel_* model,
+                                 const struct mjData_* data) {
   mjfStepContext& ctx = tick_ctx_;
   ctx = mjfStepContext{};
-  ctx.time = time;
+  ctx.time = static_cast<double>(step) * timestep_;
   ctx.step = step;
   ctx.timestep = timestep_;
   ctx.n_vehicles = n_vehicles();
@@ -73,8 +80,19 @@ void ControlTick::RunSwarmStages(int64_t step, const std::vector<mjfVehicleState
   ctx.data = data;
   ctx.error = plugin_error_.data();
   ctx.error_size = plugin_error_.size();
-  RunGuidanceAndFormation(ctx, truth);
-  RequireFiniteSetpoints(time);
+}
+
+void ControlTick::RestoreOutputs(int64_t step, const std::vector<mjfVehicleState>& measured,
+                                 const std::vector<double>& controls, const struct mjModel_* model,
+                                 const struct mjData_* data) {
+  if (measured.size() != measured_.size() || controls.size() != controls_.size()) {
+    throw SimulationError("a saved tick of " + std::to_string(measured.size()) +
+                          " vehicles cannot be restored into one of " +
+                          std::to_string(measured_.size()));
+  }
+  measured_ = measured;
+  controls_ = controls;
+  SetTickContext(step, model, data);
 }
 
 void ControlTick::RunGuidanceAndFormation(mjfStepContext& ctx,

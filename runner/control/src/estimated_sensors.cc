@@ -155,4 +155,20 @@ void EstimatedSensors::EstimateOne(int vehicle, int64_t step, double time) {
   }
 }
 
+void EstimatedSensors::VisitState(StateArchive& archive) {
+  archive(models_, held_, estimates_);
+  for (auto& estimator : estimators_) {
+    std::vector<double> state(estimator->state_size());
+    const size_t expected = state.size();
+    if (!archive.loading() && expected > 0) estimator->GetState(state.data());
+    archive(state);
+    if (state.size() != expected) {
+      throw StateArchiveError(
+          std::string("the saved state of estimator '") + estimator->descriptor().name +
+          "' holds " + std::to_string(state.size()) + " numbers, not " + std::to_string(expected));
+    }
+    if (archive.loading() && expected > 0) estimator->SetState(state.data());
+  }
+}
+
 }  // namespace mjf::runner

@@ -31,6 +31,8 @@ class MeasuredSensors final : public SensorStage {
                std::vector<mjfVehicleState>* measured) override {
     for (size_t i = 0; i < models_.size(); ++i) models_[i].Measure(step, truth[i], &(*measured)[i]);
   }
+  bool saves_state() const override { return true; }
+  void VisitState(StateArchive& archive) override { archive(models_); }
 
  private:
   std::vector<realism::SensorModel> models_;
@@ -50,6 +52,8 @@ class WindDrag final : public WindStage {
       for (int k = 0; k < 3; ++k) (*force)[3 * i + k] += f[k];
     }
   }
+  bool saves_state() const override { return true; }
+  void VisitState(StateArchive& archive) override { archive(field_); }
   const std::vector<std::array<double, 3>>& wind() const override {
     static const std::vector<std::array<double, 3>> kCalm;
     return wind_ ? *wind_ : kCalm;

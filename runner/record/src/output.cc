@@ -28,7 +28,8 @@ constexpr const char* kMarker = ".mjformation-run";
 // interrupted atomic write. Anything else is the user's and stops --overwrite.
 bool IsRunEntry(const fs::directory_entry& e) {
   static const char* const kFiles[] = {kMarker,          "config.toml",  "scene.xml",
-                                       "timeseries.csv", "summary.json", "video.mp4"};
+                                       "timeseries.csv", "summary.json", "video.mp4",
+                                       kCheckpointFile};
   const std::string name = e.path().filename().string();
   for (const char* f : kFiles) {
     if (name == f) return !e.is_symlink();
@@ -149,9 +150,16 @@ char* FormatG9(char* p, char* end, double v) {
   return p;
 }
 
-RunDirectory::RunDirectory(const std::string& path, bool overwrite) : path_(path) {
+RunDirectory::RunDirectory(const std::string& path, bool overwrite, bool resume) : path_(path) {
   std::error_code ec;
   const fs::path dir(path);
+  if (resume) {
+    if (!fs::is_regular_file(dir / kMarker) || fs::is_symlink(dir / kMarker)) {
+      throw OutputError(path + ": not a mjformation run directory (no " + kMarker +
+                        " marker): nothing to resume; run without --resume");
+    }
+    return;
+  }
   try {
     if (fs::exists(dir) && !fs::is_directory(dir)) {
       throw OutputError(path + ": exists and is not a directory; choose another --out");
@@ -189,14 +197,15 @@ void RunDirectory::WriteText(const std::string& name, const std::string& text) c
 
 TimeseriesWriter::TimeseriesWriter(const std::string& path, int n_vehicles, bool measured,
                                    bool wind, const std::vector<std::string>& extra_columns,
-                                   bool estimated)
+                                   bool estimated, bool resume)
     : path_(path),
       n_extra_(extra_columns.size()),
       measured_(measured),
       wind_(wind),
       estimated_(estimated) {
-  file_ = std::fopen(path.c_str(), "wb");
+  file_ = std::fopen(path.c_str(), resume ? "r+b" : "wb");
   if (!file_) throw OutputError(path + ": cannot write: " + std::strerror(errno));
+  if (resume) return;  // the header is in the file already; Rewind places the next row
   static const char* const kColumns[] = {"px",     "py",   "pz",    "vx",     "vy",
                                          "vz",     "roll", "pitch", "yaw",    "ax_cmd",
                                          "ay_cmd", "sx",   "sy",    "slot_x", "slot_y"};
@@ -390,6 +399,26 @@ void TimeseriesWriter::Flush() {
   }
   buffer_.clear();
   if (std::fflush(file_) != 0) throw OutputError(path_ + ": write failed: " + std::strerror(errno));
+}
+
+uint64_t TimeseriesWriter::Checkpoint() {
+  Flush();
+  const off_t length = ftello(file_);
+  if (length < 0) throw OutputError(path_ + ": cannot tell its length: " + std::strerror(errno));
+  return static_cast<uint64_t>(length);
+}
+
+void TimeseriesWriter::Rewind(uint64_t length) {
+  struct stat info {};
+  if (fstat(fileno(file_), &info) != 0 || static_cast<uint64_t>(info.st_size) < length) {
+    throw OutputError(path_ + ": shorter than the checkpoint recorded (" + std::to_string(length) +
+                      " bytes): the run directory was changed since; start the run afresh "
+                      "(--overwrite) instead of --resume");
+  }
+  if (ftruncate(fileno(file_), static_cast<off_t>(length)) != 0 ||
+      fseeko(file_, static_cast<off_t>(length), SEEK_SET) != 0) {
+    throw OutputError(path_ + ": cannot cut back to the checkpoint: " + std::strerror(errno));
+  }
 }
 
 void TimeseriesWriter::Close() {

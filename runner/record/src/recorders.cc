@@ -19,6 +19,10 @@
 
 namespace mjf::runner {
 
+void Recorder::VisitState(StateArchive&) {
+  throw StateArchiveError("a recorder of this run does not save its state");
+}
+
 namespace {
 
 // The leader's measured acceleration against Assumption 1 (summary.json "leader_acceleration").
@@ -32,6 +36,7 @@ class LeaderAccelerationRecorder final : public Recorder {
     (*summary)["leader_acceleration"] = monitor_.Summary();
   }
   const LeaderAccelerationMonitor& monitor() const { return monitor_; }
+  void VisitState(StateArchive& archive) override { archive(monitor_); }
 
  private:
   LeaderAccelerationMonitor monitor_;
@@ -42,13 +47,13 @@ class LeaderAccelerationRecorder final : public Recorder {
 class TimeseriesRecorder final : public Recorder {
  public:
   TimeseriesRecorder(const Simulation& sim, const RunDirectory& dir,
-                     const LeaderAccelerationRecorder* leader)
+                     const LeaderAccelerationRecorder* leader, bool resume)
       : leader_(leader),
         writer_(dir.Path("timeseries.csv"), sim.n_vehicles(), sim.config().sensors.enabled(),
                 sim.config().wind.enabled(),
                 leader ? std::vector<std::string>{"leader_ax", "leader_ay"}
                        : std::vector<std::string>{},
-                sim.estimation() != nullptr),
+                sim.estimation() != nullptr, resume),
         every_(NearestSteps(1.0 / sim.config().record_rate, sim.config().timestep)),
         last_(sim.total_steps()) {}
   bool Wants(int64_t step) const override { return step % every_ == 0 || step == last_; }
@@ -57,6 +62,12 @@ class TimeseriesRecorder final : public Recorder {
                   leader_ ? leader_->monitor().current().data() : nullptr);
   }
   void Finish() override { writer_.Close(); }
+  // The file's length at the checkpoint; on resume the file is cut back to it.
+  void VisitState(StateArchive& archive) override {
+    uint64_t length = archive.loading() ? 0 : writer_.Checkpoint();
+    archive(length);
+    if (archive.loading()) writer_.Rewind(length);
+  }
 
  private:
   const LeaderAccelerationRecorder* leader_;  // owned by the same recorder list
@@ -91,6 +102,7 @@ class Scenery {
     trails_.Add(Positions(sim));
   }
   int64_t every() const { return every_; }
+  void VisitState(StateArchive& archive) { archive(trails_, last_step_); }
   render::Overlay Overlay(const Simulation& sim, const std::vector<double>& slots) const {
     std::vector<std::array<double, 2>> vehicle_slots;  // [vehicle]; the leader's is not drawn
     for (int i = 0; i < sim.n_vehicles(); ++i)
@@ -148,6 +160,11 @@ class SnapshotRecorder final : public Recorder {
   }
   void Summarize(nlohmann::ordered_json* summary) const override {
     (*summary)["snapshots"] = files_;
+  }
+  // The trails drawn so far and the files written (the pictures themselves stay on disk).
+  void VisitState(StateArchive& archive) override {
+    scenery_->VisitState(archive);
+    archive(files_);
   }
 
  private:
@@ -207,6 +224,15 @@ class SafetyRecorder final : public Recorder {
   // Only a run with an event gains "events", so event-free runs keep their summary as it was.
   void Summarize(nlohmann::ordered_json* summary) const override {
     if (!monitor_.events().empty()) (*summary)["events"] = monitor_.Summary();
+  }
+  // The events seen so far and their marks for the pictures.
+  void VisitState(StateArchive& archive) override {
+    archive(monitor_);
+    size_t n = marks_ ? marks_->size() : 0;
+    archive(n);
+    if (!marks_) return;
+    if (archive.loading()) marks_->resize(n);
+    for (auto& mark : *marks_) archive(mark.pos, mark.label);
   }
 
  private:
@@ -299,6 +325,7 @@ class EstimationRecorder final : public Recorder {
   }
   bool Wants(int64_t) const override { return false; }
   void Record(const Frame&) override {}
+  void VisitState(StateArchive& archive) override { archive(metrics_); }
   void Summarize(nlohmann::ordered_json* summary) const override {
     std::vector<std::array<double, 3>> counts;  // as the run ended
     for (const auto& plugin : sim_.estimation()->estimators()) counts.push_back(Counts(*plugin));
@@ -344,7 +371,7 @@ std::vector<std::unique_ptr<Recorder>> MakeRecorders(const Simulation& sim, cons
   out.push_back(std::make_unique<SafetyRecorder>(sim, marks));
   if (sim.estimation()) out.push_back(std::make_unique<EstimationRecorder>(sim));
   if (options.record) {
-    out.push_back(std::make_unique<TimeseriesRecorder>(sim, *dir, leader_columns));
+    out.push_back(std::make_unique<TimeseriesRecorder>(sim, *dir, leader_columns, options.resume));
   }
   const RenderConfig& r = sim.config().render;
   auto scenery = std::make_shared<Scenery>(sim, marks);

@@ -13,11 +13,13 @@
 #include <csignal>
 #include <cstdio>
 #include <memory>
+#include <optional>
 
 #include "mjformation/record/engine_identity.hpp"
 #include "mjformation/record/metrics.hpp"
 #include "mjformation/record/output.hpp"
 #include "mjformation/record/recorders.hpp"
+#include "mjformation/run/checkpoint.hpp"
 #include "mjformation/run/interrupt.hpp"
 #include "mjformation/run/summary.hpp"
 #include "mjformation/sim/simulation.hpp"
@@ -64,17 +66,22 @@ std::string SignalName(int signal) {
 
 // The step loop: controls, frames for the recorders that want them, integration. Throws
 // whatever a step or a recorder throws; stops early (returns) on an interrupt request.
+// A resumed run starts at its checkpoint's step; checkpoints are taken between steps, before
+// the controls of the step they are due at.
 void StepLoop(Simulation& sim, std::vector<std::unique_ptr<Recorder>>& recorders,
-              OnlineMetrics& metrics, ProgressLine& progress, RunResult* result) {
+              OnlineMetrics& metrics, ProgressLine& progress, const CheckpointPlan& plan,
+              RunResult* result) {
   const int64_t record_every = NearestSteps(1.0 / sim.config().record_rate, sim.config().timestep);
   std::vector<double> slots(2 * static_cast<size_t>(sim.n_vehicles()));
   const auto start = Clock::now();
-  for (int64_t step = 0; step <= sim.total_steps(); ++step) {
+  for (int64_t step = sim.step_index(); step <= sim.total_steps(); ++step) {
     if (InterruptRequested()) {
       result->signal = InterruptSignal();
       result->error = "interrupted by " + SignalName(result->signal);
       return;
     }
+    KillPointForTests(step);
+    if (CheckpointDue(plan, sim, step)) WriteCheckpoint(plan, sim, metrics, recorders);
     sim.ComputeControls();
     for (const auto& r : recorders) r->OnStep(sim);
     const bool record_tick = step % record_every == 0 || step == sim.total_steps();
@@ -111,14 +118,16 @@ void Guarded(RunResult* result, Action action) {
 
 // Everything after the run directory exists: recorders, steps, closing. Never throws.
 void RunInDirectory(Simulation& sim, const RunDirectory* dir, const RunOptions& options,
+                    const CheckpointPlan& plan, std::optional<StateArchive>& resumed,
                     RunResult* result, nlohmann::ordered_json* recorder_summary) {
   std::vector<std::unique_ptr<Recorder>> recorders;
   OnlineMetrics metrics(sim);
   ProgressLine progress(options.progress, sim.config().name, sim.config().duration);
   const auto start = Clock::now();
   Guarded(result, [&] {
-    recorders = MakeRecorders(sim, dir, {options.record, options.render});
-    StepLoop(sim, recorders, metrics, progress, result);
+    recorders = MakeRecorders(sim, dir, {options.record, options.render, plan.resume});
+    if (resumed) ResumeRecording(*resumed, metrics, recorders);
+    StepLoop(sim, recorders, metrics, progress, plan, result);
   });
   progress.Finish();
   result->wall_time_s = std::chrono::duration<double>(Clock::now() - start).count();
@@ -128,6 +137,18 @@ void RunInDirectory(Simulation& sim, const RunDirectory* dir, const RunOptions& 
   for (auto& r : recorders) Guarded(result, [&] { r->Finish(); });
   for (const auto& r : recorders) r->Summarize(recorder_summary);
   (*recorder_summary)["metrics"] = metrics.Summary(sim);
+}
+
+// What --checkpoint-every and --resume ask for; refused before anything runs when a stage
+// cannot be saved.
+CheckpointPlan MakeCheckpointPlan(const Simulation& sim, const RunOptions& options) {
+  CheckpointPlan plan{options.checkpoint_every, options.resume, "", ""};
+  if (plan.every_s <= 0 && !plan.resume) return plan;
+  if (options.out_dir.empty()) throw ConfigError("checkpoints need a run directory (--out)");
+  RequireCheckpointable(sim, options.render);
+  plan.path = options.out_dir + "/" + kCheckpointFile;
+  plan.config_sha256 = Sha256Hex(ConfigEcho(sim.config()));
+  return plan;
 }
 
 }  // namespace
@@ -144,9 +165,13 @@ RunResult RunExperiment(const ExperimentConfig& config, const RunOptions& option
     for (const auto& w : sim.warnings())
       std::fprintf(stderr, "mjformation: warning: %s\n", w.c_str());
   }
+  const CheckpointPlan plan = MakeCheckpointPlan(sim, options);
+  std::optional<StateArchive>
+      resumed;  // read before anything is written: a mismatch changes nothing
+  if (plan.resume) resumed = ResumeSimulation(plan, sim);
   std::unique_ptr<RunDirectory> dir;
   if (!options.out_dir.empty()) {
-    dir = std::make_unique<RunDirectory>(options.out_dir, options.overwrite);
+    dir = std::make_unique<RunDirectory>(options.out_dir, options.overwrite, options.resume);
   }
   RunResult result;
   nlohmann::ordered_json recorded = nlohmann::ordered_json::object();
@@ -155,7 +180,9 @@ RunResult RunExperiment(const ExperimentConfig& config, const RunOptions& option
     dir->WriteText("config.toml", ConfigEcho(config));
     dir->WriteText("scene.xml", sim.scene_xml());
   });
-  if (result.error.empty()) RunInDirectory(sim, dir.get(), options, &result, &recorded);
+  if (result.error.empty()) {
+    RunInDirectory(sim, dir.get(), options, plan, resumed, &result, &recorded);
+  }
   result.summary = BuildSummary(sim, result, recorded);
   try {
     if (dir) dir->WriteText("summary.json", result.summary.dump(2) + "\n");

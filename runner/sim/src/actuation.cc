@@ -83,6 +83,7 @@ class WrenchActuation final : public Actuation {
         rotor_state_(bindings.vehicles.size() * bindings.actuators_per_vehicle, 0.0) {}
   void Apply(const std::vector<double>& controls, mjData* data) override;
   void Advance(const std::vector<double>& controls) override;
+  void VisitState(StateArchive& archive) override { archive(rotor_state_); }
   bool UsesAppliedForces() const override { return true; }
 
  private:

@@ -25,7 +25,9 @@ struct CliCommands {
   bool overwrite = false;
   bool no_render = false;
   bool quiet = false;
-  int run_threads = 0;  // --threads (0: the file's [run] threads)
+  int run_threads = 0;          // --threads (0: the file's [run] threads)
+  double checkpoint_every = 0;  // --checkpoint-every S (0: none)
+  bool resume = false;          // --resume
   // bench
   std::vector<int> bench_followers;
   double bench_duration = 0;

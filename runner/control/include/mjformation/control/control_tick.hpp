@@ -82,6 +82,14 @@ class ControlTick {
   size_t StateSize() const;
   void GetState(double* out) const;
   void SetState(const double* in);
+  // The sensor stage's own state (noise streams, latency buffers), both ways (checkpoints).
+  void VisitSensorState(StateArchive& archive) { sensors_->VisitState(archive); }
+  // A tick restored between its two parts (the Python Simulation stands after a tick): what it
+  // measured and the controls it computed, and the context the attitude stage runs in, as
+  // RunSwarmStages of `step` left them, without running a plugin.
+  void RestoreOutputs(int64_t step, const std::vector<mjfVehicleState>& measured,
+                      const std::vector<double>& controls, const struct mjModel_* model,
+                      const struct mjData_* data);
 
   int n_vehicles() const { return static_cast<int>(setpoints_.size()); }
   int actuators_per_vehicle() const { return actuators_per_vehicle_; }
@@ -95,6 +103,7 @@ class ControlTick {
 
  private:
   void RunGuidanceAndFormation(mjfStepContext& ctx, const std::vector<mjfVehicleState>& truth);
+  void SetTickContext(int64_t step, const struct mjModel_* model, const struct mjData_* data);
   // The channel stage: each follower's instance, handed only its own state and messages.
   void RunAgents(const mjfStepContext& ctx, const std::vector<mjfVehicleState>& truth);
   void RunAgentsOverLinks(mjfStepContext& agent_ctx, const mjfStepContext& ctx);

@@ -37,6 +37,10 @@ class EstimatedSensors final : public SensorStage {
                    const MakeEstimator& make);
   void Measure(int64_t step, double time, const std::vector<mjfVehicleState>& truth,
                std::vector<mjfVehicleState>* measured) override;
+  // Checkpoints: the sensor models, the held samples and estimates, and every estimator
+  // instance's ABI state (a plugin that declares none has none).
+  bool saves_state() const override { return true; }
+  void VisitState(StateArchive& archive) override;
 
   // Per vehicle, as of the last Measure: the estimate (with covariance) and the held samples.
   const std::vector<mjfEstimate>& estimates() const { return estimates_; }

@@ -16,6 +16,8 @@
 #include <memory>
 #include <vector>
 
+#include "mjformation/config/state_archive.hpp"
+
 namespace mjf::runner {
 
 struct ExperimentConfig;
@@ -29,6 +31,10 @@ class SensorStage {
                        std::vector<mjfVehicleState>* measured) = 0;
   // True when Measure keeps nothing from one call to the next (a tick's state then omits it).
   virtual bool stateless() const { return false; }
+  // Checkpoints (state_archive.hpp): true when VisitState saves and restores all the stage
+  // keeps (a stateless stage has nothing to save).
+  virtual bool saves_state() const { return stateless(); }
+  virtual void VisitState(StateArchive& archive) { (void)archive; }
 };
 
 // Perfect sensors: the controllers see the truth, bit for bit (the default).
@@ -47,6 +53,9 @@ class ForceStage {
   // Adds this stage's force (N, world frame) to force[3 * i + k] for every vehicle i.
   virtual void AddForces(int64_t step, double time, const std::vector<mjfVehicleState>& truth,
                          std::vector<double>* force) = 0;
+  // Checkpoints, as SensorStage's.
+  virtual bool saves_state() const { return false; }
+  virtual void VisitState(StateArchive& archive) { (void)archive; }
 };
 
 // A force stage that knows the wind at each vehicle (recorded with [wind] on).

@@ -22,6 +22,12 @@ class DrydenTurbulence {
 
   // The gust velocity (u, v, w) in m/s now; then advances one timestep.
   std::array<double, 3> Step();
+  // The filters' states and the noise stream, both ways (checkpoints); the coefficients are
+  // fixed by the constructor.
+  template <typename Archive>
+  void VisitState(Archive& a) {
+    a(x_u_, v_.x1, v_.x2, w_.x1, w_.x2, normal_);
+  }
 
  private:
   // u: x' = -x/tau + sigma sqrt(2/tau) eta (eta unit white noise), exact: x+ = e x + s n.

@@ -46,6 +46,12 @@ class Gaussian {
     return x * scale;
   }
 
+  // The engine and the spare normal, both ways (checkpoints: the runner's StateArchive).
+  template <typename Archive>
+  void VisitState(Archive& a) {
+    a(rng_, spare_, has_spare_);
+  }
+
  private:
   // Uniform in [0, 1) from the raw 53 high bits of a draw.
   double Uniform() { return static_cast<double>(rng_() >> 11) * 0x1.0p-53; }

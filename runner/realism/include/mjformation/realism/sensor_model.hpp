@@ -50,6 +50,23 @@ class SensorModel {
   // The current bias of a channel (for tests and diagnostics).
   const std::array<double, 3>& Bias(Channel c) const { return channels_[static_cast<int>(c)].bias; }
 
+  // Everything Measure and Accelerometer carry from one step to the next, both ways
+  // (checkpoints: the runner's StateArchive): the noise streams, each channel's latency buffer,
+  // held sample, bias walk, wander and phases; what the constructor fixes is not state.
+  template <typename Archive>
+  void VisitState(Archive& a) {
+    a(normal_, next_step_, own_normal_, common_normal_, accel_bias_);
+    a(previous_truth_, previous_measured_);
+    for (auto& ch : channels_) {
+      a(ch.history, ch.held, ch.bias, ch.last_sample, ch.write_slot, ch.phase, ch.bias_count);
+      a(ch.wander_own, ch.wander_common, ch.fresh);
+    }
+    size_t fresh = fresh_.size();
+    a(fresh);
+    fresh_.resize(fresh);
+    for (auto& f : fresh_) a(f.channel, f.taken_step, f.value, f.stated_std);
+  }
+
  private:
   struct ChannelState {
     ChannelNoise noise;

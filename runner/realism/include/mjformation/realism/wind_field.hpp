@@ -28,6 +28,12 @@ class WindField {
   // The rotation of the turbulence's (u, v, w) axes into the world: u along the horizontal mean
   // wind (world x when calm), v horizontal to its left, w up.
   const std::array<double, 2>& along() const { return along_; }
+  // The held samples, the turbulence filters and the last wind, both ways (checkpoints); the
+  // gusts are functions of the step.
+  template <typename Archive>
+  void VisitState(Archive& a) {
+    a(gust_uvw_, turbulence_, shared_uvw_, wind_);
+  }
 
  private:
   WindParams params_;

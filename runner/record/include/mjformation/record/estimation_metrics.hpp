@@ -41,6 +41,14 @@ class EstimationMetrics {
   // The summary block. counts[i]: vehicle i's {fused, gated, too_old} (NaN: not reported), or
   // empty when the estimator reports none.
   nlohmann::ordered_json Summary(const std::vector<std::array<double, 3>>& counts) const;
+  // The sums per vehicle, both ways (checkpoints).
+  template <typename Archive>
+  void VisitState(Archive& a) {
+    for (Sums& s : sums_) {
+      a(s.position_sq, s.velocity_sq, s.nees, s.relative_sq, s.samples, s.nees_samples);
+      a(s.nees_in_band);
+    }
+  }
 
  private:
   struct Sums {

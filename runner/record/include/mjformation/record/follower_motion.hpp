@@ -44,6 +44,13 @@ class FollowerMotion {
   // formation's rate, <= 0.075 Hz here) shows at f +- f_c.
   double DominantHz(int follower) const;
 
+  // The sums, both ways (checkpoints); phasor_ is one sample's scratch.
+  template <typename Archive>
+  void VisitState(Archive& a) {
+    a(samples_, weight_, weight_sum_, phasor_sum_, spectrum_, tilt_sq_sum_, tilt_x_sum_);
+    a(tilt_y_sum_, thrust_mean_, thrust_m2_);
+  }
+
  private:
   int n_, n_spectra_, bins_;
   double t0_, t1_;

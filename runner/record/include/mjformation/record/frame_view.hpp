@@ -27,6 +27,10 @@ class TrailBuffer {
   void Add(const std::vector<Vec3>& positions);
   void Clear();
   const std::vector<std::deque<Vec3>>& trails() const { return trails_; }
+  template <typename Archive>
+  void VisitState(Archive& a) {
+    a(trails_);
+  }
 
  private:
   std::vector<std::deque<Vec3>> trails_;

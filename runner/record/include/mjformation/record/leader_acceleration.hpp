@@ -30,6 +30,12 @@ class LeaderAccelerationMonitor {
   // the fraction of time outside them, the largest excess beyond them and the first time
   // Assumption 1 is broken (null: never).
   nlohmann::ordered_json Summary() const;
+  // The last velocity and the running extremes and counts, both ways (checkpoints).
+  template <typename Archive>
+  void VisitState(Archive& a) {
+    a(have_previous_, previous_vel_, current_, min_, max_, samples_, outside_, max_excess_);
+    a(first_violation_time_);
+  }
 
   // Tolerance on the bounds (m/s^2): the finite difference of a body commanded exactly at a
   // bound differs from it by round-off (~1e-13); 1e-6 is far above that and far below any

@@ -26,6 +26,15 @@ class OnlineMetrics {
   // Every physics step: counts time with any actuator at a limit of its range.
   void StepControls(const Simulation& sim);
   nlohmann::ordered_json Summary(const Simulation& sim) const;
+  // The accumulators, both ways (checkpoints: mjformation/config/state_archive.hpp); what the
+  // constructor fixes and the scratch of one sample are not state.
+  template <typename Archive>
+  void VisitState(Archive& a) {
+    a(sigma_sum_, sigma_count_, sigma_initial_, sigma_final_, have_initial_, min_separation_);
+    a(last_time_, sample_period_, have_sliding_, last_violation_time_, max_abs_s_since_violation_);
+    a(max_abs_s_ever_, max_abs_s_in_window_, final_errors_, saturated_steps_);
+    a(max_follower_tilt_in_window_, order_, motion_, transient_);
+  }
 
  private:
   void SampleFollowerMotion(const Simulation& sim, double t);  // in the window, record ticks

@@ -32,9 +32,14 @@ void CheckRunDirectory(const std::string& dir);
 
 // A run directory. Refuses to reuse a non-empty directory unless `overwrite` (nothing already
 // written is lost by accident); creates snapshots/.
+// The last checkpoint of a run (run --checkpoint-every), in its run directory.
+inline constexpr const char* kCheckpointFile = "checkpoint.mjfstate";
+
 class RunDirectory {
  public:
-  RunDirectory(const std::string& path, bool overwrite);
+  // resume: the run directory of a checkpointed run, opened as it is (it must be one: the
+  // marker and only the runner's own files); nothing is deleted.
+  RunDirectory(const std::string& path, bool overwrite, bool resume = false);
   std::string Path(const std::string& name) const { return path_ + "/" + name; }
   // Writes name + ".tmp" then renames: a file is whole or absent.
   void WriteText(const std::string& name, const std::string& text) const;
@@ -56,8 +61,13 @@ class TimeseriesWriter {
   // an [estimator] other than passthrough.
   TimeseriesWriter(const std::string& path, int n_vehicles, bool measured = false,
                    bool wind = false, const std::vector<std::string>& extra_columns = {},
-                   bool estimated = false);
+                   bool estimated = false, bool resume = false);
   ~TimeseriesWriter();
+  // Checkpoints: Checkpoint() puts every row written so far on disk and returns the file's
+  // length; a writer made with `resume` opens the existing file without writing the header, and
+  // Rewind(length) cuts it back to a checkpoint's length (the rows after it are written again).
+  uint64_t Checkpoint();
+  void Rewind(uint64_t length);
   // extra: one value per extra column (NaN: an empty cell), or nullptr when there are none.
   void Write(const Simulation& sim, double sigma_f, const std::vector<double>& slots,
              const double* extra = nullptr);

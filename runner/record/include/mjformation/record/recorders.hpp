@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "mjformation/config/experiment.hpp"
+#include "mjformation/config/state_archive.hpp"
 
 namespace mjf::runner {
 
@@ -41,11 +42,16 @@ class Recorder {
   virtual void Finish() {}
   // Adds what it wrote to summary.json (e.g. the snapshot files).
   virtual void Summarize(nlohmann::ordered_json* summary) const { (void)summary; }
+  // What it carries from one step to the next (accumulators, the length of its file), both
+  // ways, for checkpoints (run --checkpoint-every, --resume). Loading a file's length cuts the
+  // file back to it. A recorder that cannot be saved throws; the run refuses it at startup.
+  virtual void VisitState(StateArchive& archive);
 };
 
 struct RecorderOptions {
-  bool record = true;  // timeseries.csv
-  bool render = true;  // snapshots and video as configured
+  bool record = true;   // timeseries.csv
+  bool render = true;   // snapshots and video as configured
+  bool resume = false;  // continue the files of a checkpointed run (VisitState then loads)
 };
 
 // The recorders the experiment asks for, writing into `dir` (none when dir is null).

@@ -27,6 +27,10 @@ struct SafetyEvent {
   std::vector<int> vehicles;  // 0 = leader, i = follower i
   double value = 0;           // tilt (deg), separation (m), altitude (m) or distance outside (m)
   double clearance = 0;       // pairs: separation minus both bounding radii (m); 0 otherwise
+  template <typename Archive>
+  void VisitState(Archive& a) {
+    a(kind, time_s, vehicles, value, clearance);
+  }
 };
 
 // "follower 6 flipped at 34.19 s (tilt 95.2 deg)": for messages and the closing line.
@@ -53,6 +57,13 @@ class SafetyMonitor {
   nlohmann::ordered_json Summary() const;
 
   static constexpr size_t kMaxListed = 1000;
+
+  // What was seen so far, both ways (checkpoints); the vehicles' order along x is kept too,
+  // since the next sort starts from it. found_ .. range_count_ are one check's scratch.
+  template <typename Archive>
+  void VisitState(Archive& a) {
+    a(airborne_, seen_, order_, events_, total_);
+  }
 
  private:
   // A pair closer than the near-miss margin or its radii, found by Scan.

@@ -25,6 +25,11 @@ class TransientMetrics {
   // 1 m, 0 if never; null if still farther at the last tick),
   // peak_demanded_accel, peak_delivered_accel (m/s^2, per follower) to the metrics object.
   void AddTo(nlohmann::ordered_json* metrics) const;
+  // Each follower's running values, both ways (checkpoints).
+  template <typename Archive>
+  void VisitState(Archive& a) {
+    a(followers_);
+  }
 
  private:
   struct Follower {
@@ -35,6 +40,11 @@ class TransientMetrics {
     double last_t = 0.0, last_vel[2] = {0.0, 0.0};
     bool has_last = false;
     bool has_sample = false;
+    template <typename Archive>
+    void VisitState(Archive& a) {
+      a(max_distance_after, last_outside, ever_outside, peak_demand, peak_delivered, last_t);
+      a(last_vel, has_last, has_sample);
+    }
   };
   std::vector<Follower> followers_;
 };

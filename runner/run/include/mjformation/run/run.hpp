@@ -12,12 +12,14 @@
 namespace mjf::runner {
 
 struct RunOptions {
-  std::string out_dir;     // the run directory; empty: write nothing (benchmarks)
-  bool overwrite = false;  // replace an existing run directory
-  bool progress = false;   // progress line on stderr
-  bool render = true;      // snapshots and video as configured
-  bool record = true;      // timeseries.csv
-  bool warnings = false;   // the setup's warnings (torque authority) on stderr before the run
+  std::string out_dir;          // the run directory; empty: write nothing (benchmarks)
+  bool overwrite = false;       // replace an existing run directory
+  bool progress = false;        // progress line on stderr
+  bool render = true;           // snapshots and video as configured
+  bool record = true;           // timeseries.csv
+  bool warnings = false;        // the setup's warnings (torque authority) on stderr before the run
+  double checkpoint_every = 0;  // s of simulated time between checkpoints; 0: none
+  bool resume = false;          // continue from out_dir's checkpoint (checkpoint.hpp)
 };
 
 struct RunResult {

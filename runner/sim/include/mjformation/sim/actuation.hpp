@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "mjformation/config/experiment.hpp"
+#include "mjformation/config/state_archive.hpp"
 #include "mjformation/scene/vehicle_binding.hpp"
 
 namespace mjf::runner {
@@ -26,6 +27,9 @@ class Actuation {
   virtual void Advance(const std::vector<double>& controls) = 0;
   // True when Apply writes qfrc_applied (the caller clears it once per step).
   virtual bool UsesAppliedForces() const = 0;
+  // What Advance carries from one step to the next (the wrench model's motor lags), both ways
+  // (checkpoints, state_archive.hpp); nothing for the actuators MuJoCo integrates itself.
+  virtual void VisitState(StateArchive& archive) { (void)archive; }
 };
 
 // The actuation model the experiment asks for.

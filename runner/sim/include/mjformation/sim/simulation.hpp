@@ -19,6 +19,7 @@
 
 #include "mjformation/config/config_error.hpp"
 #include "mjformation/config/experiment.hpp"
+#include "mjformation/config/state_archive.hpp"
 #include "mjformation/control/control_tick.hpp"
 #include "mjformation/control/control_wiring.hpp"
 #include "mjformation/control/errors.hpp"
@@ -62,6 +63,22 @@ class Simulation {
   // Integrates one step (mj_step2) and checks the new state: non-finite values or MuJoCo
   // warnings throw SimulationError.
   void Integrate();
+
+  // Checkpoints and Simulation.get_state (docs/ARCHITECTURE.md, "Checkpoint and resume"):
+  // throws ConfigError naming the first stage whose state is not saved yet and the key that
+  // switches it on; call before anything runs.
+  void RequireSavable() const;
+  // Everything the next step depends on, both ways (state_archive.hpp): the step index,
+  // MuJoCo's integration state (mj_getState, mjSTATE_INTEGRATION, plugin_state included), the
+  // control tick (its setpoint bus and every plugin instance's ABI state) and the actuation's
+  // own state. Between steps only (before ComputeControls); RequireSavable must pass.
+  void VisitState(StateArchive& archive);
+  // The same taken at a control tick (after ComputeControls or ComputeSetpoints, where the
+  // Python Simulation and DrivenSimulation stand): also the tick's outputs (true and measured
+  // states, controls); on load MuJoCo's derived quantities are recomputed (mj_step1: positions,
+  // velocities, sensors, which read only the restored state) without running a controller
+  // again, so that the next ComputeActuation or Integrate continues bit for bit.
+  void VisitStateAtTick(StateArchive& archive);
 
   const ExperimentConfig& config() const { return config_; }
   const mjModel* model() const { return model_.get(); }

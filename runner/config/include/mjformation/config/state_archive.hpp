@@ -1,0 +1,215 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// The runner's own state as bytes, for checkpoints (`run --checkpoint-every`, `--resume`) and
+// the Python module's Simulation.get_state()/set_state(). One walk does both directions: a
+// class lists what it carries from one step to the next once,
+//
+//   template <typename Archive>
+//   void VisitState(Archive& a) { a(sums_, count_, events_, engine_); }
+//
+// and StateArchive writes it (Saving) or reads it back (Loading) in that order. Unlike the
+// plugin ABI's fixed-size double arrays (mjformation/plugin_state.hpp), the runner's
+// accumulators grow (safety events, trails), so containers carry their length. Numbers are
+// stored as their bytes (exact); random engines as their textual state (exact, the standard's
+// operator<<). A truncated or foreign archive throws StateArchiveError, never reads past the end.
+#ifndef MJFORMATION_CONFIG_STATE_ARCHIVE_HPP_
+#define MJFORMATION_CONFIG_STATE_ARCHIVE_HPP_
+
+#include <array>
+#include <complex>
+#include <cstdint>
+#include <cstring>
+#include <deque>
+#include <random>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <tuple>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+namespace mjf::runner {
+
+class StateArchiveError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class StateArchive {
+ public:
+  // Saving: an empty archive that grows. Loading: reads `bytes` from the start.
+  StateArchive() = default;
+  explicit StateArchive(std::string bytes) : bytes_(std::move(bytes)), loading_(true) {}
+
+  bool loading() const { return loading_; }
+  const std::string& bytes() const { return bytes_; }
+  // True when a loading archive was read to its end (a checkpoint holds nothing unread).
+  bool at_end() const { return cursor_ == bytes_.size(); }
+
+  template <typename T>
+  void operator()(T& value) {
+    Visit(value);
+  }
+  template <typename T, typename... Rest>
+  void operator()(T& first, Rest&... rest) {
+    Visit(first);
+    (Visit(rest), ...);
+  }
+
+  // Raw bytes, both ways.
+  void Bytes(void* data, size_t size) {
+    if (!loading_) {
+      bytes_.append(static_cast<const char*>(data), size);
+      return;
+    }
+    if (size > bytes_.size() - cursor_) {
+      throw StateArchiveError("the saved state ends early (" + std::to_string(bytes_.size()) +
+                              " bytes): the file is truncated or not a state of this run");
+    }
+    std::memcpy(data, bytes_.data() + cursor_, size);
+    cursor_ += size;
+  }
+
+  // A label written on save and checked on load: a state read by another layout fails here,
+  // naming the part, instead of loading garbage.
+  void Tag(const std::string& name) {
+    std::string seen = name;
+    Visit(seen);
+    if (seen != name) {
+      throw StateArchiveError("the saved state holds '" + seen + "' where '" + name +
+                              "' was expected: it was written by another version or "
+                              "configuration");
+    }
+  }
+
+ private:
+  template <typename T, typename = void>
+  struct HasVisitState : std::false_type {};
+  template <typename T>
+  struct HasVisitState<
+      T, std::void_t<decltype(std::declval<T&>().VisitState(std::declval<StateArchive&>()))>>
+      : std::true_type {};
+
+  // A length, checked on load against what is left (a corrupt length never allocates wildly).
+  size_t Length(size_t n, size_t element_bytes) {
+    uint64_t v = n;
+    Bytes(&v, sizeof(v));
+    if (loading_ && element_bytes > 0 && v > (bytes_.size() - cursor_) / element_bytes) {
+      throw StateArchiveError("the saved state holds a length of " + std::to_string(v) +
+                              " past its end: the file is corrupt");
+    }
+    return static_cast<size_t>(v);
+  }
+
+  template <typename Engine>
+  void RandomEngine(Engine& engine) {
+    std::string text;
+    if (!loading_) {
+      std::ostringstream out;
+      out << engine;
+      text = out.str();
+    }
+    Visit(text);
+    if (loading_) {
+      std::istringstream in(text);
+      in >> engine;
+      if (in.fail()) throw StateArchiveError("a random engine's saved state does not read back");
+    }
+  }
+
+  template <typename Container>
+  void Sequence(Container& c) {
+    const size_t n = Length(c.size(), 1);
+    if constexpr (std::is_default_constructible_v<typename Container::value_type>) {
+      if (loading_) c.resize(n);
+    } else if (n != c.size()) {
+      // Stages built from the configuration (one sensor model per vehicle): their number is
+      // fixed, never read from the archive.
+      throw StateArchiveError("the saved state holds " + std::to_string(n) + " stages where " +
+                              std::to_string(c.size()) + " were expected");
+    }
+    for (auto& element : c) Visit(element);
+  }
+
+  template <typename Set>
+  void Ordered(Set& s) {
+    const size_t n = Length(s.size(), 1);
+    if (!loading_) {
+      for (auto element : s) Visit(element);  // a copy: set elements are const
+      return;
+    }
+    s.clear();
+    for (size_t k = 0; k < n; ++k) {
+      typename Set::value_type element{};
+      Visit(element);
+      s.insert(std::move(element));
+    }
+  }
+
+  template <typename T>
+  static constexpr bool kIsEngine =
+      std::is_same_v<T, std::mt19937> || std::is_same_v<T, std::mt19937_64> ||
+      std::is_same_v<T, std::minstd_rand> || std::is_same_v<T, std::minstd_rand0>;
+
+  template <typename T>
+  struct IsSequence : std::false_type {};
+  template <typename T, typename A>
+  struct IsSequence<std::vector<T, A>> : std::true_type {};
+  template <typename T, typename A>
+  struct IsSequence<std::deque<T, A>> : std::true_type {};
+  template <typename T>
+  struct IsFixedArray : std::false_type {};
+  template <typename T, size_t N>
+  struct IsFixedArray<std::array<T, N>> : std::true_type {};
+  template <typename T>
+  struct IsOrdered : std::false_type {};
+  template <typename T, typename C, typename A>
+  struct IsOrdered<std::set<T, C, A>> : std::true_type {};
+  template <typename T>
+  struct IsPairLike : std::false_type {};
+  template <typename A, typename B>
+  struct IsPairLike<std::pair<A, B>> : std::true_type {};
+  template <typename... T>
+  struct IsPairLike<std::tuple<T...>> : std::true_type {};
+
+  template <typename T>
+  void Visit(T& value) {
+    if constexpr (HasVisitState<T>::value) {
+      value.VisitState(*this);
+    } else if constexpr (std::is_arithmetic_v<T> || std::is_enum_v<T>) {
+      Bytes(&value, sizeof(T));
+    } else if constexpr (std::is_same_v<T, std::string>) {
+      const size_t n = Length(value.size(), 1);
+      if (loading_) value.resize(n);
+      if (n > 0) Bytes(value.data(), n);
+    } else if constexpr (kIsEngine<T>) {
+      RandomEngine(value);
+    } else if constexpr (std::is_array_v<T> || IsFixedArray<T>::value) {
+      for (auto& element : value) Visit(element);
+    } else if constexpr (IsSequence<T>::value) {
+      Sequence(value);
+    } else if constexpr (IsOrdered<T>::value) {
+      Ordered(value);
+    } else if constexpr (IsPairLike<T>::value) {
+      std::apply([this](auto&... parts) { (Visit(parts), ...); }, value);
+    } else if constexpr (std::is_trivially_copyable_v<T>) {
+      // std::complex and the plugin ABI's plain structs (mjfVehicleState,
+      // mjfSetpoint): doubles and integers only, stored as their bytes.
+      Bytes(&value, sizeof(T));
+    } else {
+      static_assert(sizeof(T) == 0,
+                    "this member cannot be saved: give its type a VisitState member or visit "
+                    "its members one by one");
+    }
+  }
+
+  std::string bytes_;
+  bool loading_ = false;
+  size_t cursor_ = 0;
+};
+
+}  // namespace mjf::runner
+
+#endif  // MJFORMATION_CONFIG_STATE_ARCHIVE_HPP_

@@ -1,0 +1,78 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// What a checkpoint of one simulation holds, and which stages cannot be saved yet
+// (docs/ARCHITECTURE.md, "Checkpoint and resume").
+#include <string>
+#include <vector>
+
+#include "mjformation/sim/simulation.hpp"
+
+namespace mjf::runner {
+namespace {
+
+// Refuses a stage the checkpoint does not carry: its name, the key that switched it on, and
+// what to do.
+[[noreturn]] void Unsavable(const std::string& stage, const std::string& key) {
+  throw ConfigError("checkpoints (--checkpoint-every, --resume, get_state): " + stage +
+                    " does not save its state yet; " + key +
+                    " switches it on: remove it (or set it to its default) to checkpoint this "
+                    "run");
+}
+
+// A block of doubles whose length is fixed by the configuration: checked on load.
+void FixedBlock(StateArchive& archive, const char* what, std::vector<double>* block) {
+  const size_t expected = block->size();
+  archive(*block);
+  if (block->size() != expected) {
+    throw StateArchiveError(std::string("the saved state's ") + what + " holds " +
+                            std::to_string(block->size()) +
+                            " numbers where this configuration has " + std::to_string(expected));
+  }
+}
+
+}  // namespace
+
+void Simulation::RequireSavable() const {
+  if (partitions_) Unsavable("partitioned physics", "[run] threads > 1 (or --threads)");
+  if (config_.network.execution == Execution::kPerAgent) {
+    Unsavable("the communication channel", "[execution] mode = \"per_agent\" ([network])");
+  }
+  if (!tick_->sensors().saves_state()) Unsavable("the sensor stage", "[sensors]");
+  for (const auto& stage : force_stages_) {
+    if (!stage->saves_state()) Unsavable("a force stage", "[wind]");
+  }
+}
+
+void Simulation::VisitState(StateArchive& archive) {
+  archive.Tag("simulation");
+  archive(step_);
+  std::vector<double> physics(static_cast<size_t>(mj_stateSize(model_.get(), mjSTATE_INTEGRATION)));
+  if (!archive.loading())
+    mj_getState(model_.get(), data_.get(), physics.data(), mjSTATE_INTEGRATION);
+  FixedBlock(archive, "MuJoCo state", &physics);
+  if (archive.loading())
+    mj_setState(model_.get(), data_.get(), physics.data(), mjSTATE_INTEGRATION);
+  std::vector<double> tick(tick_->StateSize());
+  if (!archive.loading()) tick_->GetState(tick.data());
+  FixedBlock(archive, "control tick", &tick);
+  if (archive.loading()) tick_->SetState(tick.data());
+  actuation_->VisitState(archive);
+  archive.Tag("realism");
+  tick_->VisitSensorState(archive);
+  for (auto& stage : force_stages_) stage->VisitState(archive);
+}
+
+void Simulation::VisitStateAtTick(StateArchive& archive) {
+  VisitState(archive);
+  archive.Tag("tick outputs");
+  std::vector<mjfVehicleState> measured = tick_->measured();
+  std::vector<double> controls = tick_->controls();
+  archive(truth_, measured, controls);
+  if (!archive.loading()) return;
+  mj_step1(model_.get(), data_.get());
+  tick_->RestoreOutputs(step_, measured, controls,
+                        reinterpret_cast<const struct mjModel_*>(model_.get()),
+                        reinterpret_cast<const struct mjData_*>(data_.get()));
+}
+
+}  // namespace mjf::runner
