@@ -31,7 +31,16 @@
 // for an actuator without activation, force = gain * ctrl. This plugin writes the same two
 // quantities, with the same operations, from its held controls: in actuator_act_dot (called
 // after MuJoCo's own act_dot) and in compute (called after MuJoCo's own forces). The
-// vehicles' actuators keep their MJCF definitions; d->ctrl of a driven actuator is unused.
+// vehicles' actuators keep their MJCF definitions.
+// ctrl as an input: d->ctrl of a driven actuator is an additive trim on the controllers'
+// command, applied before the clamp: u = clamp(u_controller + ctrl). MuJoCo's default ctrl = 0
+// flies the runner's flight bit for bit (a zero trim is not added at all: see Applied). The
+// trim is read at every evaluation, not held at the tick: the controllers still tick once per
+// committed step and never see it, so mujoco.rollout's `control` and the viewer's sliders act
+// from the step they are set, and mjd_transitionFD's B is d(next state)/d(trim) through the
+// plant with the step's command fixed, the closed loop's B (the controllers answer from the
+// next tick on, through A). A bad control (mjWARN_BADCTRL) zeroes every trim, as MuJoCo zeroes
+// every control.
 // Per-actuator arrays are indexed by actuator id, per-control arrays (ctrlrange, ctrllimited)
 // by the actuator's actuator_ctrladr, per-output arrays (actuator_force) by its
 // actuator_outadr; only single-control, single-output actuators are driven.
@@ -414,23 +423,50 @@ double Clamped(const mjModel* m, int a, double u) {
   return mju_clip(u, m->actuator_ctrlrange[2 * c], m->actuator_ctrlrange[2 * c + 1]);
 }
 
+// Whether MuJoCo zeroes every control of this evaluation: it does when any control, clamped
+// (unless clamping is disabled), is bad (NaN, or past mjMAXVAL), with its warning
+// mjWARN_BADCTRL (mj_fwdActuation); the trims follow the same rule.
+bool ControlsBad(const mjModel* m, const mjData* d) {
+  const bool clamp = !(m->opt.disableflags & mjDSBL_CLAMPCTRL);
+  for (int c = 0; c < m->nu; ++c) {
+    mjtNum u = d->ctrl[c];
+    if (clamp && m->actuator_ctrllimited[c]) {
+      u = mju_clip(u, m->actuator_ctrlrange[2 * c], m->actuator_ctrlrange[2 * c + 1]);
+    }
+    if (mju_isBad(u)) return true;
+  }
+  return false;
+}
+
+// What actuator a applies: the held command plus the user's trim d->ctrl, clamped
+// (u = clamp(u_controller + ctrl), the file comment's "Actuation"). Read at every evaluation,
+// so a trim acts through the plant with the controllers' command of the step fixed.
+double Applied(const mjModel* m, const mjData* d, bool bad, int a, double held) {
+  const mjtNum trim = bad ? 0 : d->ctrl[m->actuator_ctrladr[a]];
+  // Added only when non-zero: held + 0.0 turns a held -0.0 into +0.0, which clamp keeps (a
+  // range from 0), so ctrl = 0 must skip the sum to give the runner's bits.
+  return Clamped(m, a, trim != 0 ? held + trim : held);
+}
+
 template <const Kind& K>
 void ActDot(const mjModel* m, mjData* d, int instance) {
   const mjtNum* u = HeldControls<K>(m, d, instance);
+  const bool bad = ControlsBad(m, d);
   for (int a = 0; a < m->nactuator; ++a) {
     if (std::isnan(u[a]) || m->actuator_actnum[a] == 0) continue;
     const int adr = m->actuator_actadr[a] + m->actuator_actnum[a] - 1;
     const mjtNum tau = mju_max(mjMINVAL, m->actuator_dynprm[mjNDYN * a]);
-    d->act_dot[adr] = (Clamped(m, a, u[a]) - d->act[adr]) / tau;
+    d->act_dot[adr] = (Applied(m, d, bad, a, u[a]) - d->act[adr]) / tau;
   }
 }
 
 template <const Kind& K>
 void Compute(const mjModel* m, mjData* d, int instance, int) {
   const mjtNum* u = HeldControls<K>(m, d, instance);
+  const bool bad = ControlsBad(m, d);
   for (int a = 0; a < m->nactuator; ++a) {
     if (std::isnan(u[a]) || m->actuator_actnum[a] != 0) continue;
-    mjtNum force = m->actuator_gainprm[mjNGAIN * a] * Clamped(m, a, u[a]);
+    mjtNum force = m->actuator_gainprm[mjNGAIN * a] * Applied(m, d, bad, a, u[a]);
     // Not dead: MuJoCo computes gain * ctrl + bias, and the (zero) bias of a biastype="none"
     // actuator turns a -0.0 force into +0.0. The same bits as the runner's need the same sum.
     force += 0.0;

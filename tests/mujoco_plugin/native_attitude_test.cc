@@ -86,8 +86,9 @@ struct Flight {
   std::string error;   // the compiler's, when it refused
 };
 
-// Flies the drone for `seconds` with mj_step.
-Flight Fly(const std::string& xml, double seconds) {
+// Flies the drone for `seconds` with mj_step, with d->ctrl of actuator `trimmed` (if given)
+// set to `trim` throughout.
+Flight Fly(const std::string& xml, double seconds, const char* trimmed = nullptr, double trim = 0) {
   static const bool loaded = [] {
     mj_loadPluginLibrary(MJF_NATIVE_PLUGIN_LIBRARY);
     return true;
@@ -108,6 +109,7 @@ Flight Fly(const std::string& xml, double seconds) {
   if (d) {
     f.flew = true;
     f.hold = 0;
+    if (trimmed) d->ctrl[m->actuator_ctrladr[mj_name2id(m, mjOBJ_ACTUATOR, trimmed)]] = trim;
     const int body = mj_name2id(m, mjOBJ_BODY, "quad");
     const double target[3] = {0, 0, 1};
     // Counted steps, not d->time: MuJoCo resets a diverging simulation to time 0.
@@ -160,6 +162,19 @@ TEST(NativeAttitude, GimbalActuatorBeforeTheRotorsFlies) {
   const Flight f = Fly(DroneXml(kBodyAligned, true), kSeconds);
   ASSERT_TRUE(f.flew) << f.error;
   EXPECT_LT(f.hold, 0.005) << "final z " << f.final_z;
+}
+
+// ctrl of a driven rotor is a trim on the controller's command (docs/PLUGINS.md, "Actuation"):
+// a constant trim on one rotor moves the drone, and a zero trim is the plain flight.
+TEST(NativeAttitude, CtrlTrimsARotor) {
+  const std::string xml = DroneXml(kBodyAligned, true);
+  const Flight plain = Fly(xml, 2.0);
+  const Flight zero = Fly(xml, 2.0, "m_front_right", 0.0);
+  const Flight trimmed = Fly(xml, 2.0, "m_front_right", 0.5);
+  ASSERT_TRUE(plain.flew) << plain.error;
+  EXPECT_EQ(zero.final_z, plain.final_z);
+  EXPECT_EQ(zero.hold, plain.hold);
+  EXPECT_GT(std::fabs(trimmed.hold - plain.hold), 1e-4) << trimmed.hold << " vs " << plain.hold;
 }
 
 // Two instances naming one actuator: refused while the model compiles, naming both.
