@@ -443,8 +443,9 @@ bool ControlsBad(const mjModel* m, const mjData* d) {
 // so a trim acts through the plant with the controllers' command of the step fixed.
 double Applied(const mjModel* m, const mjData* d, bool bad, int a, double held) {
   const mjtNum trim = bad ? 0 : d->ctrl[m->actuator_ctrladr[a]];
-  // Added only when non-zero: held + 0.0 turns a held -0.0 into +0.0, which clamp keeps (a
-  // range from 0), so ctrl = 0 must skip the sum to give the runner's bits.
+  // Added only when non-zero: held + 0.0 turns a held -0.0 into +0.0, the clamp keeps either
+  // sign (0 lies in a range from 0) and act_dot = (u - act) / tau carries it, so ctrl = 0 must
+  // skip the sum to be the runner's bits.
   return Clamped(m, a, trim != 0 ? held + trim : held);
 }
 

@@ -159,6 +159,7 @@ TEST_F(NativeCtrl, TransitionFdBIsTheTrimsThroughThePlant) {
 }
 
 // A trim past ctrlrange is clamped with the command: the motor lag heads for the range's end.
+// A bad control zeroes every trim.
 TEST_F(NativeCtrl, TrimPastCtrlrangeIsClamped) {
   mjData* d = Make();
   Step(d, 500);
@@ -174,6 +175,14 @@ TEST_F(NativeCtrl, TrimPastCtrlrangeIsClamped) {
     const mjtNum end = m_->actuator_ctrlrange[2 * c + (trim > 0 ? 1 : 0)];
     EXPECT_EQ(trimmed->act_dot[adr], (end - trimmed->act[adr]) / tau) << "trim " << trim;
   }
+  // A bad control elsewhere (MuJoCo's mjWARN_BADCTRL zeroes every control) zeroes the trim too.
+  mjData* plain = Copy(d);
+  mjData* bad = Copy(d);
+  bad->ctrl[c] = 1e3;
+  bad->ctrl[m_->actuator_ctrladr[(rotor_ + 1) % m_->nu]] = std::nan("");
+  mj_forward(m_, plain);
+  mj_forward(m_, bad);
+  EXPECT_EQ(bad->act_dot[adr], plain->act_dot[adr]);
 }
 
 }  // namespace
