@@ -20,11 +20,18 @@ namespace {
 using Document = std::map<std::string, std::map<std::string, std::string>>;
 
 // A file with every section, so that every reader runs: [network] needs per-agent execution,
-// [wind] a gust for the gust reader, [[network.link]] one link of the graph.
+// [wind] a gust for the gust reader, a topology switch and a rotor fault for theirs,
+// [[network.link]] one link of the graph.
 Document EverySection() {
   return {{"run", {{"duration", "2.0"}}},
-          {"vehicles", {{"followers", "2"}}},
-          {"topology", {{"leader_links", "[1]"}}},
+          {"vehicles",
+           {{"followers", "2"},
+            {"fault", "[{follower = 1, rotor = 0, at = 1.0, thrust_share = 0.5}]"}}},
+          {"topology",
+           {{"leader_links", "[1]"},
+            {"switch",
+             "[{at = 1.0, edges = [[1, 2]], leader_links = [1], leader_weights = "
+             "[1.0, 0.0]}]"}}},
           {"leader", {{"plugin", "\"hover\""}}},
           {"formation", {{"plugin", "\"hover\""}}},
           {"formation.shape", {{"type", "\"circle\""}}},
