@@ -365,6 +365,53 @@ void ParseRunSection(const Reporter& reporter, SectionReader run, const std::str
   }
 }
 
+// One [[vehicles.fault]]: follower, rotor, at, thrust_share (the rotor count is checked against
+// the vehicle when the scene is bound, runner/sim).
+ExperimentConfig::RotorFault ReadRotorFault(const Reporter& reporter, const toml::node& item,
+                                            int index, const ExperimentConfig& c) {
+  const toml::table* t = item.as_table();
+  if (!t) reporter.Fail(&item, "[vehicles] fault", "expected [[vehicles.fault]] tables");
+  SectionReader keys(reporter.path(), t, "vehicles] fault[" + std::to_string(index),
+                     "vehicles.fault");
+  for (const char* key : {"follower", "rotor", "at", "thrust_share"}) {
+    if (!keys.Has(key)) keys.Fail(key, "missing (a fault needs follower, rotor, at, thrust_share)");
+  }
+  ExperimentConfig::RotorFault f;
+  f.line = static_cast<int>(item.source().begin.line);
+  f.follower = static_cast<int>(keys.Integer("follower", 1));
+  f.rotor = static_cast<int>(keys.Integer("rotor", 0));
+  f.at = keys.Number("at", 0.0);
+  f.thrust_share = keys.Number("thrust_share", 0.0);
+  keys.RejectUnknown();
+  if (f.follower < 1 || f.follower > c.followers) {
+    keys.Fail("follower", "must be a follower number in 1.." + std::to_string(c.followers));
+  }
+  if (f.rotor < 0) keys.Fail("rotor", "must be >= 0 (the attitude plugin's actuator order)");
+  if (!(f.at >= 0.0 && f.at < c.duration)) {
+    keys.Fail("at", "must lie in the run [0, " + fmt::format("{}", c.duration) + ") s");
+  }
+  if (!(f.thrust_share >= 0.0 && f.thrust_share <= 1.0)) {
+    keys.Fail("thrust_share", "must be in [0, 1] (the share of the rotor's thrust lost)");
+  }
+  return f;
+}
+
+// A fault acts on a rotor's command: vehicles without rotor actuators are refused by name.
+void ReadRotorFaults(SectionReader& vehicles, const Reporter& reporter, ExperimentConfig* c) {
+  const toml::array* a = vehicles.Array("fault");
+  if (!a) return;
+  for (const toml::node& item : *a) {
+    c->rotor_faults.push_back(
+        ReadRotorFault(reporter, item, static_cast<int>(c->rotor_faults.size()) + 1, *c));
+  }
+  if (c->rotor_faults.empty()) return;
+  if (c->model == "pointmass" || c->vehicle_actuation != VehicleActuation::kRotors) {
+    vehicles.Fail("fault",
+                  "a rotor fault needs a rotor vehicle (model \"quadrotor\" or a model with "
+                  "rotor actuators), not the point mass or a thrust-and-moment vehicle");
+  }
+}
+
 void ParseVehiclesSection(const Reporter& reporter, SectionReader vehicles, const std::string& path,
                           ExperimentConfig& c) {
   c.model = vehicles.String("model", c.model);
@@ -393,6 +440,7 @@ void ParseVehiclesSection(const Reporter& reporter, SectionReader vehicles, cons
   c.rotor_model = vehicles.Enum("rotor_model", c.rotor_model, kRotorModelWords);
   c.contacts = vehicles.Bool("contacts", c.contacts);
   ParseVehicleMapping(vehicles, reporter, &c);
+  ReadRotorFaults(vehicles, reporter, &c);
   vehicles.RejectUnknown();
   if (c.followers < 1 || c.followers > 100000) vehicles.Fail("followers", "must be in [1, 100000]");
   if (!c.follower_start.empty() && static_cast<int>(c.follower_start.size()) != c.followers) {
@@ -404,23 +452,24 @@ void ParseVehiclesSection(const Reporter& reporter, SectionReader vehicles, cons
   if (c.start_jitter < 0) vehicles.Fail("start_jitter", "must be >= 0 m");
 }
 
-// [topology] edges = [[from, to(, weight)], ...] (1-based in the file, 0-based here).
+// [topology] edges = [[from, to(, weight)], ...] (1-based in the file, 0-based here); `label`
+// names the table in messages ("[topology]", "[topology] switch[2]").
 std::vector<ExperimentConfig::Edge> ReadEdges(const Reporter& reporter, SectionReader& topology,
-                                              int followers) {
+                                              int followers, const std::string& label) {
   std::vector<ExperimentConfig::Edge> edges;
   const toml::array* a = topology.Array("edges");
   if (!a) return edges;
   for (const toml::node& item : *a) {
     const toml::array* e = item.as_array();
     if (!e || e->size() < 2 || e->size() > 3) {
-      reporter.Fail(&item, "[topology] edges",
+      reporter.Fail(&item, label + " edges",
                     "expected [from, to] or [from, to, weight] (follower `to` receives "
                     "`from`'s state)");
     }
     auto from = e->get(0)->value_exact<int64_t>();
     auto to = e->get(1)->value_exact<int64_t>();
     if (!from || !to || *from < 1 || *to < 1 || *from > followers || *to > followers) {
-      reporter.Fail(&item, "[topology] edges",
+      reporter.Fail(&item, label + " edges",
                     "follower numbers must be integers in 1.." + std::to_string(followers));
     }
     ExperimentConfig::Edge edge{static_cast<int>(*from - 1), static_cast<int>(*to - 1), 1.0};
@@ -430,39 +479,112 @@ std::vector<ExperimentConfig::Edge> ReadEdges(const Reporter& reporter, SectionR
   return edges;
 }
 
-void ReadLeaderLinks(const Reporter& reporter, SectionReader& topology, ExperimentConfig& c) {
-  c.leader_weight.assign(c.followers, 0.0);
+// a_i0 per follower from leader_links (weight 1) and leader_weights (overriding).
+std::vector<double> ReadLeaderWeights(const Reporter& reporter, SectionReader& topology,
+                                      int followers, const std::string& label) {
+  std::vector<double> weight(followers, 0.0);
   if (const toml::array* a = topology.Array("leader_links")) {
     for (const toml::node& item : *a) {
       auto v = item.value_exact<int64_t>();
-      if (!v || *v < 1 || *v > c.followers) {
-        reporter.Fail(&item, "[topology] leader_links",
-                      "expected follower numbers 1.." + std::to_string(c.followers));
+      if (!v || *v < 1 || *v > followers) {
+        reporter.Fail(&item, label + " leader_links",
+                      "expected follower numbers 1.." + std::to_string(followers));
       }
-      c.leader_weight[*v - 1] = 1.0;
+      weight[*v - 1] = 1.0;
     }
   } else if (topology.table()) {
     topology.Fail("leader_links", "missing: which followers receive the leader's state");
   }
   if (const toml::array* a = topology.Array("leader_weights")) {
-    if (static_cast<int>(a->size()) != c.followers) {
+    if (static_cast<int>(a->size()) != followers) {
       topology.Fail("leader_weights", "expected one weight a_i0 per follower");
     }
-    for (int i = 0; i < c.followers; ++i) {
-      c.leader_weight[i] = topology.AsNumber(*a->get(i), "leader_weights");
+    for (int i = 0; i < followers; ++i) {
+      weight[i] = topology.AsNumber(*a->get(i), "leader_weights");
+    }
+  }
+  return weight;
+}
+
+// Assumption 2: every follower is reached from the leader (vertex 0) along links of positive
+// weight (breadth-first search); returns the first follower (1-based) that is not, or 0.
+int FollowerOffSpanningTree(const std::vector<double>& leader_weight,
+                            const std::vector<ExperimentConfig::Edge>& edges) {
+  const int n = static_cast<int>(leader_weight.size());
+  std::vector<bool> reached(n, false);
+  std::vector<int> queue;
+  for (int i = 0; i < n; ++i) {
+    if (leader_weight[i] > 0) {
+      reached[i] = true;
+      queue.push_back(i);
+    }
+  }
+  for (size_t q = 0; q < queue.size(); ++q) {
+    for (const ExperimentConfig::Edge& e : edges) {
+      if (e.from == queue[q] && e.weight > 0 && !reached[e.to]) {
+        reached[e.to] = true;
+        queue.push_back(e.to);
+      }
+    }
+  }
+  for (int i = 0; i < n; ++i) {
+    if (!reached[i]) return i + 1;
+  }
+  return 0;
+}
+
+// One [[topology.switch]]: at = s, edges and leader_links (or leader_weights) as in [topology].
+ExperimentConfig::TopologySwitch ReadTopologySwitch(const Reporter& reporter,
+                                                    const toml::node& item, int index,
+                                                    const ExperimentConfig& c) {
+  const toml::table* t = item.as_table();
+  if (!t) reporter.Fail(&item, "[topology] switch", "expected [[topology.switch]] tables");
+  const std::string label = "[topology] switch[" + std::to_string(index) + "]";
+  SectionReader keys(reporter.path(), t, "topology] switch[" + std::to_string(index),
+                     "topology.switch");
+  ExperimentConfig::TopologySwitch s;
+  s.line = static_cast<int>(item.source().begin.line);
+  if (!keys.Has("at")) keys.Fail("at", "missing: the time of the switch, s");
+  s.at = keys.Number("at", 0.0);
+  s.leader_weight = ReadLeaderWeights(reporter, keys, c.followers, label);
+  s.edges = ReadEdges(reporter, keys, c.followers, label);
+  keys.RejectUnknown();
+  if (!(s.at > 0.0 && s.at < c.duration)) {
+    keys.Fail("at", "must lie inside the run (0, " + fmt::format("{}", c.duration) + ") s");
+  }
+  if (const int off = FollowerOffSpanningTree(s.leader_weight, s.edges)) {
+    keys.Fail("edges",
+              "this graph has no directed spanning tree rooted at the leader "
+              "(Assumption 2): follower " +
+                  std::to_string(off) +
+                  " is not reached from the leader; every switch must keep one");
+  }
+  return s;
+}
+
+void ReadTopologySwitches(const Reporter& reporter, SectionReader& topology, ExperimentConfig& c) {
+  const toml::array* a = topology.Array("switch");
+  if (!a) return;
+  for (const toml::node& item : *a) {
+    c.topology_switches.push_back(
+        ReadTopologySwitch(reporter, item, static_cast<int>(c.topology_switches.size()) + 1, c));
+    const auto& all = c.topology_switches;
+    if (all.size() > 1 && !(all.back().at > all[all.size() - 2].at)) {
+      reporter.Fail(&item, "[topology] switch", "switches must be listed in increasing time (at)");
     }
   }
 }
 
 void ParseTopologySection(const Reporter& reporter, SectionReader topology, ExperimentConfig& c) {
-  ReadLeaderLinks(reporter, topology, c);
+  c.leader_weight = ReadLeaderWeights(reporter, topology, c.followers, "[topology]");
   // Generated graphs for large N: "chain" (1 -> 2 -> ... -> N) or "ring" (chain + N -> 1).
   const bool ring = topology.Enum("generate", false, kTopologyGeneratorWords);
-  c.edges = ReadEdges(reporter, topology, c.followers);
+  c.edges = ReadEdges(reporter, topology, c.followers, "[topology]");
   if (topology.Has("generate")) {
     if (!c.edges.empty()) topology.Fail("generate", "give either edges or generate, not both");
     c.edges = GeneratedEdges(c.followers, ring);
   }
+  ReadTopologySwitches(reporter, topology, c);
   topology.RejectUnknown();
   if (!topology.table()) {
     // Default: the leader talks to follower 1 and the followers form a chain 1 -> 2 -> ... -> N.

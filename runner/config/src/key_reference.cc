@@ -114,6 +114,19 @@ void AddVehicles(Keys& k) {
            "Rotor thrust through MuJoCo's actuators, or as the runner's applied wrench.", ""},
           {"vehicles", "contacts", "boolean", "", Bool(d.contacts), "", "",
            "Collision detection (false saves MuJoCo's broadphase at large N).", ""},
+          {"vehicles", "fault", "[{...}, ...]", "", "[]", "none (every rotor healthy)",
+           "[[vehicles.fault]] tables",
+           "Actuator faults: from `at` on, the rotor gives (1 - thrust_share) x the thrust of its "
+           "command clamped to its control range (both rotor models; not the point mass).",
+           ""},
+          {"vehicles.fault", "follower", "integer", "", "", "required", "1..followers",
+           "The follower whose rotor fails.", ""},
+          {"vehicles.fault", "rotor", "integer", "", "", "required",
+           "0..rotors - 1 (the attitude plugin's actuator order)", "The rotor that fails.", ""},
+          {"vehicles.fault", "at", "number", "s", "", "required", "[0, duration)",
+           "Time from which the rotor is faulty.", ""},
+          {"vehicles.fault", "thrust_share", "number", "", "", "required", "[0, 1]",
+           "Share of the rotor's commanded thrust lost (1: the rotor stops).", ""},
           {"vehicles", "body", "string", "", "", "the model follows the vehicle contract",
            "a body of the model", "A foreign model's vehicle body (docs/VEHICLES.md).", ""},
           {"vehicles", "rotors", "[string, ...]", "", "", "the model follows the vehicle contract",
@@ -146,6 +159,22 @@ void AddTopology(Keys& k) {
                 "A generated follower graph for large N: the chain 1 -> ... -> N, or the ring "
                 "(chain and N -> 1).",
                 "leader_links = [1]"},
+               {"topology", "switch", "[{...}, ...]", "", "[]", "none (one graph for the run)",
+                "[[topology.switch]] tables",
+                "Switching topologies: from each switch's `at` on, the swarm's formation law "
+                "sees that switch's graph (a new instance of the law, created at load with the "
+                "new graph, takes over the old one's declared state; central execution only).",
+                "leader_links = [1]"},
+               {"topology.switch", "at", "number", "s", "", "required",
+                "inside the run, increasing", "Time from which this graph holds.", ""},
+               {"topology.switch", "leader_links", "[integer, ...]", "", "", "required",
+                "1..followers", "Followers that receive the leader's state from `at` on.", ""},
+               {"topology.switch", "leader_weights", "[number, ...]", "", "",
+                "1 for leader_links, else 0", "one per follower",
+                "The leader weights a_i0 from `at` on, overriding leader_links' 1.", ""},
+               {"topology.switch", "edges", "[[from, to(, weight)], ...]", "", "", "none",
+                "1..followers; with leader_links a directed spanning tree rooted at the leader",
+                "Follower links from `at` on (as [topology] edges).", ""},
            });
 }
 
@@ -462,7 +491,8 @@ std::string Escape(std::string text) {
 }
 
 std::string SectionTable(const std::string& section, const Keys& keys) {
-  const bool array = section == "network.link";
+  const bool array =
+      section == "network.link" || section == "topology.switch" || section == "vehicles.fault";
   std::string out = fmt::format("\n## {}{}{}\n\n", array ? "[[" : "[", section, array ? "]]" : "]");
   out += "| key | type | unit | default | range | what it does |\n|---|---|---|---|---|---|\n";
   for (const KeyEntry& e : keys) {

@@ -47,6 +47,7 @@ ControlTick::~ControlTick() {
   plugins_.attitude.clear();
   plugins_.follower_guidance.clear();
   plugins_.formation_agents.clear();
+  plugins_.formation_switches.clear();
   plugins_.formation.reset();
   plugins_.leader.reset();
 }
@@ -99,6 +100,7 @@ void ControlTick::RunGuidanceAndFormation(mjfStepContext& ctx,
                                           const std::vector<mjfVehicleState>& truth) {
   Call(*plugins_.leader, ctx, 0);
   ResetFollowerSetpoints();
+  SwitchTopology(ctx.step);
   if (plugins_.formation) {
     Call(*plugins_.formation, ctx, -1);
     return;
@@ -109,6 +111,26 @@ void ControlTick::RunGuidanceAndFormation(mjfStepContext& ctx,
   }
   for (size_t i = 0; i < plugins_.follower_guidance.size(); ++i) {
     Call(*plugins_.follower_guidance[i], ctx, static_cast<int>(i) + 1);
+  }
+}
+
+// The new instance was created with the new graph (the ABI's graph of an instance never
+// changes, docs/PLUGINS.md); what the law carries from tick to tick (integrators, adaptive
+// gains, its sampling clock) is its declared state, copied over so that only the graph changes.
+// A law that declares no state (or another size) starts afresh.
+void ControlTick::SwitchTopology(int64_t step) {
+  auto& switches = plugins_.formation_switches;
+  while (next_switch_ < switches.size() && switches[next_switch_].step <= step) {
+    std::unique_ptr<PluginInstance>& next = switches[next_switch_].instance;
+    PluginInstance& old = *plugins_.formation;
+    if (old.declares_state() && next->declares_state() && old.state_size() == next->state_size() &&
+        old.state_size() > 0) {
+      std::vector<double> state(old.state_size());
+      old.GetState(state.data());
+      next->SetState(state.data());
+    }
+    plugins_.formation = std::move(next);
+    ++next_switch_;
   }
 }
 
@@ -274,6 +296,11 @@ std::vector<PluginInstance*> ControlTick::Instances() const {
 }
 
 void ControlTick::RequireSavable() const {
+  if (!plugins_.formation_switches.empty()) {
+    throw SimulationError(
+        "a switching topology ([[topology.switch]]) holds instances not yet in the state layout: "
+        "a tick with it cannot be copied or checkpointed");
+  }
   if (channel_) {
     throw SimulationError(
         "the communication channel ([network], per-agent execution) does not declare its state "

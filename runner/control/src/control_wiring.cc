@@ -45,6 +45,29 @@ ControlWiring::ControlWiring(const ExperimentConfig& config, const PluginRegistr
                              VehicleContexts vehicles)
     : config_(config), registry_(registry), vehicles_(std::move(vehicles)) {
   BuildGraphAndShape();
+  BuildSwitchGraphs();
+}
+
+void ControlWiring::BuildSwitchGraphs() {
+  for (const ExperimentConfig::TopologySwitch& sw : config_.topology_switches) {
+    auto g = std::make_unique<SwitchGraph>();
+    g->leader_weight = sw.leader_weight;
+    std::vector<formation::Edge> edges;
+    for (const auto& e : sw.edges) {
+      g->edge_from.push_back(e.from);
+      g->edge_to.push_back(e.to);
+      g->edge_weight.push_back(e.weight);
+      edges.push_back({e.from, e.to, e.weight});
+    }
+    try {
+      formation::Graph(config_.followers, sw.leader_weight, edges).RequireSpanningTree();
+    } catch (const std::invalid_argument& e) {
+      SourceLocation{config_.source_path, sw.line, SectionKey("topology", "switch")}.Fail(e.what());
+    }
+    g->abi = {config_.followers,   g->leader_weight.data(), static_cast<int>(g->edge_from.size()),
+              g->edge_from.data(), g->edge_to.data(),       g->edge_weight.data()};
+    switch_graphs_.push_back(std::move(g));
+  }
 }
 
 ControlWiring::~ControlWiring() = default;
@@ -169,6 +192,15 @@ ControlPlugins ControlWiring::CreatePlugins(const LoadedPlugin& attitude,
       FindPlugin(registry_, config_, config_.formation,
                  {MJF_KIND_FORMATION, MJF_KIND_GUIDANCE, MJF_KIND_FORMATION_AGENT},
                  "followers need a formation, per-agent formation or guidance plugin");
+  if (!config_.topology_switches.empty() &&
+      (channel || formation.descriptor->kind != MJF_KIND_FORMATION)) {
+    SourceLocation{config_.source_path, config_.topology_switches[0].line,
+                   SectionKey("topology", "switch")}
+        .Fail(
+            "a switching topology needs a formation law run centrally (a formation plugin, "
+            "[execution] mode = \"central\"); '" +
+            config_.formation.plugin + "' here is not (the network's links are fixed for the run)");
+  }
   if (channel) {
     plugins.formation_agents = CreateAgents(FindAgentPlugin(formation), base, *channel);
   } else if (formation.descriptor->kind == MJF_KIND_FORMATION_AGENT) {
@@ -176,7 +208,9 @@ ControlPlugins ControlWiring::CreatePlugins(const LoadedPlugin& attitude,
                       "' runs one instance per follower: it needs [execution] mode = "
                       "\"per_agent\"");
   } else if (formation.descriptor->kind == MJF_KIND_FORMATION) {
-    plugins.formation = CreateFormation(formation, base, FormationSection(attitude));
+    const PluginSection section = FormationSection(attitude);
+    plugins.formation = CreateFormation(formation, base, section);
+    plugins.formation_switches = CreateFormationSwitches(formation, base, section);
   } else {
     // A guidance plugin per follower (e.g. hover): flies the vehicles without a formation law.
     for (int i = 1; i < n_vehicles(); ++i) {
@@ -200,6 +234,31 @@ std::unique_ptr<PluginInstance> ControlWiring::CreateFormation(const LoadedPlugi
   ctx.graph = &abi_graph_;
   ctx.shape = &abi_shape_;
   return std::make_unique<PluginInstance>(formation, section, config_.source_path, ctx);
+}
+
+std::vector<FormationSwitch> ControlWiring::CreateFormationSwitches(
+    const LoadedPlugin& formation, const mjfCreateContext& base,
+    const PluginSection& section) const {
+  std::vector<FormationSwitch> switches;
+  for (size_t k = 0; k < switch_graphs_.size(); ++k) {
+    const ExperimentConfig::TopologySwitch& sw = config_.topology_switches[k];
+    mjfCreateContext ctx = base;
+    ctx.vehicle = -1;
+    ctx.graph = &switch_graphs_[k]->abi;
+    ctx.shape = &abi_shape_;
+    FormationSwitch one;
+    // The first tick at or after `at` (a tick's time is step * timestep).
+    one.step = static_cast<int64_t>(std::ceil(sw.at / config_.timestep - 1e-9));
+    one.instance = std::make_unique<PluginInstance>(formation, section, config_.source_path, ctx);
+    if (!one.instance->declares_state()) {
+      std::fprintf(stderr,
+                   "warning: %s:%d: [topology] switch: plugin '%s' declares no state: it starts "
+                   "afresh at the switch (only its graph should change)\n",
+                   config_.source_path.c_str(), sw.line, config_.formation.plugin.c_str());
+    }
+    switches.push_back(std::move(one));
+  }
+  return switches;
 }
 
 PluginSection ControlWiring::FormationSection(const LoadedPlugin& attitude) const {

@@ -225,7 +225,9 @@ PartitionedPhysics::PartitionedPhysics(const ExperimentConfig& config, const Sce
     p->model = ComposeScene(part, fmt::format("partition {} of the scene", k)).model;
     p->data.reset(mj_makeData(p->model.get()));
     p->bindings = BindVehicles(p->model.get(), config, attitude, vehicle_xml, p->first, p->count);
-    p->actuation = MakeActuation(config.rotor_model, p->model.get(), p->bindings, config.timestep);
+    p->actuation = WithRotorFaults(
+        MakeActuation(config.rotor_model, p->model.get(), p->bindings, config.timestep), config,
+        p->bindings, p->first);
     p->truth.resize(p->count);
     p->controls.assign(static_cast<size_t>(p->count) * p->bindings.actuators_per_vehicle, 0.0);
     p->offsets = {nq, nv, nu};

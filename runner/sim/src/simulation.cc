@@ -73,7 +73,9 @@ Simulation::Simulation(const ExperimentConfig& config) : config_(config) {
   tick_ = std::make_unique<ControlTick>(
       std::move(plugins), wiring_->MakeSensors(), wiring_->InitialSetpoints(),
       bindings_.actuators_per_vehicle, config_.altitude, config_.timestep, std::move(channel));
-  actuation_ = MakeActuation(config_.rotor_model, model_.get(), bindings_, config_.timestep);
+  actuation_ =
+      WithRotorFaults(MakeActuation(config_.rotor_model, model_.get(), bindings_, config_.timestep),
+                      config_, bindings_, 0);
   force_stages_ = MakeForceStages(config_);
   external_force_.assign(3 * truth_.size(), 0.0);
   MakePartitions(*attitude.descriptor);

@@ -20,23 +20,28 @@ namespace {
 using Document = std::map<std::string, std::map<std::string, std::string>>;
 
 // A file with every section, so that every reader runs: [network] needs per-agent execution,
-// [wind] a gust for the gust reader, [[network.link]] one link of the graph.
+// [wind] a gust for the gust reader, a topology switch and a rotor fault for theirs,
+// [[network.link]] one link of the graph.
 Document EverySection() {
-  return {{"run", {{"duration", "2.0"}}},
-          {"vehicles", {{"followers", "2"}}},
-          {"topology", {{"leader_links", "[1]"}}},
-          {"leader", {{"plugin", "\"hover\""}}},
-          {"formation", {{"plugin", "\"hover\""}}},
-          {"formation.shape", {{"type", "\"circle\""}}},
-          {"attitude", {{"plugin", "\"pd_cascade\""}}},
-          {"render", {}},
-          {"sensors", {}},
-          {"wind", {{"gusts", "[{start = 0.5, duration = 0.5, amplitude = [1.0, 0.0, 0.0]}]"}}},
-          {"execution", {{"mode", "\"per_agent\""}}},
-          {"network", {}},
-          {"network.link", {{"from", "0"}, {"to", "1"}}},
-          {"estimator", {{"plugin", "\"passthrough\""}}},
-          {"safety", {}}};
+  return {
+      {"run", {{"duration", "2.0"}}},
+      {"vehicles",
+       {{"followers", "2"},
+        {"fault", "[{follower = 1, rotor = 0, at = 1.0, thrust_share = 0.5}]"}}},
+      {"topology",
+       {{"leader_links", "[1]"}, {"switch", "[{at = 1.0, edges = [[1, 2]], leader_links = [1]}]"}}},
+      {"leader", {{"plugin", "\"hover\""}}},
+      {"formation", {{"plugin", "\"hover\""}}},
+      {"formation.shape", {{"type", "\"circle\""}}},
+      {"attitude", {{"plugin", "\"pd_cascade\""}}},
+      {"render", {}},
+      {"sensors", {}},
+      {"wind", {{"gusts", "[{start = 0.5, duration = 0.5, amplitude = [1.0, 0.0, 0.0]}]"}}},
+      {"execution", {{"mode", "\"per_agent\""}}},
+      {"network", {}},
+      {"network.link", {{"from", "0"}, {"to", "1"}}},
+      {"estimator", {{"plugin", "\"passthrough\""}}},
+      {"safety", {}}};
 }
 
 std::string Toml(const Document& document) {
@@ -95,6 +100,9 @@ TEST(KeyReferenceTest, DefaultsAreValuesTheParserTakes) {
     if (e.section == "execution" && e.key == "mode" && e.default_toml != "\"per_agent\"") {
       document.erase("network");  // [network] needs per-agent execution
       document.erase("network.link");
+    }
+    if (e.section == "vehicles" && e.key == "followers") {
+      document["topology"].erase("switch");  // its graph spans the file's two followers only
     }
     EXPECT_NO_THROW(ParseExperiment(Toml(document), "defaults.toml"))
         << "[" << e.section << "] " << e.key << " = " << e.default_toml;

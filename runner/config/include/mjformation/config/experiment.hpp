@@ -288,6 +288,16 @@ struct ExperimentConfig {
   // mjcf/README.md), and MuJoCo 2.2.2's broadphase costs O(bodies^2) per step even with no
   // contact: at 1000 vehicles it is the largest single cost (docs/PERFORMANCE.md).
   bool contacts = true;
+  // [[vehicles.fault]]: from `at` on, rotor `rotor` of follower `follower` gives only
+  // (1 - thrust_share) of the thrust its (clamped) command asks for.
+  struct RotorFault {
+    int follower = 1;  // 1-based, as in the file
+    int rotor = 0;     // the attitude plugin's actuator order
+    double at = 0.0;   // s
+    double thrust_share = 0.0;
+    int line = 0;
+  };
+  std::vector<RotorFault> rotor_faults;
   // Bring your own quadrotor (docs/VEHICLES.md): the model's vehicle body and rotor actuators,
   // in the attitude plugin's order. Empty body and rotors: the model follows the contract.
   std::string vehicle_body;
@@ -307,6 +317,15 @@ struct ExperimentConfig {
     double weight = 1.0;
   };
   std::vector<Edge> edges;
+  // [[topology.switch]]: from `at` on, the formation law sees this graph instead (docs/
+  // EXPERIMENT_FILE.md); sorted by time, each with a directed spanning tree rooted at the leader.
+  struct TopologySwitch {
+    double at = 0.0;                    // s
+    std::vector<double> leader_weight;  // a_i0 per follower (0-based)
+    std::vector<Edge> edges;
+    int line = 0;  // of the switch's table, for messages
+  };
+  std::vector<TopologySwitch> topology_switches;
 
   PluginSection leader;
   PluginSection formation;

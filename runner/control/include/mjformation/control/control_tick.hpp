@@ -26,9 +26,17 @@ namespace mjf::runner {
 // The plugin instances of one simulation. Exactly one of `formation`, `formation_agents` and
 // `follower_guidance` is used: a formation-kind plugin for the swarm, a per-agent formation
 // plugin per follower (over an AgentChannel), or a guidance plugin per follower.
+// A formation-law instance created with a later graph ([[topology.switch]]): it replaces
+// `formation` on the first tick at or after physics step `step`.
+struct FormationSwitch {
+  int64_t step = 0;
+  std::unique_ptr<PluginInstance> instance;
+};
+
 struct ControlPlugins {
   std::unique_ptr<PluginInstance> leader;
   std::unique_ptr<PluginInstance> formation;
+  std::vector<FormationSwitch> formation_switches;  // in time order; empty: one graph
   std::vector<std::unique_ptr<PluginInstance>> follower_guidance;  // [followers]
   std::vector<std::unique_ptr<PluginInstance>> formation_agents;   // [followers]
   std::vector<std::unique_ptr<PluginInstance>> attitude;           // [vehicles]
@@ -104,6 +112,8 @@ class ControlTick {
  private:
   void RunGuidanceAndFormation(mjfStepContext& ctx, const std::vector<mjfVehicleState>& truth);
   void SetTickContext(int64_t step, const struct mjModel_* model, const struct mjData_* data);
+  // Hands the formation law over to the instance of every switch due by `step`.
+  void SwitchTopology(int64_t step);
   // The channel stage: each follower's instance, handed only its own state and messages.
   void RunAgents(const mjfStepContext& ctx, const std::vector<mjfVehicleState>& truth);
   void RunAgentsOverLinks(mjfStepContext& agent_ctx, const mjfStepContext& ctx);
@@ -115,6 +125,7 @@ class ControlTick {
   std::vector<PluginInstance*> Instances() const;
 
   ControlPlugins plugins_;
+  size_t next_switch_ = 0;  // the first of plugins_.formation_switches not yet taken over
   std::unique_ptr<SensorStage> sensors_;
   std::unique_ptr<AgentChannel> channel_;
   std::vector<mjfVehicleState> measured_;

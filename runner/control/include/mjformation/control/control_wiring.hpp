@@ -80,6 +80,13 @@ class ControlWiring {
                                                             const mjfCreateContext& base,
                                                             const AgentChannel& channel) const;
   void RequireFormationInputs() const;
+  // The graphs of [[topology.switch]], each checked like [topology]'s (Graph's validation).
+  void BuildSwitchGraphs();
+  // One instance of the formation law per switch, created now so that a refusal comes before
+  // any step; refused unless the law is a central formation plugin.
+  std::vector<FormationSwitch> CreateFormationSwitches(const LoadedPlugin& formation,
+                                                       const mjfCreateContext& base,
+                                                       const PluginSection& section) const;
   std::unique_ptr<PluginInstance> CreateFormation(const LoadedPlugin& formation,
                                                   const mjfCreateContext& base,
                                                   const PluginSection& section) const;
@@ -96,6 +103,14 @@ class ControlWiring {
   mjfShape abi_shape_{};
   std::vector<int> edge_from_, edge_to_;
   std::vector<double> edge_weight_;
+  // A later graph in the ABI's form; its arrays live as long as this object (as the first's).
+  struct SwitchGraph {
+    std::vector<double> leader_weight;
+    std::vector<int> edge_from, edge_to;
+    std::vector<double> edge_weight;
+    mjfGraph abi{};
+  };
+  std::vector<std::unique_ptr<SwitchGraph>> switch_graphs_;  // [topology_switches]
 };
 
 }  // namespace mjf::runner

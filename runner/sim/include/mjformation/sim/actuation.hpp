@@ -36,6 +36,16 @@ class Actuation {
 std::unique_ptr<Actuation> MakeActuation(RotorModel model, const mjModel* m,
                                          const VehicleBindings& bindings, double timestep);
 
+// `inner` with the experiment's rotor faults ([[vehicles.fault]]) on the vehicles `bindings`
+// holds (vehicle `first_vehicle` and on; 0 = leader): from a fault's time on, the rotor's control
+// becomes (1 - thrust_share) x its control clamped to the actuator's range, before either rotor
+// model sees it (thrust is linear in the control in both, so the rotor gives that share less
+// thrust, and its yaw torque with it). Returns `inner` itself when no fault is on these vehicles.
+// Throws ConfigError naming the fault's line for a rotor the vehicle does not have.
+std::unique_ptr<Actuation> WithRotorFaults(std::unique_ptr<Actuation> inner,
+                                           const ExperimentConfig& config,
+                                           const VehicleBindings& bindings, int first_vehicle);
+
 // Adds J^T [force; torque] of a wrench acting at `body`'s centre of mass (world frame) to
 // qfrc_applied, over the dofs that move the body only (O(dofs of the body's chain)).
 void AddWrenchAtCentreOfMass(const mjModel* m, mjData* d, int body, const mjtNum wrench[6]);
