@@ -232,7 +232,9 @@ def heatmap(board: dict, path) -> None:
                 ax.text(j, i, "FAILED", ha="center", va="center", fontsize=8, color="0.1")
                 continue
             grid[i, j] = c["normalised"]
-            ax.text(j, i, _fmt(c["normalised"], 3), ha="center", va="center", fontsize=8)
+            dark = np.log10(max(c["normalised"], 1.0)) > 0.5  # viridis_r's dark half
+            ax.text(j, i, _fmt(c["normalised"], 3), ha="center", va="center", fontsize=8,
+                    color="white" if dark else "black")
     image = ax.imshow(np.log10(np.clip(grid, 1.0, 10.0)), cmap="viridis_r", vmin=0.0, vmax=1.0,
                       aspect="auto")
     bar = fig.colorbar(image, ax=ax, ticks=[0.0, 0.5, 1.0])
