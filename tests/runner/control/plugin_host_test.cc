@@ -100,13 +100,20 @@ TEST(PluginHostTest, AMisspeltPluginNameGetsTheNearestName) {
                         "'test_required'?; available: "));
 }
 
+// In-process plugins are the process's (RegisterInProcessPlugin): a test of this binary that
+// registered one before, when the tests run in one process, leaves it listed. An empty folder
+// gives no plugin of its own either way.
 TEST(PluginHostTest, NoPluginsAtAll) {
   const std::string empty = TempDir("ph_empty");
   PluginRegistry registry({empty});
-  EXPECT_TRUE(registry.plugins().empty());
+  size_t in_process = 0;
+  for (const auto& p : registry.plugins()) in_process += p.library.rfind("in-process", 0) == 0;
+  EXPECT_EQ(registry.plugins().size(), in_process);
   EXPECT_TRUE(registry.problems().empty());
-  EXPECT_THAT(ErrorOf([&] { registry.Find("hover", "w"); }),
-              HasSubstr("w: unknown plugin 'hover'; no plugins found; searched: " + empty));
+  const std::string error = ErrorOf([&] { registry.Find("hover", "w"); });
+  EXPECT_THAT(error, HasSubstr("w: unknown plugin 'hover'"));
+  EXPECT_THAT(error, HasSubstr("searched: " + empty));
+  if (in_process == 0) EXPECT_THAT(error, HasSubstr("; no plugins found; "));
 }
 
 TEST(PluginHostTest, ALibraryThatCannotBeLoadedIsAProblemNotAFailure) {
