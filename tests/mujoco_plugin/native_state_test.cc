@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "mjformation/export/export.hpp"
+#include "mjformation/sim/mujoco_errors.hpp"
 #include "native_fixture.hpp"
 
 #if defined(__has_feature)
@@ -389,14 +390,17 @@ TEST(NativeStateFiles, AnInitThatCannotReadItsFilesRaises) {
   Step(m, reference, 300);
   fs::remove(dir / "vehicle.xml");
   mjModel* copy = mj_copyModel(nullptr, m);
+  ClearMujocoWarning();
   try {
     mjData* d = mj_makeData(copy);
     ADD_FAILURE() << "an mjData made without its vehicle file";
     mj_deleteData(d);
   } catch (const std::exception& e) {
-    // MuJoCo's error names the plugin's slot; the instance's own message (naming the file) is
-    // MuJoCo's warning before it.
+    // MuJoCo's error names the plugin's slot; the instance's own message, naming the file, is
+    // the warning before it.
     EXPECT_NE(std::string(e.what()).find("plugin->init failed"), std::string::npos) << e.what();
+    const std::string warning = LastMujocoWarning();  // the runner's handler keeps it
+    EXPECT_NE(warning.find("vehicle.xml' not found"), std::string::npos) << warning;
   }
   mjData* d = mj_makeData(m);
   Step(m, d, 300);
