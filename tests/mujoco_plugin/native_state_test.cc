@@ -5,9 +5,12 @@
 // integrate it with RK4) gives the flight the plain mj_step loop gives, bit for bit. Each test
 // flies the exported Exp 2 for a few seconds with MuJoCo's C API alone.
 #include <gtest/gtest.h>
+#include <malloc.h>
 #include <mujoco/mujoco.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -18,7 +21,20 @@
 #include <vector>
 
 #include "mjformation/export/export.hpp"
+#include "mjformation/sim/mujoco_errors.hpp"
 #include "native_fixture.hpp"
+
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define MJF_TEST_ASAN 1
+#endif
+#endif
+#if defined(__SANITIZE_ADDRESS__)
+#define MJF_TEST_ASAN 1
+#endif
+#ifdef MJF_TEST_ASAN
+#include <sanitizer/allocator_interface.h>
+#endif
 
 namespace mjf::runner {
 namespace {
@@ -26,6 +42,7 @@ namespace {
 namespace fs = std::filesystem;
 using mjf::testing::LoadNativePluginsOnce;
 using mjf::testing::NativeExperimentText;
+using mjf::testing::ReadFile;
 using mjf::testing::Scratch;
 
 // The plugin_state header of mujoco_plugin/src/native_plugins.cc.
@@ -110,6 +127,99 @@ TEST_F(NativeState, CopyAtOneSecondFliesOnAsTheOriginal) {
   EXPECT_TRUE(SameBits(m_, copy, reference));
 }
 
+// Copies at 1, 7 and 20 s, one into a new mjData and one into an mjData with controllers of its
+// own, fly on as the uncopied flight, bit for bit.
+TEST_F(NativeState, CopiesAtOneSevenAndTwentySecondsFlyOnAsTheOriginal) {
+  mjData* uncopied = Make();
+  mjData* d = Make();
+  mjData* dest = Make();
+  Step(m_, dest, 300);  // its controllers hold a state of their own
+  int done = 0;
+  for (const int at : {1000, 7000, 20000}) {
+    Step(m_, uncopied, at - done);
+    Step(m_, d, at - done);
+    done = at + 500;
+    mjData* fresh = Own(mj_copyData(nullptr, m_, d));
+    mj_copyData(dest, m_, d);
+    for (mjData* x : {uncopied, d, fresh, dest}) Step(m_, x, 500);
+    EXPECT_TRUE(SameBits(m_, fresh, uncopied));
+    EXPECT_TRUE(SameBits(m_, dest, uncopied));
+    EXPECT_TRUE(SameBits(m_, d, uncopied));
+  }
+}
+
+// The heap in use, in bytes: the sanitizer's count under ASan (its allocator replaces malloc's).
+size_t HeapInUse() {
+#ifdef MJF_TEST_ASAN
+  return __sanitizer_get_current_allocated_bytes();
+#else
+  return mallinfo2().uordblks;
+#endif
+}
+
+// 10,000 copies (one in ten into a new mjData, then deleted; the rest into one mjData, as the
+// passive viewer copies every frame) leave the heap where it was (a copy used to keep a second
+// controller bridge: +150 kB each). LeakSanitizer checks the instrumented tree at exit too.
+TEST_F(NativeState, TenThousandCopiesLeakNothing) {
+  mjData* d = Make();
+  Step(m_, d, 500);
+  mjData* dest = Make();
+  const auto copies = [&](int n) {
+    for (int i = 0; i < n; ++i) {
+      if (i % 10 == 0) {
+        mj_deleteData(mj_copyData(nullptr, m_, d));
+      } else {
+        mj_copyData(dest, m_, d);
+      }
+    }
+  };
+  copies(100);  // caches that fill once (MuJoCo's, the allocator's) are full before the count
+  const size_t before = HeapInUse();
+  copies(10000);
+  const size_t after = HeapInUse();
+  std::printf("heap in use before 10,000 copies: %zu bytes, after: %zu\n", before, after);
+  EXPECT_LT(after, before + 64 * 1024);
+  Step(m_, dest, 10);
+  Step(m_, d, 10);
+  EXPECT_TRUE(SameBits(m_, dest, d));
+}
+
+// mj_copyData's cost per call into an mjData of the same model, averaged over `copies`.
+double SecondsPerCopy(const mjModel* m, int copies) {
+  mjData* src = mj_makeData(m);
+  Step(m, src, 500);
+  mjData* dest = mj_makeData(m);
+  Step(m, dest, 1);
+  const auto start = std::chrono::steady_clock::now();
+  for (int i = 0; i < copies; ++i) mj_copyData(dest, m, src);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  mj_deleteData(dest);
+  mj_deleteData(src);
+  return seconds / copies;
+}
+
+// Not a test (timing): `mujoco_plugin_test --gtest_also_run_disabled_tests
+// --gtest_filter='*CopyCost*'` prints what one mj_copyData of the exported Exp 2 costs against
+// the bare scene (the same scene.xml without <extension>: MuJoCo's actuators, no plugin).
+TEST_F(NativeState, DISABLED_CopyCostAgainstTheBareScene) {
+  std::string text = ReadFile(dir_ / "export/scene.xml");
+  const size_t begin = text.find("<extension>");
+  const std::string close = "</extension>";
+  ASSERT_NE(begin, std::string::npos);
+  text.erase(begin, text.find(close) + close.size() - begin);
+  std::ofstream(dir_ / "bare.xml") << text;
+  char error[1024] = {0};
+  mjModel* bare = mj_loadXML((dir_ / "bare.xml").c_str(), nullptr, error, sizeof(error));
+  ASSERT_NE(bare, nullptr) << error;
+  constexpr int kCopies = 20000;
+  SecondsPerCopy(m_, kCopies / 10);  // warm caches
+  const double exported = SecondsPerCopy(m_, kCopies), plain = SecondsPerCopy(bare, kCopies);
+  std::printf("mj_copyData: exported Exp 2 %.3f us, bare scene %.3f us, ratio %.2f\n",
+              exported * 1e6, plain * 1e6, exported / plain);
+  mj_deleteModel(bare);
+}
+
 // A copy into an mjData that has its own controllers keeps them (no leak, no rebuild), and
 // 2000 copies cost little: the passive viewer copies every frame. Reports the figures.
 TEST_F(NativeState, RepeatedCopiesReuseTheHolderAndLeakNothing) {
@@ -173,29 +283,60 @@ TEST_F(NativeState, ResetThenFlyAgainIsTheFirstFlight) {
   EXPECT_TRUE(SameBits(m_, d, reference));
 }
 
+// Flies `steps` twice with m's integrator: plainly, and probed with mj_forward before each
+// mj_step (the tick of step k runs there, on the step's own sensors). After every step the step
+// ran exactly one tick (committed k + 1, held k, the held controls and blocks untouched by the
+// integrator's evaluations); both flights are the same bits. Returns the plain flight.
+mjData* FlyProbed(const mjModel* m, int steps) {
+  mjData* plain = mj_makeData(m);
+  mjData* probed = mj_makeData(m);
+  const int adr = m->plugin_stateadr[0];
+  for (int k = 0; k < steps; ++k) {
+    mj_step(m, plain);
+    mj_forward(m, probed);
+    const std::vector<mjtNum> held(probed->plugin_state, probed->plugin_state + m->npluginstate);
+    mj_step(m, probed);
+    EXPECT_EQ(probed->plugin_state[adr + kCommitted], k + 1);
+    EXPECT_EQ(probed->plugin_state[adr + kHeld], k);
+    // Controls (NaN for an actuator not driven) and state blocks, bit for bit.
+    if (std::memcmp(held.data() + adr + 4, probed->plugin_state + adr + 4,
+                    sizeof(mjtNum) * (held.size() - adr - 4)) != 0) {
+      ADD_FAILURE() << "an evaluation ticked again at step " << k;
+      break;
+    }
+  }
+  EXPECT_TRUE(SameBits(m, plain, probed));
+  mj_deleteData(probed);
+  return plain;
+}
+
+// How far the vehicles moved from their starting point (the flight is not a hover in place).
+double Travelled(const mjModel* m, const mjData* d) {
+  return std::fabs(d->qpos[0] - m->qpos0[0]) + std::fabs(d->qpos[1] - m->qpos0[1]);
+}
+
 // RK4: the controllers tick once per step, at its first evaluation (the step's own sensors),
 // never at an intermediate stage; repeated evaluations in between change nothing.
 TEST_F(NativeState, Rk4TicksOncePerStepOnTheStepsSensors) {
   m_->opt.integrator = mjINT_RK4;
-  mjData* plain = Make();
-  mjData* probed = Make();
-  const int adr = m_->plugin_stateadr[0];
-  for (int k = 0; k < 600; ++k) {
-    mj_step(m_, plain);
-    mj_forward(m_, probed);  // the tick of step k runs here, on the step's sensors
-    const std::vector<mjtNum> held(probed->plugin_state, probed->plugin_state + m_->npluginstate);
-    mj_step(m_, probed);  // RK4's four stages reuse it
-    EXPECT_EQ(probed->plugin_state[adr + kCommitted], k + 1);
-    EXPECT_EQ(probed->plugin_state[adr + kHeld], k);
-    // Controls (NaN for an actuator not driven) and state blocks, bit for bit.
-    ASSERT_EQ(std::memcmp(held.data() + adr + 4, probed->plugin_state + adr + 4,
-                          sizeof(mjtNum) * (held.size() - adr - 4)),
-              0)
-        << "a stage ticked again at step " << k;
+  const mjData* plain = Own(FlyProbed(m_, 600));
+  EXPECT_GT(Travelled(m_, plain), 1e-3);
+}
+
+// implicitfast (one evaluation per step, like Euler): the same tick rule, one tick per mj_step
+// on the step's own sensors; the flight stays within the integrators' difference of Euler's.
+TEST_F(NativeState, ImplicitFastTicksOncePerStepOnTheStepsSensors) {
+  m_->opt.integrator = mjINT_IMPLICITFAST;
+  const mjData* implicit = Own(FlyProbed(m_, 1000));
+  m_->opt.integrator = mjINT_EULER;
+  const mjData* euler = Reference(1000);
+  EXPECT_GT(Travelled(m_, implicit), 1e-3);
+  double apart = 0;
+  for (int i = 0; i < m_->nq; ++i) {
+    apart = std::max(apart, std::fabs(implicit->qpos[i] - euler->qpos[i]));
   }
-  EXPECT_TRUE(SameBits(m_, plain, probed));
-  EXPECT_GT(std::fabs(plain->qpos[0] - m_->qpos0[0]) + std::fabs(plain->qpos[1] - m_->qpos0[1]),
-            1e-3);
+  std::printf("implicitfast vs Euler after 1 s: %.3g m at most\n", apart);
+  EXPECT_LT(apart, 1e-5);
 }
 
 // Two mjData sharing one holder pointer (an unpickled MjData copies plugin_data raw): each
@@ -234,6 +375,38 @@ TEST(NativeStateFiles, ResetAndCopyReadNoFileAgain) {
   EXPECT_TRUE(SameBits(m, d, reference));
   EXPECT_TRUE(SameBits(m, copy, reference));
   for (mjData* x : {reference, d, copy}) mj_deleteData(x);
+  mj_deleteModel(m);
+}
+
+// The files are read once per model: a model copied after its vehicle file is gone reads them
+// again for its first mjData and cannot. mj_makeData raises (never a crash), and
+// the original model's mjData still step.
+TEST(NativeStateFiles, AnInitThatCannotReadItsFilesRaises) {
+  Scratch dir("init");
+  fs::copy_file(std::string(MJF_SOURCE_DIR) + "/mjcf/quadrotor.xml", dir / "vehicle.xml");
+  mjModel* m = LoadExp2(dir, dir / "vehicle.xml");
+  ASSERT_NE(m, nullptr);
+  mjData* reference = mj_makeData(m);
+  Step(m, reference, 300);
+  fs::remove(dir / "vehicle.xml");
+  mjModel* copy = mj_copyModel(nullptr, m);
+  ClearMujocoWarning();
+  try {
+    mjData* d = mj_makeData(copy);
+    ADD_FAILURE() << "an mjData made without its vehicle file";
+    mj_deleteData(d);
+  } catch (const std::exception& e) {
+    // MuJoCo's error names the plugin's slot; the instance's own message, naming the file, is
+    // the warning before it.
+    EXPECT_NE(std::string(e.what()).find("plugin->init failed"), std::string::npos) << e.what();
+    const std::string warning = LastMujocoWarning();  // the runner's handler keeps it
+    EXPECT_NE(warning.find("vehicle.xml' not found"), std::string::npos) << warning;
+  }
+  mjData* d = mj_makeData(m);
+  Step(m, d, 300);
+  EXPECT_TRUE(SameBits(m, d, reference));
+  for (mjData* x : {reference, d}) mj_deleteData(x);
+  mj_deleteModel(copy);
   mj_deleteModel(m);
 }
 
