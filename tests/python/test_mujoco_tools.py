@@ -4,7 +4,6 @@
 difference taken by hand over copies, and what rollout's `control` does. The controllers' state
 lives in plugin_state, so each tool gives the bits of a plain mj_step loop. Short flights (1 s)."""
 
-import re
 
 import mujoco
 import mujoco.rollout
@@ -81,35 +80,22 @@ def test_rollout_over_two_threads_is_the_serial_loop_bit_for_bit(model):
     assert np.nanmax(np.abs(state[:, -1] - initial)) > 1e-2
 
 
-def bare_model(scene) -> mujoco.MjModel:
-    """The same scene without the plugin: MuJoCo's own actuators, driven by ctrl."""
-    text = re.sub(r"<extension>.*?</extension>", "", scene.read_text(), flags=re.S)
-    assert "mjformation.swarm" not in text
-    return mujoco.MjModel.from_xml_string(text)
-
-
 def random_controls(model, shape, seed: int = 3) -> np.ndarray:
     low, high = model.actuator_ctrlrange[:, 0], model.actuator_ctrlrange[:, 1]
     return np.random.default_rng(seed).uniform(low, high, size=(*shape, model.nu))
 
 
-def test_rollouts_control_is_not_read_by_the_swarm(model, scene):
-    """The documented contract today: the swarm plugin writes its own controls where MuJoCo
-    would use ctrl, so rollout's `control` (like the viewer's sliders) changes nothing."""
+def test_rollouts_control_trims_the_swarms_rotors(model):
+    """rollout's `control` is the rotors' trim (docs/PLUGINS.md, "Actuation"): zeros fly the
+    free rollout's bits, other controls another flight."""
     initial = flight(model, 300)[[100, 300]]
     data = mujoco.MjData(model)
     free_state, free_sensors = mujoco.rollout.rollout(model, data, initial, nstep=150)
-    controls = random_controls(model, (2, 150))
-    state, sensors = mujoco.rollout.rollout(model, data, initial, controls)
+    zeros = np.zeros((2, 150, model.nu))
+    state, sensors = mujoco.rollout.rollout(model, data, initial, zeros)
     assert same_bits(state, free_state) and same_bits(sensors, free_sensors)
-    # The same controls do act on the bare scene: rollout applies them there.
-    bare = bare_model(scene)
-    bare_initial = np.zeros((1, mujoco.mj_stateSize(bare, FULL)))
-    mujoco.mj_getState(bare, mujoco.MjData(bare), bare_initial[0], FULL)
-    bare_data = mujoco.MjData(bare)
-    idle, _ = mujoco.rollout.rollout(bare, bare_data, bare_initial, nstep=150)
-    driven, _ = mujoco.rollout.rollout(bare, bare_data, bare_initial, controls[:1])
-    assert np.abs(driven - idle).max() > 1e-3
+    trimmed, _ = mujoco.rollout.rollout(model, data, initial, random_controls(model, (2, 150)))
+    assert np.nanmax(np.abs(trimmed - free_state)) > 1e-4
 
 
 def perturbed_step(model, data, dx: np.ndarray):
@@ -163,5 +149,8 @@ def test_transition_fd_is_the_finite_difference_by_hand(model):
     # every evaluation used to make it -3.21.
     tau = model.actuator_dynprm[model.actuator("uav1_rotor0").id, 0]
     assert A[2 * nv + act, 2 * nv + act] == pytest.approx(1 - model.opt.timestep / tau, rel=1e-8)
-    # ctrl is not read (test_rollouts_control_is_not_read_by_the_swarm): B is zero.
-    assert not B.any()
+    # B: a rotor's trim moves only its own motor lag within the step, by h / tau.
+    ctrl = model.actuator_ctrladr[model.actuator("uav1_rotor0").id]
+    column = B[:, ctrl]
+    assert np.flatnonzero(column).tolist() == [2 * nv + act]
+    assert column[2 * nv + act] == pytest.approx(model.opt.timestep / tau, rel=1e-6)
