@@ -193,7 +193,7 @@ class StateArchive {
     } else if constexpr (IsOrdered<T>::value) {
       Ordered(value);
     } else if constexpr (IsPairLike<T>::value) {
-      std::apply([this](auto&... parts) { (Visit(parts), ...); }, value);
+      std::apply([&](auto&... parts) { (Visit(parts), ...); }, value);
     } else if constexpr (std::is_trivially_copyable_v<T>) {
       // std::complex and the plugin ABI's plain structs (mjfVehicleState,
       // mjfSetpoint): doubles and integers only, stored as their bytes.
