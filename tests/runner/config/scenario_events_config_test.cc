@@ -7,26 +7,18 @@
 
 #include <string>
 
+#include "error_of.hpp"
 #include "mjformation/config/config.hpp"
 #include "test_util.hpp"
 
 namespace mjf::runner {
 namespace {
 
+using mjf::testing::ErrorOf;
 using mjf::testing::HoverExperiment;
 using mjf::testing::Parse;
 using ::testing::AllOf;
 using ::testing::HasSubstr;
-
-template <typename F>
-std::string ErrorOf(F statement) {
-  try {
-    statement();
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "";
-}
 
 // Three followers, 10 s; `extra` appended after the hover file's [topology] (its 16 lines end
 // with [attitude], so an appended table's header is on line 17).
