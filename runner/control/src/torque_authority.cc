@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "actuator_matrix.hpp"
+
 namespace mjf::runner {
 namespace {
 
@@ -35,18 +37,9 @@ TorqueAuthority ComputeTorqueAuthority(const mjfVehicleInfo& info) {
                           info.n_actuators);
     return out;
   }
-  Eigen::Matrix4d b;
-  Eigen::Vector4d lo, hi;
-  for (int k = 0; k < kActuators; ++k) {
-    const mjfActuatorInfo& a = info.actuators[k];
-    const Eigen::Vector3d pos(a.site_pos[0], a.site_pos[1], a.site_pos[2]);
-    const Eigen::Vector3d force(a.gear[0], a.gear[1], a.gear[2]);
-    const Eigen::Vector3d torque =
-        pos.cross(force) + Eigen::Vector3d(a.gear[3], a.gear[4], a.gear[5]);
-    b.col(k) << force.z(), torque;
-    lo[k] = a.ctrl_min;
-    hi[k] = a.ctrl_max;
-  }
+  const ActuatorMatrix m = ActuatorMatrixOf(info);
+  const Eigen::Matrix4d& b = m.b;
+  const Eigen::Vector4d &lo = m.lo, &hi = m.hi;
   const Eigen::FullPivLU<Eigen::Matrix4d> lu(b);
   if (!lu.isInvertible()) {
     out.why = "the actuators' allocation (thrust, torques) is singular";

@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "actuator_matrix.hpp"
+
 namespace mjf::runner {
 
 WrenchAllocation::WrenchAllocation(const mjfVehicleInfo& info) {
@@ -13,19 +15,10 @@ WrenchAllocation::WrenchAllocation(const mjfVehicleInfo& info) {
     throw std::invalid_argument(std::to_string(info.n_actuators) +
                                 " actuators, not four rotors or a thrust and three moments");
   }
-  Eigen::Matrix4d b;
-  for (int k = 0; k < kActuators; ++k) {
-    const mjfActuatorInfo& a = info.actuators[k];
-    // Column k: actuator k's force along body z and its torque about the centre of mass,
-    // site x force plus the gear's own torque (the rotor frame is the body frame).
-    const Eigen::Vector3d pos(a.site_pos[0], a.site_pos[1], a.site_pos[2]);
-    const Eigen::Vector3d force(a.gear[0], a.gear[1], a.gear[2]);
-    const Eigen::Vector3d torque =
-        pos.cross(force) + Eigen::Vector3d(a.gear[3], a.gear[4], a.gear[5]);
-    b.col(k) << force.z(), torque;
-    lo_[k] = a.ctrl_min;
-    hi_[k] = a.ctrl_max;
-  }
+  const ActuatorMatrix m = ActuatorMatrixOf(info);
+  const Eigen::Matrix4d& b = m.b;
+  Eigen::Map<Eigen::Vector4d>(lo_.data()) = m.lo;
+  Eigen::Map<Eigen::Vector4d>(hi_.data()) = m.hi;
   const Eigen::FullPivLU<Eigen::Matrix4d> lu(b);
   if (!lu.isInvertible()) {
     throw std::invalid_argument(
