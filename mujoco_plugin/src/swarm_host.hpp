@@ -28,6 +28,10 @@ const std::vector<std::string>& CarriedSections();
 runner::ExperimentConfig ConfigFromPairs(
     const std::vector<std::pair<std::string, std::string>>& pairs, const std::string& where);
 
+// `message` without the line numbers after `where` ("WHERE:3: [formation] q: ..." becomes
+// "WHERE: [formation] q: ..."): the lines of text a host built mean nothing to the MJCF's author.
+std::string WithoutLine(const std::string& message, const std::string& where);
+
 // What every SwarmHost of one model shares, read once: the configuration, the plugin
 // libraries and the vehicles' bindings (the vehicle file is read here, never per mjData).
 struct SwarmShared;

@@ -1,16 +1,21 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 #include "vehicle_host.hpp"
 
+#include <toml++/toml.h>
+
 #include <cmath>
 #include <cstring>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 #include "mjformation/config/config.hpp"
 #include "mjformation/config/paths.hpp"
 #include "mjformation/control/control_wiring.hpp"
 #include "mjformation/control/plugin_host.hpp"
+#include "swarm_host.hpp"
 
 namespace mjf::native {
 namespace {
@@ -24,16 +29,47 @@ std::vector<std::string> Words(const std::string& text) {
   return out;
 }
 
+// A TOML basic string of `text`, escaped by the TOML library: a plugin_path may hold any
+// character, a quote included.
+std::string TomlString(const std::string& text) {
+  std::ostringstream out;
+  out << toml::value<std::string>(text);
+  return out.str();
+}
+
+// The experiment parser's messages name sections and keys of the text below; the MJCF's author
+// wrote attributes, so each section is named by the attribute that gave it.
+std::string NamingAttributes(std::string message) {
+  const std::pair<const char*, const char*> kNames[] = {
+      {"<config key=\"leader\">", "<config key=\"guidance\">"},
+      {"[leader]", "<config key=\"guidance\">"},
+      {"[attitude]", "<config key=\"attitude\">"},
+      {"[run] plugin_path", "<config key=\"plugin_path\">"},
+  };
+  for (const auto& [section, attribute] : kNames) {
+    for (size_t at = message.find(section); at != std::string::npos;
+         at = message.find(section, at + std::strlen(attribute))) {
+      message.replace(at, std::strlen(section), attribute);
+    }
+  }
+  return message;
+}
+
 // The two sections through the experiment parser (its names, defaults, checks and messages),
 // inside the smallest experiment it accepts; only [leader] (the guidance) and [attitude] are
-// used.
+// used. Each attribute is read as one table of its own (ConfigFromPairs), never spliced into
+// text: a value cannot open another section.
 runner::ExperimentConfig Sections(const VehicleHostConfig& c) {
-  std::string toml = "leader = {" + (c.guidance.empty() ? "plugin = \"hover\"" : c.guidance) +
-                     "}\nattitude = {" + c.attitude + "}\n" +
-                     "formation = {plugin = \"hover\"}\nvehicles = {followers = 1}\n" +
-                     "topology = {leader_links = [1]}\n";
-  if (!c.plugin_path.empty()) toml += "run = {plugin_path = [\"" + c.plugin_path + "\"]}\n";
-  return runner::ParseExperiment(toml, c.where);
+  std::vector<std::pair<std::string, std::string>> pairs = {
+      {"leader", c.guidance.empty() ? "plugin = \"hover\"" : c.guidance},
+      {"attitude", c.attitude},
+      {"formation", "plugin = \"hover\""},
+      {"vehicles", "followers = 1"},
+      {"topology", "leader_links = [1]"}};
+  if (!c.plugin_path.empty()) {
+    pairs.emplace_back("run", "plugin_path = [" + TomlString(c.plugin_path) + "]");
+  }
+  return ConfigFromPairs(pairs, c.where);
 }
 
 // Actuator `a`'s facts: MuJoCo 4 keeps per-actuator arrays by actuator id, gear by the
@@ -49,6 +85,33 @@ mjfActuatorInfo ActuatorInfo(const mjModel* m, int a) {
                                                 : std::numeric_limits<double>::infinity();
   info.time_constant = m->actuator_dyntype[a] == mjDYN_FILTER ? m->actuator_dynprm[mjNDYN * a] : 0;
   return info;
+}
+
+// Rotor site `site` relative to the centre of mass of `body`, in body axes. site_pos is in the
+// frame of the site's own body; a site on a body inside the vehicle is carried out through each
+// fixed frame on the way (p <- body_pos + R(body_quat) p). A body on the way that a joint moves
+// gives no fixed arm, and is refused; so is a site outside the vehicle.
+void RotorArm(const mjModel* m, const std::string& where, int body, int site, double out[3]) {
+  const char* site_name = mj_id2name(m, mjOBJ_SITE, site);
+  const std::string named = "site '" + std::string(site_name ? site_name : "") + "'";
+  mjtNum p[3];
+  mju_copy3(p, m->site_pos + 3 * site);
+  for (int b = m->site_bodyid[site]; b != body; b = m->body_parentid[b]) {
+    const char* b_name = mj_id2name(m, mjOBJ_BODY, b);
+    if (b == 0) {
+      throw std::runtime_error(where + ": <config key=\"actuators\">: a rotor acts on " + named +
+                               ", which is not on the vehicle's body or a body inside it");
+    }
+    if (m->body_jntnum[b] > 0) {
+      throw std::runtime_error(where + ": <config key=\"actuators\">: a rotor acts on " + named +
+                               " of body '" + (b_name ? b_name : "") +
+                               "', which a joint moves: a rotor's arm must be fixed to the body");
+    }
+    mjtNum turned[3];
+    mju_rotVecQuat(turned, p, m->body_quat + 4 * b);
+    mju_add3(p, turned, m->body_pos + 3 * b);
+  }
+  mju_sub3(out, p, m->body_ipos + 3 * body);
 }
 
 // What the runner's vehicle binding reads of each driven actuator (gear, control range, motor
@@ -71,12 +134,7 @@ void ReadActuators(const mjModel* m, const std::string& where, int body,
     ids->push_back(a);
     mjfActuatorInfo info = ActuatorInfo(m, a);
     if (m->actuator_trntype[a] == mjTRN_SITE) {
-      // Site relative to the centre of mass, body axes: site_pos and body_ipos are both in the
-      // body frame (the site's body is the vehicle's).
-      const int site = m->actuator_trnid[2 * a];
-      for (int k = 0; k < 3; ++k) {
-        info.site_pos[k] = m->site_pos[3 * site + k] - m->body_ipos[3 * body + k];
-      }
+      RotorArm(m, where, body, m->actuator_trnid[2 * a], info.site_pos);
     }
     infos->push_back(info);
   }
@@ -150,8 +208,18 @@ struct VehicleHost::Impl {
 // geometry), read here from the compiled model's own fields: the model is the user's scene.
 VehicleHost::VehicleHost(const mjModel* m, VehicleHostConfig config)
     : impl_(std::make_unique<Impl>()) {
+  impl_->config = std::move(config);
+  try {
+    Build(m);
+  } catch (const std::exception& e) {
+    // The parser and the plugin loader name lines of the text Sections built; the author of
+    // the MJCF wrote attributes.
+    throw std::runtime_error(NamingAttributes(WithoutLine(e.what(), impl_->config.where)));
+  }
+}
+
+void VehicleHost::Build(const mjModel* m) {
   Impl& s = *impl_;
-  s.config = std::move(config);
   const std::string& where = s.config.where;
   s.sections = Sections(s.config);
   s.registry =

@@ -45,6 +45,8 @@ class VehicleHost {
   void SetState(const double* in);
 
  private:
+  // The constructor's work: reads the sections, loads the plugins, binds body and actuators.
+  void Build(const mjModel* m);
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

@@ -24,9 +24,34 @@ namespace fs = std::filesystem;
 constexpr char kBodyAligned[] =
     R"(<inertial pos="0 0 0" mass="1.2" diaginertia="0.012 0.012 0.022"/>)";
 
+// Where the rotor sites are: on the drone's body, or on a child body (a frame turned 90 degrees
+// about z, the sites placed so that the body sees them where kOnBody puts them), fixed or moved
+// by a hinge.
+enum class Arms { kOnBody, kOnFrame, kOnHingedFrame };
+
+std::string RotorSites(Arms arms) {
+  if (arms == Arms::kOnBody) {
+    return R"(<site name="s_front_right" pos="0.16 -0.16 0.03"/>
+      <site name="s_back_left" pos="-0.16 0.16 0.03"/>
+      <site name="s_front_left" pos="0.16 0.16 0.03"/>
+      <site name="s_back_right" pos="-0.16 -0.16 0.03"/>)";
+  }
+  // Body (x, y) is frame (y, -x): the frame is turned +90 degrees about z.
+  return std::string(R"(<body name="frame" euler="0 0 90">)") +
+         (arms == Arms::kOnHingedFrame ? R"(<joint name="fold" type="hinge" axis="0 0 1"/>
+        <geom type="sphere" size="0.01" mass="0.01" contype="0" conaffinity="0"/>)"
+                                       : "") +
+         R"(
+        <site name="s_front_right" pos="-0.16 -0.16 0.03"/>
+        <site name="s_back_left" pos="0.16 0.16 0.03"/>
+        <site name="s_front_left" pos="0.16 -0.16 0.03"/>
+        <site name="s_back_right" pos="-0.16 0.16 0.03"/>
+      </body>)";
+}
+
 // The drone's MJCF: `inertial` its <inertial> element, `gimbal` true for a camera gimbal on a
 // ball joint driven by an orientation actuator declared before the rotors.
-std::string DroneXml(const std::string& inertial, bool gimbal) {
+std::string DroneXml(const std::string& inertial, bool gimbal, Arms arms = Arms::kOnBody) {
   const std::string gimbal_body = gimbal ? R"(<body name="gimbal" pos="0 0 -0.05">
           <joint name="gimbal" type="ball" damping="0.001"/>
           <geom type="sphere" size="0.02" mass="0.02" contype="0" conaffinity="0"/>
@@ -58,12 +83,8 @@ std::string DroneXml(const std::string& inertial, bool gimbal) {
          inertial +
          R"(
       <geom type="box" size="0.09 0.09 0.03" mass="0" contype="0" conaffinity="0"/>
-      <site name="s_front_right" pos="0.16 -0.16 0.03"/>
-      <site name="s_back_left" pos="-0.16 0.16 0.03"/>
-      <site name="s_front_left" pos="0.16 0.16 0.03"/>
-      <site name="s_back_right" pos="-0.16 -0.16 0.03"/>
       )" +
-         gimbal_body +
+         RotorSites(arms) + gimbal_body +
          R"(
     </body>
   </worldbody>
@@ -175,6 +196,50 @@ TEST(NativeAttitude, CtrlTrimsARotor) {
   EXPECT_EQ(zero.final_z, plain.final_z);
   EXPECT_EQ(zero.hold, plain.hold);
   EXPECT_GT(std::fabs(trimmed.hold - plain.hold), 1e-4) << trimmed.hold << " vs " << plain.hold;
+}
+
+// Rotor sites on a fixed child body: the arms are carried through the child's frame, and the
+// flight is the drone's with the sites on its body, to rounding.
+TEST(NativeAttitude, RotorSitesOnAChildBodyAreTheSameDrone) {
+  const Flight on_body = Fly(DroneXml(kBodyAligned, false), kSeconds);
+  const Flight on_frame = Fly(DroneXml(kBodyAligned, false, Arms::kOnFrame), kSeconds);
+  ASSERT_TRUE(on_frame.flew) << on_frame.error;
+  EXPECT_LT(on_frame.hold, 0.005) << "final z " << on_frame.final_z;
+  EXPECT_NEAR(on_frame.final_z, on_body.final_z, 1e-6);
+}
+
+// A rotor on a body that a joint moves has no fixed arm: refused, naming the site and the body.
+TEST(NativeAttitude, RotorSiteOnAJointedBodyIsRefused) {
+  const Flight f = Fly(DroneXml(kBodyAligned, false, Arms::kOnHingedFrame), 0.1);
+  EXPECT_FALSE(f.flew);
+  EXPECT_NE(f.error.find("site 's_front_right'"), std::string::npos) << f.error;
+  EXPECT_NE(f.error.find("'frame'"), std::string::npos) << f.error;
+}
+
+// Configuration errors name the attribute the MJCF's author wrote, not a line of text the plugin
+// built; a plugin_path may hold a quote.
+TEST(NativeAttitude, ConfigErrorsNameTheAttribute) {
+  std::string xml = DroneXml(kBodyAligned, false);
+  const std::string tuned = "plugin = 'geometric', tilt_max = 0.5";
+  xml.replace(xml.find(tuned), tuned.size(), "plugin = 'geometric', tilt_maxx = 0.5");
+  const Flight unknown = Fly(xml, 0.1);
+  EXPECT_FALSE(unknown.flew);
+  EXPECT_NE(unknown.error.find("<config key=\"attitude\"> tilt_maxx"), std::string::npos)
+      << unknown.error;
+  EXPECT_EQ(unknown.error.find("autopilot':2"), std::string::npos) << unknown.error;
+
+  xml = DroneXml(kBodyAligned, false);
+  const std::string guidance = "plugin = 'hover', position = '0 0 1'";
+  xml.replace(xml.find(guidance), guidance.size(), "plugin = 'hoover'");
+  const Flight misnamed = Fly(xml, 0.1);
+  EXPECT_FALSE(misnamed.flew);
+  EXPECT_NE(misnamed.error.find("<config key=\"guidance\">"), std::string::npos) << misnamed.error;
+
+  xml = DroneXml(kBodyAligned, false);
+  xml.replace(xml.find("<config key=\"body\""), 0,
+              "<config key=\"plugin_path\" value=\"/nowhere/a&quot;b\"/>\n        ");
+  const Flight quoted = Fly(xml, 0.1);  // a folder that does not exist is searched, not refused
+  EXPECT_TRUE(quoted.flew) << quoted.error;
 }
 
 // Two instances naming one actuator: refused while the model compiles, naming both.

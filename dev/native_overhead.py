@@ -1,0 +1,100 @@
+# Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+"""The exported scene in stock MuJoCo beside `mjformation run --no-render`, in one command
+(docs/PLUGINS.md, "What the state costs").
+
+For each experiment: (a) the runner's stepping loop, as `run --no-render` times it (summary.json
+timing.wall_time_s: the tick, actuation, mj_step and recording, no composition, no rendering);
+(b) the exported scene stepped by `mujoco.rollout` (MuJoCo's own C loop, one thread, no Python
+per step) for the same step count: the native plugin's tick with its state round trip through
+plugin_state every step. Runs alternate (a, b, a, b, ...) so that a change in the machine's load
+hits both; the median of each is reported with the ratio b / a and the native path's extra cost
+per step and vehicle, state handling included. The load (os.getloadavg) is printed beside it.
+
+    PYTHONPATH=build/python .venv/bin/python dev/native_overhead.py [--repeats 5] [--duration 10]
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import statistics
+import tempfile
+import time
+from pathlib import Path
+
+import mujoco
+import mujoco.rollout
+import numpy as np
+
+import mjformation
+
+ROOT = Path(__file__).resolve().parents[1]
+CASES = {
+    "exp2": ("experiments/exp2.toml", {}),
+    "exp2_pointmass": ("experiments/exp2.toml",
+                       {"vehicles.model": "pointmass", "attitude": {"plugin": "pointmass_direct"}}),
+}
+
+
+def runner_seconds(experiment: Path, overrides: dict, out: Path) -> tuple[float, int, int]:
+    """The runner's stepping loop (run --no-render): wall seconds, steps, vehicles."""
+    run = mjformation.run(experiment, set=overrides, out=out, overwrite=True, render=False,
+                          raise_on_failure=True)
+    summary = json.loads((out / "summary.json").read_text())
+    del run
+    return summary["timing"]["wall_time_s"], summary["steps"], summary["n_followers"] + 1
+
+
+def native_seconds(model: mujoco.MjModel, steps: int) -> float:
+    """mujoco.rollout of the exported scene from its initial state, one thread."""
+    data = mujoco.MjData(model)
+    full = mujoco.mjtState.mjSTATE_FULLPHYSICS
+    initial = np.empty((1, mujoco.mj_stateSize(model, full)))
+    mujoco.mj_getState(model, data, initial[0], full)
+    start = time.perf_counter()
+    mujoco.rollout.rollout(model, data, initial, nstep=steps)
+    return time.perf_counter() - start
+
+
+def measure(name: str, repeats: int, duration: float, scratch: Path) -> dict:
+    experiment, extra = CASES[name]
+    overrides = {"run.duration": duration, "run.metric_window": [0.0, duration],
+                 "render.snapshots": [], **extra}
+    scene = mjformation.export(ROOT / experiment, scratch / f"{name}_scene", overwrite=True,
+                               set=overrides)
+    model = mujoco.MjModel.from_xml_path(str(scene))
+    runner, native = [], []
+    for _ in range(repeats):
+        seconds, steps, vehicles = runner_seconds(ROOT / experiment, overrides,
+                                                  scratch / f"{name}_run")
+        runner.append(seconds)
+        native.append(native_seconds(model, steps))
+    a, b = statistics.median(runner), statistics.median(native)
+    return {"case": name, "steps": steps, "vehicles": vehicles, "runner_s": a, "native_s": b,
+            "ratio": b / a, "extra_us_per_vehicle_step": 1e6 * (b - a) / (steps * vehicles),
+            "state_doubles": model.npluginstate, "runner_all": runner, "native_all": native}
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--repeats", type=int, default=5, help="runs of each side (median)")
+    parser.add_argument("--duration", type=float, default=10.0, help="simulated seconds per run")
+    parser.add_argument("--cases", default=",".join(CASES), help="comma-separated: " +
+                        ", ".join(CASES))
+    args = parser.parse_args()
+    mujoco.mj_loadPluginLibrary(mjformation.native_plugin_library())
+    print(f"load before: {os.getloadavg()[0]:.2f}  {time.strftime('%Y-%m-%d %H:%M')}")
+    with tempfile.TemporaryDirectory(prefix="mjformation_overhead_") as scratch:
+        for name in args.cases.split(","):
+            r = measure(name, args.repeats, args.duration, Path(scratch))
+            print(f"{r['case']:15s} {r['vehicles']} vehicles, {r['steps']} steps: "
+                  f"run --no-render {r['runner_s']:.3f} s, exported + rollout "
+                  f"{r['native_s']:.3f} s, ratio {r['ratio']:.3f}, native extra "
+                  f"{r['extra_us_per_vehicle_step']:+.3f} us per vehicle-step; plugin_state "
+                  f"{r['state_doubles']} doubles", flush=True)
+    print(f"load after: {os.getloadavg()[0]:.2f}")
+
+
+if __name__ == "__main__":
+    main()
