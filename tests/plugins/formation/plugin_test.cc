@@ -420,10 +420,9 @@ class CountingShape : public mjf::formation::Shape {
 };
 
 TEST_F(FormationPluginTest, PerAgentInstancesEvaluateOnlyThemselvesAndTheirNeighbours) {
-  for (const char* name :
-       {"smc_discrete_agent", "smc_continuous_agent", "consensus_linear_agent",
-        "vs_tracking_agent", "super_twisting_agent", "adaptive_tracking_agent",
-        "observer_tracking_agent", "terminal_smc_agent"}) {
+  for (const char* name : {"smc_discrete_agent", "smc_continuous_agent", "consensus_linear_agent",
+                           "vs_tracking_agent", "super_twisting_agent", "adaptive_tracking_agent",
+                           "observer_tracking_agent", "terminal_smc_agent"}) {
     auto counting = std::make_unique<CountingShape>(
         mjf::formation::MakeCircleShape(1000, 10.0, 0.314, 0.0, 2 * kPi / 1000));
     const CountingShape& counter = *counting;

@@ -101,8 +101,8 @@ TEST(AgentChannelTest, IdealNetworkCentralSolveReproducesCentralMode) {
 // laws (adaptive gain, estimate, super-twisting integral) carry that rounding through their
 // state, still within the same bound.
 TEST(AgentChannelTest, IdealNetworkLiteratureLawsPerAgentReproduceTheirCentralLaw) {
-  for (const char* law : {"vs_tracking", "super_twisting", "adaptive_tracking",
-                          "observer_tracking", "terminal_smc"}) {
+  for (const char* law : {"vs_tracking", "super_twisting", "adaptive_tracking", "observer_tracking",
+                          "terminal_smc"}) {
     const std::string formation = std::string("formation={plugin=\"") + law + "\"}";
     Simulation central(PointMass("benchmark/b01_paper_circle.toml", {formation}));
     Simulation agents(
