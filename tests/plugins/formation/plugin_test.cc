@@ -237,11 +237,20 @@ TEST_F(FormationPluginTest, LawsFromTheLiteratureRefuseBadGainsNamingTheKey) {
       {"adaptive_tracking", {"phi", "-1"}},
       {"observer_tracking", {"gamma", "0"}},
       {"terminal_smc", {"p", "4"}}};
-  for (const auto& [name, key_value] : bad) {
-    std::string error;
-    void* instance = Create(Plugin(name), {{key_value.first, key_value.second}}, &error);
-    EXPECT_EQ(instance, nullptr) << name;
-    EXPECT_NE(error.find("'" + key_value.first + "'"), std::string::npos) << name << ": " << error;
+  // The per-agent versions read the same attributes and refuse the same values.
+  const int neighbours[1] = {5};
+  const double weights[1] = {1.0};
+  const mjfNeighbourhood hood{0, 6, 1.0, 1, neighbours, weights};
+  for (const auto& [law, key_value] : bad) {
+    for (const std::string& name : {law, law + "_agent"}) {
+      const bool agent = name != law;
+      std::string error;
+      void* instance = Create(Plugin(name), {{key_value.first, key_value.second}}, &error, 0.01,
+                              true, agent ? &hood : nullptr);
+      EXPECT_EQ(instance, nullptr) << name;
+      EXPECT_NE(error.find("'" + key_value.first + "'"), std::string::npos)
+          << name << ": " << error;
+    }
   }
 }
 
