@@ -28,6 +28,9 @@ REPO = Path(__file__).resolve().parents[2]
 SCENARIO_DIR = REPO / "experiments" / "benchmark"
 LAWS_FILE = SCENARIO_DIR / "laws.toml"
 BASELINE = SCENARIO_DIR / "leaderboard.json"
+# The runner's refusal of a law without a per-agent version in a per-agent scenario
+# (runner/control/src/control_wiring.cc, FindAgentPlugin): such a cell is "not applicable".
+NO_AGENT_VERSION = "has no per-agent version"
 
 
 @dataclass
@@ -92,14 +95,17 @@ def command(plan: Plan, law: str, scenario: str, seed: int) -> list:
 
 
 def fly(plan: Plan, law: str, scenario: str, seed: int, stop: threading.Event) -> dict | None:
-    """Runs one cell and seed and scores it (None: not started, the board is stopping). A run
-    that ends without summary.json (a bad experiment or law, not a bad flight) or is
-    interrupted stops the benchmark."""
+    """Runs one cell and seed and scores it (None: not started, the board is stopping). A law
+    the runner refuses for having no per-agent version (a per-agent scenario) is scored not
+    applicable. Any other run that ends without summary.json (a bad experiment or law, not a bad
+    flight) or is interrupted stops the benchmark."""
     if stop.is_set():
         return None
     d = run_dir(plan, law, scenario, seed)
     cmd = command(plan, law, scenario, seed)
     proc = subprocess.run(cmd, capture_output=True, text=True)
+    if not (d / "summary.json").is_file() and NO_AGENT_VERSION in proc.stderr:
+        return bm.write_metrics(d, bm.not_applicable(f"{law} {NO_AGENT_VERSION}"))
     if not (d / "summary.json").is_file():
         stop.set()
         raise SystemExit(f"benchmark: {law} on {scenario} (seed {seed}) wrote no summary.json "

@@ -1,5 +1,5 @@
 # Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
-"""The benchmark's metrics of one run directory (docs/BENCHMARK.md, "Metrics", items 1-6).
+"""The benchmark's metrics of one run directory (docs/BENCHMARK.md, "Metrics", items 1-7).
 
 Computed here from timeseries.csv and summary.json rather than by the runner: summary.json's
 bytes are compared by dev/bytecheck.sh, and these metrics are the benchmark's, not every run's.
@@ -81,6 +81,22 @@ def control_effort(ts: dict, window) -> float:
     return float(np.sum(u**2) * h / u.shape[1])
 
 
+def messages_per_second(summary: dict, n_followers: int) -> float | None:
+    """Metric 7 (per-agent runs; None in central mode, which sends nothing): the messages the
+    followers sent, per follower and second of flight, (1/(N t_end)) sum over links from a
+    follower of (state messages + exchange-round messages) + the R_i each sent up to the
+    central solve over links; a message to k out-neighbours is k messages (one per link)."""
+    net = summary.get("network")
+    sim_time = summary.get("sim_time_s")
+    if not net or not sim_time or n_followers < 1:
+        return None
+    sent = sum(link["sent"] + link.get("round_messages_sent", 0)
+               for link in net.get("links", []) if link["from"] != 0)
+    solver = (net.get("rounds_over_links") or {}).get("solver") or {}
+    sent += sum(link["up_r"]["sent"] for link in solver.get("links", []))
+    return sent / (n_followers * sim_time)
+
+
 def failing_events(summary: dict) -> dict[str, int]:
     """Count of each failing safety event kind in summary.json "events" (absent: none)."""
     by_kind = summary.get("events", {}).get("by_kind", {})
@@ -103,7 +119,7 @@ def failure_reason(summary: dict, values: dict) -> str | None:
 
 
 def run_metrics(run_dir, band: float = DEFAULT_BAND_M) -> dict:
-    """Metrics 1-6 of docs/BENCHMARK.md for one run directory, with "failed" (reason or None).
+    """Metrics 1-7 of docs/BENCHMARK.md for one run directory, with "failed" (reason or None).
     Infinite reaching time is written as None (JSON has no infinity)."""
     d = Path(run_dir)
     summary = read_summary(d / "summary.json")
@@ -121,16 +137,28 @@ def run_metrics(run_dir, band: float = DEFAULT_BAND_M) -> dict:
         "control_effort": control_effort(ts, window),
         "min_separation_m": m.get("min_separation_m"),
         "safety_events": failing_events(summary),
+        "messages_per_s": messages_per_second(summary, len(followers(ts))),
     }
     values["failed"] = failure_reason(summary, values)
     return values
 
 
-def write_run_metrics(run_dir, band: float = DEFAULT_BAND_M) -> dict:
-    """run_metrics, also written to <run_dir>/benchmark_metrics.json (the cell's 'done' mark)."""
-    values = run_metrics(run_dir, band)
+def not_applicable(reason: str) -> dict:
+    """The metrics of a cell the law cannot fly (a per-agent scenario and a law without a
+    per-agent version): no number, and not a failure."""
+    return {"not_applicable": reason, "failed": None}
+
+
+def write_metrics(run_dir, values: dict) -> dict:
+    """values written to <run_dir>/benchmark_metrics.json (the cell's 'done' mark), non-finite
+    floats as null."""
     finite = {k: None if isinstance(v, float) and not math.isfinite(v) else v
               for k, v in values.items()}
-    text = json.dumps(finite, indent=2)
-    (Path(run_dir) / METRICS_FILE).write_text(text + "\n")
+    Path(run_dir).mkdir(parents=True, exist_ok=True)
+    (Path(run_dir) / METRICS_FILE).write_text(json.dumps(finite, indent=2) + "\n")
     return values
+
+
+def write_run_metrics(run_dir, band: float = DEFAULT_BAND_M) -> dict:
+    """run_metrics, also written to <run_dir>/benchmark_metrics.json (the cell's 'done' mark)."""
+    return write_metrics(run_dir, run_metrics(run_dir, band))

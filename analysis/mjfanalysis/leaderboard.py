@@ -5,7 +5,9 @@ the normalised score; leaderboard.json, leaderboard.md and the heat map.
 
 A record is {"law", "scenario", "seed", "metrics"}, metrics as benchmark_metrics.run_metrics
 writes them. Lower scores are better. A cell with any failed seed is failed: it gets no number
-and no rank (a crash is not a large error). Ranks: 1 + the number of laws whose interval lies
+and no rank (a crash is not a large error). A cell whose law cannot fly the scenario (a
+per-agent scenario, a law without a per-agent version) is not applicable: no number, no rank,
+not a failure, and left out of the law's overall score. Ranks: 1 + the number of laws whose interval lies
 entirely below this law's; two laws whose intervals overlap are never ranked apart, and a rank
 shared with another law is a tie (written "2=").
 """
@@ -19,7 +21,7 @@ import numpy as np
 
 SCORE = "rms_slot_error_m"
 METRIC_COLUMNS = ("sigma_f_mean", "rms_slot_error_m", "reaching_time_s", "chattering_index",
-                  "control_effort", "min_separation_m")
+                  "control_effort", "min_separation_m", "messages_per_s")
 # t_{0.975, df}, df = 1..30 (as runner/app/src/sweep_stats.cc; any statistics table).
 T975 = (12.7062, 4.3027, 3.1824, 2.7764, 2.5706, 2.4469, 2.3646, 2.3060, 2.2622, 2.2281, 2.2010,
         2.1788, 2.1604, 2.1448, 2.1314, 2.1199, 2.1098, 2.1009, 2.0930, 2.0860, 2.0796, 2.0739,
@@ -54,8 +56,10 @@ def _cell(law: str, scenario: str, recs: list, score: str) -> dict:
     failed = [f"seed {r['seed']}: {r['metrics']['failed']}" for r in recs if r["metrics"]["failed"]]
     cell = {"law": law, "scenario": scenario, "seeds": [r["seed"] for r in recs],
             "failed": "; ".join(failed) or None, "per_seed": None, "mean": None, "ci95": None,
-            "rank": None, "tie": False, "normalised": None, "metrics_mean": {}}
-    if failed:
+            "rank": None, "tie": False, "normalised": None, "metrics_mean": {},
+            "not_applicable": next((r["metrics"]["not_applicable"] for r in recs
+                                    if r["metrics"].get("not_applicable")), None)}
+    if failed or cell["not_applicable"]:
         return cell
     cell["per_seed"] = [r["metrics"][score] for r in recs]
     mean, lo, hi = interval95(cell["per_seed"])
@@ -67,9 +71,14 @@ def _cell(law: str, scenario: str, recs: list, score: str) -> dict:
     return cell
 
 
+def scored(cell: dict) -> bool:
+    """The cell has a number: neither failed nor not applicable."""
+    return not cell["failed"] and not cell.get("not_applicable")
+
+
 def _rank_scenario(cells: list) -> None:
     """Ranks and normalised scores (mean / best mean) of one scenario's cells, in place."""
-    ok = [c for c in cells if not c["failed"]]
+    ok = [c for c in cells if scored(c)]
     if not ok:
         return
     best = min(c["mean"] for c in ok)
@@ -80,15 +89,19 @@ def _rank_scenario(cells: list) -> None:
 
 
 def _overall(law: str, cells: list, best: dict) -> dict:
-    """A law's overall score: per seed, the mean over scenarios of score / the scenario's best
-    mean; its mean and interval over seeds. None when any of its cells failed, and when it was
-    not flown on every scenario or with the same seeds on each (not comparable)."""
+    """A law's overall score: per seed, the mean over the scenarios it applies to of score / the
+    scenario's best mean; its mean and interval over seeds. None when any of its cells failed,
+    and when it was not flown on every scenario or with the same seeds on each (not
+    comparable)."""
     failed = [c["scenario"] for c in cells if c["failed"]]
-    row = {"law": law, "failed_cells": failed, "mean": None, "ci95": None, "rank": None,
-           "tie": False}
-    if failed or len(cells) < len(best) or len({tuple(c["seeds"]) for c in cells}) != 1:
+    not_applicable = [c["scenario"] for c in cells if c.get("not_applicable")]
+    row = {"law": law, "failed_cells": failed, "not_applicable": not_applicable, "mean": None,
+           "ci95": None, "rank": None, "tie": False}
+    if failed or len(cells) < len(best) or len({tuple(c["seeds"]) for c in cells}) != 1 or \
+            len(not_applicable) == len(cells):
         return row
-    per_seed = np.mean([np.asarray(c["per_seed"]) / best[c["scenario"]] for c in cells], axis=0)
+    per_seed = np.mean([np.asarray(c["per_seed"]) / best[c["scenario"]] for c in cells
+                        if scored(c)], axis=0)
     mean, lo, hi = interval95(per_seed)
     row.update(mean=mean, ci95=[lo, hi])
     return row
@@ -109,7 +122,7 @@ def build(records: list, score: str = SCORE) -> dict:
     for s in scenarios:
         col = [c for c in cells if c["scenario"] == s]
         _rank_scenario(col)
-        ok = [c["mean"] for c in col if not c["failed"]]
+        ok = [c["mean"] for c in col if scored(c)]
         best[s] = min(ok) if ok and min(ok) > 0 else math.nan
     overall = [_overall(law, [c for c in cells if c["law"] == law], best) for law in laws]
     ok = {o["law"]: (o["mean"], *o["ci95"]) for o in overall if o["mean"] is not None
@@ -150,7 +163,9 @@ def _rank_text(rank, tie) -> str:
 
 
 def cell_text(c: dict) -> str:
-    """'0.83 [0.80, 0.86] #2=' or 'FAILED (reason)'."""
+    """'0.83 [0.80, 0.86] #2=', 'FAILED (reason)' or 'not applicable (reason)'."""
+    if c.get("not_applicable"):
+        return "not applicable (" + c["not_applicable"] + ")"
     if c["failed"]:
         return "**FAILED** (" + c["failed"].replace("|", "/") + ")"
     lo, hi = c["ci95"]
@@ -165,7 +180,9 @@ def overall_text(o: dict) -> str:
         return "n/a (not every scenario, or other seeds)"
     lo, hi = o["ci95"]
     interval = f" [{_fmt(lo)}, {_fmt(hi)}]" if lo != hi else ""
-    return f"{_fmt(o['mean'])}{interval} {_rank_text(o['rank'], o['tie'])}"
+    skipped = len(o.get("not_applicable", []))
+    without = f" (without {skipped} not applicable)" if skipped else ""
+    return f"{_fmt(o['mean'])}{interval} {_rank_text(o['rank'], o['tie'])}{without}"
 
 
 def board_table(board: dict) -> list[str]:
@@ -186,6 +203,7 @@ def metrics_table(board: dict) -> list[str]:
              "|---" * (2 + len(METRIC_COLUMNS)) + "|"]
     for c in board["cells"]:
         vals = (["FAILED"] * len(METRIC_COLUMNS) if c["failed"]
+                else ["not applicable"] * len(METRIC_COLUMNS) if c.get("not_applicable")
                 else [_fmt(c["metrics_mean"].get(k), 4) for k in METRIC_COLUMNS])
         lines.append(f"| `{c['law']}` | `{c['scenario']}` | " + " | ".join(vals) + " |")
     return lines
@@ -201,7 +219,9 @@ def markdown(board: dict, meta: dict) -> str:
             f"{len(seeds)} seed(s) {seeds} with its 95 % Student-t interval; #k is the rank, "
             "'=' a tie (intervals overlap). Overall: the mean over scenarios of score / the "
             "scenario's best mean, per seed. A cell with a failed seed (flip, ground impact, "
-            "collision, incomplete or non-finite run) is FAILED, not a number."]
+            "collision, incomplete or non-finite run) is FAILED, not a number; a law without a "
+            "per-agent version is not applicable to a per-agent scenario. messages_per_s: "
+            "per-agent scenarios only."]
     if len(seeds) < 2:
         text.append("With one seed there is no interval: ranks order the means and no tie "
                     "can be called.")
@@ -211,7 +231,8 @@ def markdown(board: dict, meta: dict) -> str:
 
 def heatmap(board: dict, path) -> None:
     """Laws x scenarios coloured by the normalised score (1 = the scenario's best, log colour
-    scale up to 10x); failed cells grey, hatched and marked FAILED."""
+    scale up to 10x); failed cells grey, hatched and marked FAILED; cells not applicable white,
+    marked n/a."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -225,6 +246,11 @@ def heatmap(board: dict, path) -> None:
         for j, s in enumerate(board["scenarios"]):
             c = cells.get((law, s))
             if c is None:
+                continue
+            if c.get("not_applicable"):
+                ax.add_patch(plt.Rectangle((j - 0.5, i - 0.5), 1, 1, facecolor="white",
+                                           edgecolor="0.6"))
+                ax.text(j, i, "n/a", ha="center", va="center", fontsize=8, color="0.3")
                 continue
             if c["failed"]:
                 ax.add_patch(plt.Rectangle((j - 0.5, i - 0.5), 1, 1, facecolor="0.8",

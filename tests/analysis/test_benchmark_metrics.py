@@ -68,3 +68,17 @@ def test_a_flip_or_an_incomplete_run_fails_and_a_near_miss_does_not(tmp_path):
     assert near["failed"] is None
     cut = bm.run_metrics(_write_run(tmp_path / "cut", complete=False))
     assert cut["failed"].startswith("incomplete")
+
+
+def test_messages_per_second_counts_the_followers_links_only(tmp_path):
+    d = _write_run(tmp_path / "run")
+    summary = json.loads((d / "summary.json").read_text())
+    assert bm.run_metrics(d)["messages_per_s"] is None  # central mode: no network
+    summary["sim_time_s"] = 4.0
+    summary["network"] = {"links": [
+        {"from": 0, "to": 1, "sent": 1000, "round_messages_sent": 0},  # the leader's: not counted
+        {"from": 1, "to": 2, "sent": 400, "round_messages_sent": 40},
+        {"from": 2, "to": 1, "sent": 400, "round_messages_sent": 0}]}
+    (d / "summary.json").write_text(json.dumps(summary))
+    # (400 + 40 + 400) messages / (N = 2 followers x 4 s)
+    assert bm.run_metrics(d)["messages_per_s"] == pytest.approx(105.0, rel=1e-12)

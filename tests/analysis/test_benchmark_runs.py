@@ -11,7 +11,9 @@ import pytest
 from mjfanalysis import benchmark as b
 
 # Writes --out as a two-sample run of one follower whose slot error is the seed (in m); the
-# law "crashes" flips; a run of the law "stop" is interrupted. Every call is logged.
+# law "crashes" flips; a run of the law "stop" is interrupted; the law "central_only" is refused
+# as the runner refuses a law without a per-agent version in a per-agent scenario. Every call is
+# logged.
 FAKE = r'''
 import json, sys
 from pathlib import Path
@@ -22,6 +24,9 @@ seed = int(next(s for s in sets if s.startswith("run.seed=")).split("=")[1])
 law = next(s for s in sets if s.startswith("formation=")).split('"')[1]
 with open(Path(__file__).with_name("calls.log"), "a") as f:
     f.write(" ".join(args) + "\n")
+if law == "central_only":
+    sys.exit("b13.toml:42: [formation] plugin: 'central_only' has no per-agent version "
+             "('central_only_agent') for [execution] mode = \"per_agent\"")
 out.mkdir(parents=True, exist_ok=True)
 rows = "\n".join(f"{t},0,0,,,0,0,{seed},0,1,0,0,0" for t in (0.0, 1.0))
 (out / "timeseries.csv").write_text(
@@ -73,6 +78,22 @@ def test_flies_each_cell_once_and_resumes(fake, tmp_path, capsys):
     (b.run_dir(plan, "good", "b01_paper_circle", 1) / b.bm.METRICS_FILE).unlink()
     b.fly_all(plan)
     assert len(_calls(tmp_path)) == 5  # only the unscored run
+
+
+def test_a_law_without_a_per_agent_version_is_not_applicable_and_not_flown_again(fake, tmp_path):
+    plan = _plan(fake, tmp_path, ["central_only", "good"])
+    records = b.fly_all(plan)
+    score = {(r["law"], r["seed"]): r["metrics"] for r in records}
+    assert "has no per-agent version" in score[("central_only", 1)]["not_applicable"]
+    assert score[("central_only", 2)]["failed"] is None
+    assert "not_applicable" not in score[("good", 1)]
+    b.fly_all(plan)
+    assert len(_calls(tmp_path)) == 4  # resumed: the refused cells are done, not flown again
+    board = b.write_board(records, {"seeds": [1, 2]}, tmp_path / "out")
+    cell = next(c for c in board["cells"] if c["law"] == "central_only")
+    assert cell["mean"] is None and cell["rank"] is None and cell["failed"] is None
+    assert "not applicable (central_only has no per-agent version)" in (
+        tmp_path / "out" / "leaderboard.md").read_text()
 
 
 def test_an_interrupted_run_stops_the_board_unscored(fake, tmp_path):

@@ -80,3 +80,26 @@ def test_a_law_missing_a_scenario_gets_no_overall_score():
     assert overall["x"]["rank"] == 1
     row = next(line for line in lb.board_table(board) if line.startswith("| `z`"))
     assert "n/a (not every scenario" in row and "not run" in row
+
+
+def test_a_cell_not_applicable_is_shown_and_left_out_of_the_overall_score(tmp_path):
+    records = _records() + [
+        {"law": "x", "scenario": "C", "seed": seed,
+         "metrics": {"not_applicable": "x has no per-agent version", "failed": None}}
+        for seed in (1, 2, 3)] + [
+        {"law": law, "scenario": "C", "seed": seed,
+         "metrics": {"rms_slot_error_m": v, "failed": None, "messages_per_s": 200.0}}
+        for law, v in (("y", 1.0), ("z", 2.0)) for seed in (1, 2, 3)]
+    board = lb.build(records)
+    cells = {(c["law"], c["scenario"]): c for c in board["cells"]}
+    assert cells[("x", "C")]["rank"] is None and cells[("x", "C")]["failed"] is None
+    assert cells[("y", "C")]["normalised"] == 1.0  # x is not counted in C
+    assert cells[("z", "C")]["metrics_mean"]["messages_per_s"] == 200.0
+    overall = {o["law"]: o for o in board["overall"]}
+    # x over A and B only, as in test_ties_ranks_and_failed_cells
+    assert overall["x"]["mean"] == pytest.approx(1.0) and overall["x"]["not_applicable"] == ["C"]
+    row = next(line for line in lb.board_table(board) if line.startswith("| `x`"))
+    assert "not applicable (x has no per-agent version)" in row
+    assert "(without 1 not applicable)" in row
+    lb.heatmap(board, tmp_path / "board.png")
+    assert (tmp_path / "board.png").stat().st_size > 0

@@ -53,4 +53,12 @@ if "$bin" check "$work/c_law.toml" --plugin-path "$plugins" --set formation.kp=-
   echo "kp = -1 was accepted" >&2; exit 1
 fi
 grep -q "kp = '-1': expected a number > 0" "$work/err.txt" || { cat "$work/err.txt"; exit 1; }
+# A law without a per-agent version in a per-agent experiment is refused with the words the
+# benchmark reads as "not applicable" (analysis/mjfanalysis/benchmark.py, NO_AGENT_VERSION).
+src=$(cd "$(dirname "$0")/../.." && pwd)
+if "$bin" check "$src/experiments/benchmark/b13_lossy_network.toml" --plugin-path "$plugins" \
+    --set 'formation={plugin="example_consensus_c"}' 2>"$work/err.txt"; then
+  echo "a central-only law was accepted per agent" >&2; exit 1
+fi
+grep -q "'example_consensus_c' has no per-agent version" "$work/err.txt" || { cat "$work/err.txt"; exit 1; }
 echo "c_formation_law: ok"

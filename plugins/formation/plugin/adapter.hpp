@@ -12,6 +12,7 @@
 #include <mjformation/formation/discrete_smc.hpp>
 #include <mjformation/formation/graph.hpp>
 #include <mjformation/formation/linear_consensus.hpp>
+#include <mjformation/formation/literature_agents.hpp>
 #include <mjformation/formation/shape.hpp>
 #include <mjformation/formation/sliding.hpp>
 #include <mjformation/plugin_contract.hpp>
@@ -67,6 +68,22 @@ formation::ContinuousSmcParams ParseContinuousParams(const plugin::Attributes& a
 extern const mjfAttribute kConsensusAttributes[];
 extern const int kConsensusAttributeCount;
 formation::LinearConsensusParams ParseConsensusParams(const plugin::Attributes& attributes);
+// The laws from the literature's, likewise (<law>.cc; the per-agent create validates them).
+extern const mjfAttribute kVsTrackingAttributes[];
+extern const int kVsTrackingAttributeCount;
+formation::VsTrackingParams ParseVsTrackingParams(const plugin::Attributes& attributes);
+extern const mjfAttribute kSuperTwistingAttributes[];
+extern const int kSuperTwistingAttributeCount;
+formation::SuperTwistingParams ParseSuperTwistingParams(const plugin::Attributes& attributes);
+extern const mjfAttribute kAdaptiveTrackingAttributes[];
+extern const int kAdaptiveTrackingAttributeCount;
+formation::AdaptiveTrackingParams ParseAdaptiveTrackingParams(const plugin::Attributes& attributes);
+extern const mjfAttribute kObserverTrackingAttributes[];
+extern const int kObserverTrackingAttributeCount;
+formation::ObserverTrackingParams ParseObserverTrackingParams(const plugin::Attributes& attributes);
+extern const mjfAttribute kTerminalSmcAttributes[];
+extern const int kTerminalSmcAttributeCount;
+formation::TerminalSmcParams ParseTerminalSmcParams(const plugin::Attributes& attributes);
 // Physics steps per sample period T; throws when T is not a whole number of steps.
 int64_t StepsPerSample(double period, double timestep);
 
@@ -248,6 +265,12 @@ extern const mjfPlugin kSuperTwisting;     // super_twisting.cc: Levant 1993 on 
 extern const mjfPlugin kAdaptiveTracking;  // adaptive_tracking.cc: Li, Liu, Ren & Xie, TAC 2013
 extern const mjfPlugin kObserverTracking;  // observer_tracking.cc: Hong, Hu & Gao, Aut. 2006
 extern const mjfPlugin kTerminalSmc;       // terminal_smc.cc: Feng, Yu & Man, Automatica 2002
+// Their per-agent versions (AgentPlugin<Law> over literature_agents.hpp), <law>_agent.cc:
+extern const mjfPlugin kVsTrackingAgent;
+extern const mjfPlugin kSuperTwistingAgent;
+extern const mjfPlugin kAdaptiveTrackingAgent;
+extern const mjfPlugin kObserverTrackingAgent;
+extern const mjfPlugin kTerminalSmcAgent;
 
 }  // namespace mjf::formation::adapter
 

@@ -8,22 +8,32 @@
 #include "adapter.hpp"
 
 namespace mjf::formation::adapter {
-namespace {
-
-const mjfAttribute kAttributes[] = {
+// The attributes and their reading, shared with adaptive_tracking_agent.cc.
+const mjfAttribute kAdaptiveTrackingAttributes[] = {
     {"tau", "0.02", "adaptation rate tau > 0 of d_i' (not tuned)"},
     {"phi", "0.05", "leakage phi >= 0 of d_i', 1/s (0 with kappa = 0: the discontinuous law)"},
     {"kappa", "0.1", "width kappa >= 0 of r(w) = w / (||w|| + kappa), m/s^2"},
     {"d0", "1", "initial adaptive gain d_i(0) > 0"},
 };
+const int kAdaptiveTrackingAttributeCount =
+    static_cast<int>(sizeof(kAdaptiveTrackingAttributes) / sizeof(kAdaptiveTrackingAttributes[0]));
+
+formation::AdaptiveTrackingParams ParseAdaptiveTrackingParams(
+    const plugin::Attributes& attributes) {
+  formation::AdaptiveTrackingParams params;
+  params.tau = attributes.Number("tau");
+  params.phi = attributes.Number("phi");
+  params.kappa = attributes.Number("kappa");
+  params.d0 = attributes.Number("d0");
+  return params;
+}
+
+namespace {
 
 struct Instance : SwarmInstance<formation::AdaptiveTracking> {
   using Config = formation::AdaptiveTrackingParams;
   static void Read(const plugin::Attributes& attributes, Config* params) {
-    params->tau = attributes.Number("tau");
-    params->phi = attributes.Number("phi");
-    params->kappa = attributes.Number("kappa");
-    params->d0 = attributes.Number("d0");
+    *params = ParseAdaptiveTrackingParams(attributes);
   }
   using SwarmInstance::SwarmInstance;
 };
@@ -37,6 +47,6 @@ void Report(void* instance, mjfReportFn emit, void* user) {
 const mjfPlugin kAdaptiveTracking = SwarmPlugin<Instance>(
     "adaptive_tracking",
     "adaptive-gain tracking of a leader with unknown input bound, Li, Liu, Ren & Xie (TAC 2013)",
-    kAttributes, &Report);
+    kAdaptiveTrackingAttributes, &Report);
 
 }  // namespace mjf::formation::adapter

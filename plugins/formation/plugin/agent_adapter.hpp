@@ -2,9 +2,11 @@
 //
 // What the per-agent formation plugins share, for distributed execution ([execution] mode =
 // "per_agent"; one file each: smc_discrete_agent.cc, smc_continuous_agent.cc,
-// consensus_linear_agent.cc): AgentPlugin<Law>, the descriptor with the compute, reset and destroy
-// of one instance per follower, over the law's per-agent core (formation::DiscreteSmcAgent,
-// ContinuousSmcAgent, LinearConsensusAgent). The u_j coupling is closed by what the host hands
+// consensus_linear_agent.cc and the laws from the literature, <law>_agent.cc): AgentPlugin<Law>,
+// the descriptor with the compute, reset and destroy of one instance per follower, over the law's
+// per-agent core (formation::DiscreteSmcAgent, ContinuousSmcAgent, LinearConsensusAgent,
+// literature_agents.hpp). A core whose state advances with time has Advance(time), called before
+// each Prepare, and Reset(), called by reset(). The u_j coupling is closed by what the host hands
 // the instance (docs/NETWORK.md):
 //   - agent->solved (coupling = central_solve): the host's exact solve, the reference;
 //   - round r > 0 (coupling = jacobi): the neighbours' round r-1 iterates w_j (payload[0..1]);
@@ -18,11 +20,21 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "adapter.hpp"
 
 namespace mjf::formation::adapter {
+
+namespace law_detail {
+template <typename Law, typename = void>
+struct AdvancesWithTime : std::false_type {};
+template <typename Law>
+struct AdvancesWithTime<Law, std::void_t<decltype(std::declval<Law&>().Advance(0.0))>>
+    : std::true_type {};
+}  // namespace law_detail
 
 template <typename Law>
 struct AgentInstance {
@@ -120,6 +132,7 @@ void AgentSample(AgentInstance<Law>& a, const mjfStepContext& ctx) {
   }
   double own_pv[4];
   plugin::ReadPlanarPv(*in.self, own_pv);
+  if constexpr (law_detail::AdvancesWithTime<Law>::value) a.core.Advance(ctx.time);
   a.core.Prepare(own_pv, a.inbox.leader_pv(), a.own_f_now, a.own_f_next, a.neighbour_pv.data(),
                  a.neighbour_f_now.data(), a.neighbour_f_next.data());
   if (in.solved) {
@@ -190,6 +203,8 @@ template <typename Law>
 void AgentReset(void* instance) {
   static_cast<AgentInstance<Law>*>(instance)->has_sample = false;
   static_cast<AgentInstance<Law>*>(instance)->last_round = -1;
+  if constexpr (law_detail::HasReset<Law>::value)
+    static_cast<AgentInstance<Law>*>(instance)->core.Reset();
 }
 
 template <typename Law>

@@ -9,20 +9,30 @@
 #include "adapter.hpp"
 
 namespace mjf::formation::adapter {
-namespace {
-
-const mjfAttribute kAttributes[] = {
+// The attributes and their reading, shared with observer_tracking_agent.cc.
+const mjfAttribute kObserverTrackingAttributes[] = {
     {"k", "1", "position consensus gain k > 0, 1/s (not tuned)"},
     {"gamma", "1", "leader-velocity estimator gain gamma > 0, 1/s"},
     {kKeyKv, "4", "inner velocity-loop gain kv > 0, 1/s (our adaptation to double integrators)"},
 };
+const int kObserverTrackingAttributeCount =
+    static_cast<int>(sizeof(kObserverTrackingAttributes) / sizeof(kObserverTrackingAttributes[0]));
+
+formation::ObserverTrackingParams ParseObserverTrackingParams(
+    const plugin::Attributes& attributes) {
+  formation::ObserverTrackingParams params;
+  params.k = attributes.Number("k");
+  params.gamma = attributes.Number("gamma");
+  params.kv = attributes.Number(kKeyKv);
+  return params;
+}
+
+namespace {
 
 struct Instance : SwarmInstance<formation::ObserverTracking> {
   using Config = formation::ObserverTrackingParams;
   static void Read(const plugin::Attributes& attributes, Config* params) {
-    params->k = attributes.Number("k");
-    params->gamma = attributes.Number("gamma");
-    params->kv = attributes.Number(kKeyKv);
+    *params = ParseObserverTrackingParams(attributes);
   }
   using SwarmInstance::SwarmInstance;
 };
@@ -31,6 +41,7 @@ struct Instance : SwarmInstance<formation::ObserverTracking> {
 
 const mjfPlugin kObserverTracking = SwarmPlugin<Instance>(
     "observer_tracking",
-    "tracking with a leader-velocity estimator, Hong, Hu & Gao (Automatica 2006)", kAttributes);
+    "tracking with a leader-velocity estimator, Hong, Hu & Gao (Automatica 2006)",
+    kObserverTrackingAttributes);
 
 }  // namespace mjf::formation::adapter

@@ -11,4 +11,7 @@ namespace adapter = mjf::formation::adapter;
 MJF_EXPORT_PLUGINS(&adapter::kSmcContinuous, &adapter::kSmcDiscrete, &adapter::kConsensusLinear,
                    &adapter::kSmcDiscreteAgent, &adapter::kSmcContinuousAgent,
                    &adapter::kConsensusLinearAgent, &adapter::kVsTracking, &adapter::kSuperTwisting,
-                   &adapter::kAdaptiveTracking, &adapter::kObserverTracking, &adapter::kTerminalSmc)
+                   &adapter::kAdaptiveTracking, &adapter::kObserverTracking, &adapter::kTerminalSmc,
+                   &adapter::kVsTrackingAgent, &adapter::kSuperTwistingAgent,
+                   &adapter::kAdaptiveTrackingAgent, &adapter::kObserverTrackingAgent,
+                   &adapter::kTerminalSmcAgent)

@@ -8,20 +8,29 @@
 #include "adapter.hpp"
 
 namespace mjf::formation::adapter {
-namespace {
-
-const mjfAttribute kAttributes[] = {
+// The attributes and their reading, shared with super_twisting_agent.cc.
+const mjfAttribute kSuperTwistingAttributes[] = {
     {kKeyGains, "3 1", "K = [k1 k2] of the sliding variable s_i = K e_i, eq. (17); both > 0"},
     {"lambda", "1.5", "gain lambda > 0 of -lambda |s|^(1/2) sgn(s) (not tuned)"},
     {"alpha", "0.5", "integral gain alpha > 0 of w' = -alpha sgn(s); > k2 a_i0 (leader jerk)"},
 };
+const int kSuperTwistingAttributeCount =
+    static_cast<int>(sizeof(kSuperTwistingAttributes) / sizeof(kSuperTwistingAttributes[0]));
+
+formation::SuperTwistingParams ParseSuperTwistingParams(const plugin::Attributes& attributes) {
+  formation::SuperTwistingParams params;
+  params.gains = ParseGains(attributes);
+  params.lambda = attributes.Number("lambda");
+  params.alpha = attributes.Number("alpha");
+  return params;
+}
+
+namespace {
 
 struct Instance : SwarmInstance<formation::SuperTwisting> {
   using Config = formation::SuperTwistingParams;
   static void Read(const plugin::Attributes& attributes, Config* params) {
-    params->gains = ParseGains(attributes);
-    params->lambda = attributes.Number("lambda");
-    params->alpha = attributes.Number("alpha");
+    *params = ParseSuperTwistingParams(attributes);
   }
   using SwarmInstance::SwarmInstance;
 };
@@ -39,6 +48,6 @@ void Report(void* instance, mjfReportFn emit, void* user) {
 
 const mjfPlugin kSuperTwisting = SwarmPlugin<Instance>(
     "super_twisting", "super-twisting (second-order sliding, Levant 1993) on s_i = K e_i",
-    kAttributes, &Report);
+    kSuperTwistingAttributes, &Report);
 
 }  // namespace mjf::formation::adapter

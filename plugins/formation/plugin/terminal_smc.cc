@@ -11,9 +11,8 @@
 #include "adapter.hpp"
 
 namespace mjf::formation::adapter {
-namespace {
-
-const mjfAttribute kAttributes[] = {
+// The attributes and their reading, shared with terminal_smc_agent.cc.
+const mjfAttribute kTerminalSmcAttributes[] = {
     {"beta", "1", "surface gain beta > 0 of s = e_p + e_v^(p/q) / beta (not tuned)"},
     {"p", "5", "odd integer p, q < p < 2q"},
     {"q", "3", "odd integer q"},
@@ -23,6 +22,10 @@ const mjfAttribute kAttributes[] = {
     {kKeySign, "sgn", "sign function: sgn (as published) or sat (boundary layer)"},
     {kKeyBoundaryLayer, "0.1", "boundary-layer width phi of sat (sign = sat only)"},
 };
+const int kTerminalSmcAttributeCount =
+    static_cast<int>(sizeof(kTerminalSmcAttributes) / sizeof(kTerminalSmcAttributes[0]));
+
+namespace {
 
 int ParseOddExponent(const plugin::Attributes& attributes, const char* key) {
   const double value = attributes.Number(key);
@@ -34,15 +37,25 @@ int ParseOddExponent(const plugin::Attributes& attributes, const char* key) {
   return static_cast<int>(value);
 }
 
+}  // namespace
+
+formation::TerminalSmcParams ParseTerminalSmcParams(const plugin::Attributes& attributes) {
+  formation::TerminalSmcParams params;
+  params.beta = attributes.Number("beta");
+  params.p = ParseOddExponent(attributes, "p");
+  params.q = ParseOddExponent(attributes, "q");
+  params.rho = attributes.Number(kKeyRho);
+  params.sign = formation::ParseSignFunction(attributes.String(kKeySign));
+  params.boundary_layer = attributes.Number(kKeyBoundaryLayer);
+  return params;
+}
+
+namespace {
+
 struct Instance : SwarmInstance<formation::TerminalSmc> {
   using Config = formation::TerminalSmcParams;
   static void Read(const plugin::Attributes& attributes, Config* params) {
-    params->beta = attributes.Number("beta");
-    params->p = ParseOddExponent(attributes, "p");
-    params->q = ParseOddExponent(attributes, "q");
-    params->rho = attributes.Number(kKeyRho);
-    params->sign = formation::ParseSignFunction(attributes.String(kKeySign));
-    params->boundary_layer = attributes.Number(kKeyBoundaryLayer);
+    *params = ParseTerminalSmcParams(attributes);
   }
   using SwarmInstance::SwarmInstance;
 };
@@ -55,6 +68,6 @@ void Report(void* instance, mjfReportFn emit, void* user) {
 
 const mjfPlugin kTerminalSmc = SwarmPlugin<Instance>(
     "terminal_smc", "nonsingular terminal sliding mode, Feng, Yu & Man (Automatica 2002)",
-    kAttributes, &Report);
+    kTerminalSmcAttributes, &Report);
 
 }  // namespace mjf::formation::adapter

@@ -8,8 +8,6 @@
 namespace mjf::formation {
 namespace {
 
-constexpr double kSqrt3 = 1.7320508075688772;  // Q = [[sqrt 3, 1], [1, sqrt 3]]: K = -[1 sqrt 3]
-
 void RequireNonNegative(double value, const char* key) {
   if (!(value >= 0.0 && std::isfinite(value))) {
     std::ostringstream out;
@@ -50,7 +48,8 @@ void AdaptiveTracking::Update(const FormationInput& input, double time) {
   for (int i = 0; i < graph_.num_followers(); ++i) {
     double w[2];
     for (int axis = 0; axis < 2; ++axis) {
-      w[axis] = -(error_[4 * i + axis] + kSqrt3 * error_[4 * i + 2 + axis]);  // K xi_i
+      w[axis] =
+          -(error_[4 * i + axis] + kAdaptiveVelocityWeight * error_[4 * i + 2 + axis]);  // K xi_i
       sliding_[2 * i + axis] = -w[axis];
     }
     const double norm = std::hypot(w[0], w[1]);  // ||K xi_i||

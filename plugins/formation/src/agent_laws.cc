@@ -3,9 +3,7 @@
 #include <stdexcept>
 
 namespace mjf::formation {
-namespace {
-
-double Degree(double leader_weight, const std::vector<double>& weights) {
+double AgentDegree(double leader_weight, const std::vector<double>& weights) {
   double degree = leader_weight;
   for (double a : weights) degree += a;
   if (!(degree > 0.0)) {
@@ -13,8 +11,6 @@ double Degree(double leader_weight, const std::vector<double>& weights) {
   }
   return degree;
 }
-
-}  // namespace
 
 void AgentError(double leader_weight, const std::vector<double>& weights, const double* own_pv,
                 const double* leader_pv, const double* f_now, const double* neighbour_pv,
@@ -33,7 +29,7 @@ ContinuousSmcAgent::ContinuousSmcAgent(const ContinuousSmcParams& params, double
     : params_(Validated(params)),
       leader_weight_(leader_weight),
       weights_(std::move(weights)),
-      degree_(Degree(leader_weight_, weights_)),
+      degree_(AgentDegree(leader_weight_, weights_)),
       neighbour_fa_(2 * weights_.size(), 0.0) {}
 
 void ContinuousSmcAgent::Prepare(const double* own_pv, const double* leader_pv, const double* f_now,
@@ -79,7 +75,7 @@ void ContinuousSmcAgent::UseSolved(const double* w_own) {
 LinearConsensusAgent::LinearConsensusAgent(const LinearConsensusParams& params,
                                            double leader_weight, std::vector<double> weights)
     : params_(Validated(params)), leader_weight_(leader_weight), weights_(std::move(weights)) {
-  Degree(leader_weight_, weights_);
+  AgentDegree(leader_weight_, weights_);
 }
 
 void LinearConsensusAgent::Prepare(const double* own_pv, const double* leader_pv,

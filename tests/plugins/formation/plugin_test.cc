@@ -186,12 +186,14 @@ void* FormationPluginTest::handle_ = nullptr;
 std::map<std::string, const mjfPlugin*> FormationPluginTest::plugins_;
 
 TEST_F(FormationPluginTest,
-       ExportsThreeFormationPluginsTheirPerAgentVersionsAndFiveFromTheLiterature) {
-  ASSERT_EQ(plugins_.size(), 11u);
+       ExportsThreeFormationPluginsFiveFromTheLiteratureAndTheirPerAgentVersions) {
+  ASSERT_EQ(plugins_.size(), 16u);
   for (const char* name :
        {"smc_continuous", "smc_discrete", "consensus_linear", "smc_continuous_agent",
         "smc_discrete_agent", "consensus_linear_agent", "vs_tracking", "super_twisting",
-        "adaptive_tracking", "observer_tracking", "terminal_smc"}) {
+        "adaptive_tracking", "observer_tracking", "terminal_smc", "vs_tracking_agent",
+        "super_twisting_agent", "adaptive_tracking_agent", "observer_tracking_agent",
+        "terminal_smc_agent"}) {
     const mjfPlugin* p = Plugin(name);
     EXPECT_EQ(p->abi_version, MJF_ABI_VERSION);
     EXPECT_EQ(p->kind, std::string(name).find("_agent") == std::string::npos
@@ -235,11 +237,20 @@ TEST_F(FormationPluginTest, LawsFromTheLiteratureRefuseBadGainsNamingTheKey) {
       {"adaptive_tracking", {"phi", "-1"}},
       {"observer_tracking", {"gamma", "0"}},
       {"terminal_smc", {"p", "4"}}};
-  for (const auto& [name, key_value] : bad) {
-    std::string error;
-    void* instance = Create(Plugin(name), {{key_value.first, key_value.second}}, &error);
-    EXPECT_EQ(instance, nullptr) << name;
-    EXPECT_NE(error.find("'" + key_value.first + "'"), std::string::npos) << name << ": " << error;
+  // The per-agent versions read the same attributes and refuse the same values.
+  const int neighbours[1] = {5};
+  const double weights[1] = {1.0};
+  const mjfNeighbourhood hood{0, 6, 1.0, 1, neighbours, weights};
+  for (const auto& [law, key_value] : bad) {
+    for (const std::string& name : {law, law + "_agent"}) {
+      const bool agent = name != law;
+      std::string error;
+      void* instance = Create(Plugin(name), {{key_value.first, key_value.second}}, &error, 0.01,
+                              true, agent ? &hood : nullptr);
+      EXPECT_EQ(instance, nullptr) << name;
+      EXPECT_NE(error.find("'" + key_value.first + "'"), std::string::npos)
+          << name << ": " << error;
+    }
   }
 }
 
@@ -418,8 +429,9 @@ class CountingShape : public mjf::formation::Shape {
 };
 
 TEST_F(FormationPluginTest, PerAgentInstancesEvaluateOnlyThemselvesAndTheirNeighbours) {
-  for (const char* name :
-       {"smc_discrete_agent", "smc_continuous_agent", "consensus_linear_agent"}) {
+  for (const char* name : {"smc_discrete_agent", "smc_continuous_agent", "consensus_linear_agent",
+                           "vs_tracking_agent", "super_twisting_agent", "adaptive_tracking_agent",
+                           "observer_tracking_agent", "terminal_smc_agent"}) {
     auto counting = std::make_unique<CountingShape>(
         mjf::formation::MakeCircleShape(1000, 10.0, 0.314, 0.0, 2 * kPi / 1000));
     const CountingShape& counter = *counting;
@@ -466,5 +478,62 @@ TEST_F(FormationPluginTest, PerAgentInstancesEvaluateOnlyThemselvesAndTheirNeigh
     // At most now and next (the discrete law's F(k+1)) per follower and step.
     for (const auto& [follower, calls] : counter.single) EXPECT_LE(calls, 2 * kSteps) << name;
     EXPECT_GT(counter.single.at(499), 0) << name << " never sampled";
+  }
+}
+
+// A per-agent law from the literature, follower 1 of the paper's graph (hears the leader and
+// follower 6) fed a moving leader and neighbour: reset() takes its state (adaptive gain,
+// estimate, super-twisting integral) back to the start, so a second run repeats the commands.
+TEST_F(FormationPluginTest, LiteratureAgentsResetToTheirStart) {
+  for (const char* name : {"vs_tracking_agent", "super_twisting_agent", "adaptive_tracking_agent",
+                           "observer_tracking_agent", "terminal_smc_agent"}) {
+    SCOPED_TRACE(name);
+    const int neighbours[1] = {5};
+    const double weights[1] = {1.0};
+    const mjfNeighbourhood hood{0, 6, 1.0, 1, neighbours, weights};
+    const mjfPlugin* plugin = Plugin(name);
+    std::string error;
+    void* instance = Create(plugin, {}, &error, 0.01, true, &hood);
+    ASSERT_NE(instance, nullptr) << error;
+    mjfVehicleState self{};
+    mjfSetpoint setpoint{};
+    mjfMessage leader{}, neighbour{}, outgoing{};
+    neighbour.sender = 6;  // vehicle index of follower 5
+    mjfAgentInput input{};
+    input.follower = 1;
+    input.self = &self;
+    input.leader = &leader;
+    input.n_messages = 1;
+    input.messages = &neighbour;
+    input.n_rounds = 1;
+    input.outgoing = &outgoing;
+    char reason[256] = "";
+    mjfStepContext step{};
+    step.timestep = 0.01;
+    step.n_vehicles = 7;
+    step.setpoints = &setpoint;
+    step.agent = &input;
+    step.error = reason;
+    step.error_size = sizeof(reason);
+    auto run = [&] {
+      std::vector<double> commands;
+      for (int s = 0; s < 300; ++s) {
+        step.step = s;
+        step.time = 0.01 * s;
+        leader.state.pos[0] = 3.0 * step.time;  // the leader and follower 6 move off at 3 m/s
+        leader.state.vel[0] = 3.0;
+        neighbour.state.pos[1] = -2.0 + 3.0 * step.time;
+        neighbour.state.vel[1] = 3.0;
+        EXPECT_EQ(plugin->compute(instance, &step), 0) << reason;
+        commands.push_back(setpoint.acc[0]);
+        commands.push_back(setpoint.acc[1]);
+      }
+      return commands;
+    };
+    const std::vector<double> first = run();
+    plugin->reset(instance);
+    EXPECT_EQ(run(), first);
+    EXPECT_NE(first.front(), first.back());  // the commands change over the run
+    plugin->destroy(instance);
   }
 }

@@ -28,6 +28,9 @@
 
 namespace mjf::formation {
 
+// sqrt 3: Q = [[sqrt 3, 1], [1, sqrt 3]] above, so K xi_i = -(e_ip + sqrt(3) e_iv).
+inline constexpr double kAdaptiveVelocityWeight = 1.7320508075688772;
+
 // Gains are defaults, NOT tuned.
 struct AdaptiveTrackingParams {
   double tau = 0.02;   // 'tau', adaptation rate

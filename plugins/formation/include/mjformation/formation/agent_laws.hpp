@@ -22,6 +22,10 @@ void AgentError(double leader_weight, const std::vector<double>& weights, const 
                 const double* leader_pv, const double* f_now, const double* neighbour_pv,
                 const double* neighbour_f_now, double* e);
 
+// d_i + a_i0, the follower's row sum of L_H; throws std::invalid_argument when it is 0 (the
+// follower hears neither the leader nor a neighbour).
+double AgentDegree(double leader_weight, const std::vector<double>& weights);
+
 class ContinuousSmcAgent {
  public:
   ContinuousSmcAgent(const ContinuousSmcParams& params, double leader_weight,
