@@ -90,16 +90,14 @@ Mixer::Mixer(const std::array<RotorGeometry, kRotors>& rotors) {
   inverse_ = allocation_.inverse();
 }
 
-// s = min(1, (max_k - base_k) / delta_k over delta_k > 0, (min_k - base_k) / delta_k over
-// delta_k < 0), at least 0. Written without a branch on delta's signs, which follow the torque
-// commands' and defeat the branch predictor: every quotient is formed (a zero or NaN delta's is
-// never taken), and the one kept is the same as the branching form's, bit for bit.
 double Mixer::MaxScale(const Eigen::Vector4d& base, const Eigen::Vector4d& delta) const {
   double s = 1;
   for (int k = 0; k < kRotors; ++k) {
-    const double d = delta[k];
-    const double quotient = ((d > 0 ? ctrl_max_[k] : ctrl_min_[k]) - base[k]) / d;
-    s = (d > 0 || d < 0) && quotient < s ? quotient : s;  // std::min(s, quotient) where d != 0
+    if (delta[k] > 0) {
+      s = std::min(s, (ctrl_max_[k] - base[k]) / delta[k]);
+    } else if (delta[k] < 0) {
+      s = std::min(s, (ctrl_min_[k] - base[k]) / delta[k]);
+    }
   }
   return std::max(s, 0.0);
 }
