@@ -24,14 +24,19 @@ double MinimumSeparation(const std::vector<double>& xyz,
   order->clear();
   for (int i = 0; i < n; ++i) order->emplace_back(xyz[3 * i], i);
   std::sort(order->begin(), order->end());
-  double best = kInf;
+  // The square root is monotone and correctly rounded, so the smallest root is the root of the
+  // smallest square: one root per new minimum instead of one per pair, the same bits.
+  double best = kInf, best_squared = kInf;
   for (int a = 0; a < n; ++a) {
     const double* p = &xyz[3 * (*order)[a].second];
     for (int b = a + 1; b < n && (*order)[b].first - (*order)[a].first < best; ++b) {
       const double* q = &xyz[3 * (*order)[b].second];
-      best =
-          std::min(best, std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
-                                   (p[2] - q[2]) * (p[2] - q[2])));
+      const double d2 = (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
+                        (p[2] - q[2]) * (p[2] - q[2]);
+      if (d2 < best_squared) {
+        best_squared = d2;
+        best = std::sqrt(d2);
+      }
     }
   }
   return best;

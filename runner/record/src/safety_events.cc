@@ -56,6 +56,12 @@ std::string DescribeEvent(const SafetyEvent& e) {
 SafetyMonitor::SafetyMonitor(const SafetyConfig& config, std::vector<double> radii)
     : config_(config), radii_(std::move(radii)), airborne_(radii_.size(), 0) {
   for (double r : radii_) max_radius_ = std::max(max_radius_, r);
+  // A pair is an event when its clearance d - r_i - r_j is below the near-miss margin (or 0), so
+  // only at d < reach_. A squared distance above reach_^2 (1 + 1e-6) puts the distance above
+  // reach_ by 5e-7 of it, far more than the few ulps by which the square, its root and the
+  // clearance can err: ScanPairs skips the root there, and the events are the same.
+  reach_ = config_.near_miss_m + 2 * max_radius_;
+  skip_squared_ = reach_ * reach_ * (1 + 1e-6);
   // A tilt's cosine at or above this leaves the tilt below flip_tilt_deg (in (0, 180], checked
   // by the config): acos falls with slope at least 1, so the 1e-9 margin keeps the tilt at
   // least 1e-9 rad below the limit, far beyond the few ulps by which acos, the degrees and this
@@ -108,15 +114,16 @@ void SafetyMonitor::ScanVehicle(int i, const mjfVehicleState& s) {
 // kept sorted by insertion (they move little per step, so this is close to linear), from the
 // vehicles at sorted places [first, first + count) to every later one within reach.
 void SafetyMonitor::ScanPairs(int first, int count, const std::vector<mjfVehicleState>& states) {
-  const double reach = config_.near_miss_m + 2 * max_radius_;
   std::vector<PairHit>& hits = pair_hits_[first];
   hits.clear();
   for (size_t a = first; a < static_cast<size_t>(first + count); ++a) {
     const double* p = states[order_[a].second].pos;
-    for (size_t b = a + 1; b < order_.size() && order_[b].first - order_[a].first < reach; ++b) {
+    for (size_t b = a + 1; b < order_.size() && order_[b].first - order_[a].first < reach_; ++b) {
       const double* q = states[order_[b].second].pos;
-      const double d = std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
-                                 (p[2] - q[2]) * (p[2] - q[2]));
+      const double d2 = (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
+                        (p[2] - q[2]) * (p[2] - q[2]);
+      if (d2 > skip_squared_) continue;  // no event (constructor): most pairs of the sweep
+      const double d = std::sqrt(d2);
       const int i = std::min(order_[a].second, order_[b].second);
       const int j = std::max(order_[a].second, order_[b].second);
       const double clearance = d - radii_[i] - radii_[j];  // between the bounding spheres

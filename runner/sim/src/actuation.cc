@@ -81,16 +81,41 @@ class WrenchActuation final : public Actuation {
  public:
   WrenchActuation(const mjModel* m, const VehicleBindings& bindings, double timestep)
       : model_(m),
-        bindings_(bindings),
+        per_(bindings.actuators_per_vehicle),
         timestep_(timestep),
         axial_(AllAxial(bindings)),
-        rotor_state_(bindings.vehicles.size() * bindings.actuators_per_vehicle, 0.0) {}
+        rotors_(Flattened(bindings)),
+        rotor_state_(rotors_.size(), 0.0) {
+    for (const VehicleBinding& b : bindings.vehicles) bodies_.push_back(b.body);
+  }
   void Apply(const std::vector<double>& controls, mjData* data) override;
   void Advance(const std::vector<double>& controls) override;
   void VisitState(StateArchive& archive) override { archive(rotor_state_); }
   bool UsesAppliedForces() const override { return true; }
 
  private:
+  // What the step reads of one driven actuator, [vehicle][actuator] like the controls: one
+  // contiguous pass per step instead of three heap vectors per vehicle (the binding's sites and
+  // actuator info, the shared gains), whose scattered reads cost more than their arithmetic.
+  struct Rotor {
+    double gain;  // actuator gain (wrench_gain)
+    double ctrl_min, ctrl_max, time_constant;
+    double gear[6];
+    int site;
+  };
+  static std::vector<Rotor> Flattened(const VehicleBindings& bindings) {
+    std::vector<Rotor> rotors;
+    for (const VehicleBinding& b : bindings.vehicles) {
+      for (int k = 0; k < bindings.actuators_per_vehicle; ++k) {
+        const mjfActuatorInfo& a = b.actuator_info[k];
+        Rotor r{bindings.wrench_gain[k], a.ctrl_min, a.ctrl_max, a.time_constant, {}, b.sites[k]};
+        std::copy(a.gear, a.gear + 6, r.gear);
+        rotors.push_back(r);
+      }
+    }
+    return rotors;
+  }
+
   // Summed rotor wrench of vehicle i about its centre of mass, world frame.
   void VehicleWrench(int i, const std::vector<double>& controls, const mjData* data,
                      mjtNum wrench[6]) const;
@@ -106,27 +131,26 @@ class WrenchActuation final : public Actuation {
   }
 
   const mjModel* model_;
-  const VehicleBindings& bindings_;
+  int per_;  // actuators per vehicle
   double timestep_;
   bool axial_;                       // AllAxial: the rotors' wrenches need one column of xmat
+  std::vector<Rotor> rotors_;        // [vehicle][actuator]
+  std::vector<int> bodies_;          // [vehicle]
   std::vector<double> rotor_state_;  // motor lag states, like MuJoCo's act
 };
 
 void WrenchActuation::VehicleWrench(int i, const std::vector<double>& controls, const mjData* data,
                                     mjtNum wrench[6]) const {
-  const VehicleBinding& b = bindings_.vehicles[i];
-  const int per = bindings_.actuators_per_vehicle;
-  const mjtNum* com = data->xipos + 3 * b.body;
-  const size_t base = static_cast<size_t>(i) * per;
-  for (int k = 0; k < per; ++k) {
-    const mjfActuatorInfo& a = b.actuator_info[k];
+  const mjtNum* com = data->xipos + 3 * bodies_[i];
+  const size_t base = static_cast<size_t>(i) * per_;
+  for (int k = 0; k < per_; ++k) {
+    const Rotor& a = rotors_[base + k];
     // force = gain * act (act: first-order motor lag of the clamped control, see Advance).
     const double force =
-        bindings_.wrench_gain[k] * (a.time_constant > 0
-                                        ? rotor_state_[base + k]
-                                        : std::clamp(controls[base + k], a.ctrl_min, a.ctrl_max));
-    const mjtNum* xmat = data->site_xmat + 9 * b.sites[k];
-    const mjtNum* xpos = data->site_xpos + 3 * b.sites[k];
+        a.gain * (a.time_constant > 0 ? rotor_state_[base + k]
+                                      : std::clamp(controls[base + k], a.ctrl_min, a.ctrl_max));
+    const mjtNum* xmat = data->site_xmat + 9 * a.site;
+    const mjtNum* xpos = data->site_xpos + 3 * a.site;
     mjtNum f[3], t[3], arm[3], moment[3];
     if (axial_) {
       // xmat [0, 0, g force] (and [0, 0, c force]) without the two products by exact zeros:
@@ -155,24 +179,20 @@ void WrenchActuation::VehicleWrench(int i, const std::vector<double>& controls, 
 }
 
 void WrenchActuation::Apply(const std::vector<double>& controls, mjData* data) {
-  for (size_t i = 0; i < bindings_.vehicles.size(); ++i) {
+  for (size_t i = 0; i < bodies_.size(); ++i) {
     mjtNum wrench[6] = {0, 0, 0, 0, 0, 0};
     VehicleWrench(static_cast<int>(i), controls, data, wrench);
-    AddWrenchAtCentreOfMass(model_, data, bindings_.vehicles[i].body, wrench);
+    AddWrenchAtCentreOfMass(model_, data, bodies_[i], wrench);
   }
 }
 
 void WrenchActuation::Advance(const std::vector<double>& controls) {
   // Motor lag, integrated like MuJoCo's filter dynamics: act += dt (ctrl - act) / tau.
-  const int per = bindings_.actuators_per_vehicle;
-  for (size_t i = 0; i < bindings_.vehicles.size(); ++i) {
-    for (int k = 0; k < per; ++k) {
-      const mjfActuatorInfo& a = bindings_.vehicles[i].actuator_info[k];
-      const size_t idx = i * per + k;
-      if (a.time_constant <= 0) continue;
-      const double ctrl = std::clamp(controls[idx], a.ctrl_min, a.ctrl_max);
-      rotor_state_[idx] += timestep_ * (ctrl - rotor_state_[idx]) / a.time_constant;
-    }
+  for (size_t idx = 0; idx < rotors_.size(); ++idx) {
+    const Rotor& a = rotors_[idx];
+    if (a.time_constant <= 0) continue;
+    const double ctrl = std::clamp(controls[idx], a.ctrl_min, a.ctrl_max);
+    rotor_state_[idx] += timestep_ * (ctrl - rotor_state_[idx]) / a.time_constant;
   }
 }
 

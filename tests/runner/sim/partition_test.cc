@@ -40,10 +40,11 @@ RunResult RunInto(ExperimentConfig config, int threads, const std::string& out) 
   return RunExperiment(config, options);
 }
 
-// Every file of the run at `threads` partitions equals the one-model run's, byte for byte.
+// Every file of the run at `threads` partitions equals the one-model run's, byte for byte
+// (the runs are in root/t<threads>).
 void ExpectSameAsOneModel(const ExperimentConfig& config, std::vector<int> threads,
-                          std::vector<std::string> files) {
-  const std::string root = TempDir("part");
+                          std::vector<std::string> files,
+                          const std::string& root = TempDir("part")) {
   const RunResult one = RunInto(config, 1, root + "/t1");
   ASSERT_TRUE(one.complete) << one.error;
   files.push_back("timeseries.csv");
@@ -92,6 +93,26 @@ TEST(PartitionTest, Ring200WithWindAndSensorsGivesTheOneModelBytes) {
             "formation.shape={type=\"circle\", radius=48.0, omega=0.065}"},
            kRealism));
   ExpectSameAsOneModel(c, {2}, {});
+}
+
+// 1000 followers (the size docs/PERFORMANCE.md times), every step recorded, and a near-miss
+// margin wider than the ring's spacing so that every neighbouring pair is an event: the rows
+// formatted on the partitions' threads and the pair scans of their sorted places join into the
+// one-model bytes and event order. A few steps only: composing the scenes is most of its time.
+TEST(PartitionTest, Ring1000WithEveryPairANearMissGivesTheOneModelBytes) {
+  ExperimentConfig c = LoadExperiment(
+      std::string(MJF_SOURCE_DIR) + "/experiments/exp2.toml",
+      {"run.duration=0.02", "run.metric_window=[0.01, 0.02]", "run.record_rate=1000.0",
+       "render.snapshots=[]",
+       "vehicles={model=\"quadrotor\", followers=1000, altitude=5.0, rotor_model=\"wrench\", "
+       "contacts=false}",
+       "topology={leader_links=[1], generate=\"ring\"}",
+       "formation.shape={type=\"circle\", radius=239.0, omega=0.013}", "safety.near_miss_m=2.0"});
+  const std::string root = TempDir("part");
+  ExpectSameAsOneModel(c, {2}, {}, root);
+  const nlohmann::json events =
+      nlohmann::json::parse(ReadFile(root + "/t1/summary.json"))["events"];
+  EXPECT_GE(events["by_kind"]["near_miss"].get<int>(), 1000) << events.dump();
 }
 
 // Per-agent execution over a lossy network: the channel and the agents stay on the caller's

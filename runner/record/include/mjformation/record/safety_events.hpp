@@ -82,7 +82,9 @@ class SafetyMonitor {
   std::vector<double> radii_;
   double flip_cos_skip_ = 0;  // a tilt's cosine at or above it cannot be a flip (constructor)
   double max_radius_ = 0;
-  std::vector<char> airborne_;                        // seen above the ground: impacts count after
+  double reach_ = 0;            // near_miss_m + 2 max_radius_: no pair farther apart is an event
+  double skip_squared_ = 0;     // a squared distance above it cannot be an event (constructor)
+  std::vector<char> airborne_;  // seen above the ground: impacts count after
   std::set<std::tuple<std::string, int, int>> seen_;  // (kind, vehicle, other or -1)
   std::vector<std::pair<double, int>> order_;         // vehicles by x, kept nearly sorted
   // Scan's findings, [vehicle]: kFlip | kGroundImpact | kLeftRegion, the tilt (deg) and the
