@@ -55,6 +55,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -160,16 +161,19 @@ runner::ExperimentConfig ReadSwarmConfig(const mjModel* m, int instance) {
 }
 
 // The vehicles' bodies as the exported scene names them (runner::VehiclePrefix), 0 = leader.
-std::vector<std::string> SwarmBodies(const runner::ExperimentConfig& config) {
+std::vector<std::string> SwarmBodies(int followers) {
   std::vector<std::string> bodies;
-  for (int i = 0; i <= config.followers; ++i) bodies.push_back(runner::VehiclePrefix(i) + "vehicle");
+  for (int i = 0; i <= followers; ++i) {
+    bodies.push_back(runner::VehiclePrefix(i) + "vehicle");
+  }
   return bodies;
 }
 
 // How the swarm's names read in `m`: as exported, or renamed by an attach (attach_names.hpp).
 runner::SceneNames SwarmNames(const mjModel* m, int instance,
                               const runner::ExperimentConfig& config) {
-  return InstanceNames(m, instance, SwarmBodies(config), InstanceWhere(kSwarm, m, instance));
+  return InstanceNames(m, instance, SwarmBodies(config.followers),
+                       InstanceWhere(kSwarm, m, instance));
 }
 
 // What one model's swarm instances share (the files read, the libraries loaded), kept per
@@ -320,6 +324,11 @@ struct Kind {
   size_t (*state_size)(const mjModel*, int);
 };
 
+bool IsSwarm(const mjModel* m, int instance) {
+  const mjpPlugin* kind = mjp_getPluginAtSlot(m->plugin[instance]);
+  return kind && std::string(kind->name) == kSwarm;
+}
+
 // What an instance flies, by the names in `m` (after any attach): a swarm its vehicles' bodies,
 // an attitude instance its body and actuators.
 struct Driven {
@@ -331,11 +340,13 @@ struct Driven {
 std::unique_ptr<Driven> DrivenBy(const mjModel* m, int instance) {
   const mjpPlugin* kind = mjp_getPluginAtSlot(m->plugin[instance]);
   auto driven = std::make_unique<Driven>();
-  if (kind && std::string(kind->name) == kSwarm) {
+  if (IsSwarm(m, instance)) {
     const runner::ExperimentConfig config = ReadSwarmConfig(m, instance);
     const runner::SceneNames names = SwarmNames(m, instance, config);
     driven->swarm = true;
-    for (const std::string& body : SwarmBodies(config)) driven->bodies.push_back(names(body));
+    for (const std::string& body : SwarmBodies(config.followers)) {
+      driven->bodies.push_back(names(body));
+    }
   } else if (kind && std::string(kind->name) == kAttitude) {
     const VehicleHostConfig c = VehicleConfig(m, instance);
     driven->bodies = {c.body};
@@ -344,6 +355,37 @@ std::unique_ptr<Driven> DrivenBy(const mjModel* m, int instance) {
     return nullptr;
   }
   return driven;
+}
+
+// A swarm's affixes without its configuration (as many vehicles as bodies reference it), so that
+// two swarms on one set of vehicles are named as such before either's configuration is read;
+// nullopt when they do not resolve (SwarmNames then words the refusal).
+std::optional<runner::SceneNames> SwarmAffixes(const mjModel* m, int instance) {
+  int referencing = 0;
+  for (int b = 1; b < m->nbody; ++b) referencing += m->body_plugin[b] == instance;
+  try {
+    return InstanceNames(m, instance, SwarmBodies(std::max(referencing, 1) - 1), "");
+  } catch (const std::runtime_error&) {
+    return std::nullopt;
+  }
+}
+
+std::runtime_error SecondSwarm(const mjModel* m, int instance, int other, const std::string& body) {
+  return std::runtime_error(InstanceWhere(kSwarm, m, instance) + ": a second swarm instance ('" +
+                            InstanceName(m, other) + "' is the other) flies the same vehicles ('" +
+                            body + "'); remove one of them, or attach each copy under a prefix " +
+                            "of its own");
+}
+
+// Two swarm instances whose vehicles carry the same affixes fly the same vehicles.
+void RefuseSecondSwarm(const mjModel* m, int instance) {
+  const std::optional<runner::SceneNames> mine = SwarmAffixes(m, instance);
+  for (int other = 0; mine && other < m->nplugin; ++other) {
+    if (other == instance || !IsSwarm(m, other)) continue;
+    const std::optional<runner::SceneNames> theirs = SwarmAffixes(m, other);
+    if (!theirs || theirs->prefix != mine->prefix || theirs->suffix != mine->suffix) continue;
+    throw SecondSwarm(m, instance, other, (*mine)(SwarmBodies(0)[0]));
+  }
 }
 
 std::string Shared(const std::vector<std::string>& mine, const std::vector<std::string>& theirs) {
@@ -358,6 +400,7 @@ std::string Shared(const std::vector<std::string>& mine, const std::vector<std::
 // two attitude instances and no body is flown by two instances (the later instance's controls
 // would silently replace the earlier's).
 void RefuseDrivingTwice(const char* plugin, const mjModel* m, int instance) {
+  if (IsSwarm(m, instance)) RefuseSecondSwarm(m, instance);
   const std::unique_ptr<Driven> mine = DrivenBy(m, instance);
   for (int other = 0; mine && other < m->nplugin; ++other) {
     const std::unique_ptr<Driven> theirs = other == instance ? nullptr : DrivenBy(m, other);
@@ -371,12 +414,7 @@ void RefuseDrivingTwice(const char* plugin, const mjModel* m, int instance) {
     }
     const std::string body = Shared(mine->bodies, theirs->bodies);
     if (body.empty()) continue;
-    if (mine->swarm && theirs->swarm) {
-      throw std::runtime_error(InstanceWhere(plugin, m, instance) + ": a second swarm instance ('" +
-                               InstanceName(m, other) + "' is the other) flies the same " +
-                               "vehicles ('" + body + "'); remove one of them, or attach each " +
-                               "copy under a prefix of its own");
-    }
+    if (mine->swarm && theirs->swarm) throw SecondSwarm(m, instance, other, body);
     throw std::runtime_error(InstanceWhere(plugin, m, instance) + ": body '" + body +
                              "' is flown by instance '" + InstanceName(m, other) +
                              "' too; a vehicle takes one instance's controls");

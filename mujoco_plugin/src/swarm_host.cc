@@ -117,9 +117,9 @@ std::shared_ptr<const SwarmShared> SwarmHost::Prepare(const mjModel* m,
     s->attitude = &runner::FindPlugin(*s->registry, s->config, s->config.attitude,
                                       {MJF_KIND_ATTITUDE}, "this section needs an attitude plugin");
     runner::ResolveAttributes(*s->attitude->descriptor, s->config.attitude, s->config.source_path);
-    s->bindings = bind_model ? runner::BindVehicles(m, s->config, *s->attitude->descriptor, "", 0,
-                                                    -1, names)
-                             : runner::DescribeVehicles(m, s->config, *s->attitude->descriptor);
+    s->bindings =
+        bind_model ? runner::BindVehicles(m, s->config, *s->attitude->descriptor, "", 0, -1, names)
+                   : runner::DescribeVehicles(m, s->config, *s->attitude->descriptor);
     return s;
   } catch (const std::exception& e) {
     throw std::runtime_error(WithoutLine(e.what(), config.source_path));

@@ -111,9 +111,8 @@ bool SameBits(const VehicleState& a, const VehicleState& b) {
 // that touch no drone (the crate stands 25 m from the swarm's circle, and the copies' drones
 // do not collide with each other: contype 2, conaffinity 1), so the drones' dynamics are the
 // same operations on the same numbers.
-void ExpectEachCopyFliesTheScene(
-    const std::string& scene, mjModel* world,
-    const std::vector<std::pair<std::string, std::string>>& affixes) {
+void ExpectEachCopyFliesTheScene(const std::string& scene, mjModel* world,
+                                 const std::vector<std::pair<std::string, std::string>>& affixes) {
   mjModel* plain = mj_loadXML(scene.c_str(), nullptr, nullptr, 0);
   ASSERT_NE(plain, nullptr);
   ASSERT_EQ(world->nplugin, static_cast<int>(affixes.size()));
@@ -185,8 +184,112 @@ TEST_F(NativeAttach, OneVehicleWithoutItsSwarmIsRefusedNamingTheOthers) {
   mj_deleteSpec(child);
   EXPECT_NE(error.find("instance 'x/swarm'"), std::string::npos) << error;
   EXPECT_NE(error.find("'x/uav0_vehicle'"), std::string::npos) << error;
-  EXPECT_NE(error.find("Attach the exported scene's whole worldbody"), std::string::npos)
+  EXPECT_NE(error.find("Attach the exported scene's whole worldbody"), std::string::npos) << error;
+}
+
+// A world that already holds an instance of the attached one's name (here the scene itself,
+// its instance renamed 'b/swarm', and a copy attached under 'b/'): MuJoCo keeps the world's
+// instance and copies not the other, so one instance would be referenced by both swarms'
+// bodies. Refused at compile, naming the other copy's bodies, never flown half uncontrolled.
+TEST_F(NativeAttach, AnInstanceNameAlreadyTakenIsRefused) {
+  std::string scene = ReadFile(Scene());
+  for (const std::string from : {"instance name=\"swarm\"", "plugin instance=\"swarm\""}) {
+    const std::string to = from.substr(0, from.size() - 6) + "b/swarm\"";
+    for (size_t at = scene.find(from); at != std::string::npos; at = scene.find(from, at)) {
+      scene.replace(at, from.size(), to);
+    }
+  }
+  char text[2048] = {0};
+  mjSpec* world = mj_parseXMLString(scene.c_str(), nullptr, text, sizeof(text));
+  ASSERT_NE(world, nullptr) << text;
+  mjSpec* child = mj_parseXML(Scene().c_str(), nullptr, text, sizeof(text));
+  mjsFrame* frame = mjs_addFrame(mjs_findBody(world, "world"), nullptr);
+  ASSERT_NE(mjs_attach(frame->element, child->element, "b/", ""), nullptr);
+  mjModel* m = mj_compile(world, nullptr);
+  const std::string error = mjs_getError(world);
+  EXPECT_EQ(m, nullptr);
+  if (m) mj_deleteModel(m);
+  mj_deleteSpec(world);
+  mj_deleteSpec(child);
+  EXPECT_NE(error.find("instance 'b/swarm'"), std::string::npos) << error;
+  EXPECT_NE(error.find("referencing it but none of its vehicles: 'b/uav0_vehicle'"),
+            std::string::npos)
       << error;
+}
+
+// mjformation.attitude, its instance referenced by the drone's body: two copies of a user's
+// drone attached under two prefixes each find their body and rotors, and each flies the
+// unattached drone's bits (the drones do not collide: contype 0).
+constexpr char kDrone[] = R"(<mujoco model="drone">
+  <extension>
+    <plugin plugin="mjformation.attitude">
+      <instance name="autopilot">
+        <config key="body" value="quad"/>
+        <config key="actuators" value="m_fr m_bl m_fl m_br"/>
+        <config key="attitude" value="plugin = 'geometric', tilt_max = 0.5"/>
+        <config key="guidance" value="plugin = 'hover', position = '0 0 1'"/>
+      </instance>
+    </plugin>
+  </extension>
+  <option timestep="0.001"/>
+  <default>
+    <default class="motor">
+      <general dyntype="filter" dynprm="0.03" ctrllimited="true" ctrlrange="0 9"/>
+    </default>
+  </default>
+  <worldbody>
+    <body name="quad" pos="0.3 -0.2 0.8" euler="0.2 0.1 0.3">
+      <plugin instance="autopilot"/>
+      <freejoint name="root"/>
+      <inertial pos="0 0 0" mass="1.2" diaginertia="0.012 0.012 0.022"/>
+      <geom type="box" size="0.09 0.09 0.03" mass="0" contype="0" conaffinity="0"/>
+      <site name="s_fr" pos="0.16 -0.16 0.03"/>
+      <site name="s_bl" pos="-0.16 0.16 0.03"/>
+      <site name="s_fl" pos="0.16 0.16 0.03"/>
+      <site name="s_br" pos="-0.16 -0.16 0.03"/>
+    </body>
+  </worldbody>
+  <actuator>
+    <general name="m_fr" class="motor" site="s_fr" gear="0 0 1 0 0 -0.02"/>
+    <general name="m_bl" class="motor" site="s_bl" gear="0 0 1 0 0 -0.02"/>
+    <general name="m_fl" class="motor" site="s_fl" gear="0 0 1 0 0 0.02"/>
+    <general name="m_br" class="motor" site="s_br" gear="0 0 1 0 0 0.02"/>
+  </actuator>
+</mujoco>)";
+
+TEST_F(NativeAttach, AttitudeInstanceFollowsItsBodyThroughTwoAttaches) {
+  char text[2048] = {0};
+  mjSpec* world = mj_parseXMLString(kWorld, nullptr, text, sizeof(text));
+  std::vector<mjSpec*> drones;
+  for (const char* prefix : {"l/", "r/"}) {
+    drones.push_back(mj_parseXMLString(kDrone, nullptr, text, sizeof(text)));
+    mjsFrame* frame = mjs_addFrame(mjs_findBody(world, "world"), nullptr);
+    ASSERT_NE(mjs_attach(frame->element, drones.back()->element, prefix, ""), nullptr);
+  }
+  mjModel* m = mj_compile(world, nullptr);
+  ASSERT_NE(m, nullptr) << mjs_getError(world);
+  mjSpec* alone = mj_parseXMLString(kDrone, nullptr, text, sizeof(text));
+  mjModel* plain = mj_compile(alone, nullptr);
+  ASSERT_NE(plain, nullptr) << mjs_getError(alone);
+  EXPECT_EQ(m->nplugin, 2);
+  mjData* d = mj_makeData(m);
+  mjData* p = mj_makeData(plain);
+  const int left = m->jnt_qposadr[mj_name2id(m, mjOBJ_JOINT, "l/root")];
+  const int right = m->jnt_qposadr[mj_name2id(m, mjOBJ_JOINT, "r/root")];
+  for (int k = 0; k < 1000; ++k) {
+    mj_step(m, d);
+    mj_step(plain, p);
+  }
+  EXPECT_EQ(std::memcmp(d->qpos + left, p->qpos, 7 * sizeof(mjtNum)), 0);
+  EXPECT_EQ(std::memcmp(d->qpos + right, p->qpos, 7 * sizeof(mjtNum)), 0);
+  EXPECT_NEAR(p->qpos[2], 1.0, 0.05) << "it climbed from 0.8 m to hold 1 m";
+  mj_deleteData(p);
+  mj_deleteData(d);
+  mj_deleteModel(plain);
+  mj_deleteModel(m);
+  mj_deleteSpec(alone);
+  mj_deleteSpec(world);
+  for (mjSpec* drone : drones) mj_deleteSpec(drone);
 }
 
 }  // namespace
