@@ -6,7 +6,10 @@
 //                         guidance, the formation law, one attitude instance per vehicle);
 //   mjformation.attitude  flies one vehicle of any model with a guidance and an attitude plugin
 //                         of ours (VehicleHost): a Menagerie-style drone in the user's scene.
-// Both are actuator plugins with the same timing and actuation, described here.
+// Both are actuator plugins with the same timing and actuation, described here. Both declare
+// the passive capability too, with no passive force, so that a body may reference an instance:
+// MuJoCo's attach keeps only the instances an attached element references, and the bodies
+// referencing an instance tell the names an attach gave its vehicles (attach_names.hpp).
 //
 // Timing and state (the tick rule, docs/PLUGINS.md). MuJoCo calls actuator plugins inside
 // mj_fwdActuation, after every position and velocity sensor of the step: the same sensor values
@@ -56,7 +59,6 @@
 #include <memory>
 #include <mutex>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <thread>
 #include <utility>
