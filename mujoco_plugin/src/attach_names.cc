@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <unordered_set>
 
 namespace mjf::native {
 namespace {
@@ -32,15 +33,14 @@ struct Mismatch {
 Mismatch Compare(const mjModel* m, int instance, const std::vector<std::string>& bodies,
                  const std::vector<std::string>& referencing, const runner::SceneNames& names) {
   Mismatch out;
-  std::vector<std::string> expected;
+  std::unordered_set<std::string> expected;  // a set: an exported swarm may hold 10,000 vehicles
   for (const std::string& body : bodies) {
-    expected.push_back(names(body));
-    if (!References(m, instance, expected.back())) out.missing.push_back(expected.back());
+    const std::string name = names(body);
+    if (!References(m, instance, name)) out.missing.push_back(name);
+    expected.insert(name);
   }
   for (const std::string& body : referencing) {
-    if (std::find(expected.begin(), expected.end(), body) == expected.end()) {
-      out.foreign.push_back(body);
-    }
+    if (!expected.count(body)) out.foreign.push_back(body);
   }
   return out;
 }

@@ -160,9 +160,12 @@ std::string ExtensionBlock(const std::vector<std::pair<std::string, std::string>
 // prefix and suffix an attach gave the names (mujoco_plugin/src/attach_names.hpp). They change
 // nothing in the physics: the plugin adds no passive force.
 void ReferenceInstanceFromVehicles(std::string* xml, int vehicles) {
+  size_t from = 0;  // the vehicles come in index order: each search starts at the one before
   for (int i = 0; i < vehicles; ++i) {
     const std::string open = "<body name=\"" + VehiclePrefix(i) + "vehicle\"";
-    const size_t at = xml->find(open);
+    size_t at = xml->find(open, from);
+    if (at == std::string::npos) at = xml->find(open);
+    from = at;
     const size_t end = at == std::string::npos ? at : xml->find('>', at);
     if (end == std::string::npos || (*xml)[end - 1] == '/') {
       throw ExportError("the composed scene has no body '" + VehiclePrefix(i) +
