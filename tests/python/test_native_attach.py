@@ -55,3 +55,18 @@ def test_attached_swarm_flies_the_unattached_scenes_bits(scene, prefixes):
         assert np.array_equal(vehicles(model, data, "/" if prefix is None else prefix), expected)
     assert np.abs(expected[:, 2] - start[:, 2]).max() < 0.05  # held altitude, did not fall
     assert np.abs(expected[:, 0:2] - start[:, 0:2]).max() > 0.5  # and flew the formation
+
+
+def test_attached_world_saved_and_reloaded_keeps_its_controllers(scene):
+    world = mujoco.MjSpec.from_string(WORLD)
+    world.attach(mujoco.MjSpec.from_file(str(scene)), prefix="a/",
+                 frame=world.worldbody.add_frame())
+    model = world.compile()
+    reloaded = mujoco.MjModel.from_xml_string(world.to_xml())  # the references are saved too
+    assert reloaded.nplugin == 1
+    data, again = mujoco.MjData(model), mujoco.MjData(reloaded)
+    for _ in range(STEPS // 2):
+        mujoco.mj_step(model, data)
+        mujoco.mj_step(reloaded, again)
+    assert np.array_equal(again.qpos, data.qpos)
+    assert np.abs(vehicles(reloaded, again, "a/")[:, 2] - 5.0).max() < 0.05  # at Exp 2's altitude
