@@ -6,7 +6,10 @@
 //                         guidance, the formation law, one attitude instance per vehicle);
 //   mjformation.attitude  flies one vehicle of any model with a guidance and an attitude plugin
 //                         of ours (VehicleHost): a Menagerie-style drone in the user's scene.
-// Both are actuator plugins with the same timing and actuation, described here.
+// Both are actuator plugins with the same timing and actuation, described here. Both declare
+// the passive capability too, with no passive force, so that a body may reference an instance:
+// MuJoCo's attach keeps only the instances an attached element references, and the bodies
+// referencing an instance tell the names an attach gave its vehicles (attach_names.hpp).
 //
 // Timing and state (the tick rule, docs/PLUGINS.md). MuJoCo calls actuator plugins inside
 // mj_fwdActuation, after every position and velocity sensor of the step: the same sensor values
@@ -55,12 +58,14 @@
 #include <map>
 #include <memory>
 #include <mutex>
-#include <sstream>
+#include <optional>
 #include <string>
 #include <thread>
 #include <utility>
 #include <vector>
 
+#include "attach_names.hpp"
+#include "mjformation/scene/scene.hpp"
 #include "swarm_host.hpp"
 #include "vehicle_host.hpp"
 
@@ -157,6 +162,22 @@ runner::ExperimentConfig ReadSwarmConfig(const mjModel* m, int instance) {
   return ConfigFromPairs(pairs, InstanceWhere(kSwarm, m, instance));
 }
 
+// The vehicles' bodies as the exported scene names them (runner::VehiclePrefix), 0 = leader.
+std::vector<std::string> SwarmBodies(int followers) {
+  std::vector<std::string> bodies;
+  for (int i = 0; i <= followers; ++i) {
+    bodies.push_back(runner::VehiclePrefix(i) + "vehicle");
+  }
+  return bodies;
+}
+
+// How the swarm's names read in `m`: as exported, or renamed by an attach (attach_names.hpp).
+runner::SceneNames SwarmNames(const mjModel* m, int instance,
+                              const runner::ExperimentConfig& config) {
+  return InstanceNames(m, instance, SwarmBodies(config.followers),
+                       InstanceWhere(kSwarm, m, instance));
+}
+
 // What one model's swarm instances share (the files read, the libraries loaded), kept per
 // model so that a new mjData, a copy or a reset reads nothing again. Keyed by the model's
 // address and what the instance is made of (its configuration, sizes and timestep), so a later
@@ -176,8 +197,9 @@ class SwarmModels {
       }
     }
     const runner::ExperimentConfig config = ReadSwarmConfig(m, instance);
+    const runner::SceneNames names = SwarmNames(m, instance, config);
     std::shared_ptr<const SwarmShared> shared =
-        OnOwnThread([&] { return SwarmHost::Prepare(m, config, true); });
+        OnOwnThread([&] { return SwarmHost::Prepare(m, config, true, names); });
     std::lock_guard<std::mutex> lock(mutex_);
     entries_.push_back({m, instance, key, shared});
     if (entries_.size() > kKept) entries_.erase(entries_.begin());
@@ -223,9 +245,11 @@ std::unique_ptr<Holder> MakeSwarm(const mjModel* m, int instance) {
 
 // The state's size, while the model compiles: its sensors and actuators are not there yet, so
 // the plugins are created on the vehicles' description alone (runner::DescribeVehicles). The
-// experiment parser checks every section here too (names, values, messages as for a file).
+// experiment parser checks every section here too (names, values, messages as for a file), and
+// the bodies referencing the instance are checked to be its vehicles' (SwarmNames).
 size_t SwarmStateSize(const mjModel* m, int instance) {
   const runner::ExperimentConfig config = ReadSwarmConfig(m, instance);
+  SwarmNames(m, instance, config);
   return OnOwnThread(
              [&] { return std::make_unique<SwarmHost>(SwarmHost::Prepare(m, config, false)); })
       ->state_size();
@@ -251,11 +275,21 @@ struct VehicleHolder final : Holder {
   void SetState(const double* in) override { host->SetState(in); }
 };
 
+// The instance's configuration with its body and actuators named as they read in `m`: as
+// written, or renamed by an attach, read from the body that references the instance
+// (attach_names.hpp).
+VehicleHostConfig VehicleConfig(const mjModel* m, int instance) {
+  VehicleHostConfig c = VehicleConfigFromModel(m, instance, kAttitude);
+  const runner::SceneNames names = InstanceNames(m, instance, {c.body}, c.where);
+  c.body = names(c.body);
+  for (std::string& actuator : c.actuators) actuator = names(actuator);
+  return c;
+}
+
 std::unique_ptr<Holder> MakeVehicle(const mjModel* m, int instance) {
   auto holder = std::make_unique<VehicleHolder>();
-  holder->host = OnOwnThread([&] {
-    return std::make_unique<VehicleHost>(m, VehicleConfigFromModel(m, instance, kAttitude));
-  });
+  holder->host =
+      OnOwnThread([&] { return std::make_unique<VehicleHost>(m, VehicleConfig(m, instance)); });
   if (holder->host->state_size() > kVehicleStateBound) {
     throw std::runtime_error(InstanceWhere(kAttitude, m, instance) + ": its plugins declare " +
                              std::to_string(holder->host->state_size()) +
@@ -266,7 +300,7 @@ std::unique_ptr<Holder> MakeVehicle(const mjModel* m, int instance) {
 }
 
 size_t VehicleStateSize(const mjModel* m, int instance) {
-  VehicleConfigFromModel(m, instance, kAttitude);
+  VehicleConfig(m, instance);
   return kVehicleStateBound;
 }
 
@@ -292,37 +326,100 @@ struct Kind {
   size_t (*state_size)(const mjModel*, int);
 };
 
-std::vector<std::string> ActuatorNames(const mjModel* m, int instance) {
-  const char* names = mj_getPluginConfig(m, instance, "actuators");
-  std::vector<std::string> words;
-  std::istringstream in(names ? names : "");
-  for (std::string word; in >> word;) words.push_back(word);
-  return words;
+bool IsSwarm(const mjModel* m, int instance) {
+  const mjpPlugin* kind = mjp_getPluginAtSlot(m->plugin[instance]);
+  return kind && std::string(kind->name) == kSwarm;
 }
 
-// No vehicle driven twice, refused while the model compiles: a scene holds one swarm (it flies
-// every vehicle of the scene), and no actuator is named by two attitude instances (the later
-// instance's controls would silently replace the earlier's).
-void RefuseDrivingTwice(const char* plugin, const mjModel* m, int instance) {
-  const bool swarm = std::string(plugin) == kSwarm;
-  const std::vector<std::string> mine =
-      swarm ? std::vector<std::string>{} : ActuatorNames(m, instance);
-  for (int other = 0; other < m->nplugin; ++other) {
-    const mjpPlugin* kind = mjp_getPluginAtSlot(m->plugin[other]);
-    if (other == instance || !kind || std::string(kind->name) != plugin) continue;
-    if (swarm) {
-      throw std::runtime_error(InstanceWhere(plugin, m, instance) + ": a second swarm instance ('" +
-                               InstanceName(m, other) +
-                               "' is the other): one flies every vehicle " +
-                               "of the scene; remove one of them");
+// What an instance flies, by the names in `m` (after any attach): a swarm its vehicles' bodies,
+// an attitude instance its body and actuators.
+struct Driven {
+  bool swarm = false;
+  std::vector<std::string> bodies, actuators;
+};
+
+// Null for an instance of a plugin other than ours.
+std::unique_ptr<Driven> DrivenBy(const mjModel* m, int instance) {
+  const mjpPlugin* kind = mjp_getPluginAtSlot(m->plugin[instance]);
+  auto driven = std::make_unique<Driven>();
+  if (IsSwarm(m, instance)) {
+    const runner::ExperimentConfig config = ReadSwarmConfig(m, instance);
+    const runner::SceneNames names = SwarmNames(m, instance, config);
+    driven->swarm = true;
+    for (const std::string& body : SwarmBodies(config.followers)) {
+      driven->bodies.push_back(names(body));
     }
-    for (const std::string& name : ActuatorNames(m, other)) {
-      if (std::find(mine.begin(), mine.end(), name) == mine.end()) continue;
+  } else if (kind && std::string(kind->name) == kAttitude) {
+    const VehicleHostConfig c = VehicleConfig(m, instance);
+    driven->bodies = {c.body};
+    driven->actuators = c.actuators;
+  } else {
+    return nullptr;
+  }
+  return driven;
+}
+
+// A swarm's affixes without its configuration (as many vehicles as bodies reference it), so that
+// two swarms on one set of vehicles are named as such before either's configuration is read;
+// nullopt when they do not resolve (SwarmNames then words the refusal).
+std::optional<runner::SceneNames> SwarmAffixes(const mjModel* m, int instance) {
+  int referencing = 0;
+  for (int b = 1; b < m->nbody; ++b) referencing += m->body_plugin[b] == instance;
+  try {
+    return InstanceNames(m, instance, SwarmBodies(std::max(referencing, 1) - 1), "");
+  } catch (const std::runtime_error&) {
+    return std::nullopt;
+  }
+}
+
+std::runtime_error SecondSwarm(const mjModel* m, int instance, int other, const std::string& body) {
+  return std::runtime_error(InstanceWhere(kSwarm, m, instance) + ": a second swarm instance ('" +
+                            InstanceName(m, other) + "' is the other) flies the same vehicles ('" +
+                            body + "'); remove one of them, or attach each copy under a prefix " +
+                            "of its own");
+}
+
+// Two swarm instances whose vehicles carry the same affixes fly the same vehicles.
+void RefuseSecondSwarm(const mjModel* m, int instance) {
+  const std::optional<runner::SceneNames> mine = SwarmAffixes(m, instance);
+  for (int other = 0; mine && other < m->nplugin; ++other) {
+    if (other == instance || !IsSwarm(m, other)) continue;
+    const std::optional<runner::SceneNames> theirs = SwarmAffixes(m, other);
+    if (!theirs || theirs->prefix != mine->prefix || theirs->suffix != mine->suffix) continue;
+    throw SecondSwarm(m, instance, other, (*mine)(SwarmBodies(0)[0]));
+  }
+}
+
+std::string Shared(const std::vector<std::string>& mine, const std::vector<std::string>& theirs) {
+  for (const std::string& name : mine) {
+    if (std::find(theirs.begin(), theirs.end(), name) != theirs.end()) return name;
+  }
+  return "";
+}
+
+// No vehicle driven twice, refused while the model compiles: no two swarms fly the same
+// vehicles (two attached copies under their own prefixes fly their own), no actuator is named by
+// two attitude instances and no body is flown by two instances (the later instance's controls
+// would silently replace the earlier's).
+void RefuseDrivingTwice(const char* plugin, const mjModel* m, int instance) {
+  if (IsSwarm(m, instance)) RefuseSecondSwarm(m, instance);
+  const std::unique_ptr<Driven> mine = DrivenBy(m, instance);
+  for (int other = 0; mine && other < m->nplugin; ++other) {
+    const std::unique_ptr<Driven> theirs = other == instance ? nullptr : DrivenBy(m, other);
+    if (!theirs) continue;
+    const std::string actuator = Shared(mine->actuators, theirs->actuators);
+    if (!actuator.empty()) {
       throw std::runtime_error(InstanceWhere(plugin, m, instance) +
-                               ": <config key=\"actuators\">: '" + name +
+                               ": <config key=\"actuators\">: '" + actuator +
                                "' is driven by instance '" + InstanceName(m, other) +
                                "' too; an actuator takes one instance's controls");
     }
+    const std::string body = Shared(mine->bodies, theirs->bodies);
+    if (body.empty()) continue;
+    if (mine->swarm && theirs->swarm) throw SecondSwarm(m, instance, other, body);
+    throw std::runtime_error(InstanceWhere(plugin, m, instance) + ": body '" + body +
+                             "' is flown by instance '" + InstanceName(m, other) +
+                             "' too; a vehicle takes one instance's controls");
   }
 }
 
@@ -462,7 +559,10 @@ void ActDot(const mjModel* m, mjData* d, int instance) {
 }
 
 template <const Kind& K>
-void Compute(const mjModel* m, mjData* d, int instance, int) {
+void Compute(const mjModel* m, mjData* d, int instance, int capability) {
+  // The passive capability only lets a body reference the instance (see Register); the
+  // controllers act in the actuation stage alone.
+  if (capability != mjPLUGIN_ACTUATOR) return;
   const mjtNum* u = HeldControls<K>(m, d, instance);
   const bool bad = ControlsBad(m, d);
   for (int a = 0; a < m->nactuator; ++a) {
@@ -493,7 +593,10 @@ void Register(const std::vector<const char*>& attributes) {
   plugin.name = K.name;
   plugin.nattribute = static_cast<int>(attributes.size());
   plugin.attributes = attributes.data();
-  plugin.capabilityflags = mjPLUGIN_ACTUATOR;
+  // Passive too, though it adds no passive force: MuJoCo lets a body reference only a passive
+  // plugin's instance, and an instance that no element of an attached tree references is
+  // dropped by mjs_attach. The exported vehicles' bodies reference theirs (attach_names.hpp).
+  plugin.capabilityflags = mjPLUGIN_ACTUATOR | mjPLUGIN_PASSIVE;
   plugin.nstate = NState<K>;
   plugin.init = Init<K>;
   plugin.destroy = Destroy;

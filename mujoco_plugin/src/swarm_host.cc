@@ -106,7 +106,8 @@ struct SwarmHost::Impl {
 // read the vehicle model of [vehicles] model for mass, inertia and actuator geometry.
 std::shared_ptr<const SwarmShared> SwarmHost::Prepare(const mjModel* m,
                                                       const runner::ExperimentConfig& config,
-                                                      bool bind_model) {
+                                                      bool bind_model,
+                                                      const runner::SceneNames& names) {
   try {
     auto s = std::make_shared<SwarmShared>();
     s->config = config;
@@ -116,8 +117,9 @@ std::shared_ptr<const SwarmShared> SwarmHost::Prepare(const mjModel* m,
     s->attitude = &runner::FindPlugin(*s->registry, s->config, s->config.attitude,
                                       {MJF_KIND_ATTITUDE}, "this section needs an attitude plugin");
     runner::ResolveAttributes(*s->attitude->descriptor, s->config.attitude, s->config.source_path);
-    s->bindings = bind_model ? runner::BindVehicles(m, s->config, *s->attitude->descriptor)
-                             : runner::DescribeVehicles(m, s->config, *s->attitude->descriptor);
+    s->bindings =
+        bind_model ? runner::BindVehicles(m, s->config, *s->attitude->descriptor, "", 0, -1, names)
+                   : runner::DescribeVehicles(m, s->config, *s->attitude->descriptor);
     return s;
   } catch (const std::exception& e) {
     throw std::runtime_error(WithoutLine(e.what(), config.source_path));

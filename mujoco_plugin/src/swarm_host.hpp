@@ -15,6 +15,7 @@
 
 #include "mjformation/config/config_error.hpp"
 #include "mjformation/config/experiment.hpp"
+#include "mjformation/scene/vehicle_binding.hpp"
 
 namespace mjf::native {
 
@@ -40,10 +41,12 @@ class SwarmHost {
  public:
   // Reads the files and loads the libraries `config` names. bind_model: bind the vehicles'
   // sensors and actuators in `m` (false while the model compiles, when only the state's size
-  // is wanted). Throws std::runtime_error naming the section.
+  // is wanted), whose names read `names` (attach_names.hpp). Throws std::runtime_error naming
+  // the section.
   static std::shared_ptr<const SwarmShared> Prepare(const mjModel* m,
                                                     const runner::ExperimentConfig& config,
-                                                    bool bind_model);
+                                                    bool bind_model,
+                                                    const runner::SceneNames& names = {});
   // Creates every stage and plugin instance, as the runner's Simulation does. Checks that the
   // tick's state can be saved (runner::ControlTick::RequireSavable).
   explicit SwarmHost(std::shared_ptr<const SwarmShared> shared);

@@ -18,6 +18,7 @@
 #include "mjformation/config/config.hpp"
 #include "mjformation/config/overrides.hpp"
 #include "mjformation/config/paths.hpp"
+#include "mjformation/scene/scene.hpp"
 #include "mjformation/sim/simulation.hpp"
 
 namespace mjf::runner {
@@ -152,6 +153,32 @@ std::string ExtensionBlock(const std::vector<std::pair<std::string, std::string>
   return xml;
 }
 
+// Every vehicle's body references the swarm instance (`<plugin instance="swarm"/>` as its first
+// child). MuJoCo's attach (mjs_attach, Python's MjSpec.attach) copies only the instances that an
+// element of the attached tree references: an instance declared in <extension> alone is dropped
+// and the drones would fall without a controller. The references also tell the plugin the
+// prefix and suffix an attach gave the names (mujoco_plugin/src/attach_names.hpp). They change
+// nothing in the physics: the plugin adds no passive force.
+void ReferenceInstanceFromVehicles(std::string* xml, int vehicles) {
+  size_t from = 0;  // the vehicles come in index order: each search starts at the one before
+  for (int i = 0; i < vehicles; ++i) {
+    const std::string open = "<body name=\"" + VehiclePrefix(i) + "vehicle\"";
+    size_t at = xml->find(open, from);
+    if (at == std::string::npos) at = xml->find(open);
+    from = at;
+    const size_t end = at == std::string::npos ? at : xml->find('>', at);
+    if (end == std::string::npos || (*xml)[end - 1] == '/') {
+      throw ExportError("the composed scene has no body '" + VehiclePrefix(i) +
+                        "vehicle' with children, which the swarm instance flies");
+    }
+    // The indentation of the body's first child, so the scene reads as MuJoCo writes it.
+    const size_t line = end + 1;
+    const size_t text = xml->find_first_not_of(" \t", line + 1);
+    const std::string indent = xml->substr(line + 1, text - line - 1);
+    xml->insert(line + 1, indent + "<plugin instance=\"swarm\"/>\n");
+  }
+}
+
 std::string Where(const std::string& file, const toml::node& node, const std::string& key) {
   const toml::source_region& r = node.source();
   return file + ":" + std::to_string(r.begin.line) + ": [" + key + "]";
@@ -278,6 +305,7 @@ std::string ExportedSceneXml(const std::string& experiment, const ExportOptions&
   const size_t end = open == std::string::npos ? open : xml.find('>', open);
   if (end == std::string::npos) throw ExportError("the composed scene has no <mujoco> element");
   xml.insert(end + 2, ExtensionBlock(pairs));
+  ReferenceInstanceFromVehicles(&xml, config.followers + 1);
   return xml;
 }
 

@@ -170,9 +170,9 @@ VehicleModelInfo ReadVehicleModel(const ExperimentConfig& config, const mjfPlugi
   return info;
 }
 
-// Sensor addresses of vehicle `prefix` in the composed model.
-void BindSensors(const mjModel* m, const std::string& prefix, const std::string& model_path,
-                 VehicleBinding* b) {
+// Sensor addresses of vehicle `prefix` in the composed model, whose names read `names`.
+void BindSensors(const mjModel* m, const std::string& prefix, const SceneNames& names,
+                 const std::string& model_path, VehicleBinding* b) {
   struct Needed {
     const char* name;
     int type;
@@ -184,7 +184,7 @@ void BindSensors(const mjModel* m, const std::string& prefix, const std::string&
                                    {"quat", mjSENS_FRAMEQUAT, 4, &VehicleBinding::sensor_quat},
                                    {"gyro", mjSENS_GYRO, 3, &VehicleBinding::sensor_gyro}};
   for (const Needed& s : kNeeded) {
-    const int id = mj_name2id(m, mjOBJ_SENSOR, (prefix + s.name).c_str());
+    const int id = mj_name2id(m, mjOBJ_SENSOR, names(prefix + s.name).c_str());
     if (id < 0 || m->sensor_dim[id] != s.dim || m->sensor_type[id] != s.type) {
       throw SceneError(model_path + ": the vehicle model needs a sensor named '" + s.name + "' (" +
                        std::to_string(s.dim) +
@@ -227,7 +227,7 @@ namespace {
 
 VehicleBindings Bind(const mjModel* composed, const ExperimentConfig& config,
                      const mjfPlugin& attitude, const std::string& vehicle_xml, int first,
-                     int count, bool bind_ids) {
+                     int count, bool bind_ids, const SceneNames& names) {
   const VehicleModelInfo vehicle = ReadVehicleModel(config, attitude, vehicle_xml);
   VehicleBindings out;
   out.wrench_gain = vehicle.gains;
@@ -241,9 +241,10 @@ VehicleBindings Bind(const mjModel* composed, const ExperimentConfig& config,
     b.actuator_info = vehicle.actuators;
     for (int k = 0; bind_ids && k < attitude.n_actuators; ++k) {
       if (config.rotor_model == RotorModel::kWrench) {
-        b.sites.push_back(SceneId(composed, mjOBJ_SITE, prefix + vehicle.site_names[k]));
+        b.sites.push_back(SceneId(composed, mjOBJ_SITE, names(prefix + vehicle.site_names[k])));
       } else {
-        b.actuators.push_back(SceneId(composed, mjOBJ_ACTUATOR, prefix + attitude.actuators[k]));
+        b.actuators.push_back(
+            SceneId(composed, mjOBJ_ACTUATOR, names(prefix + attitude.actuators[k])));
       }
     }
     b.info.mass = vehicle.mass;
@@ -255,8 +256,8 @@ VehicleBindings Bind(const mjModel* composed, const ExperimentConfig& config,
                            ? MJF_ACTUATION_THRUST_MOMENTS
                            : MJF_ACTUATION_ROTORS;
     if (!bind_ids) continue;
-    b.body = SceneId(composed, mjOBJ_BODY, prefix + "vehicle");
-    BindSensors(composed, prefix, config.model_path, &b);
+    b.body = SceneId(composed, mjOBJ_BODY, names(prefix + "vehicle"));
+    BindSensors(composed, prefix, names, config.model_path, &b);
   }
   return out;
 }
@@ -265,13 +266,13 @@ VehicleBindings Bind(const mjModel* composed, const ExperimentConfig& config,
 
 VehicleBindings BindVehicles(const mjModel* composed, const ExperimentConfig& config,
                              const mjfPlugin& attitude, const std::string& vehicle_xml, int first,
-                             int count) {
-  return Bind(composed, config, attitude, vehicle_xml, first, count, true);
+                             int count, const SceneNames& names) {
+  return Bind(composed, config, attitude, vehicle_xml, first, count, true, names);
 }
 
 VehicleBindings DescribeVehicles(const mjModel* model, const ExperimentConfig& config,
                                  const mjfPlugin& attitude) {
-  return Bind(model, config, attitude, "", 0, -1, false);
+  return Bind(model, config, attitude, "", 0, -1, false, {});
 }
 
 void ReadTrueStates(const mjData* data, const VehicleBindings& bindings,

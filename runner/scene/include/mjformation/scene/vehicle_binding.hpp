@@ -26,6 +26,14 @@ struct VehicleBinding {
   mjfVehicleInfo info{};  // points into actuator_info: do not copy a binding
 };
 
+// How a vehicle's element names read in the model bound: `prefix + name + suffix`. Empty in the
+// runner's own scene; a scene attached into another (MuJoCo's mjs_attach) renames every element
+// this way, and a native plugin binds through the names its instance was attached with.
+struct SceneNames {
+  std::string prefix, suffix;
+  std::string operator()(const std::string& name) const { return prefix + name + suffix; }
+};
+
 struct VehicleBindings {
   std::vector<VehicleBinding> vehicles;  // 0 = leader
   std::vector<double> wrench_gain;       // actuator gain per driven actuator (same per vehicle)
@@ -40,10 +48,11 @@ std::vector<std::array<double, 3>> InitialPositions(const ExperimentConfig& conf
 // Reads mass, inertia and actuator geometry from the vehicle model alone (`vehicle_xml`, the
 // adapted foreign model, or else the file [vehicles] model), then binds every vehicle of the
 // composed model. Throws SceneError / PluginError naming what is missing. `first` and `count`
-// (-1: all 1 + N): the vehicles the composed model holds (a partition of the swarm).
+// (-1: all 1 + N): the vehicles the composed model holds (a partition of the swarm). `names`:
+// how the vehicles' names read in `composed` (SceneNames).
 VehicleBindings BindVehicles(const mjModel* composed, const ExperimentConfig& config,
                              const mjfPlugin& attitude, const std::string& vehicle_xml = "",
-                             int first = 0, int count = -1);
+                             int first = 0, int count = -1, const SceneNames& names = {});
 // The same vehicle info (mass, inertia, actuators; gravity from `model`), without binding any
 // sensor, actuator or site of `model` (ids stay -1): what a plugin's create() needs, for a
 // model whose sensors and actuators are not compiled yet (a native plugin's nstate).
