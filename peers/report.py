@@ -130,8 +130,9 @@ def open_loop_text(table):
     return txt + " (tier (b))"
 
 
-def speed_section(results):
-    cells = results["speed"]
+def speed_section(results, sizes=None):
+    """The speed table: every cell, or those of the vehicle counts in `sizes`."""
+    cells = [c for c in results["speed"] if sizes is None or c["n"] in sizes]
     if not cells:
         return "Not measured in this invocation (`--skip-speed`).\n"
     ours = {}
@@ -145,6 +146,8 @@ def speed_section(results):
         label = f"{c['n']}" if n_run == c["n"] else f"{c['n']} (flown as {n_run})"
         ctrl = {"own": "own position controller", "smc": "discrete SMC (48) in Python",
                 "smc (48)": "smc_discrete (48)", "hover": "hover guidance"}.get(c["controller"], c["controller"])
+        if c.get("sets"):
+            ctrl += "; " + ", ".join(f"`--set {x}`" for x in c["sets"])
         if c.get("error") and not c.get("runs"):
             rows.append([name, c["workload"], label, ctrl] + ["-"] * 7 + [f"failed: {c['error'][:160]}"])
             continue
@@ -153,7 +156,7 @@ def speed_section(results):
         ref = ours.get((c["workload"], c["n"]))
         r = ratio(ref["vehicle_seconds_per_s"], s["vehicle_seconds_per_s"]) if ref else float("nan")
         sim_s = [x["sim_s"] for x in runs]
-        short = min(sim_s) < results["args"]["duration"] - 0.1
+        short = min(sim_s) < c.get("duration", results["args"]["duration"]) - 0.1
         errs = [x.get("error_mean_25_40") for x in runs]
         err_txt = spread(errs, 2) if any(e is not None for e in errs) else (
             f"{fmt(runs[0].get('error_final'), 2)} at {fmt(sim_s[0], 3)} s" if runs else "-")
@@ -582,6 +585,79 @@ def write(results, doc, out):
     lines = (header(results, doc) + in_short(results, table) + machine_lines(results) + vehicle_lines(results)
              + speed_lines(results) + dynamics_lines(results, table, fig_path))
     doc.write_text("\n".join(lines) + "\n" + explanation(results, table))
+
+
+def section_markers(sizes):
+    """The comment lines that open and close the section of these vehicle counts."""
+    key = ",".join(str(n) for n in sizes)
+    return (f"<!-- peers harness: speed at N = {key}, written by run_peers.py --doc-section -->",
+            f"<!-- peers harness: end of speed at N = {key} -->")
+
+
+def splice(text, sizes, body):
+    """`text` with the section of `sizes` replaced by `body` when its markers are there, else
+    with it placed before the dynamics cross-check (at the end when there is none)."""
+    begin, end = section_markers(sizes)
+    block = f"{begin}\n{body.rstrip()}\n{end}\n"
+    if begin in text and end in text[text.index(begin):]:
+        head, rest = text.split(begin, 1)
+        return head + block + rest.split(end, 1)[1].lstrip("\n")
+    anchor = "## Dynamics cross-check"
+    if anchor in text:
+        head, rest = text.split(anchor, 1)
+        return head + block + "\n" + anchor + rest
+    return text.rstrip("\n") + "\n\n" + block
+
+
+def section_provenance(results, cells):
+    """When, with which command and under what load the cells were measured (the invocation
+    that measured the last of them, from `invocations` when results were merged)."""
+    runs = results.get("invocations") or [{"started": results["started"], "command": results["command"],
+                                           "loadavg": results["machine"].get("loadavg"),
+                                           "loadavg_end": results["machine"].get("loadavg_end")}]
+    last = max((c.get("measured") or "" for c in cells), default="")
+    inv = [r for r in runs if (r.get("started") or "") <= last][-1:] or runs[-1:]
+    inv = inv[0]
+    loads = ", ".join(f"{c['load'][0]:.1f}" for c in cells if c.get("load"))
+    rounded = lambda xs: tuple(round(x, 2) for x in xs) if xs else "-"
+    return (f"Measured from {inv.get('started')} to {inv.get('finished') or last} on the machine above "
+            f"(2 cores shared with other work, which was running: the load average (1, 5, 15 min) was "
+            f"{rounded(inv.get('loadavg'))} at the start and {rounded(inv.get('loadavg_end'))} at the end, "
+            f"and {loads or '-'} (1-min) as each cell began: more runnable work than cores, so every wall "
+            f"time here is longer than on an idle machine), with:\n\n```bash\n/usr/bin/python3 "
+            f"{checkout_command(inv.get('command') or '')}\n```")
+
+
+def section(results, sizes):
+    """The Markdown section of the speed cells at `sizes` alone (--doc-section)."""
+    cells = [c for c in results["speed"] if c["n"] in sizes]
+    label = ", ".join(str(n) for n in sizes)
+    if not cells:
+        return f"## Speed at N = {label}\n\nNot measured: results.json has no cell at N = {label}.\n"
+    durations = sorted({c.get("duration", results["args"]["duration"]) for c in cells})
+    measured = sorted({NAMES[c["sim"]] for c in cells}, key=list(NAMES.values()).index)
+    missing = [NAMES[p] for p in ("rotorpy", "pyflyt", "crazyflow") if NAMES[p] not in measured]
+    ratios_text = summary({"speed": cells})
+    lines = [f"## Speed at N = {label}", "",
+             section_provenance(results, cells), "",
+             f"Simulated seconds asked for per run: {', '.join(fmt(d, 3) for d in durations)} (not the 40 s of "
+             "the table above, so that a cell costs minutes, not hours; a peer run still stops at "
+             f"{fmt(results['args']['wall_budget'], 3)} s of wall time, \"budget\"). Runs shorter than 25 s give "
+             "their error at their last time. Simulators measured: " + ", ".join(measured) + "; not run at this "
+             "size: " + (", ".join(missing) or "none") + " (see \"What is not done here\").", "",
+             speed_section(results, sizes), ""]
+    if ratios_text:
+        lines += [ratios_text, ""]
+    return "\n".join(lines)
+
+
+def write_section(results, doc, sizes):
+    """The section of `sizes` spliced into the report `doc` (created when missing), the rest of
+    the file left as it is."""
+    doc = Path(doc)
+    doc.parent.mkdir(parents=True, exist_ok=True)
+    text = doc.read_text() if doc.exists() else ""
+    doc.write_text(splice(text, sizes, section(results, sizes)))
 
 
 EXPLAIN = """
