@@ -24,6 +24,7 @@ import hashlib
 import json
 import os
 import platform
+import shlex
 import shutil
 import subprocess
 import sys
@@ -185,6 +186,9 @@ def parse_args(argv):
     ap.add_argument("--repeats-other", type=int, default=0,
                     help="runs per cell for sizes other than 7 (0: --repeats)")
     ap.add_argument("--duration", type=float, default=40.0, help="simulated seconds per run")
+    ap.add_argument("--warmup-periods", type=int, default=1,
+                    help="a peer's first control periods timed apart from the stepping (JIT compilation; "
+                         "Crazyflow compiles its step again in its second period)")
     ap.add_argument("--wall-budget", type=float, default=120.0, help="stop a peer run after this many wall seconds")
     ap.add_argument("--python", default="/usr/bin/python3", help="interpreter the virtual environments are made from")
     ap.add_argument("--out", default=str(HERE / "out"), help="folder of results.json, PEERS.md and the figure")
@@ -252,6 +256,9 @@ def checked_inputs(args):
     """(runner, peers, sizes, workloads) from the arguments, or a one-line refusal before anything
     is installed."""
     sizes = checked_sizes(args.sizes)
+    if args.warmup_periods < 1:
+        raise fail(f"--warmup-periods: {args.warmup_periods} is below 1; the first control period is always "
+                   "timed apart, e.g. --warmup-periods 2")
     workloads = checked_workloads(args.workloads)
     if args.doc_section and not args.doc:
         raise fail("--doc-section: names no report to write into; add --doc (docs/PEERS.md) or --doc FILE")
@@ -360,14 +367,16 @@ def peer_speed_cells(name, workload, n, reps, pys, out, args):
     for ctrl in ctrls:
         log(f"{workload} N={n}: {name} ({ctrl})")
         job = {"kind": "speed", "workload": workload, "n": n, "controller": ctrl,
-               "duration": args.duration, "repeats": reps, "wall_budget": args.wall_budget}
+               "duration": args.duration, "repeats": reps, "wall_budget": args.wall_budget,
+               "warmup_periods": args.warmup_periods}
         res = run_worker(pys[name], PEERS[name]["worker"],
                          {"peer": name, "tag": f"{workload}_{n}_{ctrl}", "jobs": [job]}, out,
                          reps * (args.wall_budget + 120) + 300)
         j = res["jobs"][0] if res["jobs"] else {}
         cells.append({"sim": name, "workload": workload, "n": n, "controller": ctrl,
                       "runs": j.get("runs", []), "physics_hz": j.get("physics_hz"),
-                      "error": j.get("error") or res.get("process_error"), "duration": args.duration})
+                      "error": j.get("error") or res.get("process_error"), "duration": args.duration,
+                      "warmup_periods": args.warmup_periods})
     return cells
 
 
@@ -442,7 +451,7 @@ def main(argv=None):
     guard = take_lock(envs)
     if guard is None:
         return 2
-    results = {"started": now(), "command": " ".join([os.path.relpath(sys.argv[0], ROOT)] + sys.argv[1:]),
+    results = {"started": now(), "command": shlex.join([os.path.relpath(sys.argv[0], ROOT)] + sys.argv[1:]),
                "machine": machine(), "binary": binary, "reference": P.REFERENCE, "derived": P.derived(),
                "unmatched": P.unmatched(), "args": vars(args), "install": {}, "speed": [], "dynamics": {}}
     ver = subprocess.run([binary, "--version"], capture_output=True, text=True)
