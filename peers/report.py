@@ -601,7 +601,8 @@ def splice(text, sizes, body):
     block = f"{begin}\n{body.rstrip()}\n{end}\n"
     if begin in text and end in text[text.index(begin):]:
         head, rest = text.split(begin, 1)
-        return head + block + rest.split(end, 1)[1].lstrip("\n")
+        after = rest.split(end, 1)[1]
+        return head + block + (after[1:] if after.startswith("\n") else after)
     anchor = "## Dynamics cross-check"
     if anchor in text:
         head, rest = text.split(anchor, 1)

@@ -447,10 +447,11 @@ def main(argv=None):
     binary, peers, sizes, workloads = checked_inputs(args)
     previous = load_results(out) if args.merge and (out / "results.json").exists() else None
     envs = HERE / ".envs"
-    envs.mkdir(exist_ok=True)
-    guard = take_lock(envs)
-    if guard is None:
-        return 2
+    if peers or not args.skip_dynamics:   # environments to make: one invocation at a time
+        envs.mkdir(exist_ok=True)
+        guard = take_lock(envs)
+        if guard is None:
+            return 2
     results = {"started": now(), "command": shlex.join([os.path.relpath(sys.argv[0], ROOT)] + sys.argv[1:]),
                "machine": machine(), "binary": binary, "reference": P.REFERENCE, "derived": P.derived(),
                "unmatched": P.unmatched(), "args": vars(args), "install": {}, "speed": [], "dynamics": {}}
