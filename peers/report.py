@@ -720,9 +720,17 @@ integrated accurately by RK45). PyFlyt and Crazyflow step the speed with explici
 first order; for large steps mjformation's thrust responds up to about 3 ms sooner.
 
 ## What is not done here, and why
-- RotorPy batched (`BatchedMultirotor`, `simulate_batch`) needs PyTorch, not among RotorPy 3.0's
-  dependencies; the harness does not install it. Crazyflow's batch is measured on one size (8 worlds).
-- N = 1000: not attempted with the peers (RotorPy and PyFlyt step vehicles one by one in Python: a 40-s
-  run would take hours); mjformation's own scaling to 1000 followers is in docs/PERFORMANCE.md.
+- RotorPy batched: the lock pins RotorPy 3.0.0, whose README reports batched runs of more than 1000
+  drones on the CPU (`BatchedMultirotor`, `simulate_batch`). That mode is the `rotorpy[batched]` extra
+  (torch >= 1.11, torchdiffeq, roma, opt-einsum), none of which the lock holds, and it flies batched
+  classes of its own (vehicle, controller, trajectory) that the harness's worker does not drive: not
+  measured at any size. Crazyflow's batch of worlds is measured on one size (8 worlds).
+- N = 1000: Crazyflow and mjformation only, in shorter runs than 40 s (the section "Speed at N = 1000"
+  that `--sizes 1000 --doc-section` writes says how long, when and under what load). RotorPy and PyFlyt
+  step vehicles one by one in Python: at their N = 49 vehicle-steps per second one simulated second of
+  1000 vehicles costs RotorPy minutes (100 Hz) and PyFlyt tens of seconds (240 Hz), so a 30-s wall
+  budget leaves them a second of flight or less; not attempted. mjformation flies 1000 followers with
+  `rotor_model = "wrench"` and no contacts (its `--mjf-set`): the actuator rotor path is quadratic in
+  the swarm (docs/PERFORMANCE.md).
 - The runner's figures are taken on the engine the timed build links: {engine} (the version line above).
 """
