@@ -68,7 +68,8 @@ def summary(results):
     """One line per peer: the range of 'mjformation x faster' over the cells, per N."""
     out = []
     for sim, per_n in ratios(results).items():
-        parts = [f"N = {n}: {fmt(min(rs), 3)}-{fmt(max(rs), 3)}x" for n, rs in per_n.items()]
+        parts = [f"N = {n}: " + (f"{fmt(rs[0], 3)}x" if len(set(rs)) == 1 else f"{fmt(min(rs), 3)}-{fmt(max(rs), 3)}x")
+                 for n, rs in per_n.items()]
         out.append(f"- mjformation against {NAMES[sim]}: " + "; ".join(parts) +
                    " (below 1: the peer is faster).")
     return "\n".join(out)
@@ -624,8 +625,8 @@ def section_provenance(results, cells):
     return (f"Measured from {inv.get('started')} to {inv.get('finished') or last} on the machine above "
             f"(2 cores shared with other work, which was running: the load average (1, 5, 15 min) was "
             f"{rounded(inv.get('loadavg'))} at the start and {rounded(inv.get('loadavg_end'))} at the end, "
-            f"and {loads or '-'} (1-min) as each cell began: more runnable work than cores, so every wall "
-            f"time here is longer than on an idle machine), with:\n\n```bash\n/usr/bin/python3 "
+            f"and {loads or '-'} (1-min, one sample per cell, in the table's order): more runnable work than cores, "
+            f"so every wall time here is longer than on an idle machine), with:\n\n```bash\n/usr/bin/python3 "
             f"{checkout_command(inv.get('command') or '')}\n```")
 
 

@@ -353,9 +353,10 @@ def dynamics_tiers(binary, model, peers, pys, out, results):
             results["dynamics"][name] = run_worker(pys[name], PEERS[name]["worker"], task, out, 1200)
 
 
-def stamp(cell, args):
-    """The cell with what it was measured under: the simulated seconds asked for, when, the load."""
-    cell.update({"duration": args.duration, "measured": now(), "load": list(os.getloadavg())})
+def stamp(cell, args, when=None):
+    """The cell with what it was measured under: the simulated seconds asked for, when it began
+    and the load average then (`when`: those of an earlier moment)."""
+    cell.update({"duration": args.duration}, **(when or {"measured": now(), "load": list(os.getloadavg())}))
     return cell
 
 
@@ -394,7 +395,9 @@ def speed_tiers(binary, model, peers, sizes, workloads, pys, out, args, results,
             cell.update(mjformation_speed(binary, toml, out, workload, n, reps, args.mjf_set))
             results["speed"].append(cell)
             for name in (p for p in peers if p in pys):
-                results["speed"] += [stamp(c, args) for c in peer_speed_cells(name, workload, n, reps, pys, out, args)]
+                began = {"measured": now(), "load": list(os.getloadavg())}
+                cells = peer_speed_cells(name, workload, n, reps, pys, out, args)
+                results["speed"] += [stamp(c, args, began) for c in cells]
             save(results, out, previous)
 
 
