@@ -10,6 +10,7 @@ import numpy as np
 
 from peerlib import crosscheck as X
 from peerlib import params as P
+from peerlib import workload as W
 from peerlib.scenarios import tier_states
 from peerlib.tables import fmt, markdown, ratio, speed_row, spread
 
@@ -648,6 +649,12 @@ def section(results, sizes):
              "their error at their last time. Simulators measured: " + ", ".join(measured) + "; not run at this "
              "size: " + (", ".join(missing) or "none") + " (see \"What is not done here\").", "",
              speed_section(results, sizes), ""]
+    for n in sorted({c["n"] for c in cells if c["workload"] == "W2" and c["n"] > 1}):
+        radius, start = W.shape_radius(n - 1), float(np.linalg.norm(W.starts(n)[1, :2]))
+        lines[-2:-2] = [f"W2 at N = {n}: the slots lie on a circle of {fmt(radius, 3)} m around the leader turning at "
+                        f"{W.SHAPE_OMEGA} rad/s ({fmt(radius * W.SHAPE_OMEGA, 3)} m/s relative to it; neighbouring slots "
+                        f"0.2 m apart) and the followers start on a ring of {fmt(start, 3)} m: whether a run "
+                        "flew the work is in the error column.", ""]
     warm = max((c.get("warmup_periods", 1) for c in cells if c["sim"] != "mjformation"), default=1)
     if warm > 1:
         lines[-2:-2] = [f"The peers' first {warm} control periods are timed apart from the stepping (\"setup + "

@@ -151,7 +151,8 @@ def test_the_section_states_duration_overrides_load_and_the_peers_not_run():
         cell("mjformation", 1000, 20.0, sets=['vehicles.rotor_model="wrench"'], duration=10.0, load=[9.5, 9.0, 8.0],
              measured="2026-01-01T00:05:00+00:00"),
         cell("crazyflow", 1000, 10.0, duration=10.0, load=[12.25, 9.0, 8.0], warmup_periods=2,
-             measured="2026-01-01T00:06:00+00:00")])
+             measured="2026-01-01T00:06:00+00:00"),
+        cell("crazyflow", 1000, 10.0, workload="W2", duration=10.0)])
     text = report.section(results, [1000])
     assert text.startswith("## Speed at N = 1000\n")
     assert "Simulated seconds asked for per run: 10.0 " in text
@@ -160,6 +161,8 @@ def test_the_section_states_duration_overrides_load_and_the_peers_not_run():
     assert "not run at this size: RotorPy, PyFlyt" in text
     assert "first 2 control periods are timed apart" in text
     assert "- mjformation against Crazyflow: N = 1000: 0.500x (below 1" in text
+    assert "W2 at N = 1000: the slots lie on a circle of 31.8 m around the leader turning at 0.314 rad/s " \
+           "(9.98 m/s relative to it" in text and "start on a ring of 15.9 m" in text
     assert "| 7 |" not in text  # the other sizes stay in their own table
 
 
