@@ -34,7 +34,9 @@ def sources():
         if not base.is_dir():
             sys.exit(f"function_lengths.py: no folder {base}")
         for path in sorted(base.rglob("*")):
-            if path.suffix in (".cc", ".hpp", ".h", ".py") and path.is_file():
+            # Hidden folders hold installed third-party code (peers/.envs, a .venv), not ours.
+            hidden = any(part.startswith(".") for part in path.relative_to(base).parts[:-1])
+            if path.suffix in (".cc", ".hpp", ".h", ".py") and path.is_file() and not hidden:
                 yield path
 
 

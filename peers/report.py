@@ -10,6 +10,7 @@ import numpy as np
 
 from peerlib import crosscheck as X
 from peerlib import params as P
+from peerlib import workload as W
 from peerlib.scenarios import tier_states
 from peerlib.tables import fmt, markdown, ratio, speed_row, spread
 
@@ -68,7 +69,8 @@ def summary(results):
     """One line per peer: the range of 'mjformation x faster' over the cells, per N."""
     out = []
     for sim, per_n in ratios(results).items():
-        parts = [f"N = {n}: {fmt(min(rs), 3)}-{fmt(max(rs), 3)}x" for n, rs in per_n.items()]
+        parts = [f"N = {n}: " + (f"{fmt(rs[0], 3)}x" if len(set(rs)) == 1 else f"{fmt(min(rs), 3)}-{fmt(max(rs), 3)}x")
+                 for n, rs in per_n.items()]
         out.append(f"- mjformation against {NAMES[sim]}: " + "; ".join(parts) +
                    " (below 1: the peer is faster).")
     return "\n".join(out)
@@ -130,8 +132,9 @@ def open_loop_text(table):
     return txt + " (tier (b))"
 
 
-def speed_section(results):
-    cells = results["speed"]
+def speed_section(results, sizes=None):
+    """The speed table: every cell, or those of the vehicle counts in `sizes`."""
+    cells = [c for c in results["speed"] if sizes is None or c["n"] in sizes]
     if not cells:
         return "Not measured in this invocation (`--skip-speed`).\n"
     ours = {}
@@ -145,6 +148,8 @@ def speed_section(results):
         label = f"{c['n']}" if n_run == c["n"] else f"{c['n']} (flown as {n_run})"
         ctrl = {"own": "own position controller", "smc": "discrete SMC (48) in Python",
                 "smc (48)": "smc_discrete (48)", "hover": "hover guidance"}.get(c["controller"], c["controller"])
+        if c.get("sets"):
+            ctrl += "; " + ", ".join(f"`--set {x}`" for x in c["sets"])
         if c.get("error") and not c.get("runs"):
             rows.append([name, c["workload"], label, ctrl] + ["-"] * 7 + [f"failed: {c['error'][:160]}"])
             continue
@@ -153,7 +158,7 @@ def speed_section(results):
         ref = ours.get((c["workload"], c["n"]))
         r = ratio(ref["vehicle_seconds_per_s"], s["vehicle_seconds_per_s"]) if ref else float("nan")
         sim_s = [x["sim_s"] for x in runs]
-        short = min(sim_s) < results["args"]["duration"] - 0.1
+        short = min(sim_s) < c.get("duration", results["args"]["duration"]) - 0.1
         errs = [x.get("error_mean_25_40") for x in runs]
         err_txt = spread(errs, 2) if any(e is not None for e in errs) else (
             f"{fmt(runs[0].get('error_final'), 2)} at {fmt(sim_s[0], 3)} s" if runs else "-")
@@ -584,6 +589,91 @@ def write(results, doc, out):
     doc.write_text("\n".join(lines) + "\n" + explanation(results, table))
 
 
+def section_markers(sizes):
+    """The comment lines that open and close the section of these vehicle counts."""
+    key = ",".join(str(n) for n in sizes)
+    return (f"<!-- peers harness: speed at N = {key}, written by run_peers.py --doc-section -->",
+            f"<!-- peers harness: end of speed at N = {key} -->")
+
+
+def splice(text, sizes, body):
+    """`text` with the section of `sizes` replaced by `body` when its markers are there, else
+    with it placed before the dynamics cross-check (at the end when there is none)."""
+    begin, end = section_markers(sizes)
+    block = f"{begin}\n{body.rstrip()}\n{end}\n"
+    if begin in text and end in text[text.index(begin):]:
+        head, rest = text.split(begin, 1)
+        after = rest.split(end, 1)[1]
+        return head + block + (after[1:] if after.startswith("\n") else after)
+    anchor = "## Dynamics cross-check"
+    if anchor in text:
+        head, rest = text.split(anchor, 1)
+        return head + block + "\n" + anchor + rest
+    return text.rstrip("\n") + "\n\n" + block
+
+
+def section_provenance(results, cells):
+    """When, with which command and under what load the cells were measured (the invocation
+    that measured the last of them, from `invocations` when results were merged)."""
+    runs = results.get("invocations") or [{"started": results["started"], "command": results["command"],
+                                           "loadavg": results["machine"].get("loadavg"),
+                                           "loadavg_end": results["machine"].get("loadavg_end")}]
+    last = max((c.get("measured") or "" for c in cells), default="")
+    inv = [r for r in runs if (r.get("started") or "") <= last][-1:] or runs[-1:]
+    inv = inv[0]
+    loads = ", ".join(f"{c['load'][0]:.1f}" for c in cells if c.get("load"))
+    rounded = lambda xs: tuple(round(x, 2) for x in xs) if xs else "-"
+    return (f"Measured from {inv.get('started')} to {inv.get('finished') or last} on the machine above "
+            f"(2 cores shared with other work, which was running: the load average (1, 5, 15 min) was "
+            f"{rounded(inv.get('loadavg'))} at the start and {rounded(inv.get('loadavg_end'))} at the end, "
+            f"and {loads or '-'} (1-min, one sample per cell, in the table's order): more runnable work than cores, "
+            f"so every wall time here is longer than on an idle machine), with:\n\n```bash\n/usr/bin/python3 "
+            f"{checkout_command(inv.get('command') or '')}\n```")
+
+
+def section(results, sizes):
+    """The Markdown section of the speed cells at `sizes` alone (--doc-section)."""
+    cells = [c for c in results["speed"] if c["n"] in sizes]
+    label = ", ".join(str(n) for n in sizes)
+    if not cells:
+        return f"## Speed at N = {label}\n\nNot measured: results.json has no cell at N = {label}.\n"
+    durations = sorted({c.get("duration", results["args"]["duration"]) for c in cells})
+    measured = sorted({NAMES[c["sim"]] for c in cells}, key=list(NAMES.values()).index)
+    missing = [NAMES[p] for p in ("rotorpy", "pyflyt", "crazyflow") if NAMES[p] not in measured]
+    ratios_text = summary({"speed": cells})
+    lines = [f"## Speed at N = {label}", "",
+             section_provenance(results, cells), "",
+             f"Simulated seconds asked for per run: {', '.join(fmt(d, 3) for d in durations)} (not the 40 s of "
+             "the table above, so that a cell costs minutes, not hours; a peer run still stops at "
+             f"{fmt(results['args']['wall_budget'], 3)} s of wall time, \"budget\"). Runs shorter than 25 s give "
+             "their error at their last time. Simulators measured: " + ", ".join(measured) + "; not run at this "
+             "size: " + (", ".join(missing) or "none") + " (see \"What is not done here\").", "",
+             speed_section(results, sizes), ""]
+    for n in sorted({c["n"] for c in cells if c["workload"] == "W2" and c["n"] > 1}):
+        radius, start = W.shape_radius(n - 1), float(np.linalg.norm(W.starts(n)[1, :2]))
+        lines[-2:-2] = [f"W2 at N = {n}: the slots lie on a circle of {fmt(radius, 3)} m around the leader turning at "
+                        f"{W.SHAPE_OMEGA} rad/s ({fmt(radius * W.SHAPE_OMEGA, 3)} m/s relative to it; neighbouring slots "
+                        f"0.2 m apart) and the followers start on a ring of {fmt(start, 3)} m: whether a run "
+                        "flew the work is in the error column.", ""]
+    warm = max((c.get("warmup_periods", 1) for c in cells if c["sim"] != "mjformation"), default=1)
+    if warm > 1:
+        lines[-2:-2] = [f"The peers' first {warm} control periods are timed apart from the stepping (\"setup + "
+                        "first period\" column): Crazyflow compiles its step again in its second period, which a "
+                        "run with the default of one period counts in its wall time.", ""]
+    if ratios_text:
+        lines += [ratios_text, ""]
+    return "\n".join(lines)
+
+
+def write_section(results, doc, sizes):
+    """The section of `sizes` spliced into the report `doc` (created when missing), the rest of
+    the file left as it is."""
+    doc = Path(doc)
+    doc.parent.mkdir(parents=True, exist_ok=True)
+    text = doc.read_text() if doc.exists() else ""
+    doc.write_text(splice(text, sizes, section(results, sizes)))
+
+
 EXPLAIN = """
 ## What the differences come from
 
@@ -638,9 +728,17 @@ integrated accurately by RK45). PyFlyt and Crazyflow step the speed with explici
 first order; for large steps mjformation's thrust responds up to about 3 ms sooner.
 
 ## What is not done here, and why
-- RotorPy batched (`BatchedMultirotor`, `simulate_batch`) needs PyTorch, not among RotorPy 3.0's
-  dependencies; the harness does not install it. Crazyflow's batch is measured on one size (8 worlds).
-- N = 1000: not attempted with the peers (RotorPy and PyFlyt step vehicles one by one in Python: a 40-s
-  run would take hours); mjformation's own scaling to 1000 followers is in docs/PERFORMANCE.md.
+- RotorPy batched: the lock pins RotorPy 3.0.0, whose README reports batched runs of more than 1000
+  drones on the CPU (`BatchedMultirotor`, `simulate_batch`). That mode is the `rotorpy[batched]` extra
+  (torch >= 1.11, torchdiffeq, roma, opt-einsum), none of which the lock holds, and it flies batched
+  classes of its own (vehicle, controller, trajectory) that the harness's worker does not drive: not
+  measured at any size. Crazyflow's batch of worlds is measured on one size (8 worlds).
+- N = 1000: Crazyflow and mjformation only, in shorter runs than 40 s (the section "Speed at N = 1000"
+  that `--sizes 1000 --doc-section` writes says how long, when and under what load). RotorPy and PyFlyt
+  step vehicles one by one in Python: at their N = 49 vehicle-steps per second one simulated second of
+  1000 vehicles costs RotorPy minutes (100 Hz) and PyFlyt tens of seconds (240 Hz), so a 30-s wall
+  budget leaves them a second of flight or less; not attempted. mjformation flies 1000 followers with
+  `rotor_model = "wrench"` and no contacts (its `--mjf-set`): the actuator rotor path is quadratic in
+  the swarm (docs/PERFORMANCE.md).
 - The runner's figures are taken on the engine the timed build links: {engine} (the version line above).
 """

@@ -5,13 +5,18 @@
   /usr/bin/python3 peers/run_peers.py --build build            # everything -> peers/out/PEERS.md
   /usr/bin/python3 peers/run_peers.py --build build --doc      # ... and the tracked docs/PEERS.md
   /usr/bin/python3 peers/run_peers.py --build build --sizes 7 --repeats 3 --batch-worlds 0   # quicker
+  /usr/bin/python3 peers/run_peers.py --build build --sizes 1000 --peers crazyflow --workloads W1 \
+      --duration 10 --skip-dynamics --batch-worlds 0 --merge --doc --doc-section   # add cells
 
 Installs each peer into its own virtual environment (peers/.envs/NAME) from its pinned lock
 (peers/locks/NAME.txt), runs each in its own process (peers/workers/worker_NAME.py) with
 single-threaded BLAS/XLA, times mjformation's runner (BUILD/runner/mjformation) on the same
 workloads in the same invocation, runs the dynamics tiers, writes OUT/results.json (OUT:
 --out, default peers/out), the report OUT/PEERS.md and its divergence figure beside it (with --doc,
-docs/PEERS.md and docs/peers_divergence.png instead). Not part of CI: it installs from a registry."""
+docs/PEERS.md and docs/peers_divergence.png instead). --merge keeps the cells of OUT/results.json
+that this invocation does not measure again; --doc-section writes only this invocation's sizes into
+the report, as a section between markers, and leaves the rest of the file as it is. Not part of CI:
+it installs from a registry."""
 
 import argparse
 import datetime
@@ -19,6 +24,7 @@ import hashlib
 import json
 import os
 import platform
+import shlex
 import shutil
 import subprocess
 import sys
@@ -96,16 +102,17 @@ def read_positions(run_dir, n):
     return d["t"], pos
 
 
-def mjformation_speed(binary, toml, out, workload, n, repeats):
-    """Runs of the runner (no render); wall = summary.json's timing.wall_time_s (the stepping
-    loop); setup = the process's wall time less that."""
+def mjformation_speed(binary, toml, out, workload, n, repeats, sets=()):
+    """Runs of the runner (no render; `sets`: its --set overrides); wall = summary.json's
+    timing.wall_time_s (the stepping loop); setup = the process's wall time less that."""
     n_run = max(n, 2)
     runs = []
+    overrides = [word for value in sets for word in ("--set", value)]
     for k in range(repeats):
         rd = out / f"mjf_{workload}_n{n}_{k}"
         t0 = time.perf_counter()
-        r = subprocess.run([binary, "run", str(toml), "--out", str(rd), "--no-render", "--overwrite", "-q"],
-                           capture_output=True, text=True)
+        r = subprocess.run([binary, "run", str(toml), "--out", str(rd), "--no-render", "--overwrite", "-q"]
+                           + overrides, capture_output=True, text=True)
         proc = time.perf_counter() - t0
         if not (rd / "summary.json").exists():
             return {"error": f"exit {r.returncode}: {r.stderr.strip()[-800:]}", "runs": runs}
@@ -171,10 +178,17 @@ def parse_args(argv):
     ap.add_argument("--binary", help="the runner itself (overrides --build)")
     ap.add_argument("--peers", default="rotorpy,pyflyt,crazyflow")
     ap.add_argument("--sizes", default="1,7,49", help="vehicles in all, comma separated")
+    ap.add_argument("--workloads", default="W1,W2", help="speed workloads, comma separated (W1, W2)")
+    ap.add_argument("--mjf-set", action="append", default=[], metavar="KEY=VALUE",
+                    help="an override for mjformation's speed runs (its `run --set`), e.g. "
+                         "'vehicles.rotor_model=\"wrench\"'; repeatable; stated in the report")
     ap.add_argument("--repeats", type=int, default=5, help="runs per cell (median and range reported)")
     ap.add_argument("--repeats-other", type=int, default=0,
                     help="runs per cell for sizes other than 7 (0: --repeats)")
     ap.add_argument("--duration", type=float, default=40.0, help="simulated seconds per run")
+    ap.add_argument("--warmup-periods", type=int, default=1,
+                    help="a peer's first control periods timed apart from the stepping (JIT compilation; "
+                         "Crazyflow compiles its step again in its second period)")
     ap.add_argument("--wall-budget", type=float, default=120.0, help="stop a peer run after this many wall seconds")
     ap.add_argument("--python", default="/usr/bin/python3", help="interpreter the virtual environments are made from")
     ap.add_argument("--out", default=str(HERE / "out"), help="folder of results.json, PEERS.md and the figure")
@@ -186,6 +200,13 @@ def parse_args(argv):
     ap.add_argument("--skip-speed", action="store_true")
     ap.add_argument("--skip-dynamics", action="store_true")
     ap.add_argument("--report-only", action="store_true", help="rewrite the report from OUT/results.json")
+    ap.add_argument("--merge", action="store_true",
+                    help="keep the cells of an existing OUT/results.json that this invocation does not "
+                         "measure again (same simulator, work, N and controller: replaced)")
+    ap.add_argument("--doc-section", action="store_true",
+                    help="write only this invocation's sizes (--sizes) into the report, as a section between "
+                         "markers (replaced when there, else placed before the dynamics), leaving the rest "
+                         "of the file as it is")
     return ap.parse_args(argv)
 
 
@@ -206,13 +227,41 @@ def writable_folder(path, option):
     return path
 
 
-def checked_inputs(args):
-    """(runner, peers, sizes) from the arguments, or a one-line refusal before anything is installed."""
+WORKLOADS = ("W1", "W2")
+
+
+def checked_sizes(text):
+    """The --sizes list as whole numbers, in the order given, or a one-line refusal."""
     sizes = []
-    for word in (w for w in args.sizes.split(",") if w.strip()):
+    for word in (w for w in text.split(",") if w.strip()):
         if not word.strip().isdigit() or int(word) < 1:
             raise fail(f"--sizes: '{word}' is not a number of vehicles; give whole numbers >= 1, e.g. --sizes 1,7,49")
         sizes.append(int(word))
+    if not sizes:
+        raise fail("--sizes: no size given; give whole numbers >= 1, e.g. --sizes 1,7,49")
+    return sizes
+
+
+def checked_workloads(text):
+    """The --workloads list (W1, W2), or a one-line refusal."""
+    workloads = [w.strip() for w in text.split(",") if w.strip()]
+    unknown = [w for w in workloads if w not in WORKLOADS]
+    if unknown or not workloads:
+        raise fail(f"--workloads: unknown workload '{(unknown or [text])[0]}'; the harness knows "
+                   f"{', '.join(WORKLOADS)}, e.g. --workloads W1")
+    return workloads
+
+
+def checked_inputs(args):
+    """(runner, peers, sizes, workloads) from the arguments, or a one-line refusal before anything
+    is installed."""
+    sizes = checked_sizes(args.sizes)
+    if args.warmup_periods < 1:
+        raise fail(f"--warmup-periods: {args.warmup_periods} is below 1; the first control period is always "
+                   "timed apart, e.g. --warmup-periods 2")
+    workloads = checked_workloads(args.workloads)
+    if args.doc_section and not args.doc:
+        raise fail("--doc-section: names no report to write into; add --doc (docs/PEERS.md) or --doc FILE")
     peers = [p for p in args.peers.split(",") if p]
     unknown = [p for p in peers if p not in PEERS]
     if unknown:
@@ -222,7 +271,7 @@ def checked_inputs(args):
         where = "--binary" if args.binary else f"--build {args.build}:"
         raise fail(f"{where} no runner at {binary}; build it (cmake --build build --target mjf_product) "
                    "or name it with --binary FILE")
-    return binary, peers, sizes
+    return binary, peers, sizes, workloads
 
 
 def load_results(out):
@@ -246,7 +295,10 @@ def write_report(results, args, out):
     import report
     doc = Path(args.doc) if args.doc else out / "PEERS.md"
     try:
-        report.write(results, doc, out)
+        if args.doc_section:
+            report.write_section(results, doc, checked_sizes(args.sizes))
+        else:
+            report.write(results, doc, out)
     except OSError as error:
         raise fail(f"{doc}: cannot write the report ({error.strerror}); name a writable file with --doc") from None
     log(f"wrote {doc}")
@@ -270,7 +322,7 @@ KEPT_PINS = ("pyflyt", "rotorpy", "crazyflow", "drone_models", "mujoco", "numpy"
 def install_all(peers, args, envs, results):
     """{name: python} for every peer (and the mujoco reference) that installed."""
     pys = {}
-    for name in peers + ["mujoco"]:
+    for name in peers + ([] if args.skip_dynamics else ["mujoco"]):   # mujoco: the dynamics tiers' reference
         py, err = ensure_env(name, args.python, envs)
         pins = [line for line in (HERE / "locks" / f"{name}.txt").read_text().split()
                 if line.split("==")[0].lower() in KEPT_PINS + (name,)]
@@ -301,6 +353,13 @@ def dynamics_tiers(binary, model, peers, pys, out, results):
             results["dynamics"][name] = run_worker(pys[name], PEERS[name]["worker"], task, out, 1200)
 
 
+def stamp(cell, args, when=None):
+    """The cell with what it was measured under: the simulated seconds asked for, when it began
+    and the load average then (`when`: those of an earlier moment)."""
+    cell.update({"duration": args.duration}, **(when or {"measured": now(), "load": list(os.getloadavg())}))
+    return cell
+
+
 def peer_speed_cells(name, workload, n, reps, pys, out, args):
     """The speed cells of one peer on one workload and size (its own controller, and the SMC law
     where it takes an acceleration reference)."""
@@ -309,37 +368,73 @@ def peer_speed_cells(name, workload, n, reps, pys, out, args):
     for ctrl in ctrls:
         log(f"{workload} N={n}: {name} ({ctrl})")
         job = {"kind": "speed", "workload": workload, "n": n, "controller": ctrl,
-               "duration": args.duration, "repeats": reps, "wall_budget": args.wall_budget}
+               "duration": args.duration, "repeats": reps, "wall_budget": args.wall_budget,
+               "warmup_periods": args.warmup_periods}
         res = run_worker(pys[name], PEERS[name]["worker"],
                          {"peer": name, "tag": f"{workload}_{n}_{ctrl}", "jobs": [job]}, out,
                          reps * (args.wall_budget + 120) + 300)
         j = res["jobs"][0] if res["jobs"] else {}
         cells.append({"sim": name, "workload": workload, "n": n, "controller": ctrl,
                       "runs": j.get("runs", []), "physics_hz": j.get("physics_hz"),
-                      "error": j.get("error") or res.get("process_error")})
+                      "error": j.get("error") or res.get("process_error"), "duration": args.duration,
+                      "warmup_periods": args.warmup_periods})
     return cells
 
 
-def speed_tiers(binary, model, peers, sizes, pys, out, args, results):
-    """W1 and W2 at every size: mjformation's runner, then each installed peer."""
+def speed_tiers(binary, model, peers, sizes, workloads, pys, out, args, results, previous):
+    """The workloads at every size: mjformation's runner, then each installed peer."""
     for n in sizes:
         reps = args.repeats if (n == 7 or not args.repeats_other) else args.repeats_other
-        for workload in ("W1", "W2"):
+        for workload in workloads:
             toml = out / f"{workload}_n{n}.toml"
             toml.write_text(E.experiment(workload, n, str(model), duration=args.duration))
             results["machine"].setdefault("load_during", []).append(os.getloadavg())
             log(f"{workload} N={n}: mjformation")
-            cell = {"sim": "mjformation", "workload": workload, "n": n,
-                    "controller": "smc (48)" if workload == "W2" else "hover"}
-            cell.update(mjformation_speed(binary, toml, out, workload, n, reps))
+            cell = stamp({"sim": "mjformation", "workload": workload, "n": n,
+                          "controller": "smc (48)" if workload == "W2" else "hover", "sets": args.mjf_set}, args)
+            cell.update(mjformation_speed(binary, toml, out, workload, n, reps, args.mjf_set))
             results["speed"].append(cell)
             for name in (p for p in peers if p in pys):
-                results["speed"] += peer_speed_cells(name, workload, n, reps, pys, out, args)
-            save(results, out)
+                began = {"measured": now(), "load": list(os.getloadavg())}
+                cells = peer_speed_cells(name, workload, n, reps, pys, out, args)
+                results["speed"] += [stamp(c, args, began) for c in cells]
+            save(results, out, previous)
 
 
-def save(results, out):
-    (out / "results.json").write_text(json.dumps(results, indent=1, default=float))
+def cell_key(cell):
+    return (cell["sim"], cell["workload"], cell["n"], cell["controller"])
+
+
+def invocation(results):
+    """When, how and under what load one invocation ran (its load average at the start and end)."""
+    m = results.get("machine", {})
+    return dict({k: results.get(k) for k in ("started", "finished", "command")},
+                loadavg=m.get("loadavg"), loadavg_end=m.get("loadavg_end"))
+
+
+def merge_results(old, new):
+    """`new`'s results over `old`'s: a speed cell of `new` replaces `old`'s of the same simulator,
+    work, N and controller, `old`'s other cells stay where they were; the dynamics and the batch
+    cell likewise when `new` measured them. The header (started, command, machine) stays `old`'s;
+    every invocation is listed under "invocations"."""
+    if old is None:
+        return new
+    merged = dict(old)
+    again = {cell_key(c) for c in new["speed"]}
+    merged["speed"] = [c for c in old["speed"] if cell_key(c) not in again] + new["speed"]
+    merged["dynamics"] = new["dynamics"] or old["dynamics"]
+    if new.get("batch"):
+        merged["batch"] = new["batch"]
+    merged["install"] = {**old["install"], **new["install"]}
+    merged["invocations"] = old.get("invocations", [invocation(old)]) + [invocation(new)]
+    return merged
+
+
+def save(results, out, previous=None):
+    """OUT/results.json: this invocation's results, merged over `previous` (--merge) when given."""
+    merged = merge_results(previous, results)
+    (out / "results.json").write_text(json.dumps(merged, indent=1, default=float))
+    return merged
 
 
 def now():
@@ -352,13 +447,15 @@ def main(argv=None):
     if args.report_only:
         write_report(load_results(out), args, out)
         return 0
-    binary, peers, sizes = checked_inputs(args)
+    binary, peers, sizes, workloads = checked_inputs(args)
+    previous = load_results(out) if args.merge and (out / "results.json").exists() else None
     envs = HERE / ".envs"
-    envs.mkdir(exist_ok=True)
-    guard = take_lock(envs)
-    if guard is None:
-        return 2
-    results = {"started": now(), "command": " ".join([os.path.relpath(sys.argv[0], ROOT)] + sys.argv[1:]),
+    if peers or not args.skip_dynamics:   # environments to make: one invocation at a time
+        envs.mkdir(exist_ok=True)
+        guard = take_lock(envs)
+        if guard is None:
+            return 2
+    results = {"started": now(), "command": shlex.join([os.path.relpath(sys.argv[0], ROOT)] + sys.argv[1:]),
                "machine": machine(), "binary": binary, "reference": P.REFERENCE, "derived": P.derived(),
                "unmatched": P.unmatched(), "args": vars(args), "install": {}, "speed": [], "dynamics": {}}
     ver = subprocess.run([binary, "--version"], capture_output=True, text=True)
@@ -368,16 +465,15 @@ def main(argv=None):
     model.write_text(P.mjcf())
     if not args.skip_dynamics:
         dynamics_tiers(binary, model, peers, pys, out, results)
-        save(results, out)
+        save(results, out, previous)
     if not args.skip_speed:
-        speed_tiers(binary, model, peers, sizes, pys, out, args, results)
+        speed_tiers(binary, model, peers, sizes, workloads, pys, out, args, results, previous)
     if not args.skip_speed and args.batch_worlds and "crazyflow" in pys:
         results["batch"] = batch_cell(binary, pys["crazyflow"], model, out, args)
-        save(results, out)
+        save(results, out, previous)
     results["finished"] = now()
     results["machine"]["loadavg_end"] = os.getloadavg()
-    save(results, out)
-    write_report(results, args, out)
+    write_report(save(results, out, previous), args, out)
     return 0
 
 

@@ -278,3 +278,32 @@ def test_the_regenerate_command_is_written_as_typed_in_a_checkout(tmp_path):
     # A folder of the checkout becomes relative to it; one outside stays as given.
     assert report.checkout_command(command) == (
         f"peers/run_peers.py --build build --sizes 1,7 --out {tmp_path}")
+
+
+class _Still:
+    """A backend that holds its vehicles where they start (numpy only): for the timing protocol."""
+    physics_hz, control_hz = 500.0, 100.0
+
+    def make(self, starts):
+        self.x = np.array(starts, float)
+
+    def command(self, pos, vel, acc):
+        pass
+
+    def advance(self):
+        pass
+
+    def positions(self):
+        return self.x
+
+    def close(self):
+        pass
+
+
+@pytest.mark.parametrize("warmup,sim_s,steps", [(1, 0.99, 495), (2, 0.98, 490)])
+def test_the_first_periods_are_timed_apart_from_the_stepping(warmup, sim_s, steps):
+    sys.path.insert(0, str(PEERS / "workers"))
+    import common
+    run = common.fly(_Still, "W1", 4, "own", 1.0, 60.0, warmup_periods=warmup)
+    assert run["sim_s"] == pytest.approx(sim_s) and run["physics_steps"] == steps
+    assert run["warmup_s"] is not None and run["error_final"] == 0.0
