@@ -24,9 +24,11 @@ const std::vector<std::string>& CarriedSections();
 
 // Builds the experiment from an instance's <config> pairs with the experiment file's own parser,
 // so names, defaults, validation and messages are those of the experiment file. `where` names
-// the plugin and instance. Throws mjf::runner::ConfigError.
+// the plugin and instance; the relative paths of the values are read against `folder`, the
+// scene's folder (SceneFolder; "" reads them as given). Throws mjf::runner::ConfigError.
 runner::ExperimentConfig ConfigFromPairs(
-    const std::vector<std::pair<std::string, std::string>>& pairs, const std::string& where);
+    const std::vector<std::pair<std::string, std::string>>& pairs, const std::string& where,
+    const std::string& folder = "");
 
 // What every SwarmHost of one model shares, read once: the configuration, the plugin
 // libraries and the vehicles' bindings (the vehicle file is read here, never per mjData).

@@ -11,6 +11,7 @@
 #include "mjformation/config/paths.hpp"
 #include "mjformation/control/control_wiring.hpp"
 #include "mjformation/control/plugin_host.hpp"
+#include "scene_files.hpp"
 
 namespace mjf::native {
 namespace {
@@ -155,7 +156,7 @@ VehicleHost::VehicleHost(const mjModel* m, VehicleHostConfig config)
   const std::string& where = s.config.where;
   s.sections = Sections(s.config);
   s.registry =
-      std::make_unique<runner::PluginRegistry>(runner::PluginSearchPath(s.sections.plugin_path));
+      std::make_unique<runner::PluginRegistry>(NativePluginSearchPath(s.sections.plugin_path));
   const runner::LoadedPlugin& attitude =
       runner::FindPlugin(*s.registry, s.sections, s.sections.attitude, {MJF_KIND_ATTITUDE},
                          "this key needs an attitude plugin");

@@ -9,6 +9,7 @@ Python on the same vehicles, runner, recorders and summary as a C++ plugin (docs
 
 from __future__ import annotations
 
+import ctypes
 import json
 import os
 import shutil
@@ -342,8 +343,10 @@ def export(experiment, out, overwrite=False, set=None, plugin_path=None) -> Path
 
 
 def native_plugin_library() -> str:
-    """libmjformation_mujoco.so, for mujoco.mj_loadPluginLibrary before loading an export: the
-    installed one (<prefix>/lib) when this package is installed, else the build tree's."""
+    """libmjformation_mujoco.so, the native MuJoCo plugins: the installed one (<prefix>/lib)
+    when this package is installed, else the build tree's. `import mjformation` has loaded it
+    already (so mujoco.MjModel.from_xml_path flies an export); mujoco.mj_loadPluginLibrary of it
+    is then harmless."""
     if _PREFIX is not None:
         for lib in ("lib", "lib64", "lib/x86_64-linux-gnu"):
             if (_PREFIX / lib / "libmjformation_mujoco.so").is_file():
@@ -555,3 +558,23 @@ class Simulation:
 
 
 from ._sweep import sweep  # noqa: E402
+
+_NATIVE_PLUGINS = []
+
+
+def _register_native_plugins() -> None:
+    """Loads native_plugin_library(), whose constructor registers mjformation.swarm and
+    mjformation.attitude with the engine this process shares with the `mujoco` package
+    (engine()): after `import mjformation`, a plain mujoco.MjModel.from_xml_path of an exported
+    scene flies. A wheel's `import mujoco` loads the same file (its mujoco.plugins entry point);
+    a second load of one file only counts a reference, it registers nothing twice."""
+    path = native_plugin_library()
+    try:
+        _NATIVE_PLUGINS.append(ctypes.CDLL(path))
+    except OSError as e:
+        warnings.warn(f"mjformation: the native MuJoCo plugins were not loaded ({e}); "
+                      "mujoco.mj_loadPluginLibrary(PATH) loads them by hand", RuntimeWarning,
+                      stacklevel=2)
+
+
+_register_native_plugins()

@@ -15,6 +15,7 @@
 #include <set>
 #include <sstream>
 
+#include "bundle.hpp"
 #include "mjformation/config/config.hpp"
 #include "mjformation/config/overrides.hpp"
 #include "mjformation/config/paths.hpp"
@@ -211,13 +212,15 @@ void RefuseStopOn(const std::string& file, const toml::table& doc) {
 }
 
 // Reads the experiment file's sections, refusing what the native path cannot carry. `config`
-// is null for the refusal pass.
+// is null for the refusal pass. With a `bundle`, the paths are those of the exported folder.
 std::vector<std::pair<std::string, std::string>> CarriedPairs(
     const std::string& file, const std::vector<std::string>& overrides,
-    const ExperimentConfig* config, std::vector<std::string>* notes) {
+    const ExperimentConfig* config, std::vector<std::string>* notes,
+    SceneBundle* bundle = nullptr) {
   toml::table doc = ExperimentTable(file, overrides);
   RefuseStopOn(file, doc);
   if (config) ResolvePaths(doc, file, *config);
+  if (config && bundle) bundle->Relocate(doc, *config, notes);
   std::vector<std::pair<std::string, std::string>> pairs;
   for (auto&& [key, node] : doc) {
     const std::string section(key.str());
@@ -260,20 +263,21 @@ bool NonEmptyDirectory(const std::string& dir) {
   return fs::directory_iterator(dir, ec) != fs::directory_iterator();
 }
 
-}  // namespace
-
-std::string ExportedSceneXml(const std::string& experiment, const ExportOptions& options,
-                             std::vector<std::string>* notes) {
+// The composed scene with the plugin declared; with a `bundle`, the scene of the exported folder
+// (relative paths, the anchor) and the files to copy recorded in it.
+std::string SceneXml(const std::string& experiment, const ExportOptions& options,
+                     std::vector<std::string>* notes, SceneBundle* bundle) {
   // Refusals first: they name what to remove.
   CarriedPairs(experiment, options.overrides, nullptr, nullptr);
   ExperimentConfig config =
       LoadExperiment(experiment, options.overrides, ExperimentChecks::Rendering(false));
   for (const std::string& folder : options.plugin_path) config.plugin_path.push_back(folder);
   const std::vector<std::pair<std::string, std::string>> pairs =
-      CarriedPairs(experiment, options.overrides, &config, notes);
+      CarriedPairs(experiment, options.overrides, &config, notes, bundle);
   // The scene the runner composes for this experiment, vehicles, leader and all.
   Simulation simulation(config);
   std::string xml = simulation.scene_xml();
+  if (bundle) xml = bundle->Relocated(std::move(xml), simulation.model());
   const size_t open = xml.find("<mujoco");
   const size_t end = open == std::string::npos ? open : xml.find('>', open);
   if (end == std::string::npos) throw ExportError("the composed scene has no <mujoco> element");
@@ -281,21 +285,27 @@ std::string ExportedSceneXml(const std::string& experiment, const ExportOptions&
   return xml;
 }
 
+}  // namespace
+
+std::string ExportedSceneXml(const std::string& experiment, const ExportOptions& options,
+                             std::vector<std::string>* notes) {
+  return SceneXml(experiment, options, notes, nullptr);
+}
+
 ExportResult ExportExperiment(const std::string& experiment, const std::string& out_dir,
                               const ExportOptions& options) {
   if (NonEmptyDirectory(out_dir) && !options.overwrite) {
     throw ExportError(out_dir + ": exists and is not empty; pass --overwrite to replace " +
-                      "scene.xml in it");
+                      "scene.xml and the files export wrote in it");
   }
   ExportResult result;
-  const std::string xml = ExportedSceneXml(experiment, options, &result.notes);
+  SceneBundle bundle(out_dir);
+  const std::string xml = SceneXml(experiment, options, &result.notes, &bundle);
   std::error_code ec;
   fs::create_directories(out_dir, ec);
   if (ec) throw ExportError(out_dir + ": cannot create it: " + ec.message());
   result.scene_path = (fs::path(out_dir) / "scene.xml").string();
-  std::ofstream out(result.scene_path, std::ios::binary);
-  out << xml;
-  if (!out) throw ExportError(result.scene_path + ": cannot write it: " + std::strerror(errno));
+  bundle.Write(xml);
   return result;
 }
 
