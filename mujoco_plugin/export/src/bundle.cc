@@ -1,6 +1,8 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 #include "bundle.hpp"
 
+#include <mujoco/mujoco.h>
+
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -140,8 +142,36 @@ void SceneBundle::Relocate(toml::table& doc, const ExperimentConfig& config,
   }
 }
 
-std::string SceneBundle::Relocated(std::string xml, const mjModel* m) {
-  (void)m;
+std::string SceneBundle::Relocated(std::string xml) {
+  // The composed scene names its asset files by absolute paths (the composition resolved them),
+  // so the compiler's meshdir, texturedir and assetdir are inert in it; once the names are
+  // relative they would move them, so they go.
+  const size_t compiler = xml.find("<compiler ");
+  const size_t compiler_end = compiler == std::string::npos ? compiler : xml.find('>', compiler);
+  for (const char* dir : {" meshdir=\"", " texturedir=\"", " assetdir=\""}) {
+    const size_t at = xml.find(dir, compiler);
+    if (at == std::string::npos || at > compiler_end) continue;
+    const size_t close = xml.find('"', at + std::strlen(dir));
+    xml.erase(at, close + 1 - at);
+  }
+  // Each asset file: the copy already made for a model (a vehicle's mesh), else one in assets/.
+  std::map<std::string, std::string> copied;  // source -> relative name
+  for (const auto& [relative, source] : copies_) copied.emplace(source, relative);
+  const std::string key = " file=\"";
+  for (size_t at = xml.find(key); at != std::string::npos; at = xml.find(key, at + 1)) {
+    const size_t begin = at + key.size();
+    const size_t end = xml.find('"', begin);
+    const std::string file = xml.substr(begin, end - begin);
+    if (file.empty() || file[0] != '/') {
+      throw ExportError("the composed scene names the asset file '" + file +
+                        "' by a relative path; export cannot tell where it lies");
+    }
+    const auto found = copied.find(file);
+    const std::string relative = found != copied.end()
+                                     ? found->second
+                                     : Add(file, "assets/" + fs::path(file).filename().string());
+    xml.replace(begin, end - begin, relative);
+  }
   const size_t asset = xml.find("<asset>");
   const std::string anchor = std::string("    <texture name=\"") + kSceneAnchorTexture +
                              "\" type=\"2d\" file=\"" + kSceneAnchorFile + "\"/>\n";

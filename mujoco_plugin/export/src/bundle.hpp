@@ -6,7 +6,6 @@
 #ifndef MJFORMATION_EXPORT_SRC_BUNDLE_HPP_
 #define MJFORMATION_EXPORT_SRC_BUNDLE_HPP_
 
-#include <mujoco/mujoco.h>
 #include <toml++/toml.h>
 
 #include <map>
@@ -33,9 +32,9 @@ class SceneBundle {
   // user's folders of libraries, and a note says so.
   void Relocate(toml::table& doc, const ExperimentConfig& config, std::vector<std::string>* notes);
 
-  // The composed scene `xml` (compiled as `m`) with its asset files named relative to the scene
-  // and the anchor texture declared.
-  std::string Relocated(std::string xml, const mjModel* m);
+  // The composed scene `xml` with its asset files copied and named relative to the scene, and
+  // the anchor texture declared.
+  std::string Relocated(std::string xml);
 
   // Writes scene.xml and the recorded files. A file already there is replaced only if export
   // wrote it (it is in the manifest) or it holds the same bytes; any other is refused, naming

@@ -277,7 +277,7 @@ std::string SceneXml(const std::string& experiment, const ExportOptions& options
   // The scene the runner composes for this experiment, vehicles, leader and all.
   Simulation simulation(config);
   std::string xml = simulation.scene_xml();
-  if (bundle) xml = bundle->Relocated(std::move(xml), simulation.model());
+  if (bundle) xml = bundle->Relocated(std::move(xml));
   const size_t open = xml.find("<mujoco");
   const size_t end = open == std::string::npos ? open : xml.find('>', open);
   if (end == std::string::npos) throw ExportError("the composed scene has no <mujoco> element");
