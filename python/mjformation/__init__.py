@@ -330,8 +330,11 @@ def _require_path(name: str, value) -> str:
 
 def export(experiment, out, overwrite=False, set=None, plugin_path=None) -> Path:
     """Writes OUT/scene.xml: the experiment as a MuJoCo scene whose controllers are the native
-    plugins of native_plugin_library() (docs/PLUGINS.md). What the native path cannot carry is
-    refused naming the key; notes on what is not carried (e.g. [render]) go to stderr.
+    plugins of native_plugin_library() (docs/PLUGINS.md), and beside it a copy of every file the
+    scene names (vehicle model, data files), named relative to it: OUT can be moved. After
+    `import mjformation`, mujoco.MjModel.from_xml_path(OUT/scene.xml) flies it. What the native
+    path cannot carry is refused naming the key; notes on what is not carried (e.g. [render])
+    go to stderr. overwrite=True replaces scene.xml and the files export wrote, no other file.
     out: a folder (str or os.PathLike); overwrite: True or False (anything else: TypeError);
     set and plugin_path: as for run() (the CLI's --set and --plugin-path)."""
     scene, notes = _core.export(str(experiment), _require_path("out", out),
