@@ -134,6 +134,16 @@ void SceneBundle::Relocate(toml::table& doc, const ExperimentConfig& config,
     relocate_file(doc[section].as_table());
   }
   relocate_file(doc["formation"]["shape"].as_table());
+  if (const toml::array* folders = doc["run"]["plugin_path"].as_array()) {
+    // Absolute: the plugin reads a relative folder against the scene's folder (a --plugin-path
+    // given relative to the working folder is not there).
+    toml::array absolute;
+    for (const toml::node& folder : *folders) {
+      const auto text = folder.value_exact<std::string>();
+      absolute.push_back(text ? Absolute(*text).string() : std::string());
+    }
+    doc["run"].as_table()->insert_or_assign("plugin_path", std::move(absolute));
+  }
   if (notes && doc.at_path("run.plugin_path").as_array()) {
     notes->push_back(
         "[run] plugin_path names folders of this machine (their libraries are not copied): the "

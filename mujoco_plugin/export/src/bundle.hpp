@@ -28,8 +28,8 @@ class SceneBundle {
 
   // Rewrites the resolved (absolute) paths of the experiment document `doc` ([vehicles] model
   // and scene, a plugin's `file`, [formation.shape] file) into paths relative to the scene's
-  // folder, and records the files to copy. [run] plugin_path stays as written: those are the
-  // user's folders of libraries, and a note says so.
+  // folder, and records the files to copy. [run] plugin_path names the user's folders of
+  // libraries: made absolute, not copied, and a note says so.
   void Relocate(toml::table& doc, const ExperimentConfig& config, std::vector<std::string>* notes);
 
   // The composed scene `xml` with its asset files copied and named relative to the scene, and
