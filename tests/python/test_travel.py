@@ -124,14 +124,19 @@ print("ok")
     assert result.returncode == 0 and result.stdout.strip() == "ok", result.stderr
 
 
-def test_the_native_library_finds_its_neighbours_by_origin():
+def test_our_libraries_find_their_neighbours_by_origin():
+    """The native library and every plugin family: RUNPATH $ORIGIN (readelf -d)."""
     readelf = shutil.which("readelf")
     if readelf is None:
         pytest.skip("readelf (binutils) is not installed")
-    dynamic = subprocess.run([readelf, "-d", mjformation.native_plugin_library()],
-                             capture_output=True, text=True, check=True).stdout
-    runpath = [line for line in dynamic.splitlines() if "RUNPATH" in line or "RPATH" in line]
-    assert any("$ORIGIN" in line for line in runpath), runpath
+    libraries = {mjformation.native_plugin_library()}
+    libraries |= {p["library"] for p in mjformation.plugins() if p["library"].endswith(".so")}
+    assert len(libraries) >= 5, libraries
+    for library in libraries:
+        dynamic = subprocess.run([readelf, "-d", library], capture_output=True, text=True,
+                                 check=True).stdout
+        runpath = [line for line in dynamic.splitlines() if "RUNPATH" in line or "RPATH" in line]
+        assert any("$ORIGIN" in line for line in runpath), (library, runpath)
 
 
 def test_overwrite_replaces_only_what_export_wrote(trajectory, tmp_path):
