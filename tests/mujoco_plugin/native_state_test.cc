@@ -356,8 +356,8 @@ TEST_F(NativeState, ARawCopyOfPluginDataIsNeverTrusted) {
   EXPECT_TRUE(SameBits(m_, pickled, reference));
 }
 
-// With the (exported) vehicle file gone, a reset and a copy still fly (nothing is read again per mjData:
-// a failed rebuild used to leave the bridge half-built and the next mj_step segfaulted).
+// With the (exported) vehicle file gone, a reset and a copy still fly (nothing is read again per
+// mjData: a failed rebuild used to leave the bridge half-built and the next mj_step segfaulted).
 TEST(NativeStateFiles, ResetAndCopyReadNoFileAgain) {
   Scratch dir("files");
   fs::copy_file(std::string(MJF_SOURCE_DIR) + "/mjcf/quadrotor.xml", dir / "vehicle.xml");
