@@ -5,13 +5,10 @@
 #include <toml++/toml.h>
 
 #include <cctype>
-#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <set>
 #include <sstream>
 
@@ -158,9 +155,9 @@ std::string Where(const std::string& file, const toml::node& node, const std::st
   return file + ":" + std::to_string(r.begin.line) + ": [" + key + "]";
 }
 
-// Paths are written resolved: the runner reads them relative to the experiment file, and the
-// native plugin has no file to be relative to (a relative name would fly whatever file of that
-// name sits in the viewer's working folder).
+// Paths resolved: the runner reads them relative to the experiment file. The scene text alone
+// keeps them so (it has no folder); the exported folder's copies are named relative to the scene
+// (SceneBundle::Relocate), which the native plugin finds by the scene's anchor.
 void ResolvePaths(toml::table& doc, const std::string& file, const ExperimentConfig& config) {
   if (!config.plugin_path.empty()) {
     toml::array folders;
