@@ -149,3 +149,30 @@ def test_overwrite_replaces_only_what_export_wrote(trajectory, tmp_path):
     with pytest.raises(ValueError, match="recorded_path.csv: exists and was not written by export"):
         mjformation.export(trajectory, out, overwrite=True, set=SHORT)
     assert (out / "data/recorded_path.csv").read_text() == "t,x\nmine\n"
+
+
+def test_a_vehicle_mesh_travels_with_the_scene(source, tmp_path):
+    """A vehicle model whose mesh lies below it (meshdir): the mesh is copied below the model's
+    copy, the composed scene names that copy, and the folder flies after the originals are gone."""
+    vehicle = tmp_path / "vehicle"
+    (vehicle / "meshes").mkdir(parents=True)
+    shutil.copy(source / "examples/vehicles/bumblebee/assets/canopy.obj", vehicle / "meshes")
+    text = (source / "mjcf/quadrotor.xml").read_text()
+    text = text.replace('inertiafromgeom="false"/>', 'inertiafromgeom="false" meshdir="meshes"/>')
+    text = text.replace("<asset>", '<asset>\n    <mesh name="canopy" file="canopy.obj"/>', 1)
+    text = text.replace('<site name="imu"', '<geom class="quad_visual" type="mesh" mesh="canopy"/>'
+                        '\n      <site name="imu"', 1)
+    (vehicle / "meshed.xml").write_text(text)
+    experiment = tmp_path / "meshed.toml"
+    experiment.write_text(
+        '[run]\nduration = 1.0\nmetric_window = [0.0, 1.0]\n'
+        '[vehicles]\nmodel = "vehicle/meshed.xml"\nfollowers = 2\n'
+        '[formation]\nplugin = "smc_discrete"\n'
+        '[formation.shape]\ntype = "circle"\nradius = 3.0\nomega = 0.0\n')
+    scene = mjformation.export(experiment, tmp_path / "out")
+    assert 'file="vehicle/meshes/canopy.obj"' in scene.read_text()
+    assert (scene.parent / "vehicle/meshes/canopy.obj").is_file()
+    before = fly(scene)
+    shutil.rmtree(vehicle)
+    shutil.move(str(scene.parent), str(tmp_path / "moved"))
+    assert np.array_equal(fly(tmp_path / "moved/scene.xml"), before)

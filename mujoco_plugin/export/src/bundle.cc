@@ -176,10 +176,11 @@ std::string SceneBundle::Relocated(std::string xml) {
       throw ExportError("the composed scene names the asset file '" + file +
                         "' by a relative path; export cannot tell where it lies");
     }
-    const auto found = copied.find(file);
+    const std::string source = Absolute(file).string();
+    const auto found = copied.find(source);
     const std::string relative = found != copied.end()
                                      ? found->second
-                                     : Add(file, "assets/" + fs::path(file).filename().string());
+                                     : Add(source, "assets/" + fs::path(file).filename().string());
     xml.replace(begin, end - begin, relative);
   }
   const size_t asset = xml.find("<asset>");
