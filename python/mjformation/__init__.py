@@ -182,9 +182,13 @@ def _overrides(set) -> list[str]:
     return [str(s) for s in set]
 
 
-def _plugin_path(plugin_path) -> list[str]:
+def _user_plugin_path(plugin_path) -> list[str]:
     extra = [plugin_path] if isinstance(plugin_path, (str, os.PathLike)) else list(plugin_path or [])
-    return [str(p) for p in extra] + _INSTALLED_PLUGINS
+    return [str(p) for p in extra]
+
+
+def _plugin_path(plugin_path) -> list[str]:
+    return _user_plugin_path(plugin_path) + _INSTALLED_PLUGINS
 
 
 def _override_value(overrides: list[str], key: str):
@@ -337,9 +341,11 @@ def export(experiment, out, overwrite=False, set=None, plugin_path=None) -> Path
     go to stderr. overwrite=True replaces scene.xml and the files export wrote, no other file.
     out: a folder (str or os.PathLike); overwrite: True or False (anything else: TypeError);
     set and plugin_path: as for run() (the CLI's --set and --plugin-path)."""
+    # The user's folders only: an export carries them, and the native library finds the
+    # installed plugins from its own place (a folder of this machine would not travel).
     scene, notes = _core.export(str(experiment), _require_path("out", out),
                                 _require_bool("overwrite", overwrite), _overrides(set),
-                                _plugin_path(plugin_path))
+                                _user_plugin_path(plugin_path))
     for note in notes:
         print(f"note: {note}", file=sys.stderr)
     return Path(scene)
