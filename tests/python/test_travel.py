@@ -176,3 +176,25 @@ def test_a_vehicle_mesh_travels_with_the_scene(source, tmp_path):
     shutil.rmtree(vehicle)
     shutil.move(str(scene.parent), str(tmp_path / "moved"))
     assert np.array_equal(fly(tmp_path / "moved/scene.xml"), before)
+
+
+def test_files_export_cannot_carry_are_refused_by_name(source, tmp_path):
+    """A model's <include>d file and an asset file outside the model's folder would be missing
+    from the exported folder: refused, naming the model and the file."""
+    quadrotor = (source / "mjcf/quadrotor.xml").read_text()
+    (tmp_path / "models/parts").mkdir(parents=True)
+    (tmp_path / "models/parts/empty.xml").write_text("<mujoco/>\n")
+    (tmp_path / "models/included.xml").write_text(
+        quadrotor.replace("<worldbody>", '<include file="parts/empty.xml"/>\n  <worldbody>', 1))
+    shutil.copy(source / "examples/vehicles/bumblebee/assets/canopy.obj", tmp_path)
+    (tmp_path / "models/outside.xml").write_text(
+        quadrotor.replace("<asset>", '<asset>\n    <mesh name="canopy" file="../canopy.obj"/>', 1))
+    for model, message in (("included.xml", r"included\.xml: includes other MJCF files"),
+                           ("outside.xml", r"outside\.xml: asset file .*canopy\.obj lies outside")):
+        experiment = tmp_path / f"{model}.toml"
+        experiment.write_text(f'[vehicles]\nmodel = "models/{model}"\nfollowers = 1\n'
+                              '[formation]\nplugin = "smc_discrete"\n'
+                              '[formation.shape]\ntype = "circle"\nradius = 3.0\n')
+        with pytest.raises(ValueError, match=message):
+            mjformation.export(experiment, tmp_path / f"out_{model}")
+        assert not (tmp_path / f"out_{model}").exists()

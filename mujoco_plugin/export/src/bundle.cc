@@ -90,6 +90,12 @@ std::string SceneBundle::Add(const std::string& source, const std::string& relat
 }
 
 std::string SceneBundle::AddModel(const std::string& model_path, const std::string& folder) {
+  // An <include>d file is not among the compiled model's paths: the copy would not load.
+  if (ReadBytes(model_path).find("<include") != std::string::npos) {
+    throw ExportError(model_path +
+                      ": includes other MJCF files (<include>), which export does "
+                      "not carry; merge them into the model file to export it");
+  }
   char error[1024] = {0};
   mjModel* m = mj_loadXML(model_path.c_str(), nullptr, error, sizeof(error));
   if (!m) throw ExportError(model_path + ": MuJoCo cannot load it: " + error);
