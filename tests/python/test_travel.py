@@ -187,8 +187,9 @@ def test_files_export_cannot_carry_are_refused_by_name(source, tmp_path):
     (tmp_path / "models/included.xml").write_text(
         quadrotor.replace("<worldbody>", '<include file="parts/empty.xml"/>\n  <worldbody>', 1))
     shutil.copy(source / "examples/vehicles/bumblebee/assets/canopy.obj", tmp_path)
+    above = Path(os.pardir) / "canopy.obj"  # the model's folder's parent: the temporary folder
     (tmp_path / "models/outside.xml").write_text(
-        quadrotor.replace("<asset>", '<asset>\n    <mesh name="canopy" file="../canopy.obj"/>', 1))
+        quadrotor.replace("<asset>", f'<asset>\n    <mesh name="canopy" file="{above}"/>', 1))
     for model, message in (("included.xml", r"included\.xml: includes other MJCF files"),
                            ("outside.xml", r"outside\.xml: asset file .*canopy\.obj lies outside")):
         experiment = tmp_path / f"{model}.toml"
