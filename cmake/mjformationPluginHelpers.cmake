@@ -18,7 +18,9 @@ function(mjformation_add_plugin target)
   add_library(${target} MODULE ${ARG_SOURCES})
   target_link_libraries(${target} PRIVATE mjformation::plugin ${ARG_LIBS})
   target_compile_features(${target} PRIVATE cxx_std_17)
-  set_target_properties(${target} PROPERTIES PREFIX "lib" CXX_VISIBILITY_PRESET hidden)
+  # RUNPATH $ORIGIN: a library the family ships beside itself is found wherever the folder goes.
+  set_target_properties(${target} PROPERTIES PREFIX "lib" CXX_VISIBILITY_PRESET hidden
+                        BUILD_RPATH "$ORIGIN" INSTALL_RPATH "$ORIGIN")
   set(exports "${CMAKE_CURRENT_BINARY_DIR}/${target}_exports.map")
   file(WRITE "${exports}" "{ global: mjf_plugin_entry; local: *; };\n")
   target_link_options(${target} PRIVATE "-Wl,--version-script=${exports}")

@@ -66,6 +66,7 @@
 
 #include "attach_names.hpp"
 #include "mjformation/scene/scene.hpp"
+#include "scene_files.hpp"
 #include "swarm_host.hpp"
 #include "vehicle_host.hpp"
 
@@ -159,7 +160,7 @@ runner::ExperimentConfig ReadSwarmConfig(const mjModel* m, int instance) {
     const char* value = mj_getPluginConfig(m, instance, key.c_str());
     pairs.emplace_back(key, value ? value : "");
   }
-  return ConfigFromPairs(pairs, InstanceWhere(kSwarm, m, instance));
+  return ConfigFromPairs(pairs, InstanceWhere(kSwarm, m, instance), SceneFolder(m));
 }
 
 // The vehicles' bodies as the exported scene names them (runner::VehiclePrefix), 0 = leader.
@@ -210,7 +211,8 @@ class SwarmModels {
   static constexpr size_t kKept = 16;  // models alive at once in one process, generously
   static std::string Key(const mjModel* m, int instance) {
     std::string key = std::to_string(m->nu) + "/" + std::to_string(m->nsensor) + "/" +
-                      std::to_string(m->nbody) + "/" + std::to_string(m->opt.timestep);
+                      std::to_string(m->nbody) + "/" + std::to_string(m->opt.timestep) + "\n" +
+                      SceneFolder(m);  // the same scene from another folder reads other files
     for (const std::string& section : CarriedSections()) {
       const char* value = mj_getPluginConfig(m, instance, section.c_str());
       key += "\n" + section + "=" + (value ? value : "");
@@ -588,6 +590,11 @@ void Copy(mjData* dest, const mjModel*, const mjData*, int instance) {
 
 template <const Kind& K>
 void Register(const std::vector<const char*>& attributes) {
+  // Another copy of this library loaded first (the build tree's and an installed one, or a copy
+  // beside a moved scene) has registered the name: that copy flies, and MuJoCo would refuse a
+  // second registration of the name with other callbacks.
+  int slot = -1;
+  if (mjp_getPlugin(K.name, &slot)) return;
   mjpPlugin plugin;
   mjp_defaultPlugin(&plugin);
   plugin.name = K.name;

@@ -12,6 +12,7 @@
 #include "mjformation/control/control_wiring.hpp"
 #include "mjformation/control/plugin_host.hpp"
 #include "mjformation/scene/vehicle_binding.hpp"
+#include "scene_files.hpp"
 
 namespace mjf::native {
 
@@ -58,7 +59,8 @@ void RequireOneTable(const std::string& key, const std::string& value, const std
 }
 
 runner::ExperimentConfig ConfigFromPairs(
-    const std::vector<std::pair<std::string, std::string>>& pairs, const std::string& where) {
+    const std::vector<std::pair<std::string, std::string>>& pairs, const std::string& where,
+    const std::string& folder) {
   // Each section becomes `section = { ... }`: the runner's parser then checks every name and
   // value and words its messages as it does for an experiment file.
   std::ostringstream toml;
@@ -68,7 +70,7 @@ runner::ExperimentConfig ConfigFromPairs(
     toml << key << " = {" << value << "}\n";
   }
   try {
-    return runner::ParseExperiment(toml.str(), where);
+    return runner::ParseExperiment(toml.str(), where, RebasedPathOverrides(toml.str(), folder));
   } catch (const runner::ConfigError& e) {
     std::string message = WithoutLine(e.what(), where);
     // A syntax error: name the <config> key whose value does not parse on its own.
@@ -113,7 +115,7 @@ std::shared_ptr<const SwarmShared> SwarmHost::Prepare(const mjModel* m,
     s->config = config;
     s->config.timestep = m->opt.timestep;
     s->registry =
-        std::make_unique<runner::PluginRegistry>(runner::PluginSearchPath(s->config.plugin_path));
+        std::make_unique<runner::PluginRegistry>(NativePluginSearchPath(s->config.plugin_path));
     s->attitude = &runner::FindPlugin(*s->registry, s->config, s->config.attitude,
                                       {MJF_KIND_ATTITUDE}, "this section needs an attitude plugin");
     runner::ResolveAttributes(*s->attitude->descriptor, s->config.attitude, s->config.source_path);

@@ -25,9 +25,11 @@ const std::vector<std::string>& CarriedSections();
 
 // Builds the experiment from an instance's <config> pairs with the experiment file's own parser,
 // so names, defaults, validation and messages are those of the experiment file. `where` names
-// the plugin and instance. Throws mjf::runner::ConfigError.
+// the plugin and instance; the relative paths of the values are read against `folder`, the
+// scene's folder (SceneFolder; "" reads them as given). Throws mjf::runner::ConfigError.
 runner::ExperimentConfig ConfigFromPairs(
-    const std::vector<std::pair<std::string, std::string>>& pairs, const std::string& where);
+    const std::vector<std::pair<std::string, std::string>>& pairs, const std::string& where,
+    const std::string& folder = "");
 
 // `message` without the line numbers after `where` ("WHERE:3: [formation] q: ..." becomes
 // "WHERE: [formation] q: ..."): the lines of text a host built mean nothing to the MJCF's author.

@@ -15,6 +15,7 @@
 #include "mjformation/config/paths.hpp"
 #include "mjformation/control/control_wiring.hpp"
 #include "mjformation/control/plugin_host.hpp"
+#include "scene_files.hpp"
 #include "swarm_host.hpp"
 
 namespace mjf::native {
@@ -223,7 +224,7 @@ void VehicleHost::Build(const mjModel* m) {
   const std::string& where = s.config.where;
   s.sections = Sections(s.config);
   s.registry =
-      std::make_unique<runner::PluginRegistry>(runner::PluginSearchPath(s.sections.plugin_path));
+      std::make_unique<runner::PluginRegistry>(NativePluginSearchPath(s.sections.plugin_path));
   const runner::LoadedPlugin& attitude =
       runner::FindPlugin(*s.registry, s.sections, s.sections.attitude, {MJF_KIND_ATTITUDE},
                          "this key needs an attitude plugin");

@@ -9,6 +9,7 @@ Python on the same vehicles, runner, recorders and summary as a C++ plugin (docs
 
 from __future__ import annotations
 
+import ctypes
 import json
 import os
 import shutil
@@ -181,9 +182,13 @@ def _overrides(set) -> list[str]:
     return [str(s) for s in set]
 
 
-def _plugin_path(plugin_path) -> list[str]:
+def _user_plugin_path(plugin_path) -> list[str]:
     extra = [plugin_path] if isinstance(plugin_path, (str, os.PathLike)) else list(plugin_path or [])
-    return [str(p) for p in extra] + _INSTALLED_PLUGINS
+    return [str(p) for p in extra]
+
+
+def _plugin_path(plugin_path) -> list[str]:
+    return _user_plugin_path(plugin_path) + _INSTALLED_PLUGINS
 
 
 def _override_value(overrides: list[str], key: str):
@@ -329,21 +334,28 @@ def _require_path(name: str, value) -> str:
 
 def export(experiment, out, overwrite=False, set=None, plugin_path=None) -> Path:
     """Writes OUT/scene.xml: the experiment as a MuJoCo scene whose controllers are the native
-    plugins of native_plugin_library() (docs/PLUGINS.md). What the native path cannot carry is
-    refused naming the key; notes on what is not carried (e.g. [render]) go to stderr.
+    plugins of native_plugin_library() (docs/PLUGINS.md), and beside it a copy of every file the
+    scene names (vehicle model, data files), named relative to it: OUT can be moved. After
+    `import mjformation`, mujoco.MjModel.from_xml_path(OUT/scene.xml) flies it. What the native
+    path cannot carry is refused naming the key; notes on what is not carried (e.g. [render])
+    go to stderr. overwrite=True replaces scene.xml and the files export wrote, no other file.
     out: a folder (str or os.PathLike); overwrite: True or False (anything else: TypeError);
     set and plugin_path: as for run() (the CLI's --set and --plugin-path)."""
+    # The user's folders only: an export carries them, and the native library finds the
+    # installed plugins from its own place (a folder of this machine would not travel).
     scene, notes = _core.export(str(experiment), _require_path("out", out),
                                 _require_bool("overwrite", overwrite), _overrides(set),
-                                _plugin_path(plugin_path))
+                                _user_plugin_path(plugin_path))
     for note in notes:
         print(f"note: {note}", file=sys.stderr)
     return Path(scene)
 
 
 def native_plugin_library() -> str:
-    """libmjformation_mujoco.so, for mujoco.mj_loadPluginLibrary before loading an export: the
-    installed one (<prefix>/lib) when this package is installed, else the build tree's."""
+    """libmjformation_mujoco.so, the native MuJoCo plugins: the installed one (<prefix>/lib)
+    when this package is installed, else the build tree's. `import mjformation` has loaded it
+    already (so mujoco.MjModel.from_xml_path flies an export); mujoco.mj_loadPluginLibrary of it
+    is then harmless."""
     if _PREFIX is not None:
         for lib in ("lib", "lib64", "lib/x86_64-linux-gnu"):
             if (_PREFIX / lib / "libmjformation_mujoco.so").is_file():
@@ -555,3 +567,23 @@ class Simulation:
 
 
 from ._sweep import sweep  # noqa: E402
+
+_NATIVE_PLUGINS = []
+
+
+def _register_native_plugins() -> None:
+    """Loads native_plugin_library(), whose constructor registers mjformation.swarm and
+    mjformation.attitude with the engine this process shares with the `mujoco` package
+    (engine()): after `import mjformation`, a plain mujoco.MjModel.from_xml_path of an exported
+    scene flies. A wheel's `import mujoco` loads the same file (its mujoco.plugins entry point);
+    a second load of one file only counts a reference, it registers nothing twice."""
+    path = native_plugin_library()
+    try:
+        _NATIVE_PLUGINS.append(ctypes.CDLL(path))
+    except OSError as e:
+        warnings.warn(f"mjformation: the native MuJoCo plugins were not loaded ({e}); "
+                      "mujoco.mj_loadPluginLibrary(PATH) loads them by hand", RuntimeWarning,
+                      stacklevel=2)
+
+
+_register_native_plugins()

@@ -208,9 +208,9 @@ TEST_F(NativeState, DISABLED_CopyCostAgainstTheBareScene) {
   const std::string close = "</extension>";
   ASSERT_NE(begin, std::string::npos);
   text.erase(begin, text.find(close) + close.size() - begin);
-  std::ofstream(dir_ / "bare.xml") << text;
+  std::ofstream(dir_ / "export/bare.xml") << text;  // beside the files the scene names
   char error[1024] = {0};
-  mjModel* bare = mj_loadXML((dir_ / "bare.xml").c_str(), nullptr, error, sizeof(error));
+  mjModel* bare = mj_loadXML((dir_ / "export/bare.xml").c_str(), nullptr, error, sizeof(error));
   ASSERT_NE(bare, nullptr) << error;
   constexpr int kCopies = 20000;
   SecondsPerCopy(m_, kCopies / 10);  // warm caches
@@ -356,8 +356,8 @@ TEST_F(NativeState, ARawCopyOfPluginDataIsNeverTrusted) {
   EXPECT_TRUE(SameBits(m_, pickled, reference));
 }
 
-// With the vehicle file gone, a reset and a copy still fly (nothing is read again per mjData:
-// a failed rebuild used to leave the bridge half-built and the next mj_step segfaulted).
+// With the (exported) vehicle file gone, a reset and a copy still fly (nothing is read again per
+// mjData: a failed rebuild used to leave the bridge half-built and the next mj_step segfaulted).
 TEST(NativeStateFiles, ResetAndCopyReadNoFileAgain) {
   Scratch dir("files");
   fs::copy_file(std::string(MJF_SOURCE_DIR) + "/mjcf/quadrotor.xml", dir / "vehicle.xml");
@@ -367,7 +367,7 @@ TEST(NativeStateFiles, ResetAndCopyReadNoFileAgain) {
   Step(m, reference, 300);
   mjData* d = mj_makeData(m);
   Step(m, d, 700);
-  fs::remove(dir / "vehicle.xml");
+  fs::remove(dir / "export/vehicle/vehicle.xml");  // the copy the exported scene names
   mj_resetData(m, d);
   mjData* copy = mj_copyData(nullptr, m, d);
   Step(m, d, 300);
@@ -388,7 +388,7 @@ TEST(NativeStateFiles, AnInitThatCannotReadItsFilesRaises) {
   ASSERT_NE(m, nullptr);
   mjData* reference = mj_makeData(m);
   Step(m, reference, 300);
-  fs::remove(dir / "vehicle.xml");
+  fs::remove(dir / "export/vehicle/vehicle.xml");  // the copy the exported scene names
   mjModel* copy = mj_copyModel(nullptr, m);
   ClearMujocoWarning();
   try {

@@ -56,14 +56,19 @@ done
 "$work/venv/bin/mjformation" run "$experiment" --out "$work/runs/cli" --quiet --no-render "${short[@]}"
 
 # Stock MuJoCo: `import mujoco` alone (no mjformation) loads our native plugins through the
-# mujoco.plugins entry point and flies the scene the command exported.
+# mujoco.plugins entry point and flies the scene the command exported, from the folder moved
+# (it names its files relative to itself, and no folder of the package: docs/PLUGINS.md).
 "$work/venv/bin/mjformation" export "$experiment" --out "$work/runs/native" >/dev/null
-"$work/venv/bin/python" - "$work/runs/native/scene.xml" <<'PY'
+mv "$work/runs/native" "$work/runs/native_moved"
+"$work/venv/bin/python" - "$work/runs/native_moved/scene.xml" "$package" <<'PY'
+import re
 import sys
 
 import mujoco
 
 assert "mjformation" not in sys.modules
+text = re.sub(r"<!--.*?-->", "", open(sys.argv[1]).read(), flags=re.S)
+assert sys.argv[2] not in text, "the exported scene names a folder of the package"
 model = mujoco.MjModel.from_xml_path(sys.argv[1])  # refused if the plugins were not registered
 data = mujoco.MjData(model)
 start = data.sensor("uav1_pos").data.copy()

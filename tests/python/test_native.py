@@ -66,11 +66,13 @@ def test_a_scene_whose_rotor_was_deleted_is_refused_naming_it(exp2, tmp_path, na
     scene = mjformation.export(exp2, tmp_path / "out").read_text()
     edited = re.sub(r'\s*<general name="uav1_rotor0"[^>]*/>', "", scene)
     assert edited != scene
+    # Beside the files the scene names (relative to it): a scene read from a string has no folder.
+    (tmp_path / "out/edited.xml").write_text(edited)
     # The compiler makes an mjData, so the plugin's init runs and refuses while compiling; the
     # mujoco package puts MuJoCo's warnings (the instance's message) into the error.
     with pytest.raises(ValueError, match="plugin->init failed(.|\n)*instance 'swarm': the scene "
                                          "has no actuator named 'uav1_rotor0'"):
-        mujoco.MjModel.from_xml_string(edited)
+        mujoco.MjModel.from_xml_path(str(tmp_path / "out/edited.xml"))
 
 
 def test_export_never_replaces_a_users_directory(exp2, tmp_path):

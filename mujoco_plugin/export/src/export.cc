@@ -5,16 +5,14 @@
 #include <toml++/toml.h>
 
 #include <cctype>
-#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <set>
 #include <sstream>
 
+#include "bundle.hpp"
 #include "mjformation/config/config.hpp"
 #include "mjformation/config/overrides.hpp"
 #include "mjformation/config/paths.hpp"
@@ -184,9 +182,9 @@ std::string Where(const std::string& file, const toml::node& node, const std::st
   return file + ":" + std::to_string(r.begin.line) + ": [" + key + "]";
 }
 
-// Paths are written resolved: the runner reads them relative to the experiment file, and the
-// native plugin has no file to be relative to (a relative name would fly whatever file of that
-// name sits in the viewer's working folder).
+// Paths resolved: the runner reads them relative to the experiment file. The scene text alone
+// keeps them so (it has no folder); the exported folder's copies are named relative to the scene
+// (SceneBundle::Relocate), which the native plugin finds by the scene's anchor.
 void ResolvePaths(toml::table& doc, const std::string& file, const ExperimentConfig& config) {
   if (!config.plugin_path.empty()) {
     toml::array folders;
@@ -238,13 +236,15 @@ void RefuseStopOn(const std::string& file, const toml::table& doc) {
 }
 
 // Reads the experiment file's sections, refusing what the native path cannot carry. `config`
-// is null for the refusal pass.
+// is null for the refusal pass. With a `bundle`, the paths are those of the exported folder.
 std::vector<std::pair<std::string, std::string>> CarriedPairs(
     const std::string& file, const std::vector<std::string>& overrides,
-    const ExperimentConfig* config, std::vector<std::string>* notes) {
+    const ExperimentConfig* config, std::vector<std::string>* notes,
+    SceneBundle* bundle = nullptr) {
   toml::table doc = ExperimentTable(file, overrides);
   RefuseStopOn(file, doc);
   if (config) ResolvePaths(doc, file, *config);
+  if (config && bundle) bundle->Relocate(doc, *config, notes);
   std::vector<std::pair<std::string, std::string>> pairs;
   for (auto&& [key, node] : doc) {
     const std::string section(key.str());
@@ -287,20 +287,21 @@ bool NonEmptyDirectory(const std::string& dir) {
   return fs::directory_iterator(dir, ec) != fs::directory_iterator();
 }
 
-}  // namespace
-
-std::string ExportedSceneXml(const std::string& experiment, const ExportOptions& options,
-                             std::vector<std::string>* notes) {
+// The composed scene with the plugin declared; with a `bundle`, the scene of the exported folder
+// (relative paths, the anchor) and the files to copy recorded in it.
+std::string SceneXml(const std::string& experiment, const ExportOptions& options,
+                     std::vector<std::string>* notes, SceneBundle* bundle) {
   // Refusals first: they name what to remove.
   CarriedPairs(experiment, options.overrides, nullptr, nullptr);
   ExperimentConfig config =
       LoadExperiment(experiment, options.overrides, ExperimentChecks::Rendering(false));
   for (const std::string& folder : options.plugin_path) config.plugin_path.push_back(folder);
   const std::vector<std::pair<std::string, std::string>> pairs =
-      CarriedPairs(experiment, options.overrides, &config, notes);
+      CarriedPairs(experiment, options.overrides, &config, notes, bundle);
   // The scene the runner composes for this experiment, vehicles, leader and all.
   Simulation simulation(config);
   std::string xml = simulation.scene_xml();
+  if (bundle) xml = bundle->Relocated(std::move(xml));
   const size_t open = xml.find("<mujoco");
   const size_t end = open == std::string::npos ? open : xml.find('>', open);
   if (end == std::string::npos) throw ExportError("the composed scene has no <mujoco> element");
@@ -309,21 +310,27 @@ std::string ExportedSceneXml(const std::string& experiment, const ExportOptions&
   return xml;
 }
 
+}  // namespace
+
+std::string ExportedSceneXml(const std::string& experiment, const ExportOptions& options,
+                             std::vector<std::string>* notes) {
+  return SceneXml(experiment, options, notes, nullptr);
+}
+
 ExportResult ExportExperiment(const std::string& experiment, const std::string& out_dir,
                               const ExportOptions& options) {
   if (NonEmptyDirectory(out_dir) && !options.overwrite) {
     throw ExportError(out_dir + ": exists and is not empty; pass --overwrite to replace " +
-                      "scene.xml in it");
+                      "scene.xml and the files export wrote in it");
   }
   ExportResult result;
-  const std::string xml = ExportedSceneXml(experiment, options, &result.notes);
+  SceneBundle bundle(out_dir);
+  const std::string xml = SceneXml(experiment, options, &result.notes, &bundle);
   std::error_code ec;
   fs::create_directories(out_dir, ec);
   if (ec) throw ExportError(out_dir + ": cannot create it: " + ec.message());
   result.scene_path = (fs::path(out_dir) / "scene.xml").string();
-  std::ofstream out(result.scene_path, std::ios::binary);
-  out << xml;
-  if (!out) throw ExportError(result.scene_path + ": cannot write it: " + std::strerror(errno));
+  bundle.Write(xml);
   return result;
 }
 

@@ -239,12 +239,17 @@ void AddExportCommand(CLI::App& app, CliCommands* c) {
                          "Write the experiment as a MuJoCo scene flown by the native plugins "
                          "(libmjformation_mujoco.so; docs/PLUGINS.md)");
   c->export_scene->add_option("experiment", c->experiment, "experiment file (TOML)")->required();
-  c->export_scene->add_option("--out,-o", c->out, "output directory (gets scene.xml)")->required();
+  c->export_scene
+      ->add_option("--out,-o", c->out,
+                   "output directory: scene.xml and a copy of every file it names (the folder "
+                   "can be moved)")
+      ->required();
   c->export_scene->add_option("--set", c->overrides, "override a value: section.key=value");
   c->export_scene->add_option("--plugin-path", c->plugin_path,
                               "extra folder to search for plugins (carried into the scene)");
   c->export_scene->add_flag("--overwrite", c->overwrite,
-                            "write into an existing non-empty directory");
+                            "write into an existing non-empty directory (replaces scene.xml and "
+                            "the files export wrote there, never another file)");
 }
 
 namespace {

@@ -28,13 +28,17 @@ struct ExportOptions {
   bool overwrite = false;                // write into an existing non-empty folder
 };
 
-// Writes DIR/scene.xml for the experiment file. Refuses, naming the file and the key, whatever
-// the native path cannot carry (see the list in export.cc), and refuses to write into an
-// existing non-empty DIR unless `options.overwrite`. Throws ExportError or ConfigError.
+// Writes DIR/scene.xml for the experiment file, and beside it a copy of every file the scene
+// names (the vehicle and scene models with their asset files, the data files), named relative
+// to the scene, so DIR can be moved (docs/PLUGINS.md, "Scenes that travel"). Refuses, naming
+// the file and the key, whatever the native path cannot carry (see the list in export.cc), and
+// refuses to write into an existing non-empty DIR unless `options.overwrite`, which replaces
+// scene.xml and the files export wrote there, never another. Throws ExportError or ConfigError.
 ExportResult ExportExperiment(const std::string& experiment, const std::string& out_dir,
                               const ExportOptions& options = {});
 
-// The scene text alone (what ExportExperiment writes), for the Python module and the tests.
+// The scene text alone, every path absolute (ExportExperiment's scene names the copies beside it
+// by relative paths instead), for the tests and scenes compiled from memory.
 std::string ExportedSceneXml(const std::string& experiment, const ExportOptions& options,
                              std::vector<std::string>* notes);
 
