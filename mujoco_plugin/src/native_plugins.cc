@@ -160,7 +160,7 @@ runner::ExperimentConfig ReadSwarmConfig(const mjModel* m, int instance) {
     const char* value = mj_getPluginConfig(m, instance, key.c_str());
     pairs.emplace_back(key, value ? value : "");
   }
-  return ConfigFromPairs(pairs, InstanceWhere(kSwarm, m, instance), SceneFolder(m));
+  return ConfigFromPairs(pairs, InstanceWhere(kSwarm, m, instance), SceneFolder(m, instance));
 }
 
 // The vehicles' bodies as the exported scene names them (runner::VehiclePrefix), 0 = leader.
@@ -210,9 +210,10 @@ class SwarmModels {
  private:
   static constexpr size_t kKept = 16;  // models alive at once in one process, generously
   static std::string Key(const mjModel* m, int instance) {
-    std::string key = std::to_string(m->nu) + "/" + std::to_string(m->nsensor) + "/" +
-                      std::to_string(m->nbody) + "/" + std::to_string(m->opt.timestep) + "\n" +
-                      SceneFolder(m);  // the same scene from another folder reads other files
+    std::string key =
+        std::to_string(m->nu) + "/" + std::to_string(m->nsensor) + "/" + std::to_string(m->nbody) +
+        "/" + std::to_string(m->opt.timestep) + "\n" +
+        SceneFolder(m, instance);  // the same scene from another folder reads other files
     for (const std::string& section : CarriedSections()) {
       const char* value = mj_getPluginConfig(m, instance, section.c_str());
       key += "\n" + section + "=" + (value ? value : "");

@@ -3,6 +3,7 @@
 
 #include <toml++/toml.h>
 
+#include <cstring>
 #include <filesystem>
 #include <sstream>
 
@@ -46,8 +47,15 @@ std::string RebasedFolders(const toml::array& dirs, const std::string& folder) {
 
 }  // namespace
 
-std::string SceneFolder(const mjModel* m) {
-  const int texture = mj_name2id(m, mjOBJ_TEXTURE, kSceneAnchorTexture);
+std::string SceneFolder(const mjModel* m, int instance) {
+  const char* name = mj_id2name(m, mjOBJ_PLUGIN, instance);
+  const std::string instance_name = name ? name : "";
+  const size_t at = instance_name.rfind(kSwarmInstance);
+  const std::string texture_name = at == std::string::npos
+                                       ? std::string(kSceneAnchorTexture)
+                                       : instance_name.substr(0, at) + kSceneAnchorTexture +
+                                             instance_name.substr(at + std::strlen(kSwarmInstance));
+  const int texture = mj_name2id(m, mjOBJ_TEXTURE, texture_name.c_str());
   if (texture < 0 || m->tex_pathadr[texture] < 0) return "";
   std::error_code ec;
   const fs::path anchor = fs::absolute(fs::path(m->paths + m->tex_pathadr[texture]), ec);

@@ -15,8 +15,10 @@ namespace mjf::native {
 
 // The absolute folder of the scene `m` was compiled from, read from the path MuJoCo resolved
 // for the anchor texture (made absolute against the working folder when the scene was loaded by
-// a relative name); "" when the scene has no anchor (a scene not written by export).
-std::string SceneFolder(const mjModel* m);
+// a relative name); "" when the scene has no anchor (a scene not written by export). The anchor
+// of swarm instance `instance` carries the instance's affixes: an attach renames both alike
+// (a/swarm and a/mjformation_scene_folder), and two copies may come from two folders.
+std::string SceneFolder(const mjModel* m, int instance);
 
 // Overrides ("section.key=value", the experiment parser's --set form) that put `folder` in front
 // of every relative path of `toml_text` (the swarm's <config> pairs as one TOML document): [run]

@@ -199,8 +199,12 @@ TEST_F(NativeAttach, AnInstanceNameAlreadyTakenIsRefused) {
       scene.replace(at, from.size(), to);
     }
   }
+  // Beside the exported scene: the files it names (the scene-folder anchor too) are read
+  // relative to it.
+  const std::string taken = *dir_ / "export/taken.xml";
+  std::ofstream(taken) << scene;
   char text[2048] = {0};
-  mjSpec* world = mj_parseXMLString(scene.c_str(), nullptr, text, sizeof(text));
+  mjSpec* world = mj_parseXML(taken.c_str(), nullptr, text, sizeof(text));
   ASSERT_NE(world, nullptr) << text;
   mjSpec* child = mj_parseXML(Scene().c_str(), nullptr, text, sizeof(text));
   mjsFrame* frame = mjs_addFrame(mjs_findBody(world, "world"), nullptr);

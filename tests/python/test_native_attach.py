@@ -62,7 +62,10 @@ def test_attached_world_saved_and_reloaded_keeps_its_controllers(scene):
     world.attach(mujoco.MjSpec.from_file(str(scene)), prefix="a/",
                  frame=world.worldbody.add_frame())
     model = world.compile()
-    reloaded = mujoco.MjModel.from_xml_string(world.to_xml())  # the references are saved too
+    # Saved beside the exported files it names (relative paths), the references saved too.
+    saved = scene.parent / "saved_world.xml"
+    saved.write_text(world.to_xml())
+    reloaded = mujoco.MjModel.from_xml_path(str(saved))
     assert reloaded.nplugin == 1
     data, again = mujoco.MjData(model), mujoco.MjData(reloaded)
     for _ in range(STEPS // 2):

@@ -16,6 +16,7 @@
 #include "mjformation/config/config.hpp"
 #include "mjformation/config/overrides.hpp"
 #include "mjformation/config/paths.hpp"
+#include "mjformation/export/scene_anchor.hpp"
 #include "mjformation/scene/scene.hpp"
 #include "mjformation/sim/simulation.hpp"
 
@@ -143,7 +144,8 @@ std::string XmlEscape(const std::string& text) {
 std::string ExtensionBlock(const std::vector<std::pair<std::string, std::string>>& pairs) {
   std::string xml =
       "  <extension>\n    <plugin plugin=\"mjformation.swarm\">\n"
-      "      <instance name=\"swarm\">\n";
+      "      <instance name=\"" +
+      std::string(kSwarmInstance) + "\">\n";
   for (const auto& [key, value] : pairs) {
     xml += "        <config key=\"" + key + "\" value=\"" + XmlEscape(value) + "\"/>\n";
   }

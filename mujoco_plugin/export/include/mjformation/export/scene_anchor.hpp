@@ -15,6 +15,9 @@ namespace mjf {
 // The anchor's texture name in the scene and its file beside scene.xml (a 1 x 1 PNG).
 inline constexpr char kSceneAnchorTexture[] = "mjformation_scene_folder";
 inline constexpr char kSceneAnchorFile[] = "mjformation_scene_folder.png";
+// The swarm instance's name in an exported scene. An attach renames the instance and the anchor
+// alike (prefix + name + suffix), so the instance finds its own anchor under its own affixes.
+inline constexpr char kSwarmInstance[] = "swarm";
 
 }  // namespace mjf
 
