@@ -114,7 +114,7 @@ TEST(NativeFlight, Exp3PointMassIsTheRunnersTrajectory) {
 }
 
 // The GNSS-grade sensors and the Kalman filter of the benchmark's b05 ([sensors] noise, bias,
-// wander, rates and latency; [estimator] kf_ins), shortened to 3 s: the exported scene flown by
+// wander, rates and latency; [estimator] kf_ins), shortened to 2 s: the exported scene flown by
 // plain mj_step is the runner's flight, bit for bit (every random draw, every delayed sample and
 // every filter update happens in both, from the tick's state in plugin_state).
 TEST(NativeFlight, GnssAndKalmanFilterAreTheRunnersTrajectory) {
@@ -122,12 +122,12 @@ TEST(NativeFlight, GnssAndKalmanFilterAreTheRunnersTrajectory) {
   std::string text = NativeExperimentText("benchmark/b05_gnss_kf.toml");
   ASSERT_NE(text.find("\n[sensors]"), std::string::npos);
   ASSERT_NE(text.find("\n[estimator]"), std::string::npos);
-  text = std::regex_replace(text, std::regex("\nduration = [0-9.]+"), "\nduration = 3.0");
+  text = std::regex_replace(text, std::regex("\nduration = [0-9.]+"), "\nduration = 2.0");
   text = std::regex_replace(text, std::regex("\nmetric_window = [^\n]*"),
-                            "\nmetric_window = [1.0, 3.0]");
+                            "\nmetric_window = [1.0, 2.0]");
   std::ofstream(dir / "experiment.toml") << text;
-  const Comparison c = FlyBoth(dir / "experiment.toml", 3.0);
-  EXPECT_EQ(c.steps, 3000);
+  const Comparison c = FlyBoth(dir / "experiment.toml", 2.0);
+  EXPECT_EQ(c.steps, 2000);
   EXPECT_TRUE(c.bitwise) << "largest qpos difference " << c.max_diff << " m";
   EXPECT_GT(c.moved, 0.5);
 }

@@ -426,21 +426,21 @@ class NativeSensorState : public NativeState {
   }
 };
 
-// Copies at 0.5 and 1.3 s, into a new mjData and into one with controllers of its own, fly on
-// as the uncopied flight, bit for bit.
+// Copies at 0.3 and 0.8 s (GNSS samples taken, in flight and fused), into a new mjData and into
+// one with controllers of its own, fly on as the uncopied flight, bit for bit.
 TEST_F(NativeSensorState, CopiesAtTwoTimesFlyOnAsTheOriginal) {
   mjData* uncopied = Make();
   mjData* d = Make();
   mjData* dest = Make();
-  Step(m_, dest, 300);  // its controllers and sensors hold a state of their own
+  Step(m_, dest, 100);  // its controllers and sensors hold a state of their own
   int done = 0;
-  for (const int at : {500, 1300}) {
+  for (const int at : {300, 800}) {
     Step(m_, uncopied, at - done);
     Step(m_, d, at - done);
-    done = at + 400;
+    done = at + 250;
     mjData* fresh = Own(mj_copyData(nullptr, m_, d));
     mj_copyData(dest, m_, d);
-    for (mjData* x : {uncopied, d, fresh, dest}) Step(m_, x, 400);
+    for (mjData* x : {uncopied, d, fresh, dest}) Step(m_, x, 250);
     EXPECT_TRUE(SameBits(m_, fresh, uncopied));
     EXPECT_TRUE(SameBits(m_, dest, uncopied));
     EXPECT_TRUE(SameBits(m_, d, uncopied));
@@ -451,36 +451,36 @@ TEST_F(NativeSensorState, CopiesAtTwoTimesFlyOnAsTheOriginal) {
 // mj_getState / mj_setState: a checkpoint replayed gives the same bits.
 TEST_F(NativeSensorState, CheckpointReplayIsExact) {
   mjData* d = Make();
-  Step(m_, d, 700);
+  Step(m_, d, 500);
   const int spec = mjSTATE_INTEGRATION;
   std::vector<mjtNum> checkpoint(mj_stateSize(m_, spec));
   mj_getState(m_, d, checkpoint.data(), spec);
-  Step(m_, d, 500);
+  Step(m_, d, 300);
   mjData* first = Own(mj_copyData(nullptr, m_, d));
   mj_setState(m_, d, checkpoint.data(), spec);
-  Step(m_, d, 500);
+  Step(m_, d, 300);
   EXPECT_TRUE(SameBits(m_, d, first));
   // Into another mjData, which has flown a flight of its own.
   mjData* other = Make();
-  Step(m_, other, 100);
+  Step(m_, other, 50);
   mj_setState(m_, other, checkpoint.data(), spec);
-  Step(m_, other, 500);
+  Step(m_, other, 300);
   EXPECT_TRUE(SameBits(m_, other, first));
 }
 
 // Finite differences and a reset leave the flight as it was: the sensors' random streams are
 // restored with the rest, and a reset starts them from their seeds.
 TEST_F(NativeSensorState, TransitionFdAndResetLeaveTheFlightUnchanged) {
-  const mjData* reference = Reference(900);
+  const mjData* reference = Reference(600);
   mjData* d = Make();
-  Step(m_, d, 600);
+  Step(m_, d, 400);
   const int nx = 2 * m_->nv + m_->na;
   std::vector<mjtNum> A(nx * nx), B(nx * m_->nu);
   mjd_transitionFD(m_, d, 1e-6, 1, A.data(), B.data(), nullptr, nullptr);
-  Step(m_, d, 300);
+  Step(m_, d, 200);
   EXPECT_TRUE(SameBits(m_, d, reference));
   mj_resetData(m_, d);
-  Step(m_, d, 900);
+  Step(m_, d, 600);
   EXPECT_TRUE(SameBits(m_, d, reference));
 }
 
