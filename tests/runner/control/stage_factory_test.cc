@@ -4,6 +4,7 @@
 // they do to plain arrays.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -126,6 +127,13 @@ TEST(StageFactoryTest, SensorStateRoundTripsThroughFixedDoubles) {
     a->Measure(step, step * c.timestep, truth, &ma);
     b->Measure(step, step * c.timestep, truth, &mb);
     for (int i = 0; i < 3; ++i) ASSERT_TRUE(Same(ma[i], mb[i])) << "step " << step << " " << i;
+  }
+  // A state not written by this configuration (a fraction, a NaN where an integer is stored)
+  // is refused, never converted (that would be undefined).
+  for (const double foreign : {0.5, std::nan(""), -1.0}) {
+    std::fill(state.begin(), state.end(), foreign);
+    FixedStateArchive garbage = FixedStateArchive::Loading(state.data());
+    EXPECT_THROW(b->VisitState(garbage), StateArchiveError) << foreign;
   }
 }
 

@@ -16,14 +16,19 @@
 #define MJFORMATION_CONFIG_FIXED_STATE_ARCHIVE_HPP_
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <deque>
+#include <limits>
 #include <random>
+#include <string>
 #include <tuple>
 #include <type_traits>
 #include <utility>
 #include <vector>
+
+#include "mjformation/config/state_archive.hpp"
 
 namespace mjf::runner {
 
@@ -61,7 +66,18 @@ class FixedStateArchive {
   void Word(uint32_t& word) {
     double value = word;
     Slot(value);
-    if (in_) word = static_cast<uint32_t>(value);
+    if (in_) word = static_cast<uint32_t>(Whole(value, 0.0, 4294967295.0));
+  }
+  // A stored integer read back, checked first: converting a double outside the integer's range
+  // is undefined, and a state written by hand or by another configuration may hold one.
+  double Whole(double value, double lowest, double highest) const {
+    if (!(value >= lowest && value <= highest && value == std::floor(value))) {
+      throw StateArchiveError("the saved state holds " + std::to_string(value) + " at position " +
+                              std::to_string(cursor_ - 1) +
+                              " where an integer is stored: it was not written by this "
+                              "configuration");
+    }
+    return value;
   }
   void Word64(uint64_t& word) {
     uint32_t high = static_cast<uint32_t>(word >> 32), low = static_cast<uint32_t>(word);
@@ -107,7 +123,10 @@ class FixedStateArchive {
     if constexpr (sizeof(T) <= sizeof(uint32_t)) {
       double v = static_cast<double>(value);
       Slot(v);
-      if (in_) value = static_cast<T>(v);
+      if (in_) {
+        value = static_cast<T>(Whole(v, static_cast<double>(std::numeric_limits<T>::min()),
+                                     static_cast<double>(std::numeric_limits<T>::max())));
+      }
     } else {
       static_assert(sizeof(T) == sizeof(uint64_t), "integers of up to 64 bits");
       uint64_t word = static_cast<uint64_t>(value);
