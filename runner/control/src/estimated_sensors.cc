@@ -158,8 +158,9 @@ void EstimatedSensors::EstimateOne(int vehicle, int64_t step, double time) {
 
 void EstimatedSensors::VisitState(FixedStateArchive& archive) {
   archive(models_, held_, estimates_);
-  // Each instance's declared state, of the fixed size it declared at create().
-  std::vector<double> state;
+  // Each instance's declared state, of the fixed size it declared at create(), through one
+  // buffer (the native MuJoCo plugin walks this every step).
+  std::vector<double>& state = state_buffer_;
   for (auto& estimator : estimators_) {
     state.resize(estimator->state_size());
     if (!archive.loading()) estimator->GetState(state.data());

@@ -55,9 +55,10 @@ class SensorModel {
   // The current bias of a channel (for tests and diagnostics).
   const std::array<double, 3>& Bias(Channel c) const { return channels_[static_cast<int>(c)].bias; }
 
-  // Everything Measure and Accelerometer carry from one step to the next, both ways
-  // (checkpoints: the runner's StateArchive): the noise streams, each channel's latency buffer,
-  // held sample, bias walk, wander and phases; what the constructor fixes is not state.
+  // Everything Measure and Accelerometer carry from one step to the next, both ways, in a
+  // length the constructor fixes (the control tick's state: runner/config's
+  // FixedStateArchive): the noise streams, each channel's latency buffer, held sample, bias
+  // walk, wander and phases; what the constructor fixes is not state.
   template <typename Archive>
   void VisitState(Archive& a) {
     a(normal_, next_step_, own_normal_, common_normal_, accel_bias_);
