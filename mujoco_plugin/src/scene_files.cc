@@ -85,7 +85,8 @@ std::vector<std::string> RebasedPathOverrides(const std::string& toml_text,
   }
   rebase("vehicles.model", true);
   rebase("vehicles.scene", true);
-  for (const char* key : {"leader.file", "formation.file", "attitude.file", "formation.shape.file"})
+  for (const char* key :
+       {"leader.file", "formation.file", "attitude.file", "estimator.file", "formation.shape.file"})
     rebase(key, false);
   return out;
 }

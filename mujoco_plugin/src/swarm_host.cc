@@ -17,8 +17,8 @@
 namespace mjf::native {
 
 const std::vector<std::string>& CarriedSections() {
-  static const std::vector<std::string> kSections = {"run",    "vehicles",  "topology",
-                                                     "leader", "formation", "attitude"};
+  static const std::vector<std::string> kSections = {
+      "run", "vehicles", "topology", "leader", "formation", "attitude", "sensors", "estimator"};
   return kSections;
 }
 

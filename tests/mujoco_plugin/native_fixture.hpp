@@ -49,7 +49,12 @@ inline void LoadNativePluginsOnce() {
 inline std::string NativeExperimentText(const std::string& experiment,
                                         const std::string& model = "") {
   std::string text = ReadFile(std::string(MJF_SOURCE_DIR) + "/experiments/" + experiment);
-  text = text.substr(0, text.find("\n[render]"));
+  const size_t render = text.find("\n[render]");
+  if (render != std::string::npos) {
+    // Up to the next section ([sensors] may follow it).
+    const size_t next = text.find("\n[", render + 1);
+    text.erase(render, next == std::string::npos ? std::string::npos : next - render);
+  }
   if (!model.empty()) {
     text = std::regex_replace(text, std::regex("\nmodel = \"quadrotor\""),
                               "\nmodel = \"" + model + "\"");

@@ -113,6 +113,25 @@ TEST(NativeFlight, Exp3PointMassIsTheRunnersTrajectory) {
   ExpectSameFlight("exp3.toml", "pointmass", "pointmass_direct");
 }
 
+// The GNSS-grade sensors and the Kalman filter of the benchmark's b05 ([sensors] noise, bias,
+// wander, rates and latency; [estimator] kf_ins), shortened to 2 s: the exported scene flown by
+// plain mj_step is the runner's flight, bit for bit (every random draw, every delayed sample and
+// every filter update happens in both, from the tick's state in plugin_state).
+TEST(NativeFlight, GnssAndKalmanFilterAreTheRunnersTrajectory) {
+  Scratch dir("gnss_kf");
+  std::string text = NativeExperimentText("benchmark/b05_gnss_kf.toml");
+  ASSERT_NE(text.find("\n[sensors]"), std::string::npos);
+  ASSERT_NE(text.find("\n[estimator]"), std::string::npos);
+  text = std::regex_replace(text, std::regex("\nduration = [0-9.]+"), "\nduration = 2.0");
+  text = std::regex_replace(text, std::regex("\nmetric_window = [^\n]*"),
+                            "\nmetric_window = [1.0, 2.0]");
+  std::ofstream(dir / "experiment.toml") << text;
+  const Comparison c = FlyBoth(dir / "experiment.toml", 2.0);
+  EXPECT_EQ(c.steps, 2000);
+  EXPECT_TRUE(c.bitwise) << "largest qpos difference " << c.max_diff << " m";
+  EXPECT_GT(c.moved, 0.5);
+}
+
 // Repeated mj_forward between steps (a paused viewer) leaves the held commands as they were:
 // the flight that follows is still the runner's, bit for bit.
 TEST(NativeFlight, PausedViewerLeavesHeldCommands) {
@@ -235,9 +254,20 @@ TEST(NativeExport, RefusesPerAgentExecution) {
   EXPECT_NE(e.find("[execution]: the native MuJoCo plugins cannot carry"), std::string::npos) << e;
 }
 
-TEST(NativeExport, RefusesSensorNoise) {
-  const std::string e = ExportRefusal("\n[sensors]\nposition_noise = 0.1\n");
-  EXPECT_NE(e.find("[sensors]: the native MuJoCo plugins cannot carry"), std::string::npos) << e;
+TEST(NativeExport, RefusesWind) {
+  const std::string e = ExportRefusal("\n[wind]\nmean = [3.0, 0.0, 0.0]\n");
+  EXPECT_NE(e.find("experiment.toml:"), std::string::npos) << e;
+  EXPECT_NE(e.find("[wind]: the native MuJoCo plugins cannot carry"), std::string::npos) << e;
+  EXPECT_EQ(e.find("sensor"), std::string::npos) << "sensors are carried now: " << e;
+}
+
+// A latency buffer past what plugin_state holds: refused naming the key and both numbers.
+TEST(NativeExport, RefusesALatencyPastTheNativeBound) {
+  const std::string e = ExportRefusal("\n[sensors]\nposition_latency = 1.5\n");
+  EXPECT_NE(e.find("experiment.toml:"), std::string::npos) << e;
+  EXPECT_NE(e.find("[sensors] position_latency = 1.5 s is 1500 physics steps"), std::string::npos)
+      << e;
+  EXPECT_NE(e.find("at most 1000"), std::string::npos) << e;
 }
 
 TEST(NativeExport, RefusesTheWrenchRotorModel) {

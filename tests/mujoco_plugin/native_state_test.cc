@@ -55,16 +55,21 @@ struct MujocoRaised : std::runtime_error {
 };
 void Raise(const char* message) { throw MujocoRaised(message); }
 
-// Exp 2 exported, [render] dropped; `vehicle`: a [vehicles] model to fly instead.
-mjModel* LoadExp2(const Scratch& dir, const std::string& vehicle = "") {
+// `text` exported and loaded with MuJoCo's C API alone.
+mjModel* LoadExported(const Scratch& dir, const std::string& text) {
   LoadNativePluginsOnce();
   mju_user_error = Raise;
-  std::ofstream(dir / "exp2.toml") << NativeExperimentText("exp2.toml", vehicle);
+  std::ofstream(dir / "exp2.toml") << text;
   ExportExperiment(dir / "exp2.toml", dir / "export", {{}, {}, /*overwrite=*/true});
   char error[2048] = {0};
   mjModel* m = mj_loadXML((dir / "export/scene.xml").c_str(), nullptr, error, sizeof(error));
   EXPECT_NE(m, nullptr) << error;
   return m;
+}
+
+// Exp 2 exported, [render] dropped; `vehicle`: a [vehicles] model to fly instead.
+mjModel* LoadExp2(const Scratch& dir, const std::string& vehicle = "") {
+  return LoadExported(dir, NativeExperimentText("exp2.toml", vehicle));
 }
 
 void Step(const mjModel* m, mjData* d, int steps) {
@@ -408,6 +413,75 @@ TEST(NativeStateFiles, AnInitThatCannotReadItsFilesRaises) {
   for (mjData* x : {reference, d}) mj_deleteData(x);
   mj_deleteModel(copy);
   mj_deleteModel(m);
+}
+
+// The benchmark's b05: GNSS-grade sensors (noise, bias walk, wander, rates, latency) and a
+// Kalman filter per vehicle. Their state (random streams, latency buffers, the filters' state
+// and covariance) lives in plugin_state with the rest, so MuJoCo's tools stay exact.
+class NativeSensorState : public NativeState {
+ protected:
+  void SetUp() override {
+    m_ = LoadExported(dir_, NativeExperimentText("benchmark/b05_gnss_kf.toml"));
+    ASSERT_NE(m_, nullptr);
+  }
+};
+
+// Copies at 0.3 and 0.8 s (GNSS samples taken, in flight and fused), into a new mjData and into
+// one with controllers of its own, fly on as the uncopied flight, bit for bit.
+TEST_F(NativeSensorState, CopiesAtTwoTimesFlyOnAsTheOriginal) {
+  mjData* uncopied = Make();
+  mjData* d = Make();
+  mjData* dest = Make();
+  Step(m_, dest, 100);  // its controllers and sensors hold a state of their own
+  int done = 0;
+  for (const int at : {300, 800}) {
+    Step(m_, uncopied, at - done);
+    Step(m_, d, at - done);
+    done = at + 250;
+    mjData* fresh = Own(mj_copyData(nullptr, m_, d));
+    mj_copyData(dest, m_, d);
+    for (mjData* x : {uncopied, d, fresh, dest}) Step(m_, x, 250);
+    EXPECT_TRUE(SameBits(m_, fresh, uncopied));
+    EXPECT_TRUE(SameBits(m_, dest, uncopied));
+    EXPECT_TRUE(SameBits(m_, d, uncopied));
+  }
+  EXPECT_GT(Travelled(m_, d), 1e-3);
+}
+
+// mj_getState / mj_setState: a checkpoint replayed gives the same bits.
+TEST_F(NativeSensorState, CheckpointReplayIsExact) {
+  mjData* d = Make();
+  Step(m_, d, 500);
+  const int spec = mjSTATE_INTEGRATION;
+  std::vector<mjtNum> checkpoint(mj_stateSize(m_, spec));
+  mj_getState(m_, d, checkpoint.data(), spec);
+  Step(m_, d, 300);
+  mjData* first = Own(mj_copyData(nullptr, m_, d));
+  mj_setState(m_, d, checkpoint.data(), spec);
+  Step(m_, d, 300);
+  EXPECT_TRUE(SameBits(m_, d, first));
+  // Into another mjData, which has flown a flight of its own.
+  mjData* other = Make();
+  Step(m_, other, 50);
+  mj_setState(m_, other, checkpoint.data(), spec);
+  Step(m_, other, 300);
+  EXPECT_TRUE(SameBits(m_, other, first));
+}
+
+// Finite differences and a reset leave the flight as it was: the sensors' random streams are
+// restored with the rest, and a reset starts them from their seeds.
+TEST_F(NativeSensorState, TransitionFdAndResetLeaveTheFlightUnchanged) {
+  const mjData* reference = Reference(600);
+  mjData* d = Make();
+  Step(m_, d, 400);
+  const int nx = 2 * m_->nv + m_->na;
+  std::vector<mjtNum> A(nx * nx), B(nx * m_->nu);
+  mjd_transitionFD(m_, d, 1e-6, 1, A.data(), B.data(), nullptr, nullptr);
+  Step(m_, d, 200);
+  EXPECT_TRUE(SameBits(m_, d, reference));
+  mj_resetData(m_, d);
+  Step(m_, d, 600);
+  EXPECT_TRUE(SameBits(m_, d, reference));
 }
 
 // plugin_state that is not ours (garbage written over it) is refused with a message naming the

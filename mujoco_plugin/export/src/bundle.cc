@@ -136,7 +136,7 @@ void SceneBundle::Relocate(toml::table& doc, const ExperimentConfig& config,
       table->insert_or_assign("file", Add(source.string(), "data/" + source.filename().string()));
     }
   };
-  for (const char* section : {"leader", "formation", "attitude"}) {
+  for (const char* section : {"leader", "formation", "attitude", "estimator"}) {
     relocate_file(doc[section].as_table());
   }
   relocate_file(doc["formation"]["shape"].as_table());

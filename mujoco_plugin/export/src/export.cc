@@ -16,6 +16,7 @@
 #include "mjformation/config/config.hpp"
 #include "mjformation/config/overrides.hpp"
 #include "mjformation/config/paths.hpp"
+#include "mjformation/control/stages.hpp"
 #include "mjformation/export/scene_anchor.hpp"
 #include "mjformation/scene/scene.hpp"
 #include "mjformation/sim/simulation.hpp"
@@ -43,6 +44,8 @@ const std::vector<Carried>& CarriedSections() {
       {"leader", {}, ""},
       {"formation", {}, ""},
       {"attitude", {}, ""},
+      {"sensors", {}, ""},
+      {"estimator", {}, ""},
   };
   return kCarried;
 }
@@ -204,7 +207,7 @@ void ResolvePaths(toml::table& doc, const std::string& file, const ExperimentCon
       table->insert_or_assign("file", ResolveRelative(name->get(), file));
     }
   };
-  for (const char* section : {"leader", "formation", "attitude"}) {
+  for (const char* section : {"leader", "formation", "attitude", "estimator"}) {
     resolve_file(doc[section].as_table());
   }
   resolve_file(doc["formation"]["shape"].as_table());
@@ -237,6 +240,18 @@ void RefuseStopOn(const std::string& file, const toml::table& doc) {
   }
 }
 
+// The native plugin's state has a length fixed when MuJoCo compiles the scene, and it bounds
+// what would grow with the configuration (a latency buffer): refused here, naming the key and the
+// number, rather than when MuJoCo loads the scene.
+void RefuseUnboundedState(const std::string& file, const toml::table& doc,
+                          const ExperimentConfig& config) {
+  const std::string why = NativeSensorRefusal(config);
+  if (why.empty()) return;
+  const toml::node* sensors = doc.get("sensors");
+  const int line = sensors ? static_cast<int>(sensors->source().begin.line) : 0;
+  throw ExportError(file + (line > 0 ? ":" + std::to_string(line) : std::string()) + ": " + why);
+}
+
 // Reads the experiment file's sections, refusing what the native path cannot carry. `config`
 // is null for the refusal pass. With a `bundle`, the paths are those of the exported folder.
 std::vector<std::pair<std::string, std::string>> CarriedPairs(
@@ -245,8 +260,11 @@ std::vector<std::pair<std::string, std::string>> CarriedPairs(
     SceneBundle* bundle = nullptr) {
   toml::table doc = ExperimentTable(file, overrides);
   RefuseStopOn(file, doc);
-  if (config) ResolvePaths(doc, file, *config);
-  if (config && bundle) bundle->Relocate(doc, *config, notes);
+  if (config) {
+    RefuseUnboundedState(file, doc, *config);
+    ResolvePaths(doc, file, *config);
+    if (bundle) bundle->Relocate(doc, *config, notes);
+  }
   std::vector<std::pair<std::string, std::string>> pairs;
   for (auto&& [key, node] : doc) {
     const std::string section(key.str());
@@ -260,9 +278,9 @@ std::vector<std::pair<std::string, std::string>> CarriedPairs(
     for (const Carried& c : CarriedSections()) known = known || section == c.section;
     if (!known) {
       throw ExportError(Where(file, node, section) +
-                        ": the native MuJoCo plugins cannot carry this section (they fly the " +
-                        "ideal configuration: central execution, true sensor values, no " +
-                        "estimator, no wind or disturbance); run it with `mjformation run`");
+                        ": the native MuJoCo plugins cannot carry this section (they fly " +
+                        "central execution over perfect links, no wind or disturbance); run " +
+                        "it with `mjformation run`");
     }
   }
   for (const Carried& c : CarriedSections()) {

@@ -306,11 +306,12 @@ void ControlTick::RequireSavable() const {
         "the communication channel ([network], per-agent execution) does not declare its state "
         "yet: a tick with it cannot be copied or checkpointed");
   }
-  if (!sensors_->stateless()) {
+  if (!sensors_->saves_state()) {
     throw SimulationError(
-        "the sensor stage ([sensors], [estimator]) does not declare its state yet: a tick with "
-        "it cannot be copied or checkpointed");
+        "the sensor stage does not declare its state: a tick with it cannot be copied or "
+        "checkpointed");
   }
+  sensors_->RequireNativeState();
 }
 
 // The bus: every mjfSetpoint is doubles only (plugin.h), written as its kSetpointDoubles.
@@ -322,7 +323,13 @@ static_assert(sizeof(mjfSetpoint) == 12 * sizeof(double), "mjfSetpoint holds dou
 size_t ControlTick::StateSize() const {
   size_t n = setpoints_.size() * kSetpointDoubles;
   for (const PluginInstance* p : Instances()) n += p->state_size();
-  return n;
+  if (sensor_state_size_ == kUnsized) {
+    // Fixed at construction (fixed_state_archive.hpp): counted once.
+    FixedStateArchive sizing = FixedStateArchive::Sizing();
+    sensors_->VisitState(sizing);
+    sensor_state_size_ = sizing.size();
+  }
+  return n + sensor_state_size_;
 }
 
 void ControlTick::GetState(double* out) const {
@@ -332,6 +339,8 @@ void ControlTick::GetState(double* out) const {
     p->GetState(out);
     out += p->state_size();
   }
+  FixedStateArchive saving = FixedStateArchive::Saving(out);
+  sensors_->VisitState(saving);
 }
 
 void ControlTick::SetState(const double* in) {
@@ -341,6 +350,8 @@ void ControlTick::SetState(const double* in) {
     p->SetState(in);
     in += p->state_size();
   }
+  FixedStateArchive loading = FixedStateArchive::Loading(in);
+  sensors_->VisitState(loading);
 }
 
 }  // namespace mjf::runner

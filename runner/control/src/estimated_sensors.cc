@@ -62,7 +62,8 @@ EstimatedSensors::EstimatedSensors(const ExperimentConfig& c, int n_vehicles, do
       held_(n_vehicles),
       estimates_(n_vehicles),
       inputs_(n_vehicles),
-      arrived_(n_vehicles) {
+      arrived_(n_vehicles),
+      native_refusal_(NativeSensorRefusal(c)) {
   models_.reserve(n_vehicles);
   for (int i = 0; i < n_vehicles; ++i) {
     // Stream 1 as MeasuredSensors (same white noise and bias for the same seed); 2: this
@@ -155,19 +156,26 @@ void EstimatedSensors::EstimateOne(int vehicle, int64_t step, double time) {
   }
 }
 
-void EstimatedSensors::VisitState(StateArchive& archive) {
+void EstimatedSensors::VisitState(FixedStateArchive& archive) {
   archive(models_, held_, estimates_);
+  // Each instance's declared state, of the fixed size it declared at create(), through one
+  // buffer (the native MuJoCo plugin walks this every step).
+  std::vector<double>& state = state_buffer_;
   for (auto& estimator : estimators_) {
-    std::vector<double> state(estimator->state_size());
-    const size_t expected = state.size();
-    if (!archive.loading() && expected > 0) estimator->GetState(state.data());
+    state.resize(estimator->state_size());
+    if (!archive.loading()) estimator->GetState(state.data());
     archive(state);
-    if (state.size() != expected) {
-      throw StateArchiveError(
-          std::string("the saved state of estimator '") + estimator->descriptor().name +
-          "' holds " + std::to_string(state.size()) + " numbers, not " + std::to_string(expected));
-    }
-    if (archive.loading() && expected > 0) estimator->SetState(state.data());
+    if (archive.loading()) estimator->SetState(state.data());
+  }
+}
+
+void EstimatedSensors::RequireNativeState() const {
+  if (!native_refusal_.empty()) throw SimulationError(native_refusal_);
+  for (const auto& estimator : estimators_) {
+    if (estimator->declares_state()) continue;
+    throw SimulationError(std::string("[estimator] plugin '") + estimator->descriptor().name +
+                          "' declares no state (plugin ABI 4: state_size, get_state, "
+                          "set_state): its filter cannot be copied or checkpointed");
   }
 }
 

@@ -2,11 +2,15 @@
 //
 // The one place where the experiment's realism settings become stages of the control tick:
 // [sensors] -> MeasuredSensors (or IdealSensors), [wind] -> WindDrag (or no force stage).
+#include <fmt/format.h>
+
 #include "mjformation/config/experiment.hpp"
+#include "mjformation/control/errors.hpp"
 #include "mjformation/control/stages.hpp"
 #include "mjformation/realism/gaussian.hpp"
 #include "mjformation/realism/sensor_model.hpp"
 #include "mjformation/realism/wind_field.hpp"
+#include "mjformation/time_steps.hpp"
 
 namespace mjf::runner {
 
@@ -20,7 +24,8 @@ namespace {
 // [sensors]: one seeded sensor model per vehicle (white noise, bias walk, rate hold, latency).
 class MeasuredSensors final : public SensorStage {
  public:
-  MeasuredSensors(const ExperimentConfig& c, int n_vehicles) {
+  MeasuredSensors(const ExperimentConfig& c, int n_vehicles)
+      : native_refusal_(NativeSensorRefusal(c)) {
     models_.reserve(n_vehicles);
     for (int i = 0; i < n_vehicles; ++i) {
       models_.emplace_back(c.sensors.params, c.timestep,
@@ -32,10 +37,14 @@ class MeasuredSensors final : public SensorStage {
     for (size_t i = 0; i < models_.size(); ++i) models_[i].Measure(step, truth[i], &(*measured)[i]);
   }
   bool saves_state() const override { return true; }
-  void VisitState(StateArchive& archive) override { archive(models_); }
+  void VisitState(FixedStateArchive& archive) override { archive(models_); }
+  void RequireNativeState() const override {
+    if (!native_refusal_.empty()) throw SimulationError(native_refusal_);
+  }
 
  private:
   std::vector<realism::SensorModel> models_;
+  std::string native_refusal_;
 };
 
 // [wind]: the wind at each vehicle (mean + Dryden turbulence + gusts) and the drag it causes,
@@ -66,6 +75,21 @@ class WindDrag final : public WindStage {
 };
 
 }  // namespace
+
+std::string NativeSensorRefusal(const ExperimentConfig& c) {
+  for (int k = 0; k < realism::kChannels; ++k) {
+    const double latency = c.sensors.params.channel[k].latency_s;
+    const int64_t steps = WholeSteps(latency, c.timestep);
+    if (steps <= kNativeLatencySteps) continue;
+    return fmt::format(
+        "[sensors] {}_latency = {} s is {} physics steps of delay; the native MuJoCo plugin "
+        "holds at most {} (its latency buffer is part of plugin_state, copied every step): "
+        "shorten it or fly the experiment with `mjformation run`",
+        realism::ChannelName(static_cast<realism::Channel>(k)), latency, steps,
+        kNativeLatencySteps);
+  }
+  return "";
+}
 
 std::unique_ptr<SensorStage> MakeSensorStage(const ExperimentConfig& c) {
   if (c.sensors.enabled()) return std::make_unique<MeasuredSensors>(c, c.followers + 1);

@@ -22,7 +22,7 @@ namespace {
 
 // The first words of every checkpoint: another file, or a checkpoint of another layout, is
 // refused by name.
-constexpr const char* kFormat = "mjformation checkpoint 1";
+constexpr const char* kFormat = "mjformation checkpoint 2";
 
 std::string ReadWholeFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);

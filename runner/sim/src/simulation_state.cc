@@ -57,8 +57,7 @@ void Simulation::VisitState(StateArchive& archive) {
   FixedBlock(archive, "control tick", &tick);
   if (archive.loading()) tick_->SetState(tick.data());
   actuation_->VisitState(archive);
-  archive.Tag("realism");
-  tick_->VisitSensorState(archive);
+  archive.Tag("realism");  // the sensor stage is in the control tick's block
   for (auto& stage : force_stages_) stage->VisitState(archive);
 }
 

@@ -4,10 +4,12 @@
 // they do to plain arrays.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
 #include "mjformation/config/experiment.hpp"
+#include "mjformation/control/errors.hpp"
 #include "mjformation/control/stages.hpp"
 #include "mjformation/realism/drag.hpp"
 #include "point_mass_util.hpp"
@@ -93,6 +95,61 @@ TEST(StageFactoryTest, SteadyWindIsOneStageAddingTheDragForce) {
   }
   // Air blowing +x past a vehicle moving slower in x pushes it +x.
   EXPECT_GT(force[0], 1.0);
+}
+
+// The sensor stage's state as a fixed number of doubles (the control tick's state, the native
+// MuJoCo plugin's plugin_state): loaded into another stage of the same configuration, it
+// measures the same bits from then on; every stored number is finite (engines as 32-bit words).
+TEST(StageFactoryTest, SensorStateRoundTripsThroughFixedDoubles) {
+  const ExperimentConfig c = Parse(PointMassExperiment(
+      -2, 0, 2, 0, 1.0, "", "[sensors]\npreset = \"consumer_gnss\"\nposition_rate = 50.0\n"));
+  auto a = MakeSensorStage(c), b = MakeSensorStage(c);
+  FixedStateArchive sizing = FixedStateArchive::Sizing();
+  a->VisitState(sizing);
+  const size_t n = sizing.size();
+  auto truth = Truth();
+  std::vector<mjfVehicleState> ma(3), mb(3);
+  for (int64_t step = 0; step < 137; ++step) {
+    truth[1].pos[0] += 0.01;
+    a->Measure(step, step * c.timestep, truth, &ma);
+  }
+  std::vector<double> state(n + 1, 7.0);
+  FixedStateArchive saving = FixedStateArchive::Saving(state.data());
+  a->VisitState(saving);
+  EXPECT_EQ(saving.size(), n);  // the length is the configuration's, whatever the steps
+  EXPECT_EQ(state[n], 7.0);     // nothing written past it
+  for (size_t k = 0; k < n; ++k) ASSERT_TRUE(std::isfinite(state[k])) << k;
+  FixedStateArchive loading = FixedStateArchive::Loading(state.data());
+  b->VisitState(loading);
+  EXPECT_EQ(loading.size(), n);
+  for (int64_t step = 137; step < 400; ++step) {
+    truth[1].pos[0] += 0.01;
+    a->Measure(step, step * c.timestep, truth, &ma);
+    b->Measure(step, step * c.timestep, truth, &mb);
+    for (int i = 0; i < 3; ++i) ASSERT_TRUE(Same(ma[i], mb[i])) << "step " << step << " " << i;
+  }
+  // A state not written by this configuration (a fraction, a NaN where an integer is stored)
+  // is refused, never converted (that would be undefined).
+  for (const double foreign : {0.5, std::nan(""), -1.0}) {
+    std::fill(state.begin(), state.end(), foreign);
+    FixedStateArchive garbage = FixedStateArchive::Loading(state.data());
+    EXPECT_THROW(b->VisitState(garbage), StateArchiveError) << foreign;
+  }
+}
+
+// A latency buffer past what the native MuJoCo plugin holds is named with its key and steps.
+TEST(StageFactoryTest, NativeSensorRefusalNamesTheKeyAndTheSteps) {
+  const ExperimentConfig fits =
+      Parse(PointMassExperiment(-2, 0, 2, 0, 2.0, "", "[sensors]\npreset = \"consumer_gnss\"\n"));
+  EXPECT_EQ(NativeSensorRefusal(fits), "");
+  const ExperimentConfig past = Parse(PointMassExperiment(
+      -2, 0, 2, 0, 2.0, "", "[sensors]\npreset = \"consumer_gnss\"\nvelocity_latency = 1.2\n"));
+  const std::string why = NativeSensorRefusal(past);
+  EXPECT_NE(why.find("[sensors] velocity_latency = 1.2 s is 1200 physics steps"), std::string::npos)
+      << why;
+  EXPECT_NE(why.find("at most 1000"), std::string::npos) << why;
+  EXPECT_THROW(MakeSensorStage(past)->RequireNativeState(), SimulationError);
+  EXPECT_NO_THROW(MakeSensorStage(fits)->RequireNativeState());
 }
 
 }  // namespace

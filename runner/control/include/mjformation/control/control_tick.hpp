@@ -82,16 +82,16 @@ class ControlTick {
 
   // The tick's state, what one Run leaves for the next: the setpoint bus, then each plugin
   // instance's declared state (leader, formation, follower guidance, per-agent formation,
-  // attitude; ABI 4). After SetState(GetState()) of another tick built from the same
-  // configuration, Run gives the same bits. RequireSavable() throws naming the first stage
-  // whose state is not declared (a communication channel, a
-  // sensor stage other than ideal); StateSize() etc. are meaningful only when it passes.
+  // attitude; ABI 4), then the sensor stage's (noise streams, latency buffers, bias and
+  // wander, the estimator instances' ABI state and estimates: SensorStage::VisitState), of a
+  // length fixed at construction. After SetState(GetState()) of another tick built from the
+  // same configuration, Run gives the same bits. RequireSavable() throws naming the first
+  // stage the native MuJoCo plugin cannot hold (a communication channel, a switching topology,
+  // a latency buffer past kNativeLatencySteps, an estimator without declared state).
   void RequireSavable() const;
   size_t StateSize() const;
   void GetState(double* out) const;
   void SetState(const double* in);
-  // The sensor stage's own state (noise streams, latency buffers), both ways (checkpoints).
-  void VisitSensorState(StateArchive& archive) { sensors_->VisitState(archive); }
   // A tick restored between its two parts (the Python Simulation stands after a tick): what it
   // measured and the controls it computed, and the context the attitude stage runs in, as
   // RunSwarmStages of `step` left them, without running a plugin.
@@ -136,6 +136,8 @@ class ControlTick {
   double timestep_;
   std::array<char, 512> plugin_error_{};
   mjfStepContext tick_ctx_{};  // the context of the current tick (RunSwarmStages)
+  static constexpr size_t kUnsized = static_cast<size_t>(-1);
+  mutable size_t sensor_state_size_ = kUnsized;  // the sensor stage's doubles, counted once
 };
 
 }  // namespace mjf::runner

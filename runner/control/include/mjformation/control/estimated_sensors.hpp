@@ -13,6 +13,7 @@
 #include <array>
 #include <functional>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "mjformation/control/plugin_host.hpp"
@@ -37,10 +38,12 @@ class EstimatedSensors final : public SensorStage {
                    const MakeEstimator& make);
   void Measure(int64_t step, double time, const std::vector<mjfVehicleState>& truth,
                std::vector<mjfVehicleState>* measured) override;
-  // Checkpoints: the sensor models, the held samples and estimates, and every estimator
-  // instance's ABI state (a plugin that declares none has none).
+  // The tick's state: the sensor models, the held samples and estimates (with their
+  // covariance), and every estimator instance's ABI state (a plugin that declares none has
+  // none; RequireNativeState refuses it).
   bool saves_state() const override { return true; }
-  void VisitState(StateArchive& archive) override;
+  void VisitState(FixedStateArchive& archive) override;
+  void RequireNativeState() const override;
 
   // Per vehicle, as of the last Measure: the estimate (with covariance) and the held samples.
   const std::vector<mjfEstimate>& estimates() const { return estimates_; }
@@ -65,6 +68,8 @@ class EstimatedSensors final : public SensorStage {
   std::vector<mjfEstimatorInput> inputs_;             // per vehicle, rebuilt every step
   std::vector<std::vector<mjfMeasurement>> arrived_;  // per vehicle, reused every step
   std::array<char, 512> error_{};
+  std::string native_refusal_;        // NativeSensorRefusal of the configuration
+  std::vector<double> state_buffer_;  // an estimator's declared state on its way (VisitState)
   double sensor_model_seconds_ = 0, estimator_seconds_ = 0;
 };
 

@@ -14,8 +14,10 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
+#include "mjformation/config/fixed_state_archive.hpp"
 #include "mjformation/config/state_archive.hpp"
 
 namespace mjf::runner {
@@ -31,10 +33,15 @@ class SensorStage {
                        std::vector<mjfVehicleState>* measured) = 0;
   // True when Measure keeps nothing from one call to the next (a tick's state then omits it).
   virtual bool stateless() const { return false; }
-  // Checkpoints (state_archive.hpp): true when VisitState saves and restores all the stage
-  // keeps (a stateless stage has nothing to save).
+  // Everything Measure carries from one call to the next, both ways, in a length fixed at
+  // construction (fixed_state_archive.hpp): part of the control tick's state, so of the native
+  // MuJoCo plugin's plugin_state and of the runner's checkpoints. saves_state(): true when
+  // VisitState walks all the stage keeps (a stateless stage has nothing to walk).
   virtual bool saves_state() const { return stateless(); }
-  virtual void VisitState(StateArchive& archive) { (void)archive; }
+  virtual void VisitState(FixedStateArchive& archive) { (void)archive; }
+  // Throws SimulationError, naming the key, when the state is past what the native MuJoCo
+  // plugin holds in plugin_state (the runner's own checkpoints take any length).
+  virtual void RequireNativeState() const {}
 };
 
 // Perfect sensors: the controllers see the truth, bit for bit (the default).
@@ -64,6 +71,13 @@ class WindStage : public ForceStage {
   // m/s, world frame, per vehicle, as of the last AddForces (empty before it).
   virtual const std::vector<std::array<double, 3>>& wind() const = 0;
 };
+
+// The longest latency, in physics steps, whose buffer the native MuJoCo plugin holds in
+// plugin_state: every step copies the whole state in and out, so the buffer is bounded.
+constexpr int64_t kNativeLatencySteps = 1000;
+// Why the native MuJoCo plugin cannot hold the sensor state of `config` (naming the [sensors]
+// key and the number), or empty when it can.
+std::string NativeSensorRefusal(const ExperimentConfig& config);
 
 // The stages the experiment asks for (ideal sensors and no force stage by default).
 std::unique_ptr<SensorStage> MakeSensorStage(const ExperimentConfig& config);

@@ -46,7 +46,7 @@ class Gaussian {
     return x * scale;
   }
 
-  // The engine and the spare normal, both ways (checkpoints: the runner's StateArchive).
+  // The engine and the spare normal, both ways (the runner's StateArchive, FixedStateArchive).
   template <typename Archive>
   void VisitState(Archive& a) {
     a(rng_, spare_, has_spare_);

@@ -7,8 +7,11 @@
 #ifndef MJFORMATION_REALISM_SENSOR_MODEL_HPP_
 #define MJFORMATION_REALISM_SENSOR_MODEL_HPP_
 
+#include <algorithm>
 #include <array>
+#include <cstddef>
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -40,6 +43,8 @@ class SensorModel {
     double stated_std;  // sqrt(white^2 + wander^2): what the suite says of its accuracy
   };
   const std::vector<Fresh>& fresh() const { return fresh_; }
+  // At most one of each aiding channel per step.
+  static constexpr size_t kMaxFresh = 2;
 
   // The accelerometer over the step that ended at `step` (call after Measure of that step):
   // f = R(t_{n-1})^T (a - g), a = (v_n - v_{n-1}) / dt, exactly the integrator's acceleration,
@@ -50,9 +55,10 @@ class SensorModel {
   // The current bias of a channel (for tests and diagnostics).
   const std::array<double, 3>& Bias(Channel c) const { return channels_[static_cast<int>(c)].bias; }
 
-  // Everything Measure and Accelerometer carry from one step to the next, both ways
-  // (checkpoints: the runner's StateArchive): the noise streams, each channel's latency buffer,
-  // held sample, bias walk, wander and phases; what the constructor fixes is not state.
+  // Everything Measure and Accelerometer carry from one step to the next, both ways, in a
+  // length the constructor fixes (the control tick's state: runner/config's
+  // FixedStateArchive): the noise streams, each channel's latency buffer, held sample, bias
+  // walk, wander and phases; what the constructor fixes is not state.
   template <typename Archive>
   void VisitState(Archive& a) {
     a(normal_, next_step_, own_normal_, common_normal_, accel_bias_);
@@ -61,10 +67,15 @@ class SensorModel {
       a(ch.history, ch.held, ch.bias, ch.last_sample, ch.write_slot, ch.phase, ch.bias_count);
       a(ch.wander_own, ch.wander_common, ch.fresh);
     }
-    size_t fresh = fresh_.size();
+    // The fresh samples in slots of a fixed number (a state's length is fixed by the
+    // configuration: the native MuJoCo plugin's plugin_state), the unused ones zero.
+    std::array<Fresh, kMaxFresh> slots{};
+    std::copy(fresh_.begin(), fresh_.end(), slots.begin());
+    uint64_t fresh = fresh_.size();
     a(fresh);
-    fresh_.resize(fresh);
-    for (auto& f : fresh_) a(f.channel, f.taken_step, f.value, f.stated_std);
+    for (auto& f : slots) a(f.channel, f.taken_step, f.value, f.stated_std);
+    if (fresh > kMaxFresh) throw std::invalid_argument("sensor model: a foreign saved state");
+    fresh_.assign(slots.begin(), slots.begin() + static_cast<ptrdiff_t>(fresh));
   }
 
  private:

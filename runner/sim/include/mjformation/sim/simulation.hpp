@@ -70,8 +70,9 @@ class Simulation {
   void RequireSavable() const;
   // Everything the next step depends on, both ways (state_archive.hpp): the step index,
   // MuJoCo's integration state (mj_getState, mjSTATE_INTEGRATION, plugin_state included), the
-  // control tick (its setpoint bus and every plugin instance's ABI state) and the actuation's
-  // own state. Between steps only (before ComputeControls); RequireSavable must pass.
+  // control tick (its setpoint bus, every plugin instance's ABI state and the sensor stage's)
+  // and the actuation's and force stages' own state. Between steps only (before ComputeControls);
+  // RequireSavable must pass.
   void VisitState(StateArchive& archive);
   // The same taken at a control tick (after ComputeControls or ComputeSetpoints, where the
   // Python Simulation and DrivenSimulation stand): also the tick's outputs (true and measured

@@ -1,0 +1,182 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// A stage's state as a fixed number of doubles, for the control tick's state
+// (ControlTick::GetState): the native MuJoCo plugin keeps it in plugin_state, whose length MuJoCo
+// fixes when the model compiles, and the runner's checkpoints hold the same block. The walk is
+// the one StateArchive takes (a class's `template <typename Archive> VisitState(Archive&)`), with
+// two differences that keep the length fixed:
+//   - a container's length is never stored: it is the one the stage was built with from the
+//     configuration (a latency buffer, one sensor model per vehicle), and loading never resizes;
+//   - a random engine is stored as its own words, not as text (whose length varies).
+// Every number goes in exactly: a double as itself; an integer of up to 32 bits as its value; a
+// 64-bit integer and an engine's words as 32-bit halves, each an exact integer value, so the
+// block holds no NaN pattern of our making and any copy of the doubles (mju_copy, numpy) keeps it.
+// Three passes over the same walk: Sizing counts, Saving writes, Loading reads.
+#ifndef MJFORMATION_CONFIG_FIXED_STATE_ARCHIVE_HPP_
+#define MJFORMATION_CONFIG_FIXED_STATE_ARCHIVE_HPP_
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <deque>
+#include <limits>
+#include <random>
+#include <string>
+#include <tuple>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "mjformation/config/state_archive.hpp"
+
+namespace mjf::runner {
+
+class FixedStateArchive {
+ public:
+  static FixedStateArchive Sizing() { return FixedStateArchive(nullptr, nullptr); }
+  static FixedStateArchive Saving(double* out) { return FixedStateArchive(out, nullptr); }
+  static FixedStateArchive Loading(const double* in) { return FixedStateArchive(nullptr, in); }
+
+  bool loading() const { return in_ != nullptr; }
+  // Doubles walked so far (after a Sizing walk: the state's length).
+  size_t size() const { return cursor_; }
+
+  template <typename... T>
+  void operator()(T&... values) {
+    (Visit(values), ...);
+  }
+
+ private:
+  FixedStateArchive(double* out, const double* in) : out_(out), in_(in) {}
+
+  template <typename T, typename = void>
+  struct HasVisitState : std::false_type {};
+  template <typename T>
+  struct HasVisitState<
+      T, std::void_t<decltype(std::declval<T&>().VisitState(std::declval<FixedStateArchive&>()))>>
+      : std::true_type {};
+
+  void Slot(double& value) {
+    if (out_) std::memcpy(out_ + cursor_, &value, sizeof(double));
+    if (in_) std::memcpy(&value, in_ + cursor_, sizeof(double));
+    ++cursor_;
+  }
+  // A 32-bit word as its value (exact in a double).
+  void Word(uint32_t& word) {
+    double value = word;
+    Slot(value);
+    if (in_) word = static_cast<uint32_t>(Whole(value, 0.0, 4294967295.0));
+  }
+  // A stored integer read back, checked first: converting a double outside the integer's range
+  // is undefined, and a state written by hand or by another configuration may hold one.
+  double Whole(double value, double lowest, double highest) const {
+    if (!(value >= lowest && value <= highest && value == std::floor(value))) {
+      throw StateArchiveError("the saved state holds " + std::to_string(value) + " at position " +
+                              std::to_string(cursor_ - 1) +
+                              " where an integer is stored: it was not written by this "
+                              "configuration");
+    }
+    return value;
+  }
+  void Word64(uint64_t& word) {
+    uint32_t high = static_cast<uint32_t>(word >> 32), low = static_cast<uint32_t>(word);
+    Word(high);
+    Word(low);
+    if (in_) word = (static_cast<uint64_t>(high) << 32) | low;
+  }
+  // Bytes as 32-bit words. A random engine's words: the standard gives no access to its state
+  // but text, so its object representation is copied (memcpy of its words, bit-exact; the
+  // layout is this build's standard library's, as the block is this build's).
+  void Words(void* data, size_t bytes) {
+    for (size_t at = 0; at < bytes; at += sizeof(uint32_t)) {
+      uint32_t word;
+      std::memcpy(&word, static_cast<char*>(data) + at, sizeof(word));
+      Word(word);
+      if (in_) std::memcpy(static_cast<char*>(data) + at, &word, sizeof(word));
+    }
+  }
+
+  template <typename T>
+  static constexpr bool kIsEngine =
+      std::is_same_v<T, std::mt19937> || std::is_same_v<T, std::mt19937_64> ||
+      std::is_same_v<T, std::minstd_rand> || std::is_same_v<T, std::minstd_rand0>;
+  template <typename T>
+  struct IsSequence : std::false_type {};
+  template <typename T, typename A>
+  struct IsSequence<std::vector<T, A>> : std::true_type {};
+  template <typename T, typename A>
+  struct IsSequence<std::deque<T, A>> : std::true_type {};
+  template <typename T>
+  struct IsFixedArray : std::false_type {};
+  template <typename T, size_t N>
+  struct IsFixedArray<std::array<T, N>> : std::true_type {};
+  template <typename T>
+  struct IsPairLike : std::false_type {};
+  template <typename A, typename B>
+  struct IsPairLike<std::pair<A, B>> : std::true_type {};
+  template <typename... T>
+  struct IsPairLike<std::tuple<T...>> : std::true_type {};
+
+  template <typename T>
+  void Integer(T& value) {
+    if constexpr (sizeof(T) <= sizeof(uint32_t)) {
+      double v = static_cast<double>(value);
+      Slot(v);
+      if (in_) {
+        value = static_cast<T>(Whole(v, static_cast<double>(std::numeric_limits<T>::min()),
+                                     static_cast<double>(std::numeric_limits<T>::max())));
+      }
+    } else {
+      static_assert(sizeof(T) == sizeof(uint64_t), "integers of up to 64 bits");
+      uint64_t word = static_cast<uint64_t>(value);
+      Word64(word);
+      if (in_) value = static_cast<T>(word);
+    }
+  }
+
+  template <typename T>
+  void Visit(T& value) {
+    if constexpr (HasVisitState<T>::value) {
+      value.VisitState(*this);
+    } else if constexpr (std::is_floating_point_v<T>) {
+      double v = static_cast<double>(value);
+      Slot(v);
+      if (in_) value = static_cast<T>(v);
+    } else if constexpr (std::is_same_v<T, bool>) {
+      double v = value ? 1.0 : 0.0;
+      Slot(v);
+      if (in_) value = v != 0;
+    } else if constexpr (std::is_integral_v<T>) {
+      Integer(value);
+    } else if constexpr (std::is_enum_v<T>) {
+      auto underlying = static_cast<std::underlying_type_t<T>>(value);
+      Integer(underlying);
+      if (in_) value = static_cast<T>(underlying);
+    } else if constexpr (kIsEngine<T>) {
+      static_assert(std::is_trivially_copyable_v<T> && sizeof(T) % sizeof(uint32_t) == 0,
+                    "an engine stored as its words");
+      Words(&value, sizeof(T));
+    } else if constexpr (std::is_array_v<T> || IsFixedArray<T>::value || IsSequence<T>::value) {
+      for (auto& element : value) Visit(element);
+    } else if constexpr (IsPairLike<T>::value) {
+      std::apply([&](auto&... parts) { (Visit(parts), ...); }, value);
+    } else if constexpr (std::is_trivially_copyable_v<T> && sizeof(T) % sizeof(uint32_t) == 0) {
+      // The plugin ABI's plain structs (mjfVehicleState, mjfEstimate): doubles and 64-bit
+      // counters without padding, as their words.
+      Words(&value, sizeof(T));
+    } else {
+      static_assert(sizeof(T) == 0,
+                    "this member has no fixed size: give its type a VisitState member or visit "
+                    "its members one by one");
+    }
+  }
+
+  double* out_;
+  const double* in_;
+  size_t cursor_ = 0;
+};
+
+}  // namespace mjf::runner
+
+#endif  // MJFORMATION_CONFIG_FIXED_STATE_ARCHIVE_HPP_
