@@ -6,6 +6,7 @@ Usually started as `mjformation benchmark ...`, which passes its own path as --m
 puts analysis/ on PYTHONPATH (analysis/README.md).
   mjformation benchmark [--laws a,b] [--scenarios x,y] [--seeds N] [--out DIR]
   mjformation benchmark --law NAME [--plugin-path DIR]   # NAME's row beside the stored board
+  mjformation benchmark --law FILE.py:NAME               # a Python law's row (docs/PYTHON.md)
 """
 
 import argparse
@@ -40,14 +41,22 @@ def parse(argv):
     return p.parse_args(argv)
 
 
+def law_name(law: str) -> str:
+    """The row's name: a plugin's name, or NAME of a Python law FILE.py:NAME."""
+    return law.rpartition(":")[2] if b.python_law(law) else law
+
+
 def plan_of(args, baseline_meta) -> b.Plan:
     known = b.known_laws()
     if args.law:
-        laws = {args.law: known.get(args.law, f'{{plugin="{args.law}"}}')}
+        if b.python_law(args.law):
+            laws = {law_name(args.law): str(Path(args.law).resolve())}
+        else:
+            laws = {args.law: known.get(args.law, f'{{plugin="{args.law}"}}')}
         # The stored board's seeds and overrides, so that the new row is comparable.
         seeds = baseline_meta.get("seeds") or list(range(1, args.seeds + 1))
         sets = args.sets or baseline_meta.get("sets") or []
-        out = Path(args.out or f"runs/benchmark_{args.law}")
+        out = Path(args.out or f"runs/benchmark_{law_name(args.law)}")
     else:
         laws = {n: known[n] for n in b.pick(args.laws, known, "law")}
         seeds, sets, out = list(range(1, args.seeds + 1)), args.sets, Path(args.out or
@@ -67,7 +76,7 @@ def main(argv):
                          and a != args.mjformation])
     if args.law:
         info["baseline"] = stored_meta
-        records = [r for r in stored if r["law"] != args.law] + records
+        records = [r for r in stored if r["law"] != law_name(args.law)] + records
         if not stored:
             print(f"benchmark: no stored board ({args.baseline}): the row below stands alone",
                   file=sys.stderr)

@@ -31,6 +31,13 @@ BASELINE = SCENARIO_DIR / "leaderboard.json"
 # The runner's refusal of a law without a per-agent version in a per-agent scenario
 # (runner/control/src/control_wiring.cc, FindAgentPlugin): such a cell is "not applicable".
 NO_AGENT_VERSION = "has no per-agent version"
+PYTHON_LAW_RUNNER = REPO / "analysis" / "benchmark_python_law.py"
+
+
+def python_law(law: str) -> bool:
+    """A Python law, FILE.py:NAME (flown through mjformation.run), not a plugin's name."""
+    path, _, name = law.rpartition(":")
+    return path.endswith(".py") and name.isidentifier()
 
 
 @dataclass
@@ -83,7 +90,17 @@ def done_metrics(d: Path) -> dict | None:
 
 
 def command(plan: Plan, law: str, scenario: str, seed: int) -> list:
-    """The `mjformation run` command line of one cell and seed."""
+    """The `mjformation run` command line of one cell and seed (for a Python law, that of
+    benchmark_python_law.py, which flies it through mjformation.run)."""
+    if python_law(plan.laws[law]):
+        cmd = [sys.executable, str(PYTHON_LAW_RUNNER), plan.laws[law],
+               str(SCENARIO_DIR / f"{scenario}.toml"), str(run_dir(plan, law, scenario, seed)),
+               str(seed), "--mjformation", plan.mjformation]
+        for s in plan.sets:
+            cmd += ["--set", s]
+        for p in plan.plugin_path:
+            cmd += ["--plugin-path", p]
+        return cmd
     cmd = [plan.mjformation, "run", str(SCENARIO_DIR / f"{scenario}.toml"),
            "--out", str(run_dir(plan, law, scenario, seed)), "--overwrite", "--no-render", "-q",
            "--set", f"formation={plan.laws[law]}", "--set", f"run.seed={seed}"]

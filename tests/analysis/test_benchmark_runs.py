@@ -119,3 +119,17 @@ def test_cell_command_line(tmp_path):
     assert json.dumps(b.pick("b01_paper_circle", b.known_scenarios(), "scenario"))
     with pytest.raises(SystemExit, match="unknown law 'nope'"):
         b.pick("nope", b.known_laws(), "law")
+
+
+def test_python_law_cell_runs_through_mjformation_run():
+    assert b.python_law("/laws/mine.py:my_law") and b.python_law("mine.py:law2")
+    assert not b.python_law("smc_discrete") and not b.python_law("mine.py") \
+        and not b.python_law("mine.txt:law") and not b.python_law("mine.py:not-a-name")
+    plan = b.Plan(mjformation="build/runner/mjformation", laws={"my_law": "/laws/mine.py:my_law"},
+                  scenarios=["s"], seeds=[2], out=Path("o"), sets=["run.duration=2.0"],
+                  plugin_path=["p"])
+    cmd = b.command(plan, "my_law", "s", 2)
+    assert cmd[:6] == [sys.executable, str(b.PYTHON_LAW_RUNNER), "/laws/mine.py:my_law",
+                       str(b.SCENARIO_DIR / "s.toml"), "o/runs/my_law/s/seed2", "2"]
+    assert " ".join(cmd[6:]) == ("--mjformation build/runner/mjformation "
+                                 "--set run.duration=2.0 --plugin-path p")

@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
 # `mjformation benchmark` as a user runs it, in seconds: two laws x two scenarios x one seed on
 # 2 s flights; the same command again flies nothing (resumed); then `--law` places the C law of
-# examples/plugin on that board, with the board's seeds and overrides.
+# examples/plugin on that board, with the board's seeds and overrides, and so does the Python law
+# of examples/python.
 # Usage: benchmark_smoke.sh MJFORMATION PLUGIN_DIR WORK_DIR
 set -euo pipefail
 trap 'echo "benchmark_smoke.sh: failed at line $LINENO: $BASH_COMMAND" >&2' ERR
 bin=$1 plugins=$2 work=$3
+root=$(cd "$(dirname "$0")/../.." && pwd)
 rm -rf "$work" && mkdir -p "$work"
 board=(--laws consensus_linear,smc_discrete --scenarios b01_paper_circle,b03_random_accel
        --seeds 1 --set run.duration=2.0 --set 'run.metric_window=[1.0,2.0]' --out "$work/board")
@@ -28,4 +30,10 @@ grep -q "all 4 runs done before" "$work/again.err"
 grep -q "Stored board .*benchmark version 1" "$work/law.md"
 for law in consensus_linear smc_discrete example_consensus_c; do grep -q "^| \`$law\` |" "$work/law.md"; done
 grep -q "2/2 runs" "$work/law.err"
+# A Python law (examples/python/consensus_law.py, flown through mjformation.run) gets its row.
+"$bin" benchmark --law "$root/examples/python/consensus_law.py:consensus" \
+  --scenarios b01_paper_circle,b03_random_accel --baseline "$work/board/leaderboard.json" \
+  --out "$work/pylaw" > "$work/pylaw.md" 2> "$work/pylaw.err"
+grep -q "2/2 runs" "$work/pylaw.err"
+for law in consensus_linear smc_discrete consensus; do grep -q "^| \`$law\` |" "$work/pylaw.md"; done
 echo "benchmark_smoke.sh: ok"
