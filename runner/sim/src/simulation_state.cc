@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "mjformation/control/agent_channel.hpp"
 #include "mjformation/sim/simulation.hpp"
 
 namespace mjf::runner {
@@ -34,9 +35,10 @@ void FixedBlock(StateArchive& archive, const char* what, std::vector<double>* bl
 
 void Simulation::RequireSavable() const {
   if (partitions_) Unsavable("partitioned physics", "[run] threads > 1 (or --threads)");
-  if (config_.network.execution == Execution::kPerAgent) {
-    Unsavable("the communication channel", "[execution] mode = \"per_agent\" ([network])");
-  }
+  // The channel's state is in the control tick's block; what it cannot hold is named by key.
+  const std::string channel = NetworkStateRefusal(config_.network, config_.timestep, false);
+  if (!channel.empty())
+    throw ConfigError("checkpoints (--checkpoint-every, --resume, get_state): " + channel);
   if (!tick_->sensors().saves_state()) Unsavable("the sensor stage", "[sensors]");
   for (const auto& stage : force_stages_) {
     if (!stage->saves_state()) Unsavable("a force stage", "[wind]");

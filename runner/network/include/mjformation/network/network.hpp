@@ -12,10 +12,12 @@
 
 #include <array>
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "mjformation/network/link.hpp"
+#include "mjformation/network/message_state.hpp"
 #include "mjformation/network/round_courier.hpp"
 
 namespace mjf::network {
@@ -40,6 +42,10 @@ struct AgeStats {
   double max = 0.0;
   int64_t ticks = 0;
   double mean() const { return ticks > 0 ? sum / static_cast<double>(ticks) : 0.0; }
+  template <typename Archive>
+  void VisitState(Archive& archive) {
+    archive(sum, max, ticks);
+  }
 };
 
 class Network {
@@ -90,6 +96,32 @@ class Network {
   }
   const AgeStats& age(int follower_vehicle) const { return age_[follower_vehicle]; }
 
+  // Everything the network carries from step to step, of a length fixed by the links'
+  // parameters (a fixed-length archive, message_state.hpp): each link's stream and counts, its
+  // messages in flight (at most MaxInFlight), held and of this tick's round, the range
+  // topology and the ages. Not walked: the topology events and the rounds carried over the
+  // links, lists that grow with the run: a network that has any refuses to be saved.
+  template <typename Archive>
+  void VisitState(Archive& archive) {
+    if (!events_.empty() || !rounds_in_flight_.empty()) {
+      throw std::logic_error(
+          "network: range-limited links and rounds over the links are not in the fixed-length "
+          "state");
+    }
+    for (size_t l = 0; l < links_.size(); ++l) {
+      links_[l].VisitState(archive);
+      VisitBounded(archive, in_flight_[l], static_cast<size_t>(capacity_[l]),
+                   "a link's queue of messages in flight", [](Archive& a, InFlight& f) {
+                     a(f.arrival_step, f.send_step);
+                     VisitMessage(a, f.message);
+                   });
+    }
+    VisitMessages(archive, held_);
+    VisitMessages(archive, round_);
+    for (std::vector<bool>* flags : {&up_, &has_held_, &has_round_}) VisitFlags(archive, *flags);
+    archive(spanning_, topology_known_, steps_without_tree_, age_);
+  }
+
  private:
   struct InFlight {
     int64_t arrival_step;
@@ -106,6 +138,7 @@ class Network {
   std::vector<std::vector<int>> in_links_;   // [vehicle] links it receives on, spec order
   std::vector<bool> up_;
   std::vector<std::vector<InFlight>> in_flight_;  // [link]
+  std::vector<int64_t> capacity_;                 // [link] MaxInFlight of its parameters
   std::vector<mjfMessage> held_;                  // [link]
   std::vector<bool> has_held_;
   std::vector<mjfMessage> round_;  // [link] the last round message that got through
