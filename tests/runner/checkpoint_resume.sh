@@ -4,8 +4,8 @@
 # kills itself at that step, so the place is deterministic), with rows past the checkpoint left
 # in timeseries.csv, then resumed, ends with every file byte for byte as an uninterrupted
 # run's (summary.json apart from its timing); a resume with another configuration is refused
-# naming both hashes and changes nothing; a stage that cannot be saved (partitioned physics) is
-# refused at startup.
+# naming both hashes and changes nothing; a stage that cannot be saved (rounds over the links)
+# is refused at startup.
 # Usage: checkpoint_resume.sh MJFORMATION SOURCE_DIR WORK_DIR
 set -uo pipefail
 bin=$1 src=$2 work=$3
@@ -56,6 +56,11 @@ resumed_equals_uninterrupted "$src/experiments/benchmark/b13_lossy_network.toml"
   --set 'network={rate=100.0, latency=0.02, jitter=0.005, loss=0.05, loss_model="gilbert_elliott", burst_enter=0.1, burst_exit=0.5}'
 
 rm -rf full killed
+case="partitioned physics (two threads: each partition's MuJoCo state and motor lags)"
+resumed_equals_uninterrupted "$src/experiments/exp2.toml" --no-render --threads 2 \
+  --set 'vehicles.rotor_model="wrench"'
+
+rm -rf full killed
 case="sensors (noise, bias, latency, rate hold), the kf_ins estimator and wind saved"
 resumed_equals_uninterrupted "$src/experiments/exp2.toml" --no-render \
   --set 'sensors.preset="consumer_gnss"' --set 'estimator.plugin="kf_ins"' \
@@ -81,9 +86,10 @@ fi
 
 case="a stage that cannot be saved is refused before anything is written"
 message=$("$bin" run "$src/experiments/exp2.toml" "${short[@]}" --no-render \
-  --threads 2 --out agents --checkpoint-every 0.5 2>&1)
+  --set 'execution={mode="per_agent"}' --set 'network={latency=0.01, rounds="over_links"}' \
+  --out agents --checkpoint-every 0.5 2>&1)
 code=$?
-if [ $code != 1 ] || ! grep -q "partitioned physics does not save its state yet; \[run\] threads" \
+if [ $code != 1 ] || ! grep -q 'checkpoints (--checkpoint-every, --resume, get_state): \[network\] rounds = "over_links"' \
   <<<"$message"; then
   fail "exit $code: $message"
 elif [ -e agents ]; then

@@ -34,7 +34,6 @@ void FixedBlock(StateArchive& archive, const char* what, std::vector<double>* bl
 }  // namespace
 
 void Simulation::RequireSavable() const {
-  if (partitions_) Unsavable("partitioned physics", "[run] threads > 1 (or --threads)");
   // The channel's state is in the control tick's block; what it cannot hold is named by key.
   const std::string channel = NetworkStateRefusal(config_.network, config_.timestep, false);
   if (!channel.empty())
@@ -59,11 +58,20 @@ void Simulation::VisitState(StateArchive& archive) {
   FixedBlock(archive, "control tick", &tick);
   if (archive.loading()) tick_->SetState(tick.data());
   actuation_->VisitState(archive);
+  if (partitions_) {
+    // The partitions hold the swarm's physics; the whole-swarm data is brought up to date
+    // from them when next read.
+    partitions_->VisitState(archive);
+    if (archive.loading()) whole_data_stale_ = true;
+  }
   archive.Tag("realism");  // the sensor stage is in the control tick's block
   for (auto& stage : force_stages_) stage->VisitState(archive);
 }
 
 void Simulation::VisitStateAtTick(StateArchive& archive) {
+  // At a tick the partitions stand between their two phases, which mj_step1 of the whole
+  // model cannot restore.
+  if (partitions_) Unsavable("partitioned physics at a control tick", "[run] threads > 1");
   VisitState(archive);
   archive.Tag("tick outputs");
   std::vector<mjfVehicleState> measured = tick_->measured();
