@@ -34,6 +34,8 @@ CASES = {
     "exp2": ("experiments/exp2.toml", {}),
     "exp2_pointmass": ("experiments/exp2.toml",
                        {"vehicles.model": "pointmass", "attitude": {"plugin": "pointmass_direct"}}),
+    # Per-agent execution over a lossy network: the links' streams and queues in plugin_state.
+    "b13": ("experiments/benchmark/b13_lossy_network.toml", {}),
 }
 
 
