@@ -325,6 +325,15 @@ TEST(NativeExport, RefusesRoundsOverTheLinks) {
   EXPECT_NE(e.find("[network] rounds = \"over_links\""), std::string::npos) << e;
 }
 
+// A range-limited link records the topology's changes in a list that grows: refused by key.
+TEST(NativeExport, RefusesARangeLimitedLink) {
+  const std::string e = ExportRefusal(
+      "\n[execution]\nmode = \"per_agent\"\n[network]\nlatency = 0.01\n"
+      "[[network.link]]\nfrom = 1\nto = 2\nrange = 30.0\n");
+  EXPECT_NE(e.find("experiment.toml:"), std::string::npos) << e;
+  EXPECT_NE(e.find("[[network.link]] from = 1, to = 2: range = 30 m"), std::string::npos) << e;
+}
+
 // A link whose messages in flight pass what plugin_state holds: refused naming the keys and the
 // numbers (1 s of delay at a broadcast every step: 1001 messages).
 TEST(NativeExport, RefusesMessagesInFlightPastTheNativeBound) {
