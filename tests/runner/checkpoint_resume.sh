@@ -50,10 +50,10 @@ case="per-agent execution over a lossy network (b13: links' streams, messages in
 resumed_equals_uninterrupted "$src/experiments/benchmark/b13_lossy_network.toml" --no-render
 
 rm -rf full killed
-case="Jacobi rounds, prediction, clock offsets, jitter and bursts over the network"
+case="Jacobi rounds, prediction, clock offsets, jitter, bursts and a range limit (its events)"
 resumed_equals_uninterrupted "$src/experiments/benchmark/b13_lossy_network.toml" --no-render \
   --set 'execution={mode="per_agent", coupling="jacobi", jacobi_rounds=2, predict="input", clock_offset=0.004, clock_drift_ppm=50.0}' \
-  --set 'network={rate=100.0, latency=0.02, jitter=0.005, loss=0.05, loss_model="gilbert_elliott", burst_enter=0.1, burst_exit=0.5}'
+  --set 'network={rate=100.0, latency=0.02, jitter=0.005, loss=0.05, loss_model="gilbert_elliott", burst_enter=0.1, burst_exit=0.5, range=15.0}'
 
 rm -rf full killed
 case="partitioned physics (two threads: each partition's MuJoCo state and motor lags)"

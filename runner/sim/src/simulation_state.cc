@@ -57,6 +57,7 @@ void Simulation::VisitState(StateArchive& archive) {
   if (!archive.loading()) tick_->GetState(tick.data());
   FixedBlock(archive, "control tick", &tick);
   if (archive.loading()) tick_->SetState(tick.data());
+  tick_->VisitGrowingState(archive);
   actuation_->VisitState(archive);
   if (partitions_) {
     // The partitions hold the swarm's physics; the whole-swarm data is brought up to date

@@ -40,10 +40,11 @@ class RoundsOverLinks;
 // The most messages in flight on one link that the native MuJoCo plugin holds in plugin_state
 // (every step copies the whole state in and out, so the queue is bounded; b13's links hold 3).
 constexpr int64_t kNativeMessagesInFlight = 100;
-// Why the channel of `network` (per-agent execution) cannot be held in a fixed-length state,
-// naming the key and the numbers, or empty when it can: rounds over the links and range limits
-// keep lists that grow with the run; with `native`, also a link whose messages in flight
-// (MaxInFlight) pass kNativeMessagesInFlight.
+// Why the channel of `network` (per-agent execution) cannot be saved, naming the key and the
+// numbers, or empty when it can: rounds over the links keep lists that grow with the run; with
+// `native` (the fixed-length plugin_state, nothing beside it), also range limits (their
+// topology's events grow with the run) and a link whose messages in flight (MaxInFlight) pass
+// kNativeMessagesInFlight.
 std::string NetworkStateRefusal(const NetworkConfig& network, double timestep, bool native);
 
 class AgentChannel {
@@ -102,6 +103,8 @@ class AgentChannel {
   // clocks are drawn once from the seed (configuration, not state). Throws std::logic_error on
   // a channel NetworkStateRefusal refuses.
   void VisitState(FixedStateArchive& archive);
+  // What grows with the run beside that block: the range topology's events (checkpoints only).
+  void VisitEvents(StateArchive& archive) { routing_.network().VisitEvents(archive); }
 
  private:
   NetworkConfig config_;

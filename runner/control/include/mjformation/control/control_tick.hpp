@@ -94,6 +94,11 @@ class ControlTick {
   size_t StateSize() const;
   void GetState(double* out) const;
   void SetState(const double* in);
+  // Beside the fixed block, for checkpoints only: the channel's lists that grow with the run
+  // (AgentChannel::VisitEvents); nothing without a channel.
+  void VisitGrowingState(StateArchive& archive) {
+    if (channel_) channel_->VisitEvents(archive);
+  }
   // A tick restored between its two parts (the Python Simulation stands after a tick): what it
   // measured and the controls it computed, and the context the attitude stage runs in, as
   // RunSwarmStages of `step` left them, without running a plugin.

@@ -33,6 +33,10 @@ struct TopologyEvent {
   double time = 0.0;  // s, first step at which the new state holds
   int from = 0, to = 0;
   bool up = false;
+  template <typename Archive>
+  void VisitState(Archive& archive) {
+    archive(time, from, to, up);
+  }
 };
 
 // Per-follower age of information (s): at each tick, now minus the send time of the oldest
@@ -95,18 +99,23 @@ class Network {
     return static_cast<double>(steps_without_tree_) * timestep_;
   }
   const AgeStats& age(int follower_vehicle) const { return age_[follower_vehicle]; }
+  // The range topology's events, a list that grows with the run, walked by an archive that
+  // stores lengths (a checkpoint's StateArchive), never by the fixed-length one.
+  template <typename Archive>
+  void VisitEvents(Archive& archive) {
+    archive(events_);
+  }
 
   // Everything the network carries from step to step, of a length fixed by the links'
   // parameters (a fixed-length archive, message_state.hpp): each link's stream and counts, its
   // messages in flight (at most MaxInFlight), held and of this tick's round, the range
-  // topology and the ages. Not walked: the topology events and the rounds carried over the
-  // links, lists that grow with the run: a network that has any refuses to be saved.
+  // topology and the ages. Not walked: the topology events (VisitEvents) and the rounds carried
+  // over the links, lists that grow with the run: a network with rounds in flight refuses.
   template <typename Archive>
   void VisitState(Archive& archive) {
-    if (!events_.empty() || !rounds_in_flight_.empty()) {
+    if (!rounds_in_flight_.empty()) {
       throw std::logic_error(
-          "network: range-limited links and rounds over the links are not in the fixed-length "
-          "state");
+          "network: the rounds over the links are not in the fixed-length state");
     }
     for (size_t l = 0; l < links_.size(); ++l) {
       links_[l].VisitState(archive);
