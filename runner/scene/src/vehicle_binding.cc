@@ -5,67 +5,15 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <limits>
 #include <random>
 
 #include "mjformation/config/source_location.hpp"
 #include "mjformation/control/plugin_host.hpp"
 #include "mjformation/scene/scene.hpp"
+#include "mjformation/scene/vehicle_facts.hpp"
 
 namespace mjf::runner {
 namespace {
-
-// Actuator data of the vehicle model alone, in the order the attitude plugin names them.
-std::vector<mjfActuatorInfo> ActuatorInfo(const mjModel* m, const mjfPlugin& plugin,
-                                          const std::string& vehicle_path,
-                                          std::vector<std::string>* site_names,
-                                          std::vector<double>* gains) {
-  mjData* d = mj_makeData(m);
-  mj_forward(m, d);
-  const int body = mj_name2id(m, mjOBJ_BODY, "vehicle");
-  std::vector<mjfActuatorInfo> out;
-  for (int k = 0; k < plugin.n_actuators; ++k) {
-    const char* name = plugin.actuators[k];
-    const int a = mj_name2id(m, mjOBJ_ACTUATOR, name);
-    if (a < 0) {
-      mj_deleteData(d);
-      std::string have;
-      for (int j = 0; j < m->nu; ++j) {
-        have += (have.empty() ? "" : ", ") + std::string(mj_id2name(m, mjOBJ_ACTUATOR, j));
-      }
-      throw PluginError(
-          vehicle_path + ": attitude plugin '" + plugin.name + "' drives actuator '" + name +
-          "', which this vehicle model lacks (it has: " + (have.empty() ? "none" : have) + ")");
-    }
-    mjfActuatorInfo info{};
-    std::memcpy(info.gear, m->actuator_gear + 6 * a, sizeof(info.gear));
-    // Per control in MuJoCo 4 (an actuator may take several): the rotor's own control's row.
-    const int c = m->actuator_ctrladr[a];
-    if (m->actuator_ctrllimited[c]) {
-      info.ctrl_min = m->actuator_ctrlrange[2 * c];
-      info.ctrl_max = m->actuator_ctrlrange[2 * c + 1];
-    } else {
-      info.ctrl_min = -std::numeric_limits<double>::infinity();
-      info.ctrl_max = std::numeric_limits<double>::infinity();
-    }
-    info.time_constant =
-        m->actuator_dyntype[a] == mjDYN_FILTER ? m->actuator_dynprm[mjNDYN * a] : 0;
-    std::string site_name;
-    if (m->actuator_trntype[a] == mjTRN_SITE) {
-      const int site = m->actuator_trnid[2 * a];
-      site_name = mj_id2name(m, mjOBJ_SITE, site);
-      // Site relative to the centre of mass, in body axes: R^T (site - com).
-      double rel[3];
-      mju_sub3(rel, d->site_xpos + 3 * site, d->xipos + 3 * body);
-      mju_mulMatTVec(info.site_pos, d->xmat + 9 * body, rel, 3, 3);
-    }
-    site_names->push_back(site_name);
-    gains->push_back(m->actuator_gainprm[mjNGAIN * a]);
-    out.push_back(info);
-  }
-  mj_deleteData(d);
-  return out;
-}
 
 // The id of a vehicle's element in the composed scene. A scene edited by hand (an exported one
 // whose rotor was deleted) would otherwise give -1, and a control written at index -1 lands in
@@ -134,6 +82,30 @@ void RequireThrustAndMoments(const ExperimentConfig& config, const VehicleModelI
   }
 }
 
+// The reader's facts of the vehicle model alone, refusals prefixed with the vehicle file (and,
+// for an actuator, the attitude plugin that names it).
+VehicleModelInfo FactsOf(const mjModel* vehicle, const ExperimentConfig& config,
+                         const mjfPlugin& attitude) {
+  std::vector<std::string> names(attitude.actuators, attitude.actuators + attitude.n_actuators);
+  VehicleFacts facts;
+  try {
+    facts = ReadVehicleFacts(vehicle, "vehicle", names);
+  } catch (const VehicleFactError& e) {
+    if (e.key() == "body") throw SceneError(config.model_path + ": " + e.what());
+    throw PluginError(config.model_path + ": attitude plugin '" + attitude.name + "': " + e.what());
+  }
+  VehicleModelInfo info;
+  info.mass = facts.mass;
+  std::memcpy(info.inertia, facts.inertia, sizeof(info.inertia));
+  info.actuators = facts.info;
+  info.gains = facts.gains;
+  for (int site : facts.sites) {
+    const char* name = site < 0 ? nullptr : mj_id2name(vehicle, mjOBJ_SITE, site);
+    info.site_names.push_back(name ? name : "");
+  }
+  return info;
+}
+
 VehicleModelInfo ReadVehicleModel(const ExperimentConfig& config, const mjfPlugin& attitude,
                                   const std::string& vehicle_xml) {
   char error[1024] = {0};
@@ -143,19 +115,7 @@ VehicleModelInfo ReadVehicleModel(const ExperimentConfig& config, const mjfPlugi
   if (!vehicle) throw SceneError(config.model_path + ": MuJoCo cannot load it: " + error);
   VehicleModelInfo info;
   try {
-    const int body = mj_name2id(vehicle, mjOBJ_BODY, "vehicle");
-    if (body < 0) throw SceneError(config.model_path + ": no body named 'vehicle'");
-    // A body without a joint is welded to the world: the run would complete with the vehicle
-    // fixed in place (the foreign-vehicle adapter refuses the same model for its free joint).
-    if (vehicle->body_dofnum[body] == 0) {
-      throw SceneError(config.model_path +
-                       ": body 'vehicle' has no joint, so it is welded to the world: give it "
-                       "<freejoint/> (or the slide joints of mjcf/pointmass.xml)");
-    }
-    info.actuators =
-        ActuatorInfo(vehicle, attitude, config.model_path, &info.site_names, &info.gains);
-    info.mass = vehicle->body_subtreemass[body];
-    std::memcpy(info.inertia, vehicle->body_inertia + 3 * body, sizeof(info.inertia));
+    info = FactsOf(vehicle, config, attitude);
     if (config.rotor_model == RotorModel::kWrench) {
       RequireWrenchCompatible(vehicle, config, attitude, info);
     }
