@@ -77,8 +77,8 @@ runner::ExperimentConfig Sections(const VehicleHostConfig& c) {
 }  // namespace
 
 const std::vector<const char*>& VehicleAttributes() {
-  static const std::vector<const char*> kNames = {"attitude", "guidance", "body", "actuators",
-                                                  "plugin_path"};
+  static const std::vector<const char*> kNames = {"attitude",  "guidance",    "body",
+                                                  "actuators", "plugin_path", "actuation"};
   return kNames;
 }
 
@@ -96,6 +96,11 @@ VehicleHostConfig VehicleConfigFromModel(const mjModel* m, int instance, const c
   c.body = get("body");
   c.actuators = Words(get("actuators"));
   c.plugin_path = get("plugin_path");
+  c.actuation = get("actuation");
+  if (!c.actuation.empty() && c.actuation != "rotors" && c.actuation != "thrust_moments") {
+    throw std::runtime_error(c.where + ": <config key=\"actuation\">: \"" + c.actuation +
+                             "\" is neither \"rotors\" nor \"thrust_moments\"");
+  }
   if (c.attitude.empty()) {
     throw std::runtime_error(c.where +
                              ": <config key=\"attitude\">: missing: name the plugin, "
@@ -172,6 +177,17 @@ void VehicleHost::Build(const mjModel* m) {
   s.info.n_actuators = d.n_actuators;
   s.info.actuators = s.actuator_info.data();
   s.info.actuation = MJF_ACTUATION_ROTORS;
+  if (s.config.actuation == "thrust_moments") {
+    const int k = runner::MisfitThrustMomentRole(facts);
+    if (k >= 0) {
+      throw std::runtime_error(
+          where + ": <config key=\"actuators\">: actuator '" + s.config.actuators[k] +
+          "' is mapped as the " + runner::ThrustMomentRole(k) + " but its gear is \"" +
+          runner::GearText(facts.info[k].gear) + "\" (the role needs gear entry " +
+          std::to_string(runner::ThrustMomentGearEntry(k)) + " alone non-zero)");
+    }
+    s.info.actuation = MJF_ACTUATION_THRUST_MOMENTS;
+  }
   std::memcpy(s.initial_pos, m->body_pos + 3 * s.body, sizeof(s.initial_pos));
 
   mjfCreateContext ctx{};

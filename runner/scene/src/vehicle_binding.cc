@@ -54,32 +54,21 @@ void RequireWrenchCompatible(const mjModel* vehicle, const ExperimentConfig& con
   }
 }
 
-// [vehicles] thrust and moments: actuator 0 pushes along body z only, actuator 1 + i turns about
-// body axis i only (gear read from the model, either sign); anything else is refused naming the
-// key and the model's actuator, before the plugin sees it.
-void RequireThrustAndMoments(const ExperimentConfig& config, const VehicleModelInfo& info) {
-  const char* const kRole[] = {"thrust along body z", "moment about body x", "moment about body y",
-                               "moment about body z"};
-  for (int k = 0; k < 4 && k < static_cast<int>(info.actuators.size()); ++k) {
-    const double* g = info.actuators[k].gear;
-    const int axis = k == 0 ? 2 : 2 + k;  // the one gear entry the role may use
-    bool pure = g[axis] != 0;
-    for (int i = 0; i < 6; ++i) pure &= i == axis || g[i] == 0;
-    if (!pure) {
-      const bool thrust = k == 0;
-      const std::string where =
-          OriginLocation(config.source_path,
-                         thrust ? config.vehicle_rotors_origin : config.vehicle_moments_origin,
-                         SectionKey("vehicles", thrust ? "thrust" : "moments"))
-              .Prefix();
-      char gear[160];
-      std::snprintf(gear, sizeof(gear), "%g %g %g %g %g %g", g[0], g[1], g[2], g[3], g[4], g[5]);
-      throw SceneError(where + ": " + config.model_path + ": actuator '" +
-                       config.vehicle_rotors[k] + "' is mapped as the " + kRole[k] +
-                       " but its gear is \"" + gear + "\" (the role needs gear entry " +
-                       std::to_string(axis) + " alone non-zero)");
-    }
-  }
+// [vehicles] thrust and moments: a gear that does not fit its role (MisfitThrustMomentRole) is
+// refused naming the key and the model's actuator, before the plugin sees it.
+void RequireThrustAndMoments(const ExperimentConfig& config, const VehicleFacts& facts) {
+  const int k = MisfitThrustMomentRole(facts);
+  if (k < 0) return;
+  const bool thrust = k == 0;
+  const std::string where =
+      OriginLocation(config.source_path,
+                     thrust ? config.vehicle_rotors_origin : config.vehicle_moments_origin,
+                     SectionKey("vehicles", thrust ? "thrust" : "moments"))
+          .Prefix();
+  throw SceneError(where + ": " + config.model_path + ": actuator '" + config.vehicle_rotors[k] +
+                   "' is mapped as the " + ThrustMomentRole(k) + " but its gear is \"" +
+                   GearText(facts.info[k].gear) + "\" (the role needs gear entry " +
+                   std::to_string(ThrustMomentGearEntry(k)) + " alone non-zero)");
 }
 
 // The reader's facts of the vehicle model alone, refusals prefixed with the vehicle file (and,
@@ -118,9 +107,6 @@ VehicleModelInfo ReadVehicleModel(const ExperimentConfig& config, const mjfPlugi
     info = FactsOf(vehicle, config, attitude);
     if (config.rotor_model == RotorModel::kWrench) {
       RequireWrenchCompatible(vehicle, config, attitude, info);
-    }
-    if (config.vehicle_actuation == VehicleActuation::kThrustMoments) {
-      RequireThrustAndMoments(config, info);
     }
   } catch (...) {
     mj_deleteModel(vehicle);

@@ -1,6 +1,7 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 #include "mjformation/scene/vehicle_facts.hpp"
 
+#include <cstdio>
 #include <limits>
 #include <string>
 #include <vector>
@@ -190,6 +191,32 @@ VehicleFacts ReadVehicleFacts(const mjModel* m, const std::string& body_name,
   }
   facts.ignored = Ignored(m, facts);
   return facts;
+}
+
+int MisfitThrustMomentRole(const VehicleFacts& facts) {
+  for (int k = 0; k < 4 && k < static_cast<int>(facts.info.size()); ++k) {
+    const double* g = facts.info[k].gear;
+    const int axis = ThrustMomentGearEntry(k);
+    bool pure = g[axis] != 0;
+    for (int i = 0; i < 6; ++i) pure &= i == axis || g[i] == 0;
+    if (!pure) return k;
+  }
+  return -1;
+}
+
+const char* ThrustMomentRole(int k) {
+  static const char* const kRole[] = {"thrust along body z", "moment about body x",
+                                      "moment about body y", "moment about body z"};
+  return kRole[k];
+}
+
+int ThrustMomentGearEntry(int k) { return k == 0 ? 2 : 2 + k; }
+
+std::string GearText(const double gear[6]) {
+  char text[160];
+  std::snprintf(text, sizeof(text), "%g %g %g %g %g %g", gear[0], gear[1], gear[2], gear[3],
+                gear[4], gear[5]);
+  return text;
 }
 
 }  // namespace mjf::runner

@@ -53,6 +53,16 @@ struct VehicleFacts {
 VehicleFacts ReadVehicleFacts(const mjModel* m, const std::string& body_name,
                               const std::vector<std::string>& actuators);
 
+// A thrust-and-moments vehicle (MJF_ACTUATION_THRUST_MOMENTS): actuator 0 pushes along body z
+// only, actuator 1 + i turns about body axis i only (either sign). The first of the four whose
+// gear does not fit its role, or -1; then ThrustMomentRole(k) names the role and
+// ThrustMomentGearEntry(k) the one gear entry it may use.
+int MisfitThrustMomentRole(const VehicleFacts& facts);
+const char* ThrustMomentRole(int k);
+int ThrustMomentGearEntry(int k);
+// "g0 g1 g2 g3 g4 g5", for a refusal.
+std::string GearText(const double gear[6]);
+
 }  // namespace mjf::runner
 
 #endif  // MJFORMATION_SCENE_VEHICLE_FACTS_HPP_
