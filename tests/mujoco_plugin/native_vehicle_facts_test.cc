@@ -108,8 +108,9 @@ std::string NativeRefusal(const std::string& xml) {
     mj_deleteModel(m);
     return "";
   }
+  // The last line names the instance and its key, then the reason.
   std::string reason = error;
-  const size_t at = reason.find("\">: ");
+  const size_t at = reason.rfind("\">: ");
   return at == std::string::npos ? reason : reason.substr(at + 4);
 }
 

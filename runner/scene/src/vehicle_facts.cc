@@ -101,7 +101,8 @@ int RequireActuator(const mjModel* m, const std::string& name) {
   const int a = mj_name2id(m, mjOBJ_ACTUATOR, name.c_str());
   if (a < 0) {
     std::string have;
-    for (int j = 0; j < m->nu; ++j) have += (have.empty() ? "" : ", ") + Name(m, mjOBJ_ACTUATOR, j);
+    for (int j = 0; j < m->nactuator; ++j)
+      have += (have.empty() ? "" : ", ") + Name(m, mjOBJ_ACTUATOR, j);
     throw VehicleFactError("actuators", "no actuator named '" + name + "' in this model (it has: " +
                                             (have.empty() ? "none" : have) + ")");
   }
@@ -127,6 +128,8 @@ int ActedOnBody(const mjModel* m, int a) {
       return m->site_bodyid[id];
     case mjTRN_BODY:
       return id;
+    case mjTRN_SO3:  // an orientation servo: of a ball joint, or of a site against a refsite
+      return m->actuator_trnid[2 * a + 1] >= 0 ? m->site_bodyid[id] : m->jnt_bodyid[id];
     default:
       return -1;
   }
@@ -142,7 +145,7 @@ bool Inside(const mjModel* m, int b, int body) {
 // Every actuator on the vehicle's bodies that `facts` does not drive.
 std::vector<std::string> Ignored(const mjModel* m, const VehicleFacts& facts) {
   std::vector<std::string> out;
-  for (int a = 0; a < m->nu; ++a) {
+  for (int a = 0; a < m->nactuator; ++a) {
     bool driven = false;
     for (int d : facts.actuators) driven |= d == a;
     const int b = ActedOnBody(m, a);
