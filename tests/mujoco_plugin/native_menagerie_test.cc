@@ -11,11 +11,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sstream>
 #include <string>
 
+#include "mjformation/config/config.hpp"
+#include "mjformation/export/export.hpp"
+#include "mjformation/sim/simulation.hpp"
 #include "native_fixture.hpp"
 
 namespace mjf::native {
@@ -167,6 +172,116 @@ TEST(NativeMenagerie, Crazyflie2MomentsOutOfOrderAreRefused) {
   EXPECT_FALSE(f.flew);
   EXPECT_THAT(f.error, HasSubstr("actuator 'y_moment' is mapped as the moment about body x but "
                                  "its gear is \"0 0 0 0 -1 0\""));
+}
+
+// Exp 2 (`experiment`, a file of the source tree, cut to `seconds`) with Menagerie's `file`
+// (`assets` as in Published) mapped by `mapping` in place of its [vehicles] model lines, flown
+// by the runner's Simulation and, when export carries it, by the exported scene under plain
+// mj_step, side by side.
+struct BothFaces {
+  bool bitwise = true;         // every qpos, qvel and act the same at every step
+  double max_diff = 0;         // m
+  double lowest = 1e9;         // m, the lowest vehicle at the end
+  double moved = 0;            // m, the largest change of a qpos entry (it did fly)
+  std::string export_refusal;  // export's message when it cannot carry the experiment
+};
+
+BothFaces FlyBothFaces(const std::string& experiment, const std::string& file,
+                       const std::string& assets, const std::string& mapping, double seconds) {
+  mjf::testing::Scratch dir("menagerie_exp2");
+  std::ofstream(dir / "drone.xml") << Published(file, assets);
+  std::string text = mjf::testing::ReadFile(std::string(MJF_SOURCE_DIR) + "/" + experiment);
+  // The model lines (a file and its mapping, or the stock quadrotor) become `mapping`.
+  text = std::regex_replace(text, std::regex("\nmodel = [^\n]*(\n(body|thrust|moments) = [^\n]*)*"),
+                            "\nmodel = \"drone.xml\"\n" + mapping);
+  text = std::regex_replace(text, std::regex("\nduration = [^\n]*"),
+                            "\nduration = " + std::to_string(seconds));
+  text = std::regex_replace(text, std::regex("\nmetric_window = [^\n]*"),
+                            "\nmetric_window = [0.0, " + std::to_string(seconds) + "]");
+  // [render] and [safety] watch the flight without touching it; the native face carries neither.
+  for (const char* section : {"\n[render]", "\n[safety]"}) {
+    const size_t at = text.find(section);
+    if (at != std::string::npos) text.erase(at, text.find("\n[", at + 1) - at);
+  }
+  std::ofstream(dir / "exp2.toml") << text;
+
+  using runner::ExperimentChecks;
+  const runner::ExperimentConfig config =
+      runner::LoadExperiment(dir / "exp2.toml", {}, ExperimentChecks::Rendering(false));
+  runner::Simulation sim(config);
+  BothFaces c;
+  try {
+    runner::ExportExperiment(dir / "exp2.toml", dir / "export");
+  } catch (const std::exception& e) {
+    c.export_refusal = e.what();
+  }
+  mjModel* m = nullptr;
+  if (c.export_refusal.empty()) {
+    mjf::testing::LoadNativePluginsOnce();
+    char error[2048] = {0};
+    m = mj_loadXML((dir / "export/scene.xml").c_str(), nullptr, error, sizeof(error));
+    EXPECT_NE(m, nullptr) << error;
+  }
+  mjData* d = m ? mj_makeData(m) : nullptr;
+  const mjModel* rm = sim.model();
+  const mjData* r = sim.data();
+  const std::vector<mjtNum> start(r->qpos, r->qpos + rm->nq);
+  const int64_t steps = std::llround(seconds / config.timestep);
+  for (int64_t k = 0; k < steps; ++k) {
+    sim.ComputeControls();
+    sim.Integrate();
+    if (!d) continue;
+    mj_step(m, d);
+    for (int i = 0; i < m->nq; ++i) {
+      c.max_diff = std::max(c.max_diff, std::fabs(d->qpos[i] - r->qpos[i]));
+    }
+    c.bitwise = c.bitwise && !std::memcmp(d->qpos, r->qpos, sizeof(mjtNum) * m->nq) &&
+                !std::memcmp(d->qvel, r->qvel, sizeof(mjtNum) * m->nv) &&
+                !std::memcmp(d->act, r->act, sizeof(mjtNum) * m->na);
+  }
+  for (int i = 0; i < rm->nq; ++i) c.moved = std::max(c.moved, std::fabs(r->qpos[i] - start[i]));
+  for (int j = 0; j < rm->njnt; ++j) {
+    if (rm->jnt_type[j] == mjJNT_FREE) {
+      c.lowest = std::min(c.lowest, r->qpos[rm->jnt_qposadr[j] + 2]);
+    }
+  }
+  if (d) mj_deleteData(d);
+  if (m) mj_deleteModel(m);
+  return c;
+}
+
+// The exported face, once `mjformation export` carries a mapped vehicle ([vehicles] body,
+// rotors, thrust, moments): until then export refuses it, and the runner's face alone is checked.
+void ExpectTheExportedFaceAlike(const BothFaces& c) {
+  if (c.export_refusal.find("not carried by the native MuJoCo plugins") != std::string::npos) {
+    GTEST_SKIP() << "the runner flew; export refuses the mapped vehicle: " << c.export_refusal;
+  }
+  EXPECT_EQ(c.export_refusal, "");
+  EXPECT_TRUE(c.bitwise) << "largest qpos difference " << c.max_diff << " m";
+}
+
+// The X2 flies the first 4 s of the full-size Exp 2 (its 0.5 m span does not fit the scaled
+// one's 0.15 m start ring) with pd_cascade, the runner and the exported scene alike.
+TEST(NativeMenagerie, SkydioX2FliesExp2ThroughBothFaces) {
+  const BothFaces c = FlyBothFaces(
+      "experiments/exp2.toml", "skydio_x2/x2.xml", "assets",
+      "body = \"x2\"\nrotors = [\"thrust1\", \"thrust2\", \"thrust3\", \"thrust4\"]", 4.0);
+  EXPECT_GT(c.lowest, 4.5);  // every vehicle near the 5 m altitude
+  EXPECT_GT(c.moved, 1.0);
+  ExpectTheExportedFaceAlike(c);
+}
+
+// The cf2 flies the first 4 s of the scaled Exp 2 for little torque authority
+// (examples/vehicles/midge/exp2_low_authority.toml, mapped as its header says).
+TEST(NativeMenagerie, Crazyflie2FliesTheScaledExp2ThroughBothFaces) {
+  const BothFaces c = FlyBothFaces("examples/vehicles/midge/exp2_low_authority.toml",
+                                   "bitcraze_crazyflie_2/cf2.xml", "cf2",
+                                   "body = \"cf2\"\nthrust = \"body_thrust\"\n"
+                                   "moments = [\"x_moment\", \"y_moment\", \"z_moment\"]",
+                                   4.0);
+  EXPECT_GT(c.lowest, 0.4);  // every vehicle near the 0.5 m altitude
+  EXPECT_GT(c.moved, 0.1);
+  ExpectTheExportedFaceAlike(c);
 }
 
 }  // namespace
