@@ -83,6 +83,9 @@ VehicleModelInfo FactsOf(const mjModel* vehicle, const ExperimentConfig& config,
     if (e.key() == "body") throw SceneError(config.model_path + ": " + e.what());
     throw PluginError(config.model_path + ": attitude plugin '" + attitude.name + "': " + e.what());
   }
+  if (config.vehicle_actuation == VehicleActuation::kThrustMoments) {
+    RequireThrustAndMoments(config, facts);
+  }
   VehicleModelInfo info;
   info.mass = facts.mass;
   std::memcpy(info.inertia, facts.inertia, sizeof(info.inertia));
