@@ -74,6 +74,34 @@ runner::ExperimentConfig Sections(const VehicleHostConfig& c) {
   return ConfigFromPairs(pairs, c.where);
 }
 
+// The vehicle's facts through the one reader (vehicle_facts.hpp), each refusal named by the
+// <config> key it is about; with actuation = "thrust_moments", each gear must fit its role.
+runner::VehicleFacts ReadFacts(const mjModel* m, const VehicleHostConfig& c, const mjfPlugin& d) {
+  const std::string& where = c.where;
+  if (static_cast<int>(c.actuators.size()) != d.n_actuators) {
+    std::string names;
+    for (int k = 0; k < d.n_actuators; ++k) names += (k ? ", " : "") + std::string(d.actuators[k]);
+    throw std::runtime_error(where + ": <config key=\"actuators\">: attitude plugin '" + d.name +
+                             "' drives " + std::to_string(d.n_actuators) + " actuators (" + names +
+                             "); name this model's, in that order");
+  }
+  runner::VehicleFacts facts;
+  try {
+    facts = runner::ReadVehicleFacts(m, c.body, c.actuators);
+  } catch (const runner::VehicleFactError& e) {
+    throw std::runtime_error(where + ": <config key=\"" + e.key() + "\">: " + e.what());
+  }
+  const int k = c.actuation == "thrust_moments" ? runner::MisfitThrustMomentRole(facts) : -1;
+  if (k >= 0) {
+    throw std::runtime_error(where + ": <config key=\"actuators\">: actuator '" + c.actuators[k] +
+                             "' is mapped as the " + runner::ThrustMomentRole(k) +
+                             " but its gear is \"" + runner::GearText(facts.info[k].gear) +
+                             "\" (the role needs gear entry " +
+                             std::to_string(runner::ThrustMomentGearEntry(k)) + " alone non-zero)");
+  }
+  return facts;
+}
+
 }  // namespace
 
 const std::vector<const char*>& VehicleAttributes() {
@@ -155,19 +183,7 @@ void VehicleHost::Build(const mjModel* m) {
       runner::FindPlugin(*s.registry, s.sections, s.sections.leader, {MJF_KIND_GUIDANCE},
                          "this key needs a guidance plugin");
   const mjfPlugin& d = *attitude.descriptor;
-  if (static_cast<int>(s.config.actuators.size()) != d.n_actuators) {
-    std::string names;
-    for (int k = 0; k < d.n_actuators; ++k) names += (k ? ", " : "") + std::string(d.actuators[k]);
-    throw std::runtime_error(where + ": <config key=\"actuators\">: attitude plugin '" + d.name +
-                             "' drives " + std::to_string(d.n_actuators) + " actuators (" + names +
-                             "); name this model's, in that order");
-  }
-  runner::VehicleFacts facts;
-  try {
-    facts = runner::ReadVehicleFacts(m, s.config.body, s.config.actuators);
-  } catch (const runner::VehicleFactError& e) {
-    throw std::runtime_error(where + ": <config key=\"" + e.key() + "\">: " + e.what());
-  }
+  const runner::VehicleFacts facts = ReadFacts(m, s.config, d);
   s.body = facts.body;
   s.actuators = facts.actuators;
   s.actuator_info = facts.info;
@@ -176,18 +192,8 @@ void VehicleHost::Build(const mjModel* m) {
   s.info.gravity = std::sqrt(mju_dot3(m->opt.gravity, m->opt.gravity));
   s.info.n_actuators = d.n_actuators;
   s.info.actuators = s.actuator_info.data();
-  s.info.actuation = MJF_ACTUATION_ROTORS;
-  if (s.config.actuation == "thrust_moments") {
-    const int k = runner::MisfitThrustMomentRole(facts);
-    if (k >= 0) {
-      throw std::runtime_error(
-          where + ": <config key=\"actuators\">: actuator '" + s.config.actuators[k] +
-          "' is mapped as the " + runner::ThrustMomentRole(k) + " but its gear is \"" +
-          runner::GearText(facts.info[k].gear) + "\" (the role needs gear entry " +
-          std::to_string(runner::ThrustMomentGearEntry(k)) + " alone non-zero)");
-    }
-    s.info.actuation = MJF_ACTUATION_THRUST_MOMENTS;
-  }
+  s.info.actuation =
+      s.config.actuation == "thrust_moments" ? MJF_ACTUATION_THRUST_MOMENTS : MJF_ACTUATION_ROTORS;
   std::memcpy(s.initial_pos, m->body_pos + 3 * s.body, sizeof(s.initial_pos));
 
   mjfCreateContext ctx{};
