@@ -15,6 +15,7 @@
 #include "mjformation/config/paths.hpp"
 #include "mjformation/control/control_wiring.hpp"
 #include "mjformation/control/plugin_host.hpp"
+#include "mjformation/scene/vehicle_facts.hpp"
 #include "scene_files.hpp"
 #include "swarm_host.hpp"
 
@@ -73,94 +74,39 @@ runner::ExperimentConfig Sections(const VehicleHostConfig& c) {
   return ConfigFromPairs(pairs, c.where);
 }
 
-// Actuator `a`'s facts: MuJoCo 4 keeps per-actuator arrays by actuator id, gear by the
-// actuator's first force output (actuator_outadr) and ctrlrange by its first control
-// (actuator_ctrladr); a rotor has one of each.
-mjfActuatorInfo ActuatorInfo(const mjModel* m, int a) {
-  mjfActuatorInfo info{};
-  const int out = m->actuator_outadr[a], ctrl = m->actuator_ctrladr[a];
-  std::memcpy(info.gear, m->actuator_gear + 6 * out, sizeof(info.gear));
-  info.ctrl_min = m->actuator_ctrllimited[ctrl] ? m->actuator_ctrlrange[2 * ctrl]
-                                                : -std::numeric_limits<double>::infinity();
-  info.ctrl_max = m->actuator_ctrllimited[ctrl] ? m->actuator_ctrlrange[2 * ctrl + 1]
-                                                : std::numeric_limits<double>::infinity();
-  info.time_constant = m->actuator_dyntype[a] == mjDYN_FILTER ? m->actuator_dynprm[mjNDYN * a] : 0;
-  return info;
-}
-
-// Rotor site `site` relative to the centre of mass of `body`, in body axes. site_pos is in the
-// frame of the site's own body; a site on a body inside the vehicle is carried out through each
-// fixed frame on the way (p <- body_pos + R(body_quat) p). A body on the way that a joint moves
-// gives no fixed arm, and is refused; so is a site outside the vehicle.
-void RotorArm(const mjModel* m, const std::string& where, int body, int site, double out[3]) {
-  const char* site_name = mj_id2name(m, mjOBJ_SITE, site);
-  const std::string named = "site '" + std::string(site_name ? site_name : "") + "'";
-  mjtNum p[3];
-  mju_copy3(p, m->site_pos + 3 * site);
-  for (int b = m->site_bodyid[site]; b != body; b = m->body_parentid[b]) {
-    const char* b_name = mj_id2name(m, mjOBJ_BODY, b);
-    if (b == 0) {
-      throw std::runtime_error(where + ": <config key=\"actuators\">: a rotor acts on " + named +
-                               ", which is not on the vehicle's body or a body inside it");
-    }
-    if (m->body_jntnum[b] > 0) {
-      throw std::runtime_error(where + ": <config key=\"actuators\">: a rotor acts on " + named +
-                               " of body '" + (b_name ? b_name : "") +
-                               "', which a joint moves: a rotor's arm must be fixed to the body");
-    }
-    mjtNum turned[3];
-    mju_rotVecQuat(turned, p, m->body_quat + 4 * b);
-    mju_add3(p, turned, m->body_pos + 3 * b);
+// The vehicle's facts through the one reader (vehicle_facts.hpp), each refusal named by the
+// <config> key it is about; with actuation = "thrust_moments", each gear must fit its role.
+runner::VehicleFacts ReadFacts(const mjModel* m, const VehicleHostConfig& c, const mjfPlugin& d) {
+  const std::string& where = c.where;
+  if (static_cast<int>(c.actuators.size()) != d.n_actuators) {
+    std::string names;
+    for (int k = 0; k < d.n_actuators; ++k) names += (k ? ", " : "") + std::string(d.actuators[k]);
+    throw std::runtime_error(where + ": <config key=\"actuators\">: attitude plugin '" + d.name +
+                             "' drives " + std::to_string(d.n_actuators) + " actuators (" + names +
+                             "); name this model's, in that order");
   }
-  mju_sub3(out, p, m->body_ipos + 3 * body);
-}
-
-// What the runner's vehicle binding reads of each driven actuator (gear, control range, motor
-// lag, site relative to the centre of mass in body axes), from the compiled model.
-void ReadActuators(const mjModel* m, const std::string& where, int body,
-                   const std::vector<std::string>& names, std::vector<int>* ids,
-                   std::vector<mjfActuatorInfo>* infos) {
-  for (const std::string& name : names) {
-    const int a = mj_name2id(m, mjOBJ_ACTUATOR, name.c_str());
-    if (a < 0) {
-      throw std::runtime_error(where + ": <config key=\"actuators\">: no actuator named '" + name +
-                               "' in this model");
-    }
-    if (m->actuator_ctrlnum[a] != 1 || m->actuator_outnum[a] != 1) {
-      throw std::runtime_error(where + ": <config key=\"actuators\">: actuator '" + name +
-                               "' takes " + std::to_string(m->actuator_ctrlnum[a]) +
-                               " controls and has " + std::to_string(m->actuator_outnum[a]) +
-                               " force outputs; a rotor has one of each: name the rotors");
-    }
-    ids->push_back(a);
-    mjfActuatorInfo info = ActuatorInfo(m, a);
-    if (m->actuator_trntype[a] == mjTRN_SITE) {
-      RotorArm(m, where, body, m->actuator_trnid[2 * a], info.site_pos);
-    }
-    infos->push_back(info);
+  runner::VehicleFacts facts;
+  try {
+    facts = runner::ReadVehicleFacts(m, c.body, c.actuators);
+  } catch (const runner::VehicleFactError& e) {
+    throw std::runtime_error(where + ": <config key=\"" + e.key() + "\">: " + e.what());
   }
-}
-
-// The diagonal of the body-frame inertia tensor J_body = R(iquat) diag(body_inertia) R(iquat)^T:
-// MuJoCo gives the principal moments in the principal-axis frame (body_iquat), our controllers
-// work in body axes (state.gyro, actuator sites), and the plugin ABI carries three moments, so
-// the products of inertia of a body whose principal axes are not its own are dropped.
-void BodyAxisInertia(const mjModel* m, int body, double out[3]) {
-  mjtNum r[9];
-  mju_quat2Mat(r, m->body_iquat + 4 * body);
-  const mjtNum* principal = m->body_inertia + 3 * body;
-  for (int i = 0; i < 3; ++i) {
-    // J_ii = sum_k R_ik^2 I_k
-    out[i] = 0;
-    for (int k = 0; k < 3; ++k) out[i] += r[3 * i + k] * r[3 * i + k] * principal[k];
+  const int k = c.actuation == "thrust_moments" ? runner::MisfitThrustMomentRole(facts) : -1;
+  if (k >= 0) {
+    throw std::runtime_error(where + ": <config key=\"actuators\">: actuator '" + c.actuators[k] +
+                             "' is mapped as the " + runner::ThrustMomentRole(k) +
+                             " but its gear is \"" + runner::GearText(facts.info[k].gear) +
+                             "\" (the role needs gear entry " +
+                             std::to_string(runner::ThrustMomentGearEntry(k)) + " alone non-zero)");
   }
+  return facts;
 }
 
 }  // namespace
 
 const std::vector<const char*>& VehicleAttributes() {
-  static const std::vector<const char*> kNames = {"attitude", "guidance", "body", "actuators",
-                                                  "plugin_path"};
+  static const std::vector<const char*> kNames = {"attitude",  "guidance",    "body",
+                                                  "actuators", "plugin_path", "actuation"};
   return kNames;
 }
 
@@ -178,6 +124,11 @@ VehicleHostConfig VehicleConfigFromModel(const mjModel* m, int instance, const c
   c.body = get("body");
   c.actuators = Words(get("actuators"));
   c.plugin_path = get("plugin_path");
+  c.actuation = get("actuation");
+  if (!c.actuation.empty() && c.actuation != "rotors" && c.actuation != "thrust_moments") {
+    throw std::runtime_error(c.where + ": <config key=\"actuation\">: \"" + c.actuation +
+                             "\" is neither \"rotors\" nor \"thrust_moments\"");
+  }
   if (c.attitude.empty()) {
     throw std::runtime_error(c.where +
                              ": <config key=\"attitude\">: missing: name the plugin, "
@@ -231,26 +182,18 @@ void VehicleHost::Build(const mjModel* m) {
   const runner::LoadedPlugin& guidance =
       runner::FindPlugin(*s.registry, s.sections, s.sections.leader, {MJF_KIND_GUIDANCE},
                          "this key needs a guidance plugin");
-  s.body = mj_name2id(m, mjOBJ_BODY, s.config.body.c_str());
-  if (s.body <= 0) {
-    throw std::runtime_error(where + ": <config key=\"body\">: no body named '" + s.config.body +
-                             "' in this model");
-  }
   const mjfPlugin& d = *attitude.descriptor;
-  if (static_cast<int>(s.config.actuators.size()) != d.n_actuators) {
-    std::string names;
-    for (int k = 0; k < d.n_actuators; ++k) names += (k ? ", " : "") + std::string(d.actuators[k]);
-    throw std::runtime_error(where + ": <config key=\"actuators\">: attitude plugin '" + d.name +
-                             "' drives " + std::to_string(d.n_actuators) + " actuators (" + names +
-                             "); name this model's, in that order");
-  }
-  ReadActuators(m, where, s.body, s.config.actuators, &s.actuators, &s.actuator_info);
-  s.info.mass = m->body_subtreemass[s.body];
-  BodyAxisInertia(m, s.body, s.info.inertia);
+  const runner::VehicleFacts facts = ReadFacts(m, s.config, d);
+  s.body = facts.body;
+  s.actuators = facts.actuators;
+  s.actuator_info = facts.info;
+  s.info.mass = facts.mass;
+  std::memcpy(s.info.inertia, facts.inertia, sizeof(s.info.inertia));
   s.info.gravity = std::sqrt(mju_dot3(m->opt.gravity, m->opt.gravity));
   s.info.n_actuators = d.n_actuators;
   s.info.actuators = s.actuator_info.data();
-  s.info.actuation = MJF_ACTUATION_ROTORS;
+  s.info.actuation =
+      s.config.actuation == "thrust_moments" ? MJF_ACTUATION_THRUST_MOMENTS : MJF_ACTUATION_ROTORS;
   std::memcpy(s.initial_pos, m->body_pos + 3 * s.body, sizeof(s.initial_pos));
 
   mjfCreateContext ctx{};

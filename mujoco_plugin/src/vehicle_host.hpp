@@ -21,6 +21,9 @@ struct VehicleHostConfig {
   std::string body;                    // the vehicle's root body
   std::vector<std::string> actuators;  // in the attitude plugin's actuator order
   std::string plugin_path;             // extra folder searched for our plugins ("" = default path)
+  // "rotors" (default: the actuators are rotors at their sites) or "thrust_moments" (a
+  // collective thrust along body z, then moments about body x, y, z: Menagerie's Crazyflie 2).
+  std::string actuation;
 };
 
 // The attribute names of mjformation.attitude, in declaration order.

@@ -1,6 +1,6 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
-// An exported scene (`mjformation export`, mujoco_plugin/export) after a user edited it by hand:
+// An exported scene (`mjformation export`, runner/export) after a user edited it by hand:
 // the scene is compiled by MuJoCo with the native plugins (libmjformation_mujoco.so, loaded
 // once with mj_loadPluginLibrary as a user's program does), which read their <config> while the
 // model compiles, build their hosts in mj_makeData and fly a few steps. The input is the scene's

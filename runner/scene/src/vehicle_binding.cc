@@ -5,67 +5,15 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <limits>
 #include <random>
 
 #include "mjformation/config/source_location.hpp"
 #include "mjformation/control/plugin_host.hpp"
 #include "mjformation/scene/scene.hpp"
+#include "mjformation/scene/vehicle_facts.hpp"
 
 namespace mjf::runner {
 namespace {
-
-// Actuator data of the vehicle model alone, in the order the attitude plugin names them.
-std::vector<mjfActuatorInfo> ActuatorInfo(const mjModel* m, const mjfPlugin& plugin,
-                                          const std::string& vehicle_path,
-                                          std::vector<std::string>* site_names,
-                                          std::vector<double>* gains) {
-  mjData* d = mj_makeData(m);
-  mj_forward(m, d);
-  const int body = mj_name2id(m, mjOBJ_BODY, "vehicle");
-  std::vector<mjfActuatorInfo> out;
-  for (int k = 0; k < plugin.n_actuators; ++k) {
-    const char* name = plugin.actuators[k];
-    const int a = mj_name2id(m, mjOBJ_ACTUATOR, name);
-    if (a < 0) {
-      mj_deleteData(d);
-      std::string have;
-      for (int j = 0; j < m->nu; ++j) {
-        have += (have.empty() ? "" : ", ") + std::string(mj_id2name(m, mjOBJ_ACTUATOR, j));
-      }
-      throw PluginError(
-          vehicle_path + ": attitude plugin '" + plugin.name + "' drives actuator '" + name +
-          "', which this vehicle model lacks (it has: " + (have.empty() ? "none" : have) + ")");
-    }
-    mjfActuatorInfo info{};
-    std::memcpy(info.gear, m->actuator_gear + 6 * a, sizeof(info.gear));
-    // Per control in MuJoCo 4 (an actuator may take several): the rotor's own control's row.
-    const int c = m->actuator_ctrladr[a];
-    if (m->actuator_ctrllimited[c]) {
-      info.ctrl_min = m->actuator_ctrlrange[2 * c];
-      info.ctrl_max = m->actuator_ctrlrange[2 * c + 1];
-    } else {
-      info.ctrl_min = -std::numeric_limits<double>::infinity();
-      info.ctrl_max = std::numeric_limits<double>::infinity();
-    }
-    info.time_constant =
-        m->actuator_dyntype[a] == mjDYN_FILTER ? m->actuator_dynprm[mjNDYN * a] : 0;
-    std::string site_name;
-    if (m->actuator_trntype[a] == mjTRN_SITE) {
-      const int site = m->actuator_trnid[2 * a];
-      site_name = mj_id2name(m, mjOBJ_SITE, site);
-      // Site relative to the centre of mass, in body axes: R^T (site - com).
-      double rel[3];
-      mju_sub3(rel, d->site_xpos + 3 * site, d->xipos + 3 * body);
-      mju_mulMatTVec(info.site_pos, d->xmat + 9 * body, rel, 3, 3);
-    }
-    site_names->push_back(site_name);
-    gains->push_back(m->actuator_gainprm[mjNGAIN * a]);
-    out.push_back(info);
-  }
-  mj_deleteData(d);
-  return out;
-}
 
 // The id of a vehicle's element in the composed scene. A scene edited by hand (an exported one
 // whose rotor was deleted) would otherwise give -1, and a control written at index -1 lands in
@@ -106,32 +54,48 @@ void RequireWrenchCompatible(const mjModel* vehicle, const ExperimentConfig& con
   }
 }
 
-// [vehicles] thrust and moments: actuator 0 pushes along body z only, actuator 1 + i turns about
-// body axis i only (gear read from the model, either sign); anything else is refused naming the
-// key and the model's actuator, before the plugin sees it.
-void RequireThrustAndMoments(const ExperimentConfig& config, const VehicleModelInfo& info) {
-  const char* const kRole[] = {"thrust along body z", "moment about body x", "moment about body y",
-                               "moment about body z"};
-  for (int k = 0; k < 4 && k < static_cast<int>(info.actuators.size()); ++k) {
-    const double* g = info.actuators[k].gear;
-    const int axis = k == 0 ? 2 : 2 + k;  // the one gear entry the role may use
-    bool pure = g[axis] != 0;
-    for (int i = 0; i < 6; ++i) pure &= i == axis || g[i] == 0;
-    if (!pure) {
-      const bool thrust = k == 0;
-      const std::string where =
-          OriginLocation(config.source_path,
-                         thrust ? config.vehicle_rotors_origin : config.vehicle_moments_origin,
-                         SectionKey("vehicles", thrust ? "thrust" : "moments"))
-              .Prefix();
-      char gear[160];
-      std::snprintf(gear, sizeof(gear), "%g %g %g %g %g %g", g[0], g[1], g[2], g[3], g[4], g[5]);
-      throw SceneError(where + ": " + config.model_path + ": actuator '" +
-                       config.vehicle_rotors[k] + "' is mapped as the " + kRole[k] +
-                       " but its gear is \"" + gear + "\" (the role needs gear entry " +
-                       std::to_string(axis) + " alone non-zero)");
-    }
+// [vehicles] thrust and moments: a gear that does not fit its role (MisfitThrustMomentRole) is
+// refused naming the key and the model's actuator, before the plugin sees it.
+void RequireThrustAndMoments(const ExperimentConfig& config, const VehicleFacts& facts) {
+  const int k = MisfitThrustMomentRole(facts);
+  if (k < 0) return;
+  const bool thrust = k == 0;
+  const std::string where =
+      OriginLocation(config.source_path,
+                     thrust ? config.vehicle_rotors_origin : config.vehicle_moments_origin,
+                     SectionKey("vehicles", thrust ? "thrust" : "moments"))
+          .Prefix();
+  throw SceneError(where + ": " + config.model_path + ": actuator '" + config.vehicle_rotors[k] +
+                   "' is mapped as the " + ThrustMomentRole(k) + " but its gear is \"" +
+                   GearText(facts.info[k].gear) + "\" (the role needs gear entry " +
+                   std::to_string(ThrustMomentGearEntry(k)) + " alone non-zero)");
+}
+
+// The reader's facts of the vehicle model alone, refusals prefixed with the vehicle file (and,
+// for an actuator, the attitude plugin that names it).
+VehicleModelInfo FactsOf(const mjModel* vehicle, const ExperimentConfig& config,
+                         const mjfPlugin& attitude) {
+  std::vector<std::string> names(attitude.actuators, attitude.actuators + attitude.n_actuators);
+  VehicleFacts facts;
+  try {
+    facts = ReadVehicleFacts(vehicle, "vehicle", names);
+  } catch (const VehicleFactError& e) {
+    if (e.key() == "body") throw SceneError(config.model_path + ": " + e.what());
+    throw PluginError(config.model_path + ": attitude plugin '" + attitude.name + "': " + e.what());
   }
+  if (config.vehicle_actuation == VehicleActuation::kThrustMoments) {
+    RequireThrustAndMoments(config, facts);
+  }
+  VehicleModelInfo info;
+  info.mass = facts.mass;
+  std::memcpy(info.inertia, facts.inertia, sizeof(info.inertia));
+  info.actuators = facts.info;
+  info.gains = facts.gains;
+  for (int site : facts.sites) {
+    const char* name = site < 0 ? nullptr : mj_id2name(vehicle, mjOBJ_SITE, site);
+    info.site_names.push_back(name ? name : "");
+  }
+  return info;
 }
 
 VehicleModelInfo ReadVehicleModel(const ExperimentConfig& config, const mjfPlugin& attitude,
@@ -143,24 +107,9 @@ VehicleModelInfo ReadVehicleModel(const ExperimentConfig& config, const mjfPlugi
   if (!vehicle) throw SceneError(config.model_path + ": MuJoCo cannot load it: " + error);
   VehicleModelInfo info;
   try {
-    const int body = mj_name2id(vehicle, mjOBJ_BODY, "vehicle");
-    if (body < 0) throw SceneError(config.model_path + ": no body named 'vehicle'");
-    // A body without a joint is welded to the world: the run would complete with the vehicle
-    // fixed in place (the foreign-vehicle adapter refuses the same model for its free joint).
-    if (vehicle->body_dofnum[body] == 0) {
-      throw SceneError(config.model_path +
-                       ": body 'vehicle' has no joint, so it is welded to the world: give it "
-                       "<freejoint/> (or the slide joints of mjcf/pointmass.xml)");
-    }
-    info.actuators =
-        ActuatorInfo(vehicle, attitude, config.model_path, &info.site_names, &info.gains);
-    info.mass = vehicle->body_subtreemass[body];
-    std::memcpy(info.inertia, vehicle->body_inertia + 3 * body, sizeof(info.inertia));
+    info = FactsOf(vehicle, config, attitude);
     if (config.rotor_model == RotorModel::kWrench) {
       RequireWrenchCompatible(vehicle, config, attitude, info);
-    }
-    if (config.vehicle_actuation == VehicleActuation::kThrustMoments) {
-      RequireThrustAndMoments(config, info);
     }
   } catch (...) {
     mj_deleteModel(vehicle);

@@ -113,7 +113,9 @@ TEST(PluginHostTest, NoPluginsAtAll) {
   const std::string error = ErrorOf([&] { registry.Find("hover", "w"); });
   EXPECT_THAT(error, HasSubstr("w: unknown plugin 'hover'"));
   EXPECT_THAT(error, HasSubstr("searched: " + empty));
-  if (in_process == 0) EXPECT_THAT(error, HasSubstr("; no plugins found; "));
+  if (in_process == 0) {
+    EXPECT_THAT(error, HasSubstr("; no plugins found; "));
+  }
 }
 
 TEST(PluginHostTest, ALibraryThatCannotBeLoadedIsAProblemNotAFailure) {

@@ -2,7 +2,7 @@
 //
 // Rotor actuators mapped onto the plugin's names: permutations, a non-rotor actuator that holds
 // a contract name, a rotor acting on a site off the vehicle.
-#include "actuator_mapping.hpp"
+#include "adapt/actuator_mapping.hpp"
 
 #include <gtest/gtest.h>
 

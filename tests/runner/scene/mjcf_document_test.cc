@@ -2,7 +2,7 @@
 //
 // An MJCF file read as MuJoCo reads it: includes inlined (nested too), repeated sections merged,
 // a missing include refused with its line.
-#include "mjcf_document.hpp"
+#include "adapt/mjcf_document.hpp"
 
 #include <gtest/gtest.h>
 

@@ -152,9 +152,8 @@ TEST_F(BindVehiclesTest, AnAttitudePluginDrivingAMissingActuatorIsNamed) {
     BindVehicles(sim_.model(), sim_.config(), wrong);
     ADD_FAILURE() << "no error";
   } catch (const PluginError& e) {
-    EXPECT_THAT(e.what(), HasSubstr("pointmass.xml: attitude plugin 'pointmass_direct' drives "
-                                    "actuator 'rotor0', which this vehicle model lacks (it has: "
-                                    "fx, fy, fz)"));
+    EXPECT_THAT(e.what(), HasSubstr("pointmass.xml: attitude plugin 'pointmass_direct': no "
+                                    "actuator named 'rotor0' in this model (it has: fx, fy, fz)"));
   }
 }
 

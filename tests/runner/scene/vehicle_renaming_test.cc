@@ -2,7 +2,7 @@
 //
 // Renaming by kind: an element and every reference to it of the same kind, nothing of another
 // kind that happens to share the name.
-#include "vehicle_renaming.hpp"
+#include "adapt/vehicle_renaming.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
 // What one vehicle must not bring into the shared scene is dropped or scoped, with a note each.
-#include "vehicle_scoping.hpp"
+#include "adapt/vehicle_scoping.hpp"
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 //
 // The contract's imu site sits at the centre of mass of the vehicle and its child bodies, in the
 // body's axes, with the four contract sensors on it.
-#include "vehicle_sensors.hpp"
+#include "adapt/vehicle_sensors.hpp"
 
 #include <gtest/gtest.h>
 #include <mujoco/mujoco.h>

@@ -6,7 +6,7 @@
 // the resolved path of every asset file (mjModel::paths), found by MuJoCo beside the scene: an
 // exported scene declares one tiny texture, this anchor, written beside scene.xml, and the plugin
 // reads the paths of its <config> relative to the anchor's folder (docs/PLUGINS.md, "Scenes that
-// travel"). Shared by export (mujoco_plugin/export) and the native plugins (mujoco_plugin/src).
+// travel"). Shared by export (runner/export) and the native plugins (mujoco_plugin/src).
 #ifndef MJFORMATION_EXPORT_SCENE_ANCHOR_HPP_
 #define MJFORMATION_EXPORT_SCENE_ANCHOR_HPP_
 

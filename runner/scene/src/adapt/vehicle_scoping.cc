@@ -1,5 +1,5 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
-#include "vehicle_scoping.hpp"
+#include "adapt/vehicle_scoping.hpp"
 
 #include <cstring>
 #include <set>

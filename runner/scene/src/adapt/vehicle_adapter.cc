@@ -10,14 +10,14 @@
 
 #include <cstring>
 
-#include "actuator_mapping.hpp"
-#include "mjcf_document.hpp"
+#include "adapt/actuator_mapping.hpp"
+#include "adapt/mjcf_document.hpp"
+#include "adapt/vehicle_assets.hpp"
+#include "adapt/vehicle_renaming.hpp"
+#include "adapt/vehicle_scoping.hpp"
+#include "adapt/vehicle_sensors.hpp"
 #include "mjcf_util.hpp"
 #include "mjformation/scene/scene.hpp"
-#include "vehicle_assets.hpp"
-#include "vehicle_renaming.hpp"
-#include "vehicle_scoping.hpp"
-#include "vehicle_sensors.hpp"
 
 namespace mjf::runner {
 namespace {

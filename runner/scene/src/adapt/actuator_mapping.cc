@@ -1,11 +1,11 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
-#include "actuator_mapping.hpp"
+#include "adapt/actuator_mapping.hpp"
 
 #include <algorithm>
 
+#include "adapt/vehicle_renaming.hpp"
 #include "mjcf_util.hpp"
 #include "mjformation/scene/scene.hpp"
-#include "vehicle_renaming.hpp"
 
 namespace mjf::runner {
 namespace {

@@ -16,11 +16,11 @@
 #include <optional>
 #include <unordered_map>
 
+#include "compose/scene_assets.hpp"
+#include "compose/scene_blocks.hpp"
+#include "compose/scene_text.hpp"
 #include "mjcf_util.hpp"
 #include "mjspec_util.hpp"
-#include "scene_assets.hpp"
-#include "scene_blocks.hpp"
-#include "scene_text.hpp"
 
 namespace mjf::runner {
 namespace {

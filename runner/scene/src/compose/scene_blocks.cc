@@ -1,5 +1,5 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
-#include "scene_blocks.hpp"
+#include "compose/scene_blocks.hpp"
 
 #include <cctype>
 

@@ -1,5 +1,5 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
-#include "vehicle_renaming.hpp"
+#include "adapt/vehicle_renaming.hpp"
 
 #include <cstring>
 #include <iterator>

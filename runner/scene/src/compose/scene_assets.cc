@@ -1,5 +1,5 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
-#include "scene_assets.hpp"
+#include "compose/scene_assets.hpp"
 
 #include <functional>
 #include <map>

@@ -1,5 +1,5 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
-#include "mjcf_document.hpp"
+#include "adapt/mjcf_document.hpp"
 
 #include <algorithm>
 #include <cstring>
