@@ -50,13 +50,6 @@ class FixedStateArchive {
  private:
   FixedStateArchive(double* out, const double* in) : out_(out), in_(in) {}
 
-  template <typename T, typename = void>
-  struct HasVisitState : std::false_type {};
-  template <typename T>
-  struct HasVisitState<
-      T, std::void_t<decltype(std::declval<T&>().VisitState(std::declval<FixedStateArchive&>()))>>
-      : std::true_type {};
-
   void Slot(double& value) {
     if (out_) std::memcpy(out_ + cursor_, &value, sizeof(double));
     if (in_) std::memcpy(&value, in_ + cursor_, sizeof(double));
@@ -98,27 +91,6 @@ class FixedStateArchive {
   }
 
   template <typename T>
-  static constexpr bool kIsEngine =
-      std::is_same_v<T, std::mt19937> || std::is_same_v<T, std::mt19937_64> ||
-      std::is_same_v<T, std::minstd_rand> || std::is_same_v<T, std::minstd_rand0>;
-  template <typename T>
-  struct IsSequence : std::false_type {};
-  template <typename T, typename A>
-  struct IsSequence<std::vector<T, A>> : std::true_type {};
-  template <typename T, typename A>
-  struct IsSequence<std::deque<T, A>> : std::true_type {};
-  template <typename T>
-  struct IsFixedArray : std::false_type {};
-  template <typename T, size_t N>
-  struct IsFixedArray<std::array<T, N>> : std::true_type {};
-  template <typename T>
-  struct IsPairLike : std::false_type {};
-  template <typename A, typename B>
-  struct IsPairLike<std::pair<A, B>> : std::true_type {};
-  template <typename... T>
-  struct IsPairLike<std::tuple<T...>> : std::true_type {};
-
-  template <typename T>
   void Integer(T& value) {
     if constexpr (sizeof(T) <= sizeof(uint32_t)) {
       double v = static_cast<double>(value);
@@ -137,7 +109,7 @@ class FixedStateArchive {
 
   template <typename T>
   void Visit(T& value) {
-    if constexpr (HasVisitState<T>::value) {
+    if constexpr (state_kinds::kHasVisitState<T, FixedStateArchive>) {
       value.VisitState(*this);
     } else if constexpr (std::is_floating_point_v<T>) {
       double v = static_cast<double>(value);
@@ -153,13 +125,14 @@ class FixedStateArchive {
       auto underlying = static_cast<std::underlying_type_t<T>>(value);
       Integer(underlying);
       if (in_) value = static_cast<T>(underlying);
-    } else if constexpr (kIsEngine<T>) {
+    } else if constexpr (state_kinds::kIsEngine<T>) {
       static_assert(std::is_trivially_copyable_v<T> && sizeof(T) % sizeof(uint32_t) == 0,
                     "an engine stored as its words");
       Words(&value, sizeof(T));
-    } else if constexpr (std::is_array_v<T> || IsFixedArray<T>::value || IsSequence<T>::value) {
+    } else if constexpr (std::is_array_v<T> || state_kinds::kIsFixedArray<T> ||
+                         state_kinds::kIsSequence<T>) {
       for (auto& element : value) Visit(element);
-    } else if constexpr (IsPairLike<T>::value) {
+    } else if constexpr (state_kinds::kIsPairLike<T>) {
       std::apply([&](auto&... parts) { (Visit(parts), ...); }, value);
     } else if constexpr (std::is_trivially_copyable_v<T> && sizeof(T) % sizeof(uint32_t) == 0) {
       // The plugin ABI's plain structs (mjfVehicleState, mjfEstimate): doubles and 64-bit
