@@ -68,6 +68,16 @@ inline constexpr bool kIsFixedArray = false;
 template <typename T, size_t N>
 inline constexpr bool kIsFixedArray<std::array<T, N>> = true;
 
+// Doubles side by side (a block one copy can move).
+template <typename T>
+inline constexpr bool kIsDoubles = false;
+template <typename A>
+inline constexpr bool kIsDoubles<std::vector<double, A>> = true;
+template <size_t N>
+inline constexpr bool kIsDoubles<std::array<double, N>> = true;
+template <size_t N>
+inline constexpr bool kIsDoubles<double[N]> = true;
+
 template <typename T>
 inline constexpr bool kIsOrdered = false;
 template <typename T, typename C, typename A>
