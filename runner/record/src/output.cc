@@ -260,13 +260,14 @@ TimeseriesWriter::TimeseriesWriter(const std::string& path, int n_vehicles, bool
   }
   for (const auto& c : extra_columns) buffer_ += "," + c;
   buffer_ += "\n";
+  length_ = buffer_.size();
 }
 
 TimeseriesWriter::~TimeseriesWriter() {
   // Never throws: an unfinished writer (the run failed) keeps what it flushed; Close() is the
   // checked path.
   if (!file_) return;
-  if (!buffer_.empty()) std::fwrite(buffer_.data(), 1, buffer_.size(), file_);
+  if (length_ > 0) std::fwrite(buffer_.data(), 1, length_, file_);
   std::fclose(file_);
 }
 
@@ -384,15 +385,17 @@ char* Block(const RowInputs& in, int per_vehicle, const BlockScratch& scratch, c
 void TimeseriesWriter::Write(const Simulation& sim, double sigma_f,
                              const std::vector<double>& slots, const double* extra) {
   // Numbers as "%.9g" (FormatG9: the bytes fmt's "{:.9g}" gave, at an eighth of its cost); a
-  // row is written into the buffer's spare room directly, with no per-character appends.
+  // row is written into the buffer's spare room directly, with no per-character appends. The
+  // room stays allocated between rows and flushes: growing it (which zero-fills) happens for the
+  // first rows only.
   const size_t numbers =
       2 +
       (15 + 9 * measured_ + 13 * estimated_ + 3 * wind_) * static_cast<size_t>(sim.n_vehicles()) +
       n_extra_;
-  const size_t used = buffer_.size();
-  buffer_.resize(used + kMaxNumber * numbers + 1);
-  char* p = buffer_.data() + used;
-  char* const end = buffer_.data() + buffer_.size();
+  const size_t room = length_ + kMaxNumber * numbers + 1;
+  if (buffer_.size() < room) buffer_.resize(room);
+  char* p = buffer_.data() + length_;
+  char* const end = buffer_.data() + room;
   auto number = [&](double v) {
     *p++ = ',';
     if (std::isfinite(v)) p = FormatG9(p, end, v);
@@ -410,17 +413,17 @@ void TimeseriesWriter::Write(const Simulation& sim, double sigma_f,
   }
   for (size_t k = 0; k < n_extra_ && extra; ++k) number(extra[k]);
   *p++ = '\n';
-  buffer_.resize(p - buffer_.data());
-  if (buffer_.size() > (1u << 20)) Flush();
+  length_ = static_cast<size_t>(p - buffer_.data());
+  if (length_ > (1u << 20)) Flush();
 }
 
 void TimeseriesWriter::Flush() {
-  if (!buffer_.empty() && std::fwrite(buffer_.data(), 1, buffer_.size(), file_) != buffer_.size()) {
+  if (length_ > 0 && std::fwrite(buffer_.data(), 1, length_, file_) != length_) {
     const int error = errno;
-    buffer_.clear();  // what did not fit is lost; the rows before it are on disk
+    length_ = 0;  // what did not fit is lost; the rows before it are on disk
     throw OutputError(path_ + ": write failed: " + std::strerror(error));
   }
-  buffer_.clear();
+  length_ = 0;
   if (std::fflush(file_) != 0) throw OutputError(path_ + ": write failed: " + std::strerror(errno));
 }
 
