@@ -176,8 +176,8 @@ void OnlineMetrics::AccumulateSample(const Simulation& sim) {
 
 // Each follower's sums are its own (FollowerMotion::Add touches follower i's entries only): with
 // partitioned physics each partition's thread adds its own vehicles, the same operations on
-// each follower as on one thread, so the same bits; it was the largest per-vehicle cost left on
-// the stepping thread at record ticks.
+// each follower as on one thread, so the same bits. The rocking spectra, most of the cost, are
+// kept for the first kMaxSpectra followers only, so they stay on the first partition's thread.
 void OnlineMetrics::SampleFollowerMotion(const Simulation& sim, double t) {
   motion_.Begin(t);
   struct Job {
