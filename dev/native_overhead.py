@@ -11,6 +11,7 @@ hits both; the median of each is reported with the ratio b / a and the native pa
 per step and vehicle, state handling included. The load (os.getloadavg) is printed beside it.
 
     PYTHONPATH=build/python .venv/bin/python dev/native_overhead.py [--repeats 5] [--duration 10]
+        [--cases exp2,exp2_pointmass,b05] [--stepper rollout|mj_step]
 """
 
 from __future__ import annotations
@@ -34,6 +35,8 @@ CASES = {
     "exp2": ("experiments/exp2.toml", {}),
     "exp2_pointmass": ("experiments/exp2.toml",
                        {"vehicles.model": "pointmass", "attitude": {"plugin": "pointmass_direct"}}),
+    # GNSS-grade sensors through kf_ins: the estimators' declared state in the round trip.
+    "b05": ("experiments/benchmark/b05_gnss_kf.toml", {}),
     # Per-agent execution over a lossy network: the links' streams and queues in plugin_state.
     "b13": ("experiments/benchmark/b13_lossy_network.toml", {}),
 }
@@ -48,18 +51,23 @@ def runner_seconds(experiment: Path, overrides: dict, out: Path) -> tuple[float,
     return summary["timing"]["wall_time_s"], summary["steps"], summary["n_followers"] + 1
 
 
-def native_seconds(model: mujoco.MjModel, steps: int) -> float:
-    """mujoco.rollout of the exported scene from its initial state, one thread."""
+def native_seconds(model: mujoco.MjModel, steps: int, stepper: str) -> float:
+    """The exported scene from its initial state, one thread: mujoco.rollout (which also records
+    the full state, plugin_state included, after every step) or mj_step called from Python."""
     data = mujoco.MjData(model)
     full = mujoco.mjtState.mjSTATE_FULLPHYSICS
     initial = np.empty((1, mujoco.mj_stateSize(model, full)))
     mujoco.mj_getState(model, data, initial[0], full)
     start = time.perf_counter()
-    mujoco.rollout.rollout(model, data, initial, nstep=steps)
+    if stepper == "rollout":
+        mujoco.rollout.rollout(model, data, initial, nstep=steps)
+    else:
+        for _ in range(steps):
+            mujoco.mj_step(model, data)
     return time.perf_counter() - start
 
 
-def measure(name: str, repeats: int, duration: float, scratch: Path) -> dict:
+def measure(name: str, repeats: int, duration: float, scratch: Path, stepper: str) -> dict:
     experiment, extra = CASES[name]
     overrides = {"run.duration": duration, "run.metric_window": [0.0, duration],
                  "render.snapshots": [], **extra}
@@ -71,7 +79,7 @@ def measure(name: str, repeats: int, duration: float, scratch: Path) -> dict:
         seconds, steps, vehicles = runner_seconds(ROOT / experiment, overrides,
                                                   scratch / f"{name}_run")
         runner.append(seconds)
-        native.append(native_seconds(model, steps))
+        native.append(native_seconds(model, steps, stepper))
     a, b = statistics.median(runner), statistics.median(native)
     return {"case": name, "steps": steps, "vehicles": vehicles, "runner_s": a, "native_s": b,
             "ratio": b / a, "extra_us_per_vehicle_step": 1e6 * (b - a) / (steps * vehicles),
@@ -82,16 +90,20 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--repeats", type=int, default=5, help="runs of each side (median)")
     parser.add_argument("--duration", type=float, default=10.0, help="simulated seconds per run")
-    parser.add_argument("--cases", default=",".join(CASES), help="comma-separated: " +
+    parser.add_argument("--cases", default="exp2,exp2_pointmass", help="comma-separated: " +
                         ", ".join(CASES))
+    parser.add_argument("--stepper", choices=("rollout", "mj_step"), default="rollout",
+                        help="how the exported scene is stepped: mujoco.rollout (its C loop; it "
+                        "records the full state every step, which grows with plugin_state) or "
+                        "mj_step from Python (about a microsecond per call of its own)")
     args = parser.parse_args()
     mujoco.mj_loadPluginLibrary(mjformation.native_plugin_library())
     print(f"load before: {os.getloadavg()[0]:.2f}  {time.strftime('%Y-%m-%d %H:%M')}")
     with tempfile.TemporaryDirectory(prefix="mjformation_overhead_") as scratch:
         for name in args.cases.split(","):
-            r = measure(name, args.repeats, args.duration, Path(scratch))
+            r = measure(name, args.repeats, args.duration, Path(scratch), args.stepper)
             print(f"{r['case']:15s} {r['vehicles']} vehicles, {r['steps']} steps: "
-                  f"run --no-render {r['runner_s']:.3f} s, exported + rollout "
+                  f"run --no-render {r['runner_s']:.3f} s, exported + {args.stepper} "
                   f"{r['native_s']:.3f} s, ratio {r['ratio']:.3f}, native extra "
                   f"{r['extra_us_per_vehicle_step']:+.3f} us per vehicle-step; plugin_state "
                   f"{r['state_doubles']} doubles", flush=True)

@@ -652,7 +652,7 @@ def section(results, sizes):
     for n in sorted({c["n"] for c in cells if c["workload"] == "W2" and c["n"] > 1}):
         radius, start = W.shape_radius(n - 1), float(np.linalg.norm(W.starts(n)[1, :2]))
         lines[-2:-2] = [f"W2 at N = {n}: the slots lie on a circle of {fmt(radius, 3)} m around the leader turning at "
-                        f"{W.SHAPE_OMEGA} rad/s ({fmt(radius * W.SHAPE_OMEGA, 3)} m/s relative to it; neighbouring slots "
+                        f"{fmt(W.shape_omega(n - 1), 3)} rad/s ({fmt(radius * W.shape_omega(n - 1), 3)} m/s relative to it; neighbouring slots "
                         f"0.2 m apart) and the followers start on a ring of {fmt(start, 3)} m: whether a run "
                         "flew the work is in the error column.", ""]
     warm = max((c.get("warmup_periods", 1) for c in cells if c["sim"] != "mjformation"), default=1)

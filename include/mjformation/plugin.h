@@ -7,7 +7,8 @@
  * as a fixed count of doubles, so that a host can copy, checkpoint and rewind an instance
  * (MuJoCo's plugin_state, checkpoint and resume). A C++ plugin gets the three from one
  * VisitState member (plugin_state.hpp). An ABI-3 library is refused at load with a message
- * naming both versions and docs/PLUGINS.md, "Migrating from ABI 3".
+ * naming both versions and docs/PLUGINS.md, "Migrating from ABI 3". mjfSensorInfo also says
+ * when aiding samples are taken (aiding_period, appended at the end).
  *
  * Version 3: the estimator kind (MJF_KIND_ESTIMATOR, mjfImuSample, mjfMeasurement,
  * mjfEstimatorInput, mjfEstimate, mjfSensorInfo; appended to mjfCreateContext and
@@ -261,6 +262,10 @@ typedef struct mjfSensorInfo_ {
      correlation time; 0: none). A measurement's pos_std is sqrt(white^2 + wander^2). */
   double position_wander_std; /* m */
   double position_wander_tau; /* s */
+  /* s: every aiding sample (position, velocity) is taken at a whole multiple of it, counted from
+     t = 0 (the channels' common sample period), so an estimator that keeps past estimates for
+     late samples needs only those steps'; 0: at any step. */
+  double aiding_period;
 } mjfSensorInfo;
 
 typedef struct mjfCreateContext_ {

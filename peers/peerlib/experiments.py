@@ -49,7 +49,7 @@ def experiment(workload, n, model_path, duration=40.0, attitude="pd_cascade"):
                       f"u_min = {g['u_min']}", f"u_max = {g['u_max']}",
                       f"boundary_layer = {g['boundary_layer']}", "", "[formation.shape]",
                       'type = "circle"', f"radius = {W.shape_radius(m):.9g}",
-                      f"omega = {W.SHAPE_OMEGA}", "phase0 = 0.0",
+                      f"omega = {W.shape_omega(m):.17g}", "phase0 = 0.0",
                       f"phase_step = {2 * math.pi / m:.17g}"]
     lines += ["", "[attitude]", f'plugin = "{attitude}"', "", "[safety]", "near_miss_m = 0.03", ""]
     return "\n".join(lines)

@@ -2,12 +2,16 @@
 """The two workloads, in numpy, the same for every simulator (docs/PEERS.md).
 
 W1: N vehicles hover at fixed points 0.5 m up, 0.3 m apart, for 40 s.
-W2: Exp 2 at one tenth of its size (examples/vehicles/midge/exp2_midge.toml): the leader flies a
-2 m circle at 0.157 rad/s, 0.5 m up; N - 1 followers keep slots on a 1 m circle turning at
-0.314 rad/s around it (a hexagon for 6; for more followers the circle widens so neighbouring
-slots stay >= 0.2 m apart). Followers fly either to their slot under the simulator's own position
-controller, or under the discrete sliding-mode law, eq. (48) of Wang et al. 2021, ported here
-from plugins/formation/src/discrete_smc.cc with the scaled Exp 2 gains."""
+W2: Exp 2 at one tenth of its size (examples/vehicles/midge/exp2_midge.toml): the leader flies a 2
+m circle at 0.157 rad/s, 0.5 m up; N - 1 followers keep slots on a 1 m circle turning at 0.314
+rad/s around it (a hexagon for 6; for more followers the circle widens so neighbouring slots stay
+>= 0.2 m apart, turning slower so that the slots keep their speed of 0.314 m/s about the leader,
+and the followers start 0.85 m inside it, as the scaled Exp 2 starts them: a widened circle turning
+at 0.314 rad/s asked 10 m/s and 3.1 m/s^2 of centripetal acceleration at N = 1000, and a start ring
+at half its radius 16 m of reaching, which a tilt-limited quadrotor under (48) cannot fly: the slot
+error grew). Followers fly either to their slot under the simulator's own position controller, or
+under the discrete sliding-mode law, eq. (48) of Wang et al. 2021, ported here from
+plugins/formation/src/discrete_smc.cc with the scaled Exp 2 gains."""
 
 import math
 
@@ -33,6 +37,12 @@ def shape_radius(n_followers):
     return max(1.0, 0.2 * n_followers / (2.0 * math.pi))
 
 
+def shape_omega(n_followers):
+    """The circle's rate: 0.314 rad/s on the 1 m circle, slower on a widened one so that the slots
+    move at the scaled Exp 2's 0.314 m/s about the leader at every N."""
+    return SHAPE_OMEGA / shape_radius(n_followers)
+
+
 def hover_points(n):
     """W1: n points on a square grid, 0.3 m apart, centred on the origin."""
     side = int(math.ceil(math.sqrt(n)))
@@ -51,18 +61,19 @@ def leader(t):
 
 def shape(t, n_followers):
     """f_i(t) of Definition 1: (n, 6) rows px, py, vx, vy, ax, ay of each slot around the leader."""
-    r, w = shape_radius(n_followers), SHAPE_OMEGA
+    r, w = shape_radius(n_followers), shape_omega(n_followers)
     phase = w * t + 2.0 * math.pi * np.arange(n_followers) / n_followers
     c, s = np.cos(phase), np.sin(phase)
     return np.stack([r * c, r * s, -r * w * s, r * w * c, -r * w * w * c, -r * w * w * s], axis=1)
 
 
 def starts(n):
-    """Start positions (n, 3): the leader on its circle, followers on a ring 0.15 m (or wider)
-    around the origin, as exp2_midge's follower_start."""
+    """Start positions (n, 3): the leader on its circle, followers on a ring 0.85 m inside the slot
+    circle around the origin (0.15 m for up to 31 followers, as exp2_midge's follower_start), so
+    that the reaching distance does not grow with N."""
     out = [np.array([LEADER_RADIUS, 0.0, ALTITUDE])]
     m = n - 1
-    ring = max(0.15, 0.1 * m / (2.0 * math.pi))
+    ring = 0.15 + (shape_radius(m) - 1.0)
     for i in range(m):
         a = 2.0 * math.pi * i / max(m, 1)
         out.append(np.array([ring * math.cos(a), ring * math.sin(a), ALTITUDE]))

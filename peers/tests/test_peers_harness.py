@@ -180,6 +180,19 @@ def test_hexagon_and_widened_ring():
     assert gaps.min() >= 0.199
 
 
+@pytest.mark.parametrize("n", [7, 49, 1000])
+def test_widened_ring_keeps_the_scaled_exp2_speed_and_reach(n):
+    """At every N the slots move at 0.314 m/s about the leader and the followers start 0.85 m
+    inside their circle, as in exp2_midge: a widened circle turning at 0.314 rad/s asked 10 m/s
+    and a 16 m reach at N = 1000, which the tilt-limited followers could not fly."""
+    f = W.shape(2.0, n - 1)
+    assert np.allclose(np.linalg.norm(f[:, 2:4], axis=1), W.SHAPE_OMEGA)
+    start = np.linalg.norm(W.starts(n)[1:, :2], axis=1)
+    assert np.allclose(W.shape_radius(n - 1) - start, 0.85)
+    toml = E.experiment("W2", n, "model.xml")
+    assert f"omega = {W.shape_omega(n - 1):.17g}" in toml
+
+
 # ---- cross-check arithmetic ---------------------------------------------------------------------
 def test_divergence_time_and_lag():
     t = np.linspace(0, 2, 201)

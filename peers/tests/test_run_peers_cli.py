@@ -161,8 +161,8 @@ def test_the_section_states_duration_overrides_load_and_the_peers_not_run():
     assert "not run at this size: RotorPy, PyFlyt" in text
     assert "first 2 control periods are timed apart" in text
     assert "- mjformation against Crazyflow: N = 1000: 0.500x (below 1" in text
-    assert "W2 at N = 1000: the slots lie on a circle of 31.8 m around the leader turning at 0.314 rad/s " \
-           "(9.98 m/s relative to it" in text and "start on a ring of 15.9 m" in text
+    assert "W2 at N = 1000: the slots lie on a circle of 31.8 m around the leader turning at 0.00987 rad/s " \
+           "(0.314 m/s relative to it" in text and "start on a ring of 30.9 m" in text
     assert "| 7 |" not in text  # the other sizes stay in their own table
 
 

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "drone_mjcf.hpp"
 #include "mjformation/export/export.hpp"
 #include "native_fixture.hpp"
 
@@ -221,58 +222,30 @@ TEST_F(NativeAttach, AnInstanceNameAlreadyTakenIsRefused) {
       << error;
 }
 
+// The attitude tests' drone at the world's step, its body referencing the instance.
+std::string AttachableDrone() {
+  mjf::testing::DroneOptions o;
+  o.timestep = "0.001";
+  o.body_references_instance = true;
+  return mjf::testing::DroneXml(o);
+}
+
 // mjformation.attitude, its instance referenced by the drone's body: two copies of a user's
 // drone attached under two prefixes each find their body and rotors, and each flies the
 // unattached drone's bits (the drones do not collide: contype 0).
-constexpr char kDrone[] = R"(<mujoco model="drone">
-  <extension>
-    <plugin plugin="mjformation.attitude">
-      <instance name="autopilot">
-        <config key="body" value="quad"/>
-        <config key="actuators" value="m_fr m_bl m_fl m_br"/>
-        <config key="attitude" value="plugin = 'geometric', tilt_max = 0.5"/>
-        <config key="guidance" value="plugin = 'hover', position = '0 0 1'"/>
-      </instance>
-    </plugin>
-  </extension>
-  <option timestep="0.001"/>
-  <default>
-    <default class="motor">
-      <general dyntype="filter" dynprm="0.03" ctrllimited="true" ctrlrange="0 9"/>
-    </default>
-  </default>
-  <worldbody>
-    <body name="quad" pos="0.3 -0.2 0.8" euler="0.2 0.1 0.3">
-      <plugin instance="autopilot"/>
-      <freejoint name="root"/>
-      <inertial pos="0 0 0" mass="1.2" diaginertia="0.012 0.012 0.022"/>
-      <geom type="box" size="0.09 0.09 0.03" mass="0" contype="0" conaffinity="0"/>
-      <site name="s_fr" pos="0.16 -0.16 0.03"/>
-      <site name="s_bl" pos="-0.16 0.16 0.03"/>
-      <site name="s_fl" pos="0.16 0.16 0.03"/>
-      <site name="s_br" pos="-0.16 -0.16 0.03"/>
-    </body>
-  </worldbody>
-  <actuator>
-    <general name="m_fr" class="motor" site="s_fr" gear="0 0 1 0 0 -0.02"/>
-    <general name="m_bl" class="motor" site="s_bl" gear="0 0 1 0 0 -0.02"/>
-    <general name="m_fl" class="motor" site="s_fl" gear="0 0 1 0 0 0.02"/>
-    <general name="m_br" class="motor" site="s_br" gear="0 0 1 0 0 0.02"/>
-  </actuator>
-</mujoco>)";
-
 TEST_F(NativeAttach, AttitudeInstanceFollowsItsBodyThroughTwoAttaches) {
   char text[2048] = {0};
   mjSpec* world = mj_parseXMLString(kWorld, nullptr, text, sizeof(text));
+  const std::string drone = AttachableDrone();
   std::vector<mjSpec*> drones;
   for (const char* prefix : {"l/", "r/"}) {
-    drones.push_back(mj_parseXMLString(kDrone, nullptr, text, sizeof(text)));
+    drones.push_back(mj_parseXMLString(drone.c_str(), nullptr, text, sizeof(text)));
     mjsFrame* frame = mjs_addFrame(mjs_findBody(world, "world"), nullptr);
     ASSERT_NE(mjs_attach(frame->element, drones.back()->element, prefix, ""), nullptr);
   }
   mjModel* m = mj_compile(world, nullptr);
   ASSERT_NE(m, nullptr) << mjs_getError(world);
-  mjSpec* alone = mj_parseXMLString(kDrone, nullptr, text, sizeof(text));
+  mjSpec* alone = mj_parseXMLString(drone.c_str(), nullptr, text, sizeof(text));
   mjModel* plain = mj_compile(alone, nullptr);
   ASSERT_NE(plain, nullptr) << mjs_getError(alone);
   EXPECT_EQ(m->nplugin, 2);

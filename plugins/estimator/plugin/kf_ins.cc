@@ -33,6 +33,9 @@ const mjfAttribute kKfInsAttributes[] = {
     {"position_wander_tau", "", "s: the wander's correlation time (empty: the suite's)"},
 };
 
+// The longest history KfIns keeps (its bound, checked here to name the sensor keys that set it).
+constexpr double kMaxHistory = 10.0;
+
 // v rotated from body to world by the unit quaternion q (w x y z): v + 2 w (u x v) + 2 u x (u x v).
 Vec3 Rotate(const double q[4], const double v[3]) {
   const Vec3 u(q[1], q[2], q[3]);
@@ -80,6 +83,16 @@ KfInsConfig ReadConfig(const mjfCreateContext* ctx) {
   c.gate_sigma = a.Number("gate_sigma");
   if (!(c.gate_sigma > 0)) throw ConfigError("attribute 'gate_sigma': must be > 0 (sigmas)");
   c.history = s->max_latency + 2.0 * ctx->timestep;
+  if (!(c.history <= kMaxHistory)) {
+    char what[256];
+    std::snprintf(what, sizeof(what),
+                  "the sensors' largest aiding latency (%g s, [sensors] position_latency / "
+                  "velocity_latency) is past the %g s of history the filter keeps: lower it",
+                  s->max_latency, kMaxHistory - 2.0 * ctx->timestep);
+    throw ConfigError(what);
+  }
+  // Only the schedule's steps are kept (a sample is never taken between them).
+  c.aiding_period = s->aiding_period;
   c.gravity = ctx->vehicle_info ? ctx->vehicle_info->gravity : 9.81;
   if (ctx->initial_pos)
     c.initial_position = Vec3(ctx->initial_pos[0], ctx->initial_pos[1], ctx->initial_pos[2]);

@@ -31,6 +31,8 @@ KfIns::KfIns(const KfInsConfig& c) : config_(c) {
   Require(c.history >= 0 && c.history <= 10 && std::isfinite(c.history),
           "history must be in [0, 10] s");
   Require(c.gate_sigma > 0, "gate_sigma must be > 0");
+  Require(c.aiding_period == 0 || WholeSteps(c.aiding_period, c.timestep) >= 1,
+          "aiding_period must be 0 (any step) or a whole number of steps");
   // Squared into the initial covariance: a negative value would pass as its absolute value.
   for (const auto& [value, name] : {std::pair{c.initial_position_std, "initial_position_std"},
                                     std::pair{c.initial_velocity_std, "initial_velocity_std"},
@@ -74,10 +76,15 @@ KfIns::KfIns(const KfInsConfig& c) : config_(c) {
       Vec3::Constant(c.initial_velocity_std * c.initial_velocity_std),
       Vec3::Constant(c.initial_bias_std * c.initial_bias_std), Vec3::Constant(s2);
   window_steps_ = StepsAtOrAfter(c.history, dt) + 1;
-  history_.resize(static_cast<size_t>(window_steps_));
-  // A correction lives one window; one per fused late sample (ten at 200 Hz over 50 ms): no
-  // allocation in flight below that.
-  corrections_.reserve(16);
+  period_steps_ = c.aiding_period == 0 ? 1 : WholeSteps(c.aiding_period, dt);
+  // A late measurement's step lies in the window_steps_ steps before now and on the schedule.
+  history_.resize(static_cast<size_t>((window_steps_ - 1) / period_steps_ + 1));
+  // Every correction the state holds, allocated once: none in flight.
+  corrections_.reserve(max_corrections());
+}
+
+size_t KfIns::SlotOf(int64_t step) const {
+  return static_cast<size_t>((step / period_steps_) % static_cast<int64_t>(history_.size()));
 }
 
 void KfIns::TransitionPower(int64_t m, StateVec* x) const {
@@ -124,10 +131,12 @@ void KfIns::Propagate(int64_t step, const Vec3& specific_force_world) {
     throw std::logic_error("KfIns::Propagate: expected step " + std::to_string(step_ + 1) +
                            ", got " + std::to_string(step));
   }
-  Slot& slot = history_[static_cast<size_t>(step_ % window_steps_)];
-  slot.step = step_;
-  slot.x = x_;
-  slot.P = P_;
+  if (step_ % period_steps_ == 0) {  // a step a measurement can be taken at
+    Slot& slot = history_[SlotOf(step_)];
+    slot.step = step_;
+    slot.x = x_;
+    slot.P = P_;
+  }
   PropagateOnce(specific_force_world);
   step_ = step;
   const int64_t oldest = step_ - window_steps_;
@@ -174,7 +183,12 @@ bool KfIns::Fuse(const AidingSample& m) {
     (ok ? fused_ : rejected_) += 1;
     return ok;
   }
-  const Slot& slot = history_[static_cast<size_t>(taken % window_steps_)];
+  if (taken % period_steps_ != 0) {
+    throw std::logic_error("KfIns::Fuse: a measurement taken at step " + std::to_string(taken) +
+                           ", off the aiding schedule (every " + std::to_string(period_steps_) +
+                           " steps: aiding_period)");
+  }
+  const Slot& slot = history_[SlotOf(taken)];
   if (taken < step_ - window_steps_ || slot.step != taken) {
     ++too_old_;
     return false;

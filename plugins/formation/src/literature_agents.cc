@@ -1,57 +1,9 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 #include <cmath>
-#include <mjformation/formation/agent_laws.hpp>
 #include <mjformation/formation/literature_agents.hpp>
+#include <utility>
 
 namespace mjf::formation {
-
-LocalAgentRow::LocalAgentRow(double leader_weight, std::vector<double> weights)
-    : leader_weight_(leader_weight), weights_(std::move(weights)) {
-  AgentDegree(leader_weight_, weights_);  // refuses a follower that hears no one
-}
-
-void LocalAgentRow::Error(const double* own_pv, const double* leader_pv, const double* f_now,
-                          const double* neighbour_pv, const double* neighbour_f_now,
-                          double* e) const {
-  AgentError(leader_weight_, weights_, own_pv, leader_pv, f_now, neighbour_pv, neighbour_f_now, e);
-}
-
-SolvedAgentRow::SolvedAgentRow(double leader_weight, std::vector<double> weights)
-    : leader_weight_(leader_weight),
-      weights_(std::move(weights)),
-      degree_(AgentDegree(leader_weight_, weights_)),
-      neighbour_fa_(2 * weights_.size(), 0.0) {}
-
-void SolvedAgentRow::Error(const double* own_pv, const double* leader_pv, const double* f_now,
-                           const double* neighbour_pv, const double* neighbour_f_now,
-                           double* e) const {
-  AgentError(leader_weight_, weights_, own_pv, leader_pv, f_now, neighbour_pv, neighbour_f_now, e);
-}
-
-void SolvedAgentRow::KeepFeedForward(const double* f_now, const double* neighbour_f_now) {
-  for (int axis = 0; axis < 2; ++axis) {
-    own_fa_[axis] = f_now[4 + axis];
-    for (size_t j = 0; j < weights_.size(); ++j) {
-      neighbour_fa_[2 * j + axis] = neighbour_f_now[6 * j + 4 + axis];
-    }
-  }
-}
-
-void SolvedAgentRow::Solve(const double* w_neighbours) {
-  for (int axis = 0; axis < 2; ++axis) {
-    double sum = rhs_[axis];
-    for (size_t j = 0; j < weights_.size(); ++j) sum += weights_[j] * w_neighbours[2 * j + axis];
-    w_[axis] = sum / degree_;                        // row i of L_H W = R
-    acceleration_[axis] = own_fa_[axis] + w_[axis];  // u_i = f_ia + w_i
-  }
-}
-
-void SolvedAgentRow::UseSolved(const double* w_own) {
-  for (int axis = 0; axis < 2; ++axis) {
-    w_[axis] = w_own[axis];
-    acceleration_[axis] = own_fa_[axis] + w_[axis];
-  }
-}
 
 VsTrackingAgent::VsTrackingAgent(const VsTrackingParams& params, double leader_weight,
                                  std::vector<double> weights)

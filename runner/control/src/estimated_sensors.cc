@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <numeric>
 
 #include "mjformation/config/experiment.hpp"
 #include "mjformation/control/errors.hpp"
@@ -33,9 +34,21 @@ const char* NonFinitePart(const mjfVehicleState& s) {
   return nullptr;
 }
 
+// The steps at which any aiding sample is taken are multiples of this: each channel samples the
+// truth of steps 0, T, 2T, ... of its period T (SensorModel::StepChannel; every step without a
+// rate), so both channels' steps are multiples of the greatest common divisor of their periods.
+int64_t AidingPeriodSteps(const realism::SensorParams& p, double timestep) {
+  int64_t period = 0;
+  for (Channel c : {Channel::kPosition, Channel::kVelocity}) {
+    const double rate = p[c].rate_hz;
+    period = std::gcd(period, rate > 0 ? WholeSteps(1.0 / rate, timestep) : int64_t{1});
+  }
+  return period;
+}
+
 }  // namespace
 
-mjfSensorInfo SuiteInfo(const realism::SensorParams& p, double gravity) {
+mjfSensorInfo SuiteInfo(const realism::SensorParams& p, double timestep, double gravity) {
   mjfSensorInfo s{};
   s.has_accel = p.accel.enabled ? 1 : 0;
   s.accel_in_world = 0;
@@ -51,6 +64,7 @@ mjfSensorInfo SuiteInfo(const realism::SensorParams& p, double gravity) {
   s.max_latency = std::max(p[Channel::kPosition].latency_s, p[Channel::kVelocity].latency_s);
   s.position_wander_std = p[Channel::kPosition].wander_sigma;
   s.position_wander_tau = p[Channel::kPosition].wander_tau;
+  s.aiding_period = static_cast<double>(AidingPeriodSteps(p, timestep)) * timestep;
   return s;
 }
 
@@ -58,7 +72,7 @@ EstimatedSensors::EstimatedSensors(const ExperimentConfig& c, int n_vehicles, do
                                    const MakeEstimator& make)
     : timestep_(c.timestep),
       gravity_(gravity),
-      suite_(SuiteInfo(c.sensors.params, gravity)),
+      suite_(SuiteInfo(c.sensors.params, c.timestep, gravity)),
       held_(n_vehicles),
       estimates_(n_vehicles),
       inputs_(n_vehicles),

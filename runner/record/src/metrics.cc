@@ -174,14 +174,27 @@ void OnlineMetrics::AccumulateSample(const Simulation& sim) {
   last_time_ = t;
 }
 
+// Each follower's sums are its own (FollowerMotion::Add touches follower i's entries only): with
+// partitioned physics each partition's thread adds its own vehicles, the same operations on
+// each follower as on one thread, so the same bits. The rocking spectra, most of the cost, are
+// kept for the first kMaxSpectra followers only, so they stay on the first partition's thread.
 void OnlineMetrics::SampleFollowerMotion(const Simulation& sim, double t) {
-  const int na = sim.actuators_per_vehicle();
   motion_.Begin(t);
-  for (int i = 1; i < sim.n_vehicles(); ++i) {
-    const double* ctrl = &sim.controls()[static_cast<size_t>(i) * na];
-    motion_.Add(i - 1, sim.states()[i].quat,
-                CollectiveForce(ctrl, sim.binding(i).actuator_info.data(), na));
-  }
+  struct Job {
+    const Simulation* sim;
+    FollowerMotion* motion;
+  } job{&sim, &motion_};
+  sim.ForEachVehicleRange(
+      [](void* context, int first, int count, char*, size_t) {
+        const Job& j = *static_cast<Job*>(context);
+        const int na = j.sim->actuators_per_vehicle();
+        for (int i = std::max(first, 1); i < first + count; ++i) {
+          const double* ctrl = &j.sim->controls()[static_cast<size_t>(i) * na];
+          j.motion->Add(i - 1, j.sim->states()[i].quat,
+                        CollectiveForce(ctrl, j.sim->binding(i).actuator_info.data(), na));
+        }
+      },
+      &job);
 }
 
 void OnlineMetrics::StepControls(const Simulation& sim) {

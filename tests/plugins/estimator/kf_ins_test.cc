@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <functional>
 #include <random>
+#include <stdexcept>
 #include <vector>
 
 #include "mjformation/realism/sensor_model.hpp"
@@ -236,6 +237,46 @@ TEST(KfIns, OverlappingLateMeasurementsEqualTheOnTimeOnesPropagated) {
   EXPECT_TRUE(late.Fuse(second));
   ExpectSameEstimate(on_time, late);
   EXPECT_EQ(late.fused(), 2);
+}
+
+// Samples taken only on the aiding schedule (every 20 steps here): a history of only those
+// steps' posteriors fuses them late exactly as the every-step history does, bit for bit, in a
+// fraction of the state; a sample off the schedule is a caller's error.
+TEST(KfIns, AHistoryOfTheAidingScheduleOnlyIsTheEveryStepOneBitForBit) {
+  KfInsConfig c = LateFusionConfig();  // history 0.2 s: 101 steps
+  c.position_wander_std = 2.0;
+  KfIns every_step(c);
+  c.aiding_period = 20 * kDt;
+  KfIns scheduled(c);
+  EXPECT_EQ(every_step.history_slots(), 101u);
+  EXPECT_EQ(scheduled.history_slots(), 6u);  // (101 - 1) / 20 + 1
+  EXPECT_EQ(scheduled.max_corrections(), 14u);
+  const int64_t lag = 55;
+  AidingSample velocity_only;
+  velocity_only.has_velocity = true;
+  velocity_only.velocity = Vec3(-0.04, 0.03, 0.02);
+  velocity_only.velocity_std = Vec3::Constant(0.05);
+  for (int64_t n = 1; n <= 400; ++n) {
+    const Vec3 f = TrueAccel(n) + Vec3(0, 0, kG);
+    every_step.Propagate(n, f);
+    scheduled.Propagate(n, f);
+    // Every scheduled step's sample arrives `lag` late, alternately both and velocity only:
+    // their windows overlap (three in flight at once).
+    if (n >= lag && (n - lag) % 20 == 0) {
+      AidingSample m = PositionAndVelocityAt(n - lag);
+      if ((n - lag) % 40 == 20) {
+        m = velocity_only;
+        m.time_taken = static_cast<double>(n - lag) * kDt;
+      }
+      EXPECT_EQ(every_step.Fuse(m), scheduled.Fuse(m)) << n;
+    }
+  }
+  EXPECT_EQ(every_step.fused(), scheduled.fused());
+  EXPECT_GT(every_step.fused(), 0);
+  EXPECT_EQ(every_step.fused() + every_step.rejected(), 18);  // none too old
+  EXPECT_TRUE(every_step.state() == scheduled.state());
+  EXPECT_TRUE(every_step.covariance() == scheduled.covariance());
+  EXPECT_THROW(scheduled.Fuse(PositionAndVelocityAt(390)), std::logic_error);
 }
 
 TEST(KfIns, OutliersAreGatedAndCountedAndTooOldOnesRefused) {

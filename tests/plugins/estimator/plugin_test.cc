@@ -78,6 +78,33 @@ TEST(EstimatorPlugins, KfInsRefusesNegativeOrUnboundedStandardDeviations) {
   if (filter) p.destroy(filter);
 }
 
+// The filter's declared state keeps the posteriors of the steps a sample can be taken at: with
+// the suite's aiding period (10 Hz GNSS, 110 ms late) two of them, not every step's 113; a
+// latency past the history it keeps is refused naming the sensor keys.
+TEST(EstimatorPlugins, KfInsDeclaresTheHistoryOfTheAidingScheduleOnly) {
+  Library lib(MJF_ESTIMATOR_PLUGIN);
+  const mjfPlugin& p = *lib.Get("kf_ins");
+  size_t sizes[2] = {0, 0};
+  for (int scheduled = 0; scheduled < 2; ++scheduled) {
+    Context c(p, {}, nullptr, 1, kStart);
+    mjfSensorInfo s = Suite();
+    s.aiding_period = scheduled ? 0.1 : 0.0;
+    c.ctx.sensors = &s;
+    void* filter = p.create(&c.ctx);
+    ASSERT_NE(filter, nullptr) << c.error;
+    sizes[scheduled] = p.state_size(filter);
+    p.destroy(filter);
+  }
+  EXPECT_GT(sizes[0], 30000u);
+  EXPECT_LT(sizes[1], 2000u);
+  Context c(p, {}, nullptr, 1, kStart);
+  mjfSensorInfo s = Suite();
+  s.max_latency = 12.0;
+  c.ctx.sensors = &s;
+  EXPECT_EQ(p.create(&c.ctx), nullptr);
+  EXPECT_THAT(std::string(c.error), HasSubstr("(12 s, [sensors] position_latency"));
+}
+
 // At rest, the accelerometer reads +g and a late exact position sample keeps it at the start.
 TEST(EstimatorPlugins, KfInsHoldsAVehicleAtRestAndPassthroughHandsOnTheHeldSample) {
   Library lib(MJF_ESTIMATOR_PLUGIN);

@@ -131,6 +131,18 @@ TEST(EstimatedSensors, SameSeedSameBytesAndTwoThreadsDoNotInterfere) {
   EXPECT_NE(alone.last[1].state.pos[0], alone.truth.back()[1].pos[0]);  // the noise is there
 }
 
+// The estimator is told the steps at which aiding samples are taken: each channel's period from
+// t = 0, so both channels' at the greatest common divisor (10 Hz and 4 Hz: every 50 ms); every
+// step when either samples every step.
+TEST(EstimatedSensors, TheSuiteSaysWhenAidingSamplesAreTaken) {
+  realism::SensorParams p = realism::SensorParams::ConsumerGnss();
+  EXPECT_DOUBLE_EQ(SuiteInfo(p, 0.001, kG).aiding_period, 0.1);
+  p[realism::Channel::kVelocity].rate_hz = 4.0;
+  EXPECT_DOUBLE_EQ(SuiteInfo(p, 0.001, kG).aiding_period, 0.05);
+  p[realism::Channel::kPosition].rate_hz = 0.0;
+  EXPECT_DOUBLE_EQ(SuiteInfo(p, 0.001, kG).aiding_period, 0.001);
+}
+
 TEST(EstimatedSensors, KfInsWithoutAnAccelerometerIsRefusedWithTheSection) {
   const ExperimentConfig c = Config("position_std = 0.1");
   EXPECT_THAT(ErrorOf([&] { Fly(c, 1); }),

@@ -77,6 +77,24 @@ TEST(FormatG9Test, MatchesToCharsOnTiesPowersOfTenAndTheirNeighbours) {
       }
     }
   }
+  // 1 to 9 significant digits (the trailing zeros "%g" drops) at every decimal exponent the fast
+  // path takes, in each layout (0.000ddd, ddd.ddd, d.ddde+XX), with the room the writer gives
+  // and the least room the fast path takes (less goes to std::to_chars).
+  std::mt19937_64 rng(11);
+  for (int e = -13; e <= 14; ++e) {
+    for (int digits = 1; digits <= 9; ++digits) {
+      for (int k = 0; k < 200; ++k) {
+        const double m = std::uniform_int_distribution<int64_t>(
+            static_cast<int64_t>(std::pow(10.0, digits - 1)),
+            static_cast<int64_t>(std::pow(10.0, digits)) - 1)(rng);
+        const double v = (k % 2 ? -1 : 1) * m * std::pow(10.0, e - digits + 1);
+        for (size_t room : {size_t{24}, size_t{23}}) {
+          char buf[24];
+          ASSERT_EQ(std::string(buf, FormatG9(buf, buf + room, v)), Reference(v)) << v;
+        }
+      }
+    }
+  }
   for (double v : {0.0, -0.0, std::numeric_limits<double>::min(),
                    std::numeric_limits<double>::max(), std::numeric_limits<double>::denorm_min()}) {
     EXPECT_EQ(Fast(v), Reference(v)) << v;

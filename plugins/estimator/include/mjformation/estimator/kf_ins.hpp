@@ -8,7 +8,9 @@
 // exactly zero with zero variance and the filter is the (p, v, b) one. The input is the specific
 // force rotated into the world frame by the attitude channel: a = R f + g - b.
 // Measurements of p and/or v are fused at the time they were TAKEN: the filter keeps, for every
-// step of a history window at least as long as the largest latency, the posterior of that step;
+// step of a history window at least as long as the largest latency at which a measurement can be
+// taken (every step, or only the aiding schedule's: multiples of the sensors' common period), the
+// posterior of that step;
 // a late measurement is fused at its own step, and the correction it makes there is carried to
 // now in one go, x += F^n dx, P += F^n dP F^n' (n steps; exact: the state recursion is linear and
 // the covariance recursion affine, so fusing on time and propagating gives the same). The stored
@@ -36,8 +38,11 @@ struct KfInsConfig {
       0.0;                       // m/s^2/sqrt(Hz): white specific-force noise the filter assumes
   double accel_bias_walk = 0.0;  // m/s^3/sqrt(Hz): bias random walk the filter assumes
   double history = 0.2;          // s kept for late measurements (>= the largest latency)
-  double gate_sigma = 5.0;       // innovation gate, standard deviations per axis
-  double gravity = 9.81;         // m/s^2, world -z
+  // s: every measurement is taken at a multiple of it (the sensors' common sample period, from
+  // t = 0), so only those steps' posteriors are kept; 0: at any step.
+  double aiding_period = 0.0;
+  double gate_sigma = 5.0;  // innovation gate, standard deviations per axis
+  double gravity = 9.81;    // m/s^2, world -z
   Vec3 initial_position = Vec3::Zero();
   Vec3 initial_velocity = Vec3::Zero();
   double initial_position_std = 1.0;  // m
@@ -85,10 +90,14 @@ class KfIns {
   const StateMat& transition() const { return F_; }
   const StateMat& process_noise() const { return Q_; }
 
-  // The most late-fusion corrections the filter keeps at once (a fixed state size): every
-  // measurement of the history window taken late, one per step, plus a margin; Fuse refuses a
-  // late measurement past it with this number.
-  size_t max_corrections() const { return static_cast<size_t>(window_steps_) + 17; }
+  // The posteriors the history keeps: the schedule's steps (multiples of the aiding period)
+  // among the window's, at most (window - 1) / period + 1 of any window_steps consecutive steps.
+  size_t history_slots() const { return history_.size(); }
+  // The most late-fusion corrections the filter keeps at once (a fixed state size): a correction
+  // lives one window, and position and velocity each arrive at most once per schedule step of it
+  // (apart when their latencies differ), plus the window's two ends; Fuse refuses a late
+  // measurement past it with this number.
+  size_t max_corrections() const { return 2 * history_.size() + 2; }
 
   // The filter's state (plugin_state.hpp): estimate, covariance, step, the stored posteriors,
   // the corrections in flight (count, then max_corrections() slots) and the counts.
@@ -126,6 +135,7 @@ class KfIns {
     }
   };
   void PropagateOnce(const Vec3& specific_force_world);
+  size_t SlotOf(int64_t step) const;  // the ring slot of a schedule step
   // x <- F^m x and P <- F^m P F^m' without the input (F^m in closed form: m steps of the
   // semi-implicit Euler give p + m dt v - dt^2 m (m + 1) / 2 b, v - m dt b, phi^m w).
   void TransitionPower(int64_t m, StateVec* x) const;
@@ -142,7 +152,8 @@ class KfIns {
   StateMat P_;
   int64_t step_ = 0;
   int64_t window_steps_;
-  std::vector<Slot> history_;  // a ring: step s in slot s % window_steps_, steps >= step_ - window
+  int64_t period_steps_;       // the aiding schedule: measurements are taken at its multiples
+  std::vector<Slot> history_;  // a ring: step s = k period in slot k % size, s >= step_ - window
   std::vector<Correction> corrections_;  // those still reaching a stored slot
   int64_t fused_ = 0, rejected_ = 0, too_old_ = 0;
 };

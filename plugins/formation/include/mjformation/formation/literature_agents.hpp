@@ -6,11 +6,9 @@
 // same name states the law and its source), computed from e_i of eq. (16) of this follower's own
 // data (AgentError):
 //   - vs_tracking, adaptive_tracking, observer_tracking use e_i and the own state only: no
-//     coupling through the neighbours' inputs (like LinearConsensusAgent);
+//     coupling through the neighbours' inputs (LocalAgentRow, like LinearConsensusAgent);
 //   - super_twisting and terminal_smc close U = F_a + L_H^-1 R (the swarm-wide solve) row by row
-//     like ContinuousSmcAgent: row i of L_H W = R in w_i = u_i - f_ia,
-//     w_i = (R_i + sum_j a_ij w_j) / (d_i + a_i0), with w_j from the host (its central solve, a
-//     Jacobi round, or the neighbours' last inputs: agent_adapter.hpp).
+//     (SolvedAgentRow, like ContinuousSmcAgent).
 // A law whose state advances with time (the adaptive gain d_i, the estimate vbar_i, the
 // super-twisting integral) takes the host's time in Advance() before Prepare(); the exchange
 // rounds of one tick share the tick's time and recompute the tick from the state it started with.
@@ -18,6 +16,7 @@
 #define MJFORMATION_FORMATION_LITERATURE_AGENTS_HPP_
 
 #include <mjformation/formation/adaptive_tracking.hpp>
+#include <mjformation/formation/agent_laws.hpp>
 #include <mjformation/formation/literature_laws.hpp>
 #include <mjformation/formation/observer_tracking.hpp>
 #include <mjformation/formation/super_twisting.hpp>
@@ -54,62 +53,6 @@ class TickClock {
   StepClock clock_;
   double tick_time_ = std::numeric_limits<double>::quiet_NaN();
   double dt_ = 0.0;
-};
-
-// What the three laws without coupling through the neighbours' inputs share: e_i from the
-// follower's data, and nothing to exchange (coupling and rhs are zero, Solve a no-op).
-class LocalAgentRow {
- public:
-  double CouplingFromInput(int, int, double) const { return 0.0; }
-  void Solve(const double*) {}
-  void UseSolved(const double*) {}
-  const double* acceleration() const { return acceleration_; }
-  const double* sliding() const { return sliding_; }
-  const double* coupling() const { return zero_; }
-  const double* rhs() const { return zero_; }
-
- protected:
-  LocalAgentRow(double leader_weight, std::vector<double> weights);
-  // e_i of eq. (16), e[k], k = (px, py, vx, vy).
-  void Error(const double* own_pv, const double* leader_pv, const double* f_now,
-             const double* neighbour_pv, const double* neighbour_f_now, double* e) const;
-  double leader_weight_;
-  std::vector<double> weights_;
-  double acceleration_[2] = {0, 0};
-  double sliding_[2] = {0, 0};
-  double zero_[2] = {0, 0};
-};
-
-// What the two laws closed through L_H share (ContinuousSmcAgent's row): the solve of row i and
-// the feed-forward f_ia, f_ja that turn inputs into w and back.
-class SolvedAgentRow {
- public:
-  double CouplingFromInput(int m, int axis, double u_j) const {
-    return u_j - neighbour_fa_[2 * m + axis];  // w_j = u_j - f_ja
-  }
-  void Solve(const double* w_neighbours);
-  void UseSolved(const double* w_own);
-  const double* acceleration() const { return acceleration_; }
-  const double* sliding() const { return sliding_; }
-  const double* coupling() const { return w_; }
-  const double* rhs() const { return rhs_; }
-
- protected:
-  SolvedAgentRow(double leader_weight, std::vector<double> weights);
-  void Error(const double* own_pv, const double* leader_pv, const double* f_now,
-             const double* neighbour_pv, const double* neighbour_f_now, double* e) const;
-  // Keeps f_ia and the neighbours' f_ja of this tick (u = f_a + w).
-  void KeepFeedForward(const double* f_now, const double* neighbour_f_now);
-  template <typename Visit>
-  void VisitRow(Visit& visit) {
-    visit(neighbour_fa_, own_fa_, rhs_, w_, acceleration_, sliding_);
-  }
-  double leader_weight_;
-  std::vector<double> weights_;
-  double degree_;
-  std::vector<double> neighbour_fa_;  // [2m + axis]
-  double own_fa_[2] = {0, 0};
-  double rhs_[2] = {0, 0}, w_[2] = {0, 0}, acceleration_[2] = {0, 0}, sliding_[2] = {0, 0};
 };
 
 // vs_tracking.hpp's row: u_i = f_ia - (e_ip + alpha e_iv) - beta sgn(gamma e_ip + e_iv).

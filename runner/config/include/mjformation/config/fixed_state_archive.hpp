@@ -20,6 +20,7 @@
 #include <cstdint>
 #include <cstring>
 #include <deque>
+#include <iterator>
 #include <limits>
 #include <random>
 #include <string>
@@ -50,13 +51,6 @@ class FixedStateArchive {
  private:
   FixedStateArchive(double* out, const double* in) : out_(out), in_(in) {}
 
-  template <typename T, typename = void>
-  struct HasVisitState : std::false_type {};
-  template <typename T>
-  struct HasVisitState<
-      T, std::void_t<decltype(std::declval<T&>().VisitState(std::declval<FixedStateArchive&>()))>>
-      : std::true_type {};
-
   void Slot(double& value) {
     if (out_) std::memcpy(out_ + cursor_, &value, sizeof(double));
     if (in_) std::memcpy(&value, in_ + cursor_, sizeof(double));
@@ -69,15 +63,21 @@ class FixedStateArchive {
     if (in_) word = static_cast<uint32_t>(Whole(value, 0.0, 4294967295.0));
   }
   // A stored integer read back, checked first: converting a double outside the integer's range
-  // is undefined, and a state written by hand or by another configuration may hold one.
+  // is undefined, and a state written by hand or by another configuration may hold one. Every
+  // range here is within 32 bits, so in range the truncation to int64_t is defined and gives the
+  // value back exactly when it is whole (no libm floor: this runs for every word of an engine).
   double Whole(double value, double lowest, double highest) const {
-    if (!(value >= lowest && value <= highest && value == std::floor(value))) {
-      throw StateArchiveError("the saved state holds " + std::to_string(value) + " at position " +
-                              std::to_string(cursor_ - 1) +
-                              " where an integer is stored: it was not written by this "
-                              "configuration");
+    if (value >= lowest && value <= highest &&
+        static_cast<double>(static_cast<int64_t>(value)) == value) {
+      return value;
     }
-    return value;
+    NotWhole(value);
+  }
+  [[noreturn]] void NotWhole(double value) const {
+    throw StateArchiveError("the saved state holds " + std::to_string(value) + " at position " +
+                            std::to_string(cursor_ - 1) +
+                            " where an integer is stored: it was not written by this "
+                            "configuration");
   }
   void Word64(uint64_t& word) {
     uint32_t high = static_cast<uint32_t>(word >> 32), low = static_cast<uint32_t>(word);
@@ -88,35 +88,29 @@ class FixedStateArchive {
   // Bytes as 32-bit words. A random engine's words: the standard gives no access to its state
   // but text, so its object representation is copied (memcpy of its words, bit-exact; the
   // layout is this build's standard library's, as the block is this build's).
+  // Word() for each, with the direction chosen once (an engine is hundreds of words, walked
+  // both ways every native step).
   void Words(void* data, size_t bytes) {
-    for (size_t at = 0; at < bytes; at += sizeof(uint32_t)) {
+    char* const at = static_cast<char*>(data);
+    const size_t n = bytes / sizeof(uint32_t);
+    for (size_t k = 0; out_ && k < n; ++k) {
       uint32_t word;
-      std::memcpy(&word, static_cast<char*>(data) + at, sizeof(word));
-      Word(word);
-      if (in_) std::memcpy(static_cast<char*>(data) + at, &word, sizeof(word));
+      std::memcpy(&word, at + k * sizeof(word), sizeof(word));
+      out_[cursor_ + k] = word;
     }
+    for (size_t k = 0; in_ && k < n; ++k) {
+      ++cursor_;  // Whole names the position just read
+      const uint32_t word = static_cast<uint32_t>(Whole(in_[cursor_ - 1], 0.0, 4294967295.0));
+      std::memcpy(at + k * sizeof(word), &word, sizeof(word));
+    }
+    if (!in_) cursor_ += n;
   }
-
-  template <typename T>
-  static constexpr bool kIsEngine =
-      std::is_same_v<T, std::mt19937> || std::is_same_v<T, std::mt19937_64> ||
-      std::is_same_v<T, std::minstd_rand> || std::is_same_v<T, std::minstd_rand0>;
-  template <typename T>
-  struct IsSequence : std::false_type {};
-  template <typename T, typename A>
-  struct IsSequence<std::vector<T, A>> : std::true_type {};
-  template <typename T, typename A>
-  struct IsSequence<std::deque<T, A>> : std::true_type {};
-  template <typename T>
-  struct IsFixedArray : std::false_type {};
-  template <typename T, size_t N>
-  struct IsFixedArray<std::array<T, N>> : std::true_type {};
-  template <typename T>
-  struct IsPairLike : std::false_type {};
-  template <typename A, typename B>
-  struct IsPairLike<std::pair<A, B>> : std::true_type {};
-  template <typename... T>
-  struct IsPairLike<std::tuple<T...>> : std::true_type {};
+  // Doubles stored as themselves, in one copy.
+  void Doubles(double* values, size_t n) {
+    if (out_) std::memcpy(out_ + cursor_, values, n * sizeof(double));
+    if (in_) std::memcpy(values, in_ + cursor_, n * sizeof(double));
+    cursor_ += n;
+  }
 
   template <typename T>
   void Integer(T& value) {
@@ -137,7 +131,7 @@ class FixedStateArchive {
 
   template <typename T>
   void Visit(T& value) {
-    if constexpr (HasVisitState<T>::value) {
+    if constexpr (state_kinds::kHasVisitState<T, FixedStateArchive>) {
       value.VisitState(*this);
     } else if constexpr (std::is_floating_point_v<T>) {
       double v = static_cast<double>(value);
@@ -153,13 +147,16 @@ class FixedStateArchive {
       auto underlying = static_cast<std::underlying_type_t<T>>(value);
       Integer(underlying);
       if (in_) value = static_cast<T>(underlying);
-    } else if constexpr (kIsEngine<T>) {
+    } else if constexpr (state_kinds::kIsEngine<T>) {
       static_assert(std::is_trivially_copyable_v<T> && sizeof(T) % sizeof(uint32_t) == 0,
                     "an engine stored as its words");
       Words(&value, sizeof(T));
-    } else if constexpr (std::is_array_v<T> || IsFixedArray<T>::value || IsSequence<T>::value) {
+    } else if constexpr (state_kinds::kIsDoubles<T>) {
+      Doubles(std::data(value), std::size(value));
+    } else if constexpr (std::is_array_v<T> || state_kinds::kIsFixedArray<T> ||
+                         state_kinds::kIsSequence<T>) {
       for (auto& element : value) Visit(element);
-    } else if constexpr (IsPairLike<T>::value) {
+    } else if constexpr (state_kinds::kIsPairLike<T>) {
       std::apply([&](auto&... parts) { (Visit(parts), ...); }, value);
     } else if constexpr (std::is_trivially_copyable_v<T> && sizeof(T) % sizeof(uint32_t) == 0) {
       // The plugin ABI's plain structs (mjfVehicleState, mjfEstimate): doubles and 64-bit

@@ -37,6 +37,61 @@ class StateArchiveError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// What a member is, for both archives' walks (this StateArchive and FixedStateArchive): they
+// differ in how they store a kind, never in which kinds there are.
+namespace state_kinds {
+
+// A member the walk descends into: its type says what it carries (VisitState).
+template <typename T, typename Archive, typename = void>
+struct HasVisitStateFor : std::false_type {};
+template <typename T, typename Archive>
+struct HasVisitStateFor<
+    T, Archive, std::void_t<decltype(std::declval<T&>().VisitState(std::declval<Archive&>()))>>
+    : std::true_type {};
+template <typename T, typename Archive>
+inline constexpr bool kHasVisitState = HasVisitStateFor<T, Archive>::value;
+
+template <typename T>
+inline constexpr bool kIsEngine =
+    std::is_same_v<T, std::mt19937> || std::is_same_v<T, std::mt19937_64> ||
+    std::is_same_v<T, std::minstd_rand> || std::is_same_v<T, std::minstd_rand0>;
+
+template <typename T>
+inline constexpr bool kIsSequence = false;
+template <typename T, typename A>
+inline constexpr bool kIsSequence<std::vector<T, A>> = true;
+template <typename T, typename A>
+inline constexpr bool kIsSequence<std::deque<T, A>> = true;
+
+template <typename T>
+inline constexpr bool kIsFixedArray = false;
+template <typename T, size_t N>
+inline constexpr bool kIsFixedArray<std::array<T, N>> = true;
+
+// Doubles side by side (a block one copy can move).
+template <typename T>
+inline constexpr bool kIsDoubles = false;
+template <typename A>
+inline constexpr bool kIsDoubles<std::vector<double, A>> = true;
+template <size_t N>
+inline constexpr bool kIsDoubles<std::array<double, N>> = true;
+template <size_t N>
+inline constexpr bool kIsDoubles<double[N]> = true;
+
+template <typename T>
+inline constexpr bool kIsOrdered = false;
+template <typename T, typename C, typename A>
+inline constexpr bool kIsOrdered<std::set<T, C, A>> = true;
+
+template <typename T>
+inline constexpr bool kIsPairLike = false;
+template <typename A, typename B>
+inline constexpr bool kIsPairLike<std::pair<A, B>> = true;
+template <typename... T>
+inline constexpr bool kIsPairLike<std::tuple<T...>> = true;
+
+}  // namespace state_kinds
+
 class StateArchive {
  public:
   // Saving: an empty archive that grows. Loading: reads `bytes` from the start.
@@ -85,13 +140,6 @@ class StateArchive {
   }
 
  private:
-  template <typename T, typename = void>
-  struct HasVisitState : std::false_type {};
-  template <typename T>
-  struct HasVisitState<
-      T, std::void_t<decltype(std::declval<T&>().VisitState(std::declval<StateArchive&>()))>>
-      : std::true_type {};
-
   // A length, checked on load against what is left (a corrupt length never allocates wildly).
   size_t Length(size_t n, size_t element_bytes) {
     uint64_t v = n;
@@ -149,34 +197,8 @@ class StateArchive {
   }
 
   template <typename T>
-  static constexpr bool kIsEngine =
-      std::is_same_v<T, std::mt19937> || std::is_same_v<T, std::mt19937_64> ||
-      std::is_same_v<T, std::minstd_rand> || std::is_same_v<T, std::minstd_rand0>;
-
-  template <typename T>
-  struct IsSequence : std::false_type {};
-  template <typename T, typename A>
-  struct IsSequence<std::vector<T, A>> : std::true_type {};
-  template <typename T, typename A>
-  struct IsSequence<std::deque<T, A>> : std::true_type {};
-  template <typename T>
-  struct IsFixedArray : std::false_type {};
-  template <typename T, size_t N>
-  struct IsFixedArray<std::array<T, N>> : std::true_type {};
-  template <typename T>
-  struct IsOrdered : std::false_type {};
-  template <typename T, typename C, typename A>
-  struct IsOrdered<std::set<T, C, A>> : std::true_type {};
-  template <typename T>
-  struct IsPairLike : std::false_type {};
-  template <typename A, typename B>
-  struct IsPairLike<std::pair<A, B>> : std::true_type {};
-  template <typename... T>
-  struct IsPairLike<std::tuple<T...>> : std::true_type {};
-
-  template <typename T>
   void Visit(T& value) {
-    if constexpr (HasVisitState<T>::value) {
+    if constexpr (state_kinds::kHasVisitState<T, StateArchive>) {
       value.VisitState(*this);
     } else if constexpr (std::is_arithmetic_v<T> || std::is_enum_v<T>) {
       Bytes(&value, sizeof(T));
@@ -184,15 +206,15 @@ class StateArchive {
       const size_t n = Length(value.size(), 1);
       if (loading_) value.resize(n);
       if (n > 0) Bytes(value.data(), n);
-    } else if constexpr (kIsEngine<T>) {
+    } else if constexpr (state_kinds::kIsEngine<T>) {
       RandomEngine(value);
-    } else if constexpr (std::is_array_v<T> || IsFixedArray<T>::value) {
+    } else if constexpr (std::is_array_v<T> || state_kinds::kIsFixedArray<T>) {
       for (auto& element : value) Visit(element);
-    } else if constexpr (IsSequence<T>::value) {
+    } else if constexpr (state_kinds::kIsSequence<T>) {
       Sequence(value);
-    } else if constexpr (IsOrdered<T>::value) {
+    } else if constexpr (state_kinds::kIsOrdered<T>) {
       Ordered(value);
-    } else if constexpr (IsPairLike<T>::value) {
+    } else if constexpr (state_kinds::kIsPairLike<T>) {
       std::apply([&](auto&... parts) { (Visit(parts), ...); }, value);
     } else if constexpr (std::is_trivially_copyable_v<T>) {
       // std::complex and the plugin ABI's plain structs (mjfVehicleState,

@@ -26,8 +26,8 @@ struct ExperimentConfig;
 
 // What an estimator plugin is told of the suite: the accelerometer's noise plus what the
 // attitude channel's error adds to the rotated specific force (a tilt error e gives g e), the
-// aiding channels and the largest latency.
-mjfSensorInfo SuiteInfo(const realism::SensorParams& p, double gravity);
+// aiding channels, the largest latency and the steps at which aiding samples are taken.
+mjfSensorInfo SuiteInfo(const realism::SensorParams& p, double timestep, double gravity);
 
 class EstimatedSensors final : public SensorStage {
  public:

@@ -77,7 +77,8 @@ class TimeseriesWriter {
   void Flush();
   std::string path_;
   std::FILE* file_ = nullptr;
-  std::string buffer_;
+  std::string buffer_;  // [0, length_): rows not yet written; the rest: room for the next row
+  size_t length_ = 0;
   // Partitioned physics: the partitions' cells of a block before they are joined (output.cc,
   // Block): [first vehicle of a range] its bytes and its vehicles.
   std::vector<char> scratch_;
