@@ -37,6 +37,8 @@ CASES = {
                        {"vehicles.model": "pointmass", "attitude": {"plugin": "pointmass_direct"}}),
     # GNSS-grade sensors through kf_ins: the estimators' declared state in the round trip.
     "b05": ("experiments/benchmark/b05_gnss_kf.toml", {}),
+    # Per-agent execution over a lossy network: the links' streams and queues in plugin_state.
+    "b13": ("experiments/benchmark/b13_lossy_network.toml", {}),
 }
 
 

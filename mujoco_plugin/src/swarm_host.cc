@@ -18,7 +18,8 @@ namespace mjf::native {
 
 const std::vector<std::string>& CarriedSections() {
   static const std::vector<std::string> kSections = {
-      "run", "vehicles", "topology", "leader", "formation", "attitude", "sensors", "estimator"};
+      "run",      "vehicles", "topology",  "leader",    "formation",
+      "attitude", "sensors",  "estimator", "execution", "network"};
   return kSections;
 }
 

@@ -132,6 +132,50 @@ TEST(NativeFlight, GnssAndKalmanFilterAreTheRunnersTrajectory) {
   EXPECT_GT(c.moved, 0.5);
 }
 
+// `experiment` of experiments/ shortened to `seconds` (its metric window the last half).
+std::string Shortened(const std::string& experiment, double seconds) {
+  std::string text = NativeExperimentText(experiment);
+  text = std::regex_replace(text, std::regex("\nduration = [0-9.]+"),
+                            "\nduration = " + std::to_string(seconds));
+  return std::regex_replace(
+      text, std::regex("\nmetric_window = [^\n]*"),
+      "\nmetric_window = [" + std::to_string(seconds / 2) + ", " + std::to_string(seconds) + "]");
+}
+
+// The benchmark's b13, per-agent execution over a lossy network (100 Hz broadcasts, 20 ms
+// latency, 10 % loss), shortened to 2 s: every link's loss draws, its messages in flight and
+// held, and each follower's instance are in plugin_state, so plain mj_step flies the runner's
+// flight, bit for bit.
+TEST(NativeFlight, PerAgentOverALossyNetworkIsTheRunnersTrajectory) {
+  Scratch dir("lossy_network");
+  const std::string text = Shortened("benchmark/b13_lossy_network.toml", 2.0);
+  ASSERT_NE(text.find("\nmode = \"per_agent\""), std::string::npos);
+  std::ofstream(dir / "experiment.toml") << text;
+  const Comparison c = FlyBoth(dir / "experiment.toml", 2.0);
+  EXPECT_EQ(c.steps, 2000);
+  EXPECT_TRUE(c.bitwise) << "largest qpos difference " << c.max_diff << " m";
+  EXPECT_GT(c.moved, 0.5);
+}
+
+// The channel's other parts (Jacobi rounds, input prediction, clock offsets and drift, jitter,
+// Gilbert-Elliott bursts, a link of its own) on b13, 1 s: the runner's flight, bit for bit.
+TEST(NativeFlight, JacobiRoundsClocksAndBurstsAreTheRunnersTrajectory) {
+  Scratch dir("jacobi_network");
+  std::string text = Shortened("benchmark/b13_lossy_network.toml", 1.0);
+  text = std::regex_replace(text, std::regex("\n\\[execution\\]"),
+                            "\n[execution]\ncoupling = \"jacobi\"\njacobi_rounds = 2\n"
+                            "predict = \"input\"\nclock_offset = 0.004\nclock_drift_ppm = 50.0");
+  text = std::regex_replace(text, std::regex("\nloss = 0.1 "),
+                            "\njitter = 0.005\nloss_model = \"gilbert_elliott\"\n"
+                            "burst_enter = 0.1\nburst_exit = 0.5\nloss = 0.05 ");
+  text += "\n[[network.link]]\nfrom = 0\nto = 1\nlatency = 0.004\nloss = 0.0\n";
+  std::ofstream(dir / "experiment.toml") << text;
+  const Comparison c = FlyBoth(dir / "experiment.toml", 1.0);
+  EXPECT_EQ(c.steps, 1000);
+  EXPECT_TRUE(c.bitwise) << "largest qpos difference " << c.max_diff << " m";
+  EXPECT_GT(c.moved, 0.1);
+}
+
 // Repeated mj_forward between steps (a paused viewer) leaves the held commands as they were:
 // the flight that follows is still the runner's, bit for bit.
 TEST(NativeFlight, PausedViewerLeavesHeldCommands) {
@@ -204,6 +248,30 @@ TEST(NativeConfig, ValueThatOpensASectionIsRefused) {
   EXPECT_NE(error.find("closes the table"), std::string::npos) << error;
 }
 
+// A scene edited past the bound of messages in flight (per-agent execution over a link of 1 s
+// delay at a broadcast every step) is refused when MuJoCo compiles it, naming the keys and the
+// numbers, as export refuses it.
+TEST(NativeConfig, MessagesInFlightPastTheBoundAreRefusedAtCompile) {
+  Scratch dir("in_flight");
+  std::vector<std::string> notes;
+  std::string xml = ExportedSceneXml(Variant("exp2.toml", "", "", dir), {}, &notes);
+  for (const auto& [key, value] :
+       {std::pair<std::string, std::string>{"execution", "mode = &quot;per_agent&quot;"},
+        {"network", "latency = 1.0"}}) {
+    const std::string empty = "<config key=\"" + key + "\" value=\"\"";
+    ASSERT_NE(xml.find(empty), std::string::npos) << key;
+    xml.replace(xml.find(empty), empty.size(),
+                "<config key=\"" + key + "\" value=\"" + value + "\"");
+  }
+  std::ofstream(dir / "scene.xml") << xml;
+  std::string error;
+  mjModel* m = LoadNative(dir / "scene.xml", &error);
+  EXPECT_EQ(m, nullptr);
+  if (m) mj_deleteModel(m);
+  EXPECT_NE(error.find("[network] latency = 1 s"), std::string::npos) << error;
+  EXPECT_NE(error.find("up to 1001 messages in flight"), std::string::npos) << error;
+}
+
 // One swarm flies every vehicle of a scene: a second instance is refused, naming both.
 TEST(NativeConfig, ASecondSwarmIsRefused) {
   Scratch dir("second_swarm");
@@ -248,10 +316,34 @@ std::string ExportRefusal(const std::string& append, const std::string& after = 
   return "";
 }
 
-TEST(NativeExport, RefusesPerAgentExecution) {
-  const std::string e = ExportRefusal("\n[execution]\nmode = \"per_agent\"\n");
+// Rounds over the links keep lists that grow with the run: refused, naming the key.
+TEST(NativeExport, RefusesRoundsOverTheLinks) {
+  const std::string e = ExportRefusal(
+      "\n[execution]\nmode = \"per_agent\"\ncoupling = \"jacobi\"\n"
+      "[network]\nlatency = 0.01\nrounds = \"over_links\"\n");
   EXPECT_NE(e.find("experiment.toml:"), std::string::npos) << e;
-  EXPECT_NE(e.find("[execution]: the native MuJoCo plugins cannot carry"), std::string::npos) << e;
+  EXPECT_NE(e.find("[network] rounds = \"over_links\""), std::string::npos) << e;
+}
+
+// A range-limited link records the topology's changes in a list that grows: refused by key.
+TEST(NativeExport, RefusesARangeLimitedLink) {
+  const std::string e = ExportRefusal(
+      "\n[execution]\nmode = \"per_agent\"\n[network]\nlatency = 0.01\n"
+      "[[network.link]]\nfrom = 1\nto = 2\nrange = 30.0\n");
+  EXPECT_NE(e.find("experiment.toml:"), std::string::npos) << e;
+  EXPECT_NE(e.find("[[network.link]] from = 1, to = 2: range = 30 m"), std::string::npos) << e;
+}
+
+// A link whose messages in flight pass what plugin_state holds: refused naming the keys and the
+// numbers (1 s of delay at a broadcast every step: 1001 messages).
+TEST(NativeExport, RefusesMessagesInFlightPastTheNativeBound) {
+  const std::string e = ExportRefusal(
+      "\n[execution]\nmode = \"per_agent\"\n[network]\nlatency = 0.01\n"
+      "[[network.link]]\nfrom = 0\nto = 1\nlatency = 1.0\n");
+  EXPECT_NE(e.find("experiment.toml:"), std::string::npos) << e;
+  EXPECT_NE(e.find("[[network.link]] from = 0, to = 1: latency = 1 s"), std::string::npos) << e;
+  EXPECT_NE(e.find("up to 1001 messages in flight"), std::string::npos) << e;
+  EXPECT_NE(e.find("at most 100 "), std::string::npos) << e;
 }
 
 TEST(NativeExport, RefusesWind) {

@@ -415,10 +415,73 @@ TEST(NativeStateFiles, AnInitThatCannotReadItsFilesRaises) {
   mj_deleteModel(m);
 }
 
+// A scene whose controllers draw random numbers and keep queues (sensor noise and latency
+// buffers, a lossy network): the flights MuJoCo's tools give stay the uncopied flight.
+class NativeStreamsState : public NativeState {
+ protected:
+  // Copies at 0.3 and 0.8 s (samples and messages taken, in flight and used), into a new
+  // mjData and into one with controllers of its own, fly on as the uncopied flight, bit for bit.
+  void CopiesAtTwoTimesFlyOnAsTheOriginal() {
+    mjData* uncopied = Make();
+    mjData* d = Make();
+    mjData* dest = Make();
+    Step(m_, dest, 100);  // its controllers and sensors hold a state of their own
+    int done = 0;
+    for (const int at : {300, 800}) {
+      Step(m_, uncopied, at - done);
+      Step(m_, d, at - done);
+      done = at + 250;
+      mjData* fresh = Own(mj_copyData(nullptr, m_, d));
+      mj_copyData(dest, m_, d);
+      for (mjData* x : {uncopied, d, fresh, dest}) Step(m_, x, 250);
+      EXPECT_TRUE(SameBits(m_, fresh, uncopied));
+      EXPECT_TRUE(SameBits(m_, dest, uncopied));
+      EXPECT_TRUE(SameBits(m_, d, uncopied));
+    }
+    EXPECT_GT(Travelled(m_, d), 1e-3);
+  }
+
+  // mj_getState / mj_setState: a checkpoint replayed gives the same bits, in the same mjData
+  // and in another that has flown a flight of its own.
+  void CheckpointReplayIsExact() {
+    mjData* d = Make();
+    Step(m_, d, 500);
+    const int spec = mjSTATE_INTEGRATION;
+    std::vector<mjtNum> checkpoint(mj_stateSize(m_, spec));
+    mj_getState(m_, d, checkpoint.data(), spec);
+    Step(m_, d, 300);
+    mjData* first = Own(mj_copyData(nullptr, m_, d));
+    mj_setState(m_, d, checkpoint.data(), spec);
+    Step(m_, d, 300);
+    EXPECT_TRUE(SameBits(m_, d, first));
+    mjData* other = Make();
+    Step(m_, other, 50);
+    mj_setState(m_, other, checkpoint.data(), spec);
+    Step(m_, other, 300);
+    EXPECT_TRUE(SameBits(m_, other, first));
+  }
+
+  // Finite differences and a reset leave the flight as it was: the random streams are restored
+  // with the rest, and a reset starts them from their seeds.
+  void TransitionFdAndResetLeaveTheFlightUnchanged() {
+    const mjData* reference = Reference(600);
+    mjData* d = Make();
+    Step(m_, d, 400);
+    const int nx = 2 * m_->nv + m_->na;
+    std::vector<mjtNum> A(nx * nx), B(nx * m_->nu);
+    mjd_transitionFD(m_, d, 1e-6, 1, A.data(), B.data(), nullptr, nullptr);
+    Step(m_, d, 200);
+    EXPECT_TRUE(SameBits(m_, d, reference));
+    mj_resetData(m_, d);
+    Step(m_, d, 600);
+    EXPECT_TRUE(SameBits(m_, d, reference));
+  }
+};
+
 // The benchmark's b05: GNSS-grade sensors (noise, bias walk, wander, rates, latency) and a
 // Kalman filter per vehicle. Their state (random streams, latency buffers, the filters' state
 // and covariance) lives in plugin_state with the rest, so MuJoCo's tools stay exact.
-class NativeSensorState : public NativeState {
+class NativeSensorState : public NativeStreamsState {
  protected:
   void SetUp() override {
     m_ = LoadExported(dir_, NativeExperimentText("benchmark/b05_gnss_kf.toml"));
@@ -426,62 +489,39 @@ class NativeSensorState : public NativeState {
   }
 };
 
-// Copies at 0.3 and 0.8 s (GNSS samples taken, in flight and fused), into a new mjData and into
-// one with controllers of its own, fly on as the uncopied flight, bit for bit.
 TEST_F(NativeSensorState, CopiesAtTwoTimesFlyOnAsTheOriginal) {
-  mjData* uncopied = Make();
-  mjData* d = Make();
-  mjData* dest = Make();
-  Step(m_, dest, 100);  // its controllers and sensors hold a state of their own
-  int done = 0;
-  for (const int at : {300, 800}) {
-    Step(m_, uncopied, at - done);
-    Step(m_, d, at - done);
-    done = at + 250;
-    mjData* fresh = Own(mj_copyData(nullptr, m_, d));
-    mj_copyData(dest, m_, d);
-    for (mjData* x : {uncopied, d, fresh, dest}) Step(m_, x, 250);
-    EXPECT_TRUE(SameBits(m_, fresh, uncopied));
-    EXPECT_TRUE(SameBits(m_, dest, uncopied));
-    EXPECT_TRUE(SameBits(m_, d, uncopied));
-  }
-  EXPECT_GT(Travelled(m_, d), 1e-3);
+  CopiesAtTwoTimesFlyOnAsTheOriginal();
 }
-
-// mj_getState / mj_setState: a checkpoint replayed gives the same bits.
-TEST_F(NativeSensorState, CheckpointReplayIsExact) {
-  mjData* d = Make();
-  Step(m_, d, 500);
-  const int spec = mjSTATE_INTEGRATION;
-  std::vector<mjtNum> checkpoint(mj_stateSize(m_, spec));
-  mj_getState(m_, d, checkpoint.data(), spec);
-  Step(m_, d, 300);
-  mjData* first = Own(mj_copyData(nullptr, m_, d));
-  mj_setState(m_, d, checkpoint.data(), spec);
-  Step(m_, d, 300);
-  EXPECT_TRUE(SameBits(m_, d, first));
-  // Into another mjData, which has flown a flight of its own.
-  mjData* other = Make();
-  Step(m_, other, 50);
-  mj_setState(m_, other, checkpoint.data(), spec);
-  Step(m_, other, 300);
-  EXPECT_TRUE(SameBits(m_, other, first));
-}
-
-// Finite differences and a reset leave the flight as it was: the sensors' random streams are
-// restored with the rest, and a reset starts them from their seeds.
+TEST_F(NativeSensorState, CheckpointReplayIsExact) { CheckpointReplayIsExact(); }
 TEST_F(NativeSensorState, TransitionFdAndResetLeaveTheFlightUnchanged) {
-  const mjData* reference = Reference(600);
-  mjData* d = Make();
-  Step(m_, d, 400);
-  const int nx = 2 * m_->nv + m_->na;
-  std::vector<mjtNum> A(nx * nx), B(nx * m_->nu);
-  mjd_transitionFD(m_, d, 1e-6, 1, A.data(), B.data(), nullptr, nullptr);
-  Step(m_, d, 200);
-  EXPECT_TRUE(SameBits(m_, d, reference));
-  mj_resetData(m_, d);
-  Step(m_, d, 600);
-  EXPECT_TRUE(SameBits(m_, d, reference));
+  TransitionFdAndResetLeaveTheFlightUnchanged();
+}
+
+// The benchmark's b13: per-agent execution over a lossy network. Every link's random stream,
+// its messages in flight and held, the ages and each follower's instance live in plugin_state.
+class NativeNetworkState : public NativeStreamsState {
+ protected:
+  void SetUp() override {
+    m_ = LoadExported(dir_, NativeExperimentText("benchmark/b13_lossy_network.toml"));
+    ASSERT_NE(m_, nullptr);
+  }
+};
+
+TEST_F(NativeNetworkState, CopiesAtTwoTimesFlyOnAsTheOriginal) {
+  CopiesAtTwoTimesFlyOnAsTheOriginal();
+}
+TEST_F(NativeNetworkState, CheckpointReplayIsExact) { CheckpointReplayIsExact(); }
+TEST_F(NativeNetworkState, TransitionFdAndResetLeaveTheFlightUnchanged) {
+  TransitionFdAndResetLeaveTheFlightUnchanged();
+}
+
+// What b13's plugin_state holds (docs/PLUGINS.md quotes it): the swarm's doubles.
+TEST_F(NativeNetworkState, StateSizeIsFixedAndPrinted) {
+  ASSERT_EQ(m_->nplugin, 1);
+  const int nstate = m_->npluginstate;
+  std::printf("b13 exported: npluginstate = %d doubles (mj_stateSize INTEGRATION = %d)\n", nstate,
+              static_cast<int>(mj_stateSize(m_, mjSTATE_INTEGRATION)));
+  EXPECT_GT(nstate, 13 * 3 * 28) << "13 links' queues of 3 messages at the least";
 }
 
 // plugin_state that is not ours (garbage written over it) is refused with a message naming the

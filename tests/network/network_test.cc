@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <mjformation/config/fixed_state_archive.hpp>
 #include <mjformation/network/link.hpp>
 #include <mjformation/network/network.hpp>
 #include <thread>
@@ -215,6 +216,69 @@ TEST(NetworkTest, TwoInstancesOnTwoThreadsAreIndependent) {
   tb.join();
   EXPECT_EQ(a, alone);
   EXPECT_EQ(b, alone);
+}
+
+// The fixed-length state (the control tick's block, message_state.hpp): a lossy, jittered,
+// bursty ring whose state is taken at every step (a queue past MaxInFlight would throw) and,
+// at step 2500, loaded into a network of another seed: both fly on to the same bytes.
+TEST(NetworkTest, StateLoadedIntoAnotherNetworkFliesOnTheSameBytes) {
+  std::vector<LinkSpec> specs;
+  LinkParams p;
+  p.period_steps = 3;
+  p.latency = 0.005;
+  p.jitter = 0.02;
+  p.loss_model = LossModel::kGilbertElliott;
+  p.loss = 0.1;
+  p.burst_enter = 0.2;
+  p.burst_exit = 0.4;
+  specs.push_back({0, 1, p});
+  for (int i = 1; i <= 4; ++i) specs.push_back({i, i % 4 + 1, p});
+  Network net(4, specs, kDt, 42), other(4, specs, kDt, 7);
+  using runner::FixedStateArchive;
+  FixedStateArchive sizing = FixedStateArchive::Sizing();
+  net.VisitState(sizing);
+  std::vector<double> state(sizing.size());
+  auto fly = [&](Network& n, int64_t from, int64_t to, std::vector<double>* sent_times) {
+    std::vector<mjfMessage> inbox;
+    const mjfMessage* leader = nullptr;
+    for (int64_t step = from; step < to; ++step) {
+      for (int v = 0; v <= 4; ++v) n.Broadcast(step, v, MessageAt(v, step));
+      n.Deliver(step);
+      FixedStateArchive saving = FixedStateArchive::Saving(state.data());
+      n.VisitState(saving);  // throws when a queue outgrows its bound
+      for (int v = 1; v <= 4; ++v) {
+        n.Inbox(v, -1, &inbox, &leader);
+        for (const auto& m : inbox) sent_times->push_back(m.send_time);
+      }
+    }
+  };
+  std::vector<double> first, second, ignored;
+  fly(net, 0, 2500, &ignored);
+  FixedStateArchive loading = FixedStateArchive::Loading(state.data());
+  other.VisitState(loading);
+  fly(net, 2500, 5000, &first);
+  fly(other, 2500, 5000, &second);
+  EXPECT_EQ(first, second);
+  EXPECT_GT(first.size(), 1000u);
+  for (int l = 0; l < net.n_links(); ++l) {
+    EXPECT_EQ(net.link(l).stats().lost, other.link(l).stats().lost) << l;
+    EXPECT_EQ(net.link(l).stats().delivered, other.link(l).stats().delivered) << l;
+    EXPECT_GT(net.link(l).stats().lost, 0) << l;
+  }
+}
+
+// The bound of a link's queue: one message per broadcast within the longest delay, plus one.
+TEST(NetworkTest, MaxInFlightIsTheDelayOverThePeriodPlusOne) {
+  LinkParams p;
+  p.period_steps = 10;
+  p.latency = 0.02;
+  EXPECT_EQ(MaxInFlight(p, kDt), 3);  // b13: 20 ms at 100 Hz
+  p.jitter = 0.015;
+  EXPECT_EQ(MaxInFlight(p, kDt), 4);
+  p.period_steps = 1;
+  p.latency = 1.0;
+  p.jitter = 0.0;
+  EXPECT_EQ(MaxInFlight(p, kDt), 1001);
 }
 
 TEST(NetworkTest, OlderMessageThanTheOneHeldIsDropped) {

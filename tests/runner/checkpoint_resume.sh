@@ -4,8 +4,8 @@
 # kills itself at that step, so the place is deterministic), with rows past the checkpoint left
 # in timeseries.csv, then resumed, ends with every file byte for byte as an uninterrupted
 # run's (summary.json apart from its timing); a resume with another configuration is refused
-# naming both hashes and changes nothing; a stage that cannot be saved (per-agent execution) is
-# refused at startup.
+# naming both hashes and changes nothing; a stage that cannot be saved (rounds over the links)
+# is refused at startup.
 # Usage: checkpoint_resume.sh MJFORMATION SOURCE_DIR WORK_DIR
 set -uo pipefail
 bin=$1 src=$2 work=$3
@@ -46,6 +46,21 @@ resumed_equals_uninterrupted "$src/experiments/leaders/exp2_random_accel.toml" \
   --set render.width=64 --set render.height=48
 
 rm -rf full killed
+case="per-agent execution over a lossy network (b13: links' streams, messages in flight)"
+resumed_equals_uninterrupted "$src/experiments/benchmark/b13_lossy_network.toml" --no-render
+
+rm -rf full killed
+case="Jacobi rounds, prediction, clock offsets, jitter, bursts and a range limit (its events)"
+resumed_equals_uninterrupted "$src/experiments/benchmark/b13_lossy_network.toml" --no-render \
+  --set 'execution={mode="per_agent", coupling="jacobi", jacobi_rounds=2, predict="input", clock_offset=0.004, clock_drift_ppm=50.0}' \
+  --set 'network={rate=100.0, latency=0.02, jitter=0.005, loss=0.05, loss_model="gilbert_elliott", burst_enter=0.1, burst_exit=0.5, range=15.0}'
+
+rm -rf full killed
+case="partitioned physics (two threads: each partition's MuJoCo state and motor lags)"
+resumed_equals_uninterrupted "$src/experiments/exp2.toml" --no-render --threads 2 \
+  --set 'vehicles.rotor_model="wrench"'
+
+rm -rf full killed
 case="sensors (noise, bias, latency, rate hold), the kf_ins estimator and wind saved"
 resumed_equals_uninterrupted "$src/experiments/exp2.toml" --no-render \
   --set 'sensors.preset="consumer_gnss"' --set 'estimator.plugin="kf_ins"' \
@@ -71,9 +86,10 @@ fi
 
 case="a stage that cannot be saved is refused before anything is written"
 message=$("$bin" run "$src/experiments/exp2.toml" "${short[@]}" --no-render \
-  --set 'execution={mode="per_agent"}' --out agents --checkpoint-every 0.5 2>&1)
+  --set 'execution={mode="per_agent"}' --set 'network={latency=0.01, rounds="over_links"}' \
+  --out agents --checkpoint-every 0.5 2>&1)
 code=$?
-if [ $code != 1 ] || ! grep -q "the communication channel does not save its state yet; \[execution\] mode" \
+if [ $code != 1 ] || ! grep -q 'checkpoints (--checkpoint-every, --resume, get_state): \[network\] rounds = "over_links"' \
   <<<"$message"; then
   fail "exit $code: $message"
 elif [ -e agents ]; then

@@ -1,6 +1,8 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 #include "mjformation/control/agent_channel.hpp"
 
+#include <fmt/format.h>
+
 #include "mjformation/control/central_solver.hpp"
 #include "mjformation/control/channel_summary.hpp"
 #include "mjformation/control/delay_margin.hpp"
@@ -22,7 +24,45 @@ int RoundsFor(const NetworkConfig& c) {
   }
 }
 
+// Each link's parameters with the key that sets them: [network] for the defaults, the
+// [[network.link]] table of each override.
+std::vector<std::pair<std::string, network::LinkParams>> KeyedLinks(const NetworkConfig& n) {
+  std::vector<std::pair<std::string, network::LinkParams>> links = {{"[network]", n.defaults}};
+  for (const NetworkConfig::LinkOverride& o : n.links) {
+    links.emplace_back(fmt::format("[[network.link]] from = {}, to = {}:", o.from, o.to), o.params);
+  }
+  return links;
+}
+
 }  // namespace
+
+std::string NetworkStateRefusal(const NetworkConfig& n, double timestep, bool native) {
+  if (n.execution != Execution::kPerAgent) return "";
+  if (n.rounds == ExchangeRounds::kOverLinks) {
+    return "[network] rounds = \"over_links\": the rounds in flight and the exchanges waiting "
+           "for them are not in the fixed-length state yet; use rounds = \"instantaneous\" or "
+           "fly the experiment with `mjformation run` without checkpoints";
+  }
+  for (const auto& [key, p] : KeyedLinks(n)) {
+    if (native && p.range > 0.0) {
+      return fmt::format(
+          "{} range = {} m: a range-limited link records the topology's changes in a list that "
+          "grows with the run, not in plugin_state; leave range out or fly the experiment with "
+          "`mjformation run`",
+          key, p.range);
+    }
+    const int64_t in_flight = network::MaxInFlight(p, timestep);
+    if (native && in_flight > kNativeMessagesInFlight) {
+      return fmt::format(
+          "{} latency = {} s and jitter = {} s at a broadcast every {} physics steps keep up to "
+          "{} messages in flight on a link; the native MuJoCo plugin holds at most {} (its "
+          "queues are part of plugin_state, copied every step): shorten the delay, lower the "
+          "rate or fly the experiment with `mjformation run`",
+          key, p.latency, p.jitter, p.period_steps, in_flight, kNativeMessagesInFlight);
+    }
+  }
+  return "";
+}
 
 AgentChannel::AgentChannel(const formation::Graph& graph, const NetworkConfig& config,
                            double timestep, uint64_t seed)
@@ -112,6 +152,14 @@ void AgentChannel::EndContinuedRound(int follower, int round,
 
 void AgentChannel::HoldPendingCommands(std::vector<mjfSetpoint>* setpoints) {
   rounds_->HoldPendingCommands(setpoints);
+}
+
+void AgentChannel::VisitState(FixedStateArchive& archive) {
+  if (rounds_) {
+    throw std::logic_error("the exchange rounds over the links are not in the channel's state");
+  }
+  routing_.VisitState(archive);
+  if (central_) central_->VisitState(archive);
 }
 
 nlohmann::json AgentChannel::Summary() const {

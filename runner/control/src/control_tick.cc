@@ -302,9 +302,8 @@ void ControlTick::RequireSavable() const {
         "a tick with it cannot be copied or checkpointed");
   }
   if (channel_) {
-    throw SimulationError(
-        "the communication channel ([network], per-agent execution) does not declare its state "
-        "yet: a tick with it cannot be copied or checkpointed");
+    const std::string why = NetworkStateRefusal(channel_->config(), timestep_, /*native=*/true);
+    if (!why.empty()) throw SimulationError(why);
   }
   if (!sensors_->saves_state()) {
     throw SimulationError(
@@ -323,13 +322,19 @@ static_assert(sizeof(mjfSetpoint) == 12 * sizeof(double), "mjfSetpoint holds dou
 size_t ControlTick::StateSize() const {
   size_t n = setpoints_.size() * kSetpointDoubles;
   for (const PluginInstance* p : Instances()) n += p->state_size();
-  if (sensor_state_size_ == kUnsized) {
+  if (stage_state_size_ == kUnsized) {
     // Fixed at construction (fixed_state_archive.hpp): counted once.
     FixedStateArchive sizing = FixedStateArchive::Sizing();
-    sensors_->VisitState(sizing);
-    sensor_state_size_ = sizing.size();
+    VisitStageState(sizing);
+    stage_state_size_ = sizing.size();
   }
-  return n + sensor_state_size_;
+  return n + stage_state_size_;
+}
+
+// The stages' fixed-length blocks: the sensor stage's, then the channel's (per-agent execution).
+void ControlTick::VisitStageState(FixedStateArchive& archive) const {
+  sensors_->VisitState(archive);
+  if (channel_) channel_->VisitState(archive);
 }
 
 void ControlTick::GetState(double* out) const {
@@ -340,7 +345,7 @@ void ControlTick::GetState(double* out) const {
     out += p->state_size();
   }
   FixedStateArchive saving = FixedStateArchive::Saving(out);
-  sensors_->VisitState(saving);
+  VisitStageState(saving);
 }
 
 void ControlTick::SetState(const double* in) {
@@ -351,7 +356,7 @@ void ControlTick::SetState(const double* in) {
     in += p->state_size();
   }
   FixedStateArchive loading = FixedStateArchive::Loading(in);
-  sensors_->VisitState(loading);
+  VisitStageState(loading);
 }
 
 }  // namespace mjf::runner

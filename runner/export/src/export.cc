@@ -16,6 +16,7 @@
 #include "mjformation/config/config.hpp"
 #include "mjformation/config/overrides.hpp"
 #include "mjformation/config/paths.hpp"
+#include "mjformation/control/agent_channel.hpp"
 #include "mjformation/control/stages.hpp"
 #include "mjformation/export/scene_anchor.hpp"
 #include "mjformation/scene/scene.hpp"
@@ -46,6 +47,8 @@ const std::vector<Carried>& CarriedSections() {
       {"attitude", {}, ""},
       {"sensors", {}, ""},
       {"estimator", {}, ""},
+      {"execution", {}, ""},
+      {"network", {}, ""},
   };
   return kCarried;
 }
@@ -245,10 +248,13 @@ void RefuseStopOn(const std::string& file, const toml::table& doc) {
 // number, rather than when MuJoCo loads the scene.
 void RefuseUnboundedState(const std::string& file, const toml::table& doc,
                           const ExperimentConfig& config) {
-  const std::string why = NativeSensorRefusal(config);
+  const std::string sensors_why = NativeSensorRefusal(config);
+  const std::string why = !sensors_why.empty()
+                              ? sensors_why
+                              : NetworkStateRefusal(config.network, config.timestep, true);
   if (why.empty()) return;
-  const toml::node* sensors = doc.get("sensors");
-  const int line = sensors ? static_cast<int>(sensors->source().begin.line) : 0;
+  const toml::node* section = doc.get(sensors_why.empty() ? "network" : "sensors");
+  const int line = section ? static_cast<int>(section->source().begin.line) : 0;
   throw ExportError(file + (line > 0 ? ":" + std::to_string(line) : std::string()) + ": " + why);
 }
 

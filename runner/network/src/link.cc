@@ -31,6 +31,13 @@ uint64_t LinkSeed(uint64_t run_seed, uint64_t link_index) {
   return mix(mix(run_seed) ^ (link_index + 1));
 }
 
+int64_t MaxInFlight(const LinkParams& params, double timestep) {
+  // A message sent at s arrives by s + D (D the delay at the jitter's upper end); after the
+  // delivery of step k, those in flight were sent in (k - D, k], one per period.
+  const int64_t longest = StepsAtOrAfter(params.latency + params.jitter, timestep);
+  return longest / std::max<int64_t>(params.period_steps, 1) + 1;
+}
+
 Link::Link(const LinkParams& params, double timestep, uint64_t seed)
     : params_(params),
       timestep_(timestep),

@@ -36,6 +36,7 @@ Network::Network(int n_followers, std::vector<LinkSpec> links, double timestep, 
                                   std::to_string(s.to) + " does not join two vehicles");
     }
     links_.emplace_back(s.params, timestep, LinkSeed(seed, l));
+    capacity_.push_back(MaxInFlight(s.params, timestep));
     out_links_[s.from].push_back(static_cast<int>(l));
     in_links_[s.to].push_back(static_cast<int>(l));
   }

@@ -333,6 +333,25 @@ void PartitionedPhysics::Step2(const std::vector<double>& controls,
 
 mjData* PartitionedPhysics::partition_data(int k) { return parts_.at(k)->data.get(); }
 
+void PartitionedPhysics::VisitState(StateArchive& archive) {
+  archive.Tag("partitions");
+  for (const auto& p : parts_) {
+    const mjModel* m = p->model.get();
+    mjData* d = p->data.get();
+    const size_t size = static_cast<size_t>(mj_stateSize(m, mjSTATE_INTEGRATION));
+    std::vector<double> physics(size);
+    if (!archive.loading()) mj_getState(m, d, physics.data(), mjSTATE_INTEGRATION);
+    archive(physics);
+    if (physics.size() != size) {
+      throw StateArchiveError("the saved state's partition " + std::to_string(p->first) +
+                              " holds " + std::to_string(physics.size()) +
+                              " numbers where this configuration has " + std::to_string(size));
+    }
+    if (archive.loading()) mj_setState(m, d, physics.data(), mjSTATE_INTEGRATION);
+    p->actuation->VisitState(archive);
+  }
+}
+
 void PartitionedPhysics::CopyInto(const mjModel* whole, mjData* data) const {
   for (const auto& p : parts_) {
     const mjModel* m = p->model.get();

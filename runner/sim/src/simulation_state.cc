@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "mjformation/control/agent_channel.hpp"
 #include "mjformation/sim/simulation.hpp"
 
 namespace mjf::runner {
@@ -33,10 +34,10 @@ void FixedBlock(StateArchive& archive, const char* what, std::vector<double>* bl
 }  // namespace
 
 void Simulation::RequireSavable() const {
-  if (partitions_) Unsavable("partitioned physics", "[run] threads > 1 (or --threads)");
-  if (config_.network.execution == Execution::kPerAgent) {
-    Unsavable("the communication channel", "[execution] mode = \"per_agent\" ([network])");
-  }
+  // The channel's state is in the control tick's block; what it cannot hold is named by key.
+  const std::string channel = NetworkStateRefusal(config_.network, config_.timestep, false);
+  if (!channel.empty())
+    throw ConfigError("checkpoints (--checkpoint-every, --resume, get_state): " + channel);
   if (!tick_->sensors().saves_state()) Unsavable("the sensor stage", "[sensors]");
   for (const auto& stage : force_stages_) {
     if (!stage->saves_state()) Unsavable("a force stage", "[wind]");
@@ -56,12 +57,22 @@ void Simulation::VisitState(StateArchive& archive) {
   if (!archive.loading()) tick_->GetState(tick.data());
   FixedBlock(archive, "control tick", &tick);
   if (archive.loading()) tick_->SetState(tick.data());
+  tick_->VisitGrowingState(archive);
   actuation_->VisitState(archive);
+  if (partitions_) {
+    // The partitions hold the swarm's physics; the whole-swarm data is brought up to date
+    // from them when next read.
+    partitions_->VisitState(archive);
+    if (archive.loading()) whole_data_stale_ = true;
+  }
   archive.Tag("realism");  // the sensor stage is in the control tick's block
   for (auto& stage : force_stages_) stage->VisitState(archive);
 }
 
 void Simulation::VisitStateAtTick(StateArchive& archive) {
+  // At a tick the partitions stand between their two phases, which mj_step1 of the whole
+  // model cannot restore.
+  if (partitions_) Unsavable("partitioned physics at a control tick", "[run] threads > 1");
   VisitState(archive);
   archive.Tag("tick outputs");
   std::vector<mjfVehicleState> measured = tick_->measured();

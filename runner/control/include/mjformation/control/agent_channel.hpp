@@ -18,9 +18,11 @@
 
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <string>
 #include <vector>
 
 #include "mjformation/config/experiment.hpp"
+#include "mjformation/config/fixed_state_archive.hpp"
 #include "mjformation/control/agent_clock.hpp"
 #include "mjformation/control/agent_routing.hpp"
 #include "mjformation/control/message_prediction.hpp"
@@ -35,6 +37,16 @@ namespace mjf::runner {
 class CentralSolver;
 class RoundsOverLinks;
 
+// The most messages in flight on one link that the native MuJoCo plugin holds in plugin_state
+// (every step copies the whole state in and out, so the queue is bounded; b13's links hold 3).
+constexpr int64_t kNativeMessagesInFlight = 100;
+// Why the channel of `network` (per-agent execution) cannot be saved, naming the key and the
+// numbers, or empty when it can: rounds over the links keep lists that grow with the run; with
+// `native` (the fixed-length plugin_state, nothing beside it), also range limits (their
+// topology's events grow with the run) and a link whose messages in flight (MaxInFlight) pass
+// kNativeMessagesInFlight.
+std::string NetworkStateRefusal(const NetworkConfig& network, double timestep, bool native);
+
 class AgentChannel {
  public:
   // graph: the follower graph (0-based); links get [network] defaults and overrides.
@@ -43,6 +55,7 @@ class AgentChannel {
   ~AgentChannel();
 
   int n_rounds() const { return n_rounds_; }
+  const NetworkConfig& config() const { return config_; }
   // What follower i (0-based) knows of the graph: its own row of L_H, for create().
   const mjfNeighbourhood& neighbourhood(int follower) const {
     return routing_.neighbourhood(follower);
@@ -84,6 +97,14 @@ class AgentChannel {
   // rho(L_H^-1 A): what the delay margin of law (48) needs of the graph (delay_margin.hpp).
   double coupling_radius() const { return coupling_radius_; }
   const AgentClocks& clocks() const { return clocks_; }
+
+  // What the channel carries from tick to tick, of a length fixed at construction (the control
+  // tick's state, ControlTick::GetState): the routing and the network, the central solve. The
+  // clocks are drawn once from the seed (configuration, not state). Throws std::logic_error on
+  // a channel NetworkStateRefusal refuses.
+  void VisitState(FixedStateArchive& archive);
+  // What grows with the run beside that block: the range topology's events (checkpoints only).
+  void VisitEvents(StateArchive& archive) { routing_.network().VisitEvents(archive); }
 
  private:
   NetworkConfig config_;

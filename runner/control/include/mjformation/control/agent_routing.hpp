@@ -74,6 +74,17 @@ class AgentRouting {
   void RecordSampleAge();
   const network::AgeStats& sample_age(int follower) const { return sample_age_[follower]; }
 
+  // What the routing carries from tick to tick (a fixed-length archive): the network, each
+  // follower's last message and own state, the ages, the tick's time. The inboxes and inputs
+  // are packed afresh on every call (Input), the positions on every tick: not state.
+  template <typename Archive>
+  void VisitState(Archive& archive) {
+    network_.VisitState(archive);
+    network::VisitMessages(archive, outgoing_);
+    for (mjfVehicleState& s : self_) network::VisitVehicleState(archive, s);
+    archive(sample_age_, time_, step_);
+  }
+
  private:
   int n_followers_;
   int n_rounds_;

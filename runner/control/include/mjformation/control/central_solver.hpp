@@ -64,6 +64,12 @@ class CentralSolver {
   const network::Link& up_link(int follower) const { return up_[follower]; }
   const network::Link& down_link(int follower) const { return down_[follower]; }
   int64_t up_late(int follower) const { return up_late_[follower]; }
+  // The instantaneous solve's state (a fixed-length archive); the star over the links is not
+  // in it (rounds over the links refuse to be saved: NetworkStateRefusal).
+  template <typename Archive>
+  void VisitState(Archive& archive) {
+    archive(solved_, have_solution_, skipped_samples_, solves_);
+  }
   int64_t down_late(int follower) const { return down_late_[follower]; }
 
  private:

@@ -83,15 +83,22 @@ class ControlTick {
   // The tick's state, what one Run leaves for the next: the setpoint bus, then each plugin
   // instance's declared state (leader, formation, follower guidance, per-agent formation,
   // attitude; ABI 4), then the sensor stage's (noise streams, latency buffers, bias and
-  // wander, the estimator instances' ABI state and estimates: SensorStage::VisitState), of a
-  // length fixed at construction. After SetState(GetState()) of another tick built from the
-  // same configuration, Run gives the same bits. RequireSavable() throws naming the first
-  // stage the native MuJoCo plugin cannot hold (a communication channel, a switching topology,
-  // a latency buffer past kNativeLatencySteps, an estimator without declared state).
+  // wander, the estimator instances' ABI state and estimates: SensorStage::VisitState), then
+  // the channel's in per-agent execution (AgentChannel::VisitState: links' streams, messages in
+  // flight and held, ages), of a length fixed at construction. After SetState(GetState()) of
+  // another tick built from the same configuration, Run gives the same bits. RequireSavable()
+  // throws naming the first stage the native MuJoCo plugin cannot hold (a switching topology, a
+  // latency buffer past kNativeLatencySteps, an estimator without declared state, a channel
+  // NetworkStateRefusal refuses).
   void RequireSavable() const;
   size_t StateSize() const;
   void GetState(double* out) const;
   void SetState(const double* in);
+  // Beside the fixed block, for checkpoints only: the channel's lists that grow with the run
+  // (AgentChannel::VisitEvents); nothing without a channel.
+  void VisitGrowingState(StateArchive& archive) {
+    if (channel_) channel_->VisitEvents(archive);
+  }
   // A tick restored between its two parts (the Python Simulation stands after a tick): what it
   // measured and the controls it computed, and the context the attitude stage runs in, as
   // RunSwarmStages of `step` left them, without running a plugin.
@@ -121,6 +128,9 @@ class ControlTick {
   void RequireFiniteSetpoints(double time) const;
   // Calls the plugin and turns a failure code or a C++ exception into a SimulationError.
   void Call(PluginInstance& plugin, mjfStepContext& ctx, int vehicle);
+  // The sensor stage's and the channel's blocks (their state is theirs to change, even when
+  // walked by a GetState: the walk writes through the archive, it changes nothing).
+  void VisitStageState(FixedStateArchive& archive) const;
   // Every plugin instance, in the order of the state layout.
   std::vector<PluginInstance*> Instances() const;
 
@@ -137,7 +147,7 @@ class ControlTick {
   std::array<char, 512> plugin_error_{};
   mjfStepContext tick_ctx_{};  // the context of the current tick (RunSwarmStages)
   static constexpr size_t kUnsized = static_cast<size_t>(-1);
-  mutable size_t sensor_state_size_ = kUnsized;  // the sensor stage's doubles, counted once
+  mutable size_t stage_state_size_ = kUnsized;  // the sensor stage's and channel's, counted once
 };
 
 }  // namespace mjf::runner

@@ -22,6 +22,10 @@ class Random {
   explicit Random(uint64_t seed) : engine_(seed) {}
   double Uniform() { return static_cast<double>(engine_() >> 11) * 0x1.0p-53; }
   bool Bernoulli(double p) { return Uniform() < p; }
+  template <typename Archive>
+  void VisitState(Archive& archive) {
+    archive(engine_);
+  }
 
  private:
   std::mt19937_64 engine_;
@@ -45,7 +49,17 @@ struct LinkStats {
   int64_t rounds_delivered = 0;
   double round_latency_sum = 0.0;  // s
   double round_latency_max = 0.0;
+
+  template <typename Archive>
+  void VisitState(Archive& archive) {
+    archive(sent, lost, delivered, stale, out_of_range, latency_sum, latency_max, rounds_sent,
+            rounds_lost, rounds_delivered, round_latency_sum, round_latency_max);
+  }
 };
+
+// The most messages one link can have in flight between two steps: one per broadcast within
+// the longest delay, latency + jitter, in whole steps (a fixed-length state holds that many).
+int64_t MaxInFlight(const LinkParams& params, double timestep);
 
 class Link {
  public:
@@ -74,6 +88,14 @@ class Link {
 
   const LinkStats& stats() const { return stats_; }
   bool in_bad_state() const { return bad_; }
+
+  // What the link carries from step to step: its random stream (none on an ideal link, which
+  // draws nothing), its Gilbert-Elliott state and its counts.
+  template <typename Archive>
+  void VisitState(Archive& archive) {
+    if (!ideal_) archive(random_);
+    archive(bad_, stats_);
+  }
 
  private:
   bool DrawLoss();

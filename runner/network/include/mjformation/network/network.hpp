@@ -12,10 +12,12 @@
 
 #include <array>
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "mjformation/network/link.hpp"
+#include "mjformation/network/message_state.hpp"
 #include "mjformation/network/round_courier.hpp"
 
 namespace mjf::network {
@@ -31,6 +33,10 @@ struct TopologyEvent {
   double time = 0.0;  // s, first step at which the new state holds
   int from = 0, to = 0;
   bool up = false;
+  template <typename Archive>
+  void VisitState(Archive& archive) {
+    archive(time, from, to, up);
+  }
 };
 
 // Per-follower age of information (s): at each tick, now minus the send time of the oldest
@@ -40,6 +46,10 @@ struct AgeStats {
   double max = 0.0;
   int64_t ticks = 0;
   double mean() const { return ticks > 0 ? sum / static_cast<double>(ticks) : 0.0; }
+  template <typename Archive>
+  void VisitState(Archive& archive) {
+    archive(sum, max, ticks);
+  }
 };
 
 class Network {
@@ -89,6 +99,37 @@ class Network {
     return static_cast<double>(steps_without_tree_) * timestep_;
   }
   const AgeStats& age(int follower_vehicle) const { return age_[follower_vehicle]; }
+  // The range topology's events, a list that grows with the run, walked by an archive that
+  // stores lengths (a checkpoint's StateArchive), never by the fixed-length one.
+  template <typename Archive>
+  void VisitEvents(Archive& archive) {
+    archive(events_);
+  }
+
+  // Everything the network carries from step to step, of a length fixed by the links'
+  // parameters (a fixed-length archive, message_state.hpp): each link's stream and counts, its
+  // messages in flight (at most MaxInFlight), held and of this tick's round, the range
+  // topology and the ages. Not walked: the topology events (VisitEvents) and the rounds carried
+  // over the links, lists that grow with the run: a network with rounds in flight refuses.
+  template <typename Archive>
+  void VisitState(Archive& archive) {
+    if (!rounds_in_flight_.empty()) {
+      throw std::logic_error(
+          "network: the rounds over the links are not in the fixed-length state");
+    }
+    for (size_t l = 0; l < links_.size(); ++l) {
+      links_[l].VisitState(archive);
+      VisitBounded(archive, in_flight_[l], static_cast<size_t>(capacity_[l]),
+                   "a link's queue of messages in flight", [](Archive& a, InFlight& f) {
+                     a(f.arrival_step, f.send_step);
+                     VisitMessage(a, f.message);
+                   });
+    }
+    VisitMessages(archive, held_);
+    VisitMessages(archive, round_);
+    for (std::vector<bool>* flags : {&up_, &has_held_, &has_round_}) VisitFlags(archive, *flags);
+    archive(spanning_, topology_known_, steps_without_tree_, age_);
+  }
 
  private:
   struct InFlight {
@@ -106,6 +147,7 @@ class Network {
   std::vector<std::vector<int>> in_links_;   // [vehicle] links it receives on, spec order
   std::vector<bool> up_;
   std::vector<std::vector<InFlight>> in_flight_;  // [link]
+  std::vector<int64_t> capacity_;                 // [link] MaxInFlight of its parameters
   std::vector<mjfMessage> held_;                  // [link]
   std::vector<bool> has_held_;
   std::vector<mjfMessage> round_;  // [link] the last round message that got through

@@ -28,6 +28,7 @@
 
 #include "mjformation/config/config_error.hpp"
 #include "mjformation/config/experiment.hpp"
+#include "mjformation/config/state_archive.hpp"
 #include "mjformation/scene/scene.hpp"
 
 namespace mjf::runner {
@@ -67,6 +68,10 @@ class PartitionedPhysics {
   // Copies the partitions' state into the whole-swarm data and positions every body there
   // (kinematics, centres of mass, cameras and lights): what rendering needs.
   void CopyInto(const mjModel* whole, mjData* data) const;
+  // Checkpoints (between steps): each partition's MuJoCo integration state (mj_getState,
+  // mjSTATE_INTEGRATION) and its actuation's state, in partition order. Throws
+  // StateArchiveError when a saved block has another partition's length.
+  void VisitState(StateArchive& archive);
   // Partition k's MuJoCo data (tests: a fault raised inside one partition's step).
   mjData* partition_data(int k);
 

@@ -1,0 +1,79 @@
+// Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
+//
+// The network's state walked by a fixed-length archive (runner/config's FixedStateArchive, the
+// control tick's state that the native MuJoCo plugin keeps in plugin_state and the runner's
+// checkpoints hold): an Archive has operator()(values...) and loading(). A message is walked
+// field by field (never as its bytes: mjfMessage has padding, whose bytes are nobody's), and
+// a queue that grows and shrinks is walked as its length and a fixed number of slots.
+#ifndef MJFORMATION_NETWORK_MESSAGE_STATE_HPP_
+#define MJFORMATION_NETWORK_MESSAGE_STATE_HPP_
+
+#include <mjformation/plugin.h>
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace mjf::network {
+
+template <typename Archive>
+void VisitVehicleState(Archive& archive, mjfVehicleState& s) {
+  archive(s.pos, s.vel, s.quat, s.gyro);
+}
+
+template <typename Archive>
+void VisitMessage(Archive& archive, mjfMessage& m) {
+  archive(m.sender, m.round, m.send_time);
+  VisitVehicleState(archive, m.state);
+  archive(m.input, m.n_payload, m.payload);
+}
+
+template <typename Archive>
+void VisitMessages(Archive& archive, std::vector<mjfMessage>& messages) {
+  for (mjfMessage& m : messages) VisitMessage(archive, m);
+}
+
+// std::vector<bool> hands out proxies, not references: each flag as a bool of its own.
+template <typename Archive>
+void VisitFlags(Archive& archive, std::vector<bool>& flags) {
+  for (size_t k = 0; k < flags.size(); ++k) {
+    bool flag = flags[k];
+    archive(flag);
+    if (archive.loading()) flags[k] = flag;
+  }
+}
+
+// A queue of at most `capacity` items (a bound the configuration fixes): its length, then
+// `capacity` slots, the unused ones blank, so the walk has the same length whatever the queue
+// holds. `what` names the queue when it holds more than the bound (a bound computed wrongly)
+// or a saved length is past it (a state of another configuration).
+template <typename Archive, typename T, typename VisitItem>
+void VisitBounded(Archive& archive, std::vector<T>& items, size_t capacity, const char* what,
+                  VisitItem visit_item) {
+  uint32_t length = static_cast<uint32_t>(items.size());
+  if (items.size() > capacity) {
+    throw std::length_error(std::string(what) + " holds " + std::to_string(items.size()) +
+                            " items, past the " + std::to_string(capacity) +
+                            " its fixed-length state has room for");
+  }
+  archive(length);
+  if (archive.loading()) {
+    if (length > capacity) {
+      throw std::length_error(std::string("the saved state's ") + what + " holds " +
+                              std::to_string(length) +
+                              " items where this configuration has room "
+                              "for " +
+                              std::to_string(capacity));
+    }
+    items.resize(length);
+  }
+  for (size_t k = 0; k < capacity; ++k) {
+    T blank{};
+    visit_item(archive, k < items.size() ? items[k] : blank);
+  }
+}
+
+}  // namespace mjf::network
+
+#endif  // MJFORMATION_NETWORK_MESSAGE_STATE_HPP_
