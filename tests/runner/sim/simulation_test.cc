@@ -127,7 +127,7 @@ TEST(SetupErrorTest, VehicleWithoutThePluginsActuators) {
   text.replace(text.find("model = \"quadrotor\""), 19, "model = \"pointmass\"");
   EXPECT_THAT(ErrorOf([&] { Simulation sim(Parse(text)); }),
               AllOf(HasSubstr("pointmass.xml"), HasSubstr("'pd_cascade'"), HasSubstr("'rotor0'"),
-                    HasSubstr("lacks")));
+                    HasSubstr("no actuator named")));
 }
 
 TEST(SetupErrorTest, TopologyWithoutSpanningTree) {
