@@ -34,6 +34,7 @@ struct VehicleModelInfo {
   std::vector<mjfActuatorInfo> actuators;
   std::vector<std::string> site_names;
   std::vector<double> gains;
+  std::vector<std::string> undriven;  // VehicleFacts::ignored
 };
 
 // The wrench rotor model reproduces MuJoCo's site actuators only for fixed-gain, unbiased
@@ -91,6 +92,7 @@ VehicleModelInfo FactsOf(const mjModel* vehicle, const ExperimentConfig& config,
   std::memcpy(info.inertia, facts.inertia, sizeof(info.inertia));
   info.actuators = facts.info;
   info.gains = facts.gains;
+  info.undriven = facts.ignored;
   for (int site : facts.sites) {
     const char* name = site < 0 ? nullptr : mj_id2name(vehicle, mjOBJ_SITE, site);
     info.site_names.push_back(name ? name : "");
@@ -181,6 +183,7 @@ VehicleBindings Bind(const mjModel* composed, const ExperimentConfig& config,
   VehicleBindings out;
   out.wrench_gain = vehicle.gains;
   out.actuators_per_vehicle = attitude.n_actuators;
+  out.undriven_actuators = vehicle.undriven;
   const int n = count < 0 ? config.followers + 1 : count;
   out.vehicles.resize(n);
   const double gravity = mju_norm3(composed->opt.gravity);

@@ -78,6 +78,19 @@ Simulation::Simulation(const ExperimentConfig& config) : config_(config) {
   ReadContracts();
   CheckTorqueAuthority();
   CheckImuSite();
+  NoteUndrivenActuators();
+}
+
+// Actuators of the vehicle that no plugin drives are said, not silently left at their ctrl (after
+// the scene's composition: the note is the run's, not the composed scene's header).
+void Simulation::NoteUndrivenActuators() {
+  const std::vector<std::string>& undriven = bindings_.undriven_actuators;
+  if (undriven.empty()) return;
+  std::string names;
+  for (const std::string& name : undriven) names += (names.empty() ? "'" : ", '") + name + "'";
+  vehicle_notes_.push_back("actuators not driven by the attitude plugin '" +
+                           config_.attitude.plugin +
+                           "' (they keep their ctrl, 0 unless set): " + names);
 }
 
 // The contract's values: the formation law's report (the largest over the followers in

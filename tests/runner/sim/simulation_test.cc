@@ -224,6 +224,29 @@ TEST(SimulationTest, StepsClockAndWhatItExposes) {
   EXPECT_EQ(sim.setpoints().size(), 3u);
 }
 
+// An actuator of the vehicle that the attitude plugin does not name (here a lift assist on the
+// free joint) is never driven: the run says so among the vehicle notes, naming it; the stock
+// quadrotor has no such note.
+TEST(SimulationTest, AnActuatorThePluginDoesNotDriveIsNamedInTheVehicleNotes) {
+  const std::string dir = mjf::testing::TempDir("undriven");
+  std::string xml = mjf::testing::ReadFile(std::string(MJF_SOURCE_DIR) + "/mjcf/quadrotor.xml");
+  const std::string end = "  </actuator>";
+  ASSERT_NE(xml.find(end), std::string::npos);
+  xml.replace(xml.find(end), end.size(),
+              "    <motor name=\"lift_assist\" joint=\"root\" gear=\"0 0 1 0 0 0\"/>\n" + end);
+  mjf::testing::WriteFile(dir + "/assisted.xml", xml);
+  std::string text = HoverExperiment();
+  text.replace(text.find("model = \"quadrotor\""), 19, "model = \"assisted.xml\"");
+  ExperimentConfig c = mjf::runner::LoadExperiment(mjf::testing::WriteFile(dir + "/e.toml", text));
+  c.plugin_path.push_back(MJF_TEST_PLUGIN_DIR);
+  Simulation sim(c);
+  EXPECT_THAT(sim.vehicle_notes(),
+              ::testing::Contains(AllOf(HasSubstr("not driven"), HasSubstr("'pd_cascade'"),
+                                        HasSubstr("'lift_assist'"))));
+  Simulation stock(Parse(HoverExperiment()));
+  EXPECT_TRUE(stock.vehicle_notes().empty());
+}
+
 // A contract-form vehicle (no adapter) whose sensor site is off the centre of mass: warned with
 // the offset and the position that fixes it; its <option> changes are listed as vehicle notes.
 // The same model with the site at the centre of mass gets neither.

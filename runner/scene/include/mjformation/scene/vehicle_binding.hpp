@@ -38,6 +38,9 @@ struct VehicleBindings {
   std::vector<VehicleBinding> vehicles;  // 0 = leader
   std::vector<double> wrench_gain;       // actuator gain per driven actuator (same per vehicle)
   int actuators_per_vehicle = 0;
+  // The vehicle model's actuators that act on it but that the attitude plugin does not name (a
+  // gimbal's servo): never driven, they keep the model's own ctrl (0 unless set).
+  std::vector<std::string> undriven_actuators;
 };
 
 // Initial positions: the leader at leader_start, followers at follower_start or, by default,

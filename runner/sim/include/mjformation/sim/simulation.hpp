@@ -168,6 +168,7 @@ class Simulation {
   void AdaptForeignVehicle(const mjfPlugin& attitude);
   void ReadContracts();
   void CheckTorqueAuthority();
+  void NoteUndrivenActuators();
   void CheckImuSite();
   void ComputeForces();
   void HandOverControls();
