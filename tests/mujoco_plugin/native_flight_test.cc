@@ -212,6 +212,30 @@ TEST(NativeFlight, ForeignVehicleMappingIsTheRunnersTrajectory) {
   EXPECT_GT(c.moved, 0.1);  // the leader flies a 2 m circle
 }
 
+// examples/vehicles/bumblebee: a foreign rotor vehicle (its own body and rotor names, its own
+// sensors, a mesh and a texture below its meshdir, 20 ms motor lag) mapped by [vehicles] body and
+// rotors into Exp 2, cut to 2 s. Export bundles the model with its asset files; the plugin adapts
+// the copy, so plain mj_step flies the runner's flight, bit for bit.
+TEST(NativeFlight, ForeignRotorVehicleWithAssetsIsTheRunnersTrajectory) {
+  Scratch dir("bumblebee");
+  const std::string model =
+      std::string(MJF_SOURCE_DIR) + "/examples/vehicles/bumblebee/bumblebee.xml";
+  std::string text = NativeExperimentText("exp2.toml", model);
+  const std::string line = "\nmodel = \"" + model + "\"";
+  ASSERT_NE(text.find(line), std::string::npos);
+  text.insert(text.find(line) + line.size(),
+              "\nbody = \"bumblebee\"\nrotors = [\"prop_a\", \"prop_b\", \"prop_c\", "
+              "\"prop_d\"]");
+  text = std::regex_replace(text, std::regex("\nduration = [0-9.]+"), "\nduration = 2.0");
+  text = std::regex_replace(text, std::regex("\nmetric_window = [^\n]*"),
+                            "\nmetric_window = [1.0, 2.0]");
+  std::ofstream(dir / "experiment.toml") << text;
+  const Comparison c = FlyBoth(dir / "experiment.toml", 2.0);
+  EXPECT_EQ(c.steps, 2000);
+  EXPECT_TRUE(c.bitwise) << "largest qpos difference " << c.max_diff << " m";
+  EXPECT_GT(c.moved, 0.5);
+}
+
 // The channel's other parts (Jacobi rounds, input prediction, clock offsets and drift, jitter,
 // Gilbert-Elliott bursts, a link of its own) on b13, 1 s: the runner's flight, bit for bit.
 TEST(NativeFlight, JacobiRoundsClocksAndBurstsAreTheRunnersTrajectory) {
