@@ -3,8 +3,10 @@
 // (mj_loadPluginLibrary, mujoco.MjModel after mujoco.mj_loadPluginLibrary, or a link).
 #include <mujoco/mjplugin.h>
 
-namespace mjf::native {
-void RegisterPlugins();
-}  // namespace mjf::native
+#include "attitude_plugin.hpp"
+#include "swarm_plugin.hpp"
 
-mjPLUGIN_LIB_INIT(mjformation) { mjf::native::RegisterPlugins(); }
+mjPLUGIN_LIB_INIT(mjformation) {
+  mjf::native::SwarmPlugin::Register();
+  mjf::native::AttitudePlugin::Register();
+}

@@ -8,9 +8,7 @@
 
 #include "mjformation/config/config.hpp"
 #include "mjformation/config/paths.hpp"
-#include "mjformation/control/control_tick.hpp"
-#include "mjformation/control/control_wiring.hpp"
-#include "mjformation/control/plugin_host.hpp"
+#include "mjformation/control/control_setup.hpp"
 #include "mjformation/scene/rotor_faults.hpp"
 #include "mjformation/scene/vehicle_adapter.hpp"
 #include "mjformation/scene/vehicle_binding.hpp"
@@ -131,9 +129,7 @@ std::shared_ptr<const SwarmShared> SwarmHost::Prepare(const mjModel* m,
     s->config.timestep = m->opt.timestep;
     s->registry =
         std::make_unique<runner::PluginRegistry>(NativePluginSearchPath(s->config.plugin_path));
-    s->attitude = &runner::FindPlugin(*s->registry, s->config, s->config.attitude,
-                                      {MJF_KIND_ATTITUDE}, "this section needs an attitude plugin");
-    runner::ResolveAttributes(*s->attitude->descriptor, s->config.attitude, s->config.source_path);
+    s->attitude = &runner::LoadAttitudePlugin(*s->registry, s->config);
     // A mapped foreign vehicle ([vehicles] body, rotors, thrust, moments): its facts are read
     // from the text the runner adapts and flies, so both faces bind the same numbers.
     const std::string vehicle_xml =
@@ -160,14 +156,11 @@ SwarmHost::SwarmHost(std::shared_ptr<const SwarmShared> shared) : impl_(std::mak
       contexts.info.push_back(&b.info);
     }
     contexts.initial_positions = runner::InitialPositions(config);
-    s.wiring =
-        std::make_unique<runner::ControlWiring>(config, *s.shared->registry, std::move(contexts));
-    std::unique_ptr<runner::AgentChannel> channel = s.wiring->MakeChannel();
-    runner::ControlPlugins plugins = s.wiring->CreatePlugins(*s.shared->attitude, channel.get());
-    s.tick = std::make_unique<runner::ControlTick>(
-        std::move(plugins), s.wiring->MakeSensors(), s.wiring->InitialSetpoints(),
-        s.shared->bindings.actuators_per_vehicle, config.altitude, config.timestep,
-        std::move(channel));
+    runner::ControlSetup control =
+        runner::SetUpControl(config, *s.shared->registry, *s.shared->attitude, std::move(contexts),
+                             s.shared->bindings.actuators_per_vehicle);
+    s.wiring = std::move(control.wiring);
+    s.tick = std::move(control.tick);
     s.tick->RequireSavable();
   } catch (const std::exception& e) {
     throw std::runtime_error(WithoutLine(e.what(), config.source_path));

@@ -46,7 +46,7 @@ using mjf::testing::NativeExperimentText;
 using mjf::testing::ReadFile;
 using mjf::testing::Scratch;
 
-// The plugin_state header of mujoco_plugin/src/native_plugins.cc.
+// The plugin_state header of mujoco_plugin/src/actuator_plugin.hpp.
 constexpr int kCommitted = 1, kHeld = 2;
 
 // MuJoCo's errors as exceptions (as the runner and Python have them), so that a refusal is

@@ -9,6 +9,7 @@
 #include "mjformation/config/paths.hpp"
 #include "mjformation/config/source_location.hpp"
 #include "mjformation/control/agent_channel.hpp"
+#include "mjformation/control/control_setup.hpp"
 #include "mjformation/scene/scene.hpp"
 #include "mjformation/scene/vehicle_adapter.hpp"
 #include "mjformation/sim/mujoco_errors.hpp"
@@ -41,11 +42,8 @@ SceneRequest MakeSceneRequest(const ExperimentConfig& c,
 Simulation::Simulation(const ExperimentConfig& config) : config_(config) {
   InstallMujocoHandlers();
   registry_ = std::make_unique<PluginRegistry>(PluginSearchPath(config_.plugin_path));
-  const LoadedPlugin& attitude =
-      FindPlugin(*registry_, config_, config_.attitude, {MJF_KIND_ATTITUDE},
-                 "this section needs an attitude plugin");
   // Attribute problems are reported before the (slower) scene compilation.
-  ResolveAttributes(*attitude.descriptor, config_.attitude, config_.source_path);
+  const LoadedPlugin& attitude = LoadAttitudePlugin(*registry_, config_);
 
   std::vector<std::array<double, 3>> initial_positions = InitialPositions(config_);
   AdaptForeignVehicle(*attitude.descriptor);  // [vehicles] body / rotors (docs/VEHICLES.md)
@@ -67,12 +65,10 @@ Simulation::Simulation(const ExperimentConfig& config) : config_(config) {
   for (const VehicleBinding& b : bindings_.vehicles) contexts.info.push_back(&b.info);
   contexts.initial_positions = std::move(initial_positions);  // the wiring owns them from here
   contexts.model = reinterpret_cast<const struct mjModel_*>(model_.get());
-  wiring_ = std::make_unique<ControlWiring>(config_, *registry_, std::move(contexts));
-  std::unique_ptr<AgentChannel> channel = wiring_->MakeChannel();  // per-agent execution only
-  ControlPlugins plugins = CreatePluginsNamingRotors(attitude, channel.get());
-  tick_ = std::make_unique<ControlTick>(
-      std::move(plugins), wiring_->MakeSensors(), wiring_->InitialSetpoints(),
-      bindings_.actuators_per_vehicle, config_.altitude, config_.timestep, std::move(channel));
+  ControlSetup control = SetUpControl(config_, *registry_, attitude, std::move(contexts),
+                                      bindings_.actuators_per_vehicle);
+  wiring_ = std::move(control.wiring);
+  tick_ = std::move(control.tick);
   actuation_ =
       WithRotorFaults(MakeActuation(config_.rotor_model, model_.get(), bindings_, config_.timestep),
                       config_, bindings_, 0);
@@ -181,35 +177,6 @@ void Simulation::CheckImuSite() {
                 config_.model_path.c_str(), site_body[0], site_body[1], site_body[2], distance,
                 com_body[0], com_body[1], com_body[2], com_body[0], com_body[1], com_body[2]);
   warnings_.push_back(text);
-}
-
-// A rotor layout the attitude plugin refuses is a property of the model and its [vehicles]
-// rotors mapping, not of [attitude]: the refusal is pointed there, with the model's own rotor
-// names in place of the plugin's rotor<k>.
-ControlPlugins Simulation::CreatePluginsNamingRotors(const LoadedPlugin& attitude,
-                                                     AgentChannel* channel) {
-  try {
-    return wiring_->CreatePlugins(attitude, channel);
-  } catch (const PluginError& e) {
-    std::string text = e.what();
-    const size_t at = text.find("refused its configuration: the rotor");
-    if (config_.vehicle_rotors.empty() || at == std::string::npos) throw;
-    std::string reason = text.substr(text.find(": the rotor", at) + 2);
-    for (size_t k = 0; k < config_.vehicle_rotors.size(); ++k) {
-      const std::string plugin_name = "rotor" + std::to_string(k) + " (";
-      const std::string model_name =
-          "'" + config_.vehicle_rotors[k] + "' (rotor" + std::to_string(k) + ", ";
-      for (size_t p = 0; (p = reason.find(plugin_name, p)) != std::string::npos;
-           p += model_name.size()) {
-        reason.replace(p, plugin_name.size(), model_name);
-      }
-    }
-    throw PluginError(OriginLocation(config_.source_path, config_.vehicle_rotors_origin,
-                                     SectionKey("vehicles", "rotors"))
-                          .Prefix() +
-                      ": the attitude plugin '" + config_.attitude.plugin +
-                      "' cannot fly this rotor layout: " + reason);
-  }
 }
 
 void Simulation::AdaptForeignVehicle(const mjfPlugin& attitude) {

@@ -167,7 +167,6 @@ class Simulation {
  private:
   void AdaptForeignVehicle(const mjfPlugin& attitude);
   void ReadContracts();
-  ControlPlugins CreatePluginsNamingRotors(const LoadedPlugin& attitude, AgentChannel* channel);
   void CheckTorqueAuthority();
   void CheckImuSite();
   void ComputeForces();
