@@ -9,6 +9,8 @@
 #include "mjformation/config/config.hpp"
 #include "mjformation/config/paths.hpp"
 #include "mjformation/control/control_setup.hpp"
+#include "mjformation/scene/rotor_faults.hpp"
+#include "mjformation/scene/vehicle_adapter.hpp"
 #include "mjformation/scene/vehicle_binding.hpp"
 #include "scene_files.hpp"
 
@@ -89,11 +91,19 @@ runner::ExperimentConfig ConfigFromPairs(
   }
 }
 
+// The faults are applied to the held controls of MuJoCo's actuators; the wrench rotor model's
+// motor lag would need them too, which the native path does not carry.
+constexpr char kWrenchFaultRefusal[] =
+    "[vehicles] rotor_model = \"wrench\" with [[vehicles.fault]]: not carried by the native "
+    "MuJoCo plugins (they fault the held controls of the vehicle's own actuators); fly it with "
+    "rotor_model = \"actuator\" or with `mjformation run`";
+
 struct SwarmShared {
   runner::ExperimentConfig config;
   std::unique_ptr<runner::PluginRegistry> registry;
   const runner::LoadedPlugin* attitude = nullptr;
-  runner::VehicleBindings bindings;  // read only: shared by every host of the model
+  runner::VehicleBindings bindings;             // read only: shared by every host of the model
+  std::vector<runner::BoundRotorFault> faults;  // [[vehicles.fault]] (rotor_faults.hpp)
 };
 
 struct SwarmHost::Impl {
@@ -101,6 +111,7 @@ struct SwarmHost::Impl {
   std::unique_ptr<runner::ControlWiring> wiring;
   std::unique_ptr<runner::ControlTick> tick;
   std::vector<mjfVehicleState> truth;
+  std::vector<double> faulted;  // the tick's controls with the faults in force
 };
 
 // The same construction as the runner's Simulation, on the scene MuJoCo compiled: the bindings
@@ -110,15 +121,24 @@ std::shared_ptr<const SwarmShared> SwarmHost::Prepare(const mjModel* m,
                                                       bool bind_model,
                                                       const runner::SceneNames& names) {
   try {
+    if (config.rotor_model == runner::RotorModel::kWrench && !config.rotor_faults.empty()) {
+      throw runner::ConfigError(config.source_path + ": " + kWrenchFaultRefusal);
+    }
     auto s = std::make_shared<SwarmShared>();
     s->config = config;
     s->config.timestep = m->opt.timestep;
     s->registry =
         std::make_unique<runner::PluginRegistry>(NativePluginSearchPath(s->config.plugin_path));
     s->attitude = &runner::LoadAttitudePlugin(*s->registry, s->config);
+    // A mapped foreign vehicle ([vehicles] body, rotors, thrust, moments): its facts are read
+    // from the text the runner adapts and flies, so both faces bind the same numbers.
+    const std::string vehicle_xml =
+        runner::AdaptConfiguredVehicle(s->config, *s->attitude->descriptor).xml;
     s->bindings =
-        bind_model ? runner::BindVehicles(m, s->config, *s->attitude->descriptor, "", 0, -1, names)
-                   : runner::DescribeVehicles(m, s->config, *s->attitude->descriptor);
+        bind_model ? runner::BindVehicles(m, s->config, *s->attitude->descriptor, vehicle_xml, 0,
+                                          -1, names)
+                   : runner::DescribeVehicles(m, s->config, *s->attitude->descriptor, vehicle_xml);
+    s->faults = runner::BindRotorFaults(s->config, s->bindings, 0);
     return s;
   } catch (const std::exception& e) {
     throw std::runtime_error(WithoutLine(e.what(), config.source_path));
@@ -162,11 +182,19 @@ void SwarmHost::Tick(int64_t step, const mjModel* m, const mjData* d, double* co
   runner::ReadTrueStates(d, bindings, &s.truth);
   s.tick->Run(step, s.truth, reinterpret_cast<const struct mjModel_*>(m),
               reinterpret_cast<const struct mjData_*>(d));
-  const std::vector<double>& c = s.tick->controls();
+  const std::vector<double>* c = &s.tick->controls();
+  if (!s.shared->faults.empty()) {
+    // Where the runner's actuation applies them (sim/actuation.cc, FaultedActuation), at the
+    // step's time: the plugin's Applied() then clamps as MuJoCo clamps the runner's d->ctrl.
+    s.faulted = *c;
+    runner::ApplyRotorFaults(s.shared->faults, static_cast<double>(step) * m->opt.timestep,
+                             m->opt.timestep, s.faulted.data());
+    c = &s.faulted;
+  }
   const int per = bindings.actuators_per_vehicle;
   for (size_t i = 0; i < bindings.vehicles.size(); ++i) {
     const std::vector<int>& ids = bindings.vehicles[i].actuators;
-    for (int k = 0; k < per; ++k) controls[ids[k]] = c[i * per + k];
+    for (int k = 0; k < per; ++k) controls[ids[k]] = (*c)[i * per + k];
   }
 }
 

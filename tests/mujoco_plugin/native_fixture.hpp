@@ -62,6 +62,22 @@ inline std::string NativeExperimentText(const std::string& experiment,
   return text;
 }
 
+// examples/vehicles/midge/exp2_midge.toml: a foreign model mapped onto the vehicle contract
+// ([vehicles] body, thrust and moments: a thrust-and-moment vehicle), its model named by its
+// absolute path, without [render] and [safety] (they watch the flight; the native face carries
+// neither).
+inline std::string MidgeExperimentText() {
+  const std::string example = std::string(MJF_SOURCE_DIR) + "/examples/vehicles/midge/";
+  std::string text = ReadFile(example + "exp2_midge.toml");
+  text = std::regex_replace(text, std::regex("\nmodel = \"midge.xml\""),
+                            "\nmodel = \"" + example + "midge.xml\"");
+  for (const char* section : {"\n[render]", "\n[safety]"}) {
+    const size_t at = text.find(section);
+    if (at != std::string::npos) text.erase(at, text.find("\n[", at + 1) - at);
+  }
+  return text;
+}
+
 }  // namespace mjf::testing
 
 #endif  // MJFORMATION_TESTS_MUJOCO_PLUGIN_NATIVE_FIXTURE_HPP_

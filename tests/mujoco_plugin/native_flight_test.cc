@@ -54,7 +54,8 @@ struct Comparison {
   double max_diff = 0;  // m, largest |qpos difference| over every step
   bool bitwise = true;  // every qpos, qvel and act identical at every step
   int64_t steps = 0;
-  double moved = 0;  // m, largest change of a qpos entry over the flight (it did fly)
+  double moved = 0;         // m, largest change of a qpos entry over the flight (it did fly)
+  std::vector<mjtNum> end;  // the exported scene's qpos after the last step
 };
 
 // Steps the runner's Simulation and the exported scene side by side for `seconds`.
@@ -89,6 +90,7 @@ Comparison FlyBoth(const std::string& experiment, double seconds, int pause_ever
     ++c.steps;
   }
   for (int i = 0; i < m->nq; ++i) c.moved = std::max(c.moved, std::fabs(d->qpos[i] - start[i]));
+  c.end.assign(d->qpos, d->qpos + m->nq);
   mj_deleteData(d);
   mj_deleteModel(m);
   return c;
@@ -150,6 +152,83 @@ TEST(NativeFlight, PerAgentOverALossyNetworkIsTheRunnersTrajectory) {
   Scratch dir("lossy_network");
   const std::string text = Shortened("benchmark/b13_lossy_network.toml", 2.0);
   ASSERT_NE(text.find("\nmode = \"per_agent\""), std::string::npos);
+  std::ofstream(dir / "experiment.toml") << text;
+  const Comparison c = FlyBoth(dir / "experiment.toml", 2.0);
+  EXPECT_EQ(c.steps, 2000);
+  EXPECT_TRUE(c.bitwise) << "largest qpos difference " << c.max_diff << " m";
+  EXPECT_GT(c.moved, 0.5);
+}
+
+// The benchmark's b08 ([[vehicles.fault]]: rotor 0 of follower 3 keeps 70 % of its clamped
+// command from `at` on), the fault moved to 1 s and the flight cut to 2 s: the exported scene
+// faults the held control where the runner faults d->ctrl, so plain mj_step flies the runner's
+// flight, bit for bit; and the fault acted (the flight without it ends elsewhere).
+TEST(NativeFlight, RotorFaultIsTheRunnersTrajectory) {
+  Scratch dir("rotor_fault");
+  std::string text = Shortened("benchmark/b08_rotor_fault.toml", 2.0);
+  ASSERT_NE(text.find("\nat = 15.0"), std::string::npos);
+  text = std::regex_replace(text, std::regex("\nat = 15.0"), "\nat = 1.0");
+  std::ofstream(dir / "experiment.toml") << text;
+  const Comparison c = FlyBoth(dir / "experiment.toml", 2.0);
+  EXPECT_EQ(c.steps, 2000);
+  EXPECT_TRUE(c.bitwise) << "largest qpos difference " << c.max_diff << " m";
+  EXPECT_GT(c.moved, 0.5);
+  // The same flight without the fault: the faulted follower's position differs by more than
+  // rounding (its qpos entries are not the faulted flight's).
+  const size_t fault = text.find("\n[[vehicles.fault]]");
+  ASSERT_NE(fault, std::string::npos);
+  std::ofstream(dir / "unfaulted.toml") << text.substr(0, fault);
+  Simulation unfaulted(
+      LoadExperiment(dir / "unfaulted.toml", {}, ExperimentChecks::Rendering(false)));
+  for (int k = 0; k < 2000; ++k) {
+    unfaulted.ComputeControls();
+    unfaulted.Integrate();
+  }
+  ASSERT_EQ(c.end.size(), static_cast<size_t>(unfaulted.model()->nq));
+  double apart = 0;
+  for (size_t i = 0; i < c.end.size(); ++i) {
+    apart = std::max(apart, std::fabs(c.end[i] - unfaulted.data()->qpos[i]));
+  }
+  EXPECT_GT(apart, 1e-3);
+}
+
+// examples/vehicles/midge/exp2_midge.toml: a foreign model mapped onto the vehicle contract
+// ([vehicles] body, thrust and moments: a thrust-and-moment vehicle), cut to 2 s. Export bundles
+// the model file and the plugin adapts it as the runner does and reads the vehicle's facts from
+// that text, so plain mj_step flies the runner's flight, bit for bit.
+TEST(NativeFlight, ForeignVehicleMappingIsTheRunnersTrajectory) {
+  Scratch dir("midge");
+  std::string text = mjf::testing::MidgeExperimentText();
+  ASSERT_NE(text.find("\nbody = \"midge\""), std::string::npos);
+  ASSERT_NE(text.find("\nthrust = \"lift\""), std::string::npos);
+  ASSERT_EQ(text.find("\n[safety]"), std::string::npos);
+  text = std::regex_replace(text, std::regex("\nduration = [0-9.]+"), "\nduration = 2.0");
+  text = std::regex_replace(text, std::regex("\nmetric_window = [^\n]*"),
+                            "\nmetric_window = [1.0, 2.0]");
+  std::ofstream(dir / "experiment.toml") << text;
+  const Comparison c = FlyBoth(dir / "experiment.toml", 2.0);
+  EXPECT_EQ(c.steps, 2000);
+  EXPECT_TRUE(c.bitwise) << "largest qpos difference " << c.max_diff << " m";
+  EXPECT_GT(c.moved, 0.1);  // the leader flies a 2 m circle
+}
+
+// examples/vehicles/bumblebee: a foreign rotor vehicle (its own body and rotor names, its own
+// sensors, a mesh and a texture below its meshdir, 20 ms motor lag) mapped by [vehicles] body and
+// rotors into Exp 2, cut to 2 s. Export bundles the model with its asset files; the plugin adapts
+// the copy, so plain mj_step flies the runner's flight, bit for bit.
+TEST(NativeFlight, ForeignRotorVehicleWithAssetsIsTheRunnersTrajectory) {
+  Scratch dir("bumblebee");
+  const std::string model =
+      std::string(MJF_SOURCE_DIR) + "/examples/vehicles/bumblebee/bumblebee.xml";
+  std::string text = NativeExperimentText("exp2.toml", model);
+  const std::string line = "\nmodel = \"" + model + "\"";
+  ASSERT_NE(text.find(line), std::string::npos);
+  text.insert(text.find(line) + line.size(),
+              "\nbody = \"bumblebee\"\nrotors = [\"prop_a\", \"prop_b\", \"prop_c\", "
+              "\"prop_d\"]");
+  text = std::regex_replace(text, std::regex("\nduration = [0-9.]+"), "\nduration = 2.0");
+  text = std::regex_replace(text, std::regex("\nmetric_window = [^\n]*"),
+                            "\nmetric_window = [1.0, 2.0]");
   std::ofstream(dir / "experiment.toml") << text;
   const Comparison c = FlyBoth(dir / "experiment.toml", 2.0);
   EXPECT_EQ(c.steps, 2000);
@@ -365,6 +444,19 @@ TEST(NativeExport, RefusesALatencyPastTheNativeBound) {
 TEST(NativeExport, RefusesTheWrenchRotorModel) {
   const std::string e = ExportRefusal("\nrotor_model = \"wrench\"", "followers = 6");
   EXPECT_NE(e.find("[vehicles] rotor_model: not carried"), std::string::npos) << e;
+}
+
+// [[vehicles.fault]] is carried on MuJoCo's actuators; with the wrench rotor model it is refused
+// naming both keys.
+TEST(NativeExport, RefusesTheWrenchRotorModelWithARotorFault) {
+  const std::string e = ExportRefusal(
+      "\nrotor_model = \"wrench\"\nfault = [{ follower = 3, rotor = 0, at = 1.0, "
+      "thrust_share = 0.3 }]",
+      "followers = 6");
+  EXPECT_NE(e.find("experiment.toml:"), std::string::npos) << e;
+  EXPECT_NE(e.find("[vehicles] rotor_model = \"wrench\" with [[vehicles.fault]]"),
+            std::string::npos)
+      << e;
 }
 
 TEST(NativeExport, NeverWritesIntoAUsersDirectory) {

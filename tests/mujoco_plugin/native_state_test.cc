@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <regex>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -513,6 +514,38 @@ TEST_F(NativeNetworkState, CopiesAtTwoTimesFlyOnAsTheOriginal) {
 TEST_F(NativeNetworkState, CheckpointReplayIsExact) { CheckpointReplayIsExact(); }
 TEST_F(NativeNetworkState, TransitionFdAndResetLeaveTheFlightUnchanged) {
   TransitionFdAndResetLeaveTheFlightUnchanged();
+}
+
+// examples/vehicles/midge: a foreign thrust-and-moment model mapped onto the contract; the
+// plugin adapts it once per model (as the runner does) and its state is the controllers' alone.
+class NativeMappedState : public NativeStreamsState {
+ protected:
+  void SetUp() override {
+    m_ = LoadExported(dir_, mjf::testing::MidgeExperimentText());
+    ASSERT_NE(m_, nullptr);
+  }
+};
+
+TEST_F(NativeMappedState, CopiesAtTwoTimesFlyOnAsTheOriginal) {
+  CopiesAtTwoTimesFlyOnAsTheOriginal();
+}
+TEST_F(NativeMappedState, CheckpointReplayIsExact) { CheckpointReplayIsExact(); }
+
+// The benchmark's b08 with its rotor fault moved to 0.5 s: the copies at 0.3 and 0.8 s are taken
+// before and after it; the fault is a function of the step alone, so they fly on faulted alike.
+class NativeFaultState : public NativeStreamsState {
+ protected:
+  void SetUp() override {
+    std::string text = NativeExperimentText("benchmark/b08_rotor_fault.toml");
+    ASSERT_NE(text.find("\nat = 15.0"), std::string::npos);
+    text = std::regex_replace(text, std::regex("\nat = 15.0"), "\nat = 0.5");
+    m_ = LoadExported(dir_, text);
+    ASSERT_NE(m_, nullptr);
+  }
+};
+
+TEST_F(NativeFaultState, CopiesAtTwoTimesFlyOnAsTheOriginal) {
+  CopiesAtTwoTimesFlyOnAsTheOriginal();
 }
 
 // What b13's plugin_state holds (docs/PLUGINS.md quotes it): the swarm's doubles.

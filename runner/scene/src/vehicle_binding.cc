@@ -223,8 +223,8 @@ VehicleBindings BindVehicles(const mjModel* composed, const ExperimentConfig& co
 }
 
 VehicleBindings DescribeVehicles(const mjModel* model, const ExperimentConfig& config,
-                                 const mjfPlugin& attitude) {
-  return Bind(model, config, attitude, "", 0, -1, false, {});
+                                 const mjfPlugin& attitude, const std::string& vehicle_xml) {
+  return Bind(model, config, attitude, vehicle_xml, 0, -1, false, {});
 }
 
 void ReadTrueStates(const mjData* data, const VehicleBindings& bindings,

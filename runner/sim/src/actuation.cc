@@ -5,7 +5,7 @@
 #include <string>
 #include <utility>
 
-#include "mjformation/config/source_location.hpp"
+#include "mjformation/scene/rotor_faults.hpp"
 
 namespace mjf::runner {
 // The wrench rotor model: what MuJoCo's site transmission with a filter actuator would apply,
@@ -196,24 +196,16 @@ void WrenchActuation::Advance(const std::vector<double>& controls) {
   }
 }
 
-// [[vehicles.fault]]: the faulty rotors' controls scaled, then handed to the rotor model.
+// [[vehicles.fault]]: the faulty rotors' controls scaled (rotor_faults.hpp), then handed to the
+// rotor model.
 class FaultedActuation final : public Actuation {
  public:
-  struct Fault {
-    size_t control = 0;  // index into the controls, [vehicle][actuator]
-    double at = 0.0;     // s
-    double keep = 1.0;   // 1 - thrust_share
-    double ctrl_min = 0.0, ctrl_max = 0.0;
-  };
-  FaultedActuation(std::unique_ptr<Actuation> inner, std::vector<Fault> faults, double timestep)
+  FaultedActuation(std::unique_ptr<Actuation> inner, std::vector<BoundRotorFault> faults,
+                   double timestep)
       : inner_(std::move(inner)), faults_(std::move(faults)), timestep_(timestep) {}
   void Apply(const std::vector<double>& controls, mjData* data) override {
     faulted_ = controls;  // same size every step: no allocation after the first
-    for (const Fault& f : faults_) {
-      // A tick's time is step * timestep; half a step absorbs the rounding of data->time.
-      if (data->time < f.at - 0.5 * timestep_) continue;
-      faulted_[f.control] = f.keep * std::clamp(faulted_[f.control], f.ctrl_min, f.ctrl_max);
-    }
+    ApplyRotorFaults(faults_, data->time, timestep_, faulted_.data());
     inner_->Apply(faulted_, data);
   }
   // The controls of this step's Apply, faults included (the wrench model's motor lag).
@@ -222,7 +214,7 @@ class FaultedActuation final : public Actuation {
 
  private:
   std::unique_ptr<Actuation> inner_;
-  std::vector<Fault> faults_;
+  std::vector<BoundRotorFault> faults_;
   double timestep_;
   std::vector<double> faulted_;
 };
@@ -232,20 +224,7 @@ class FaultedActuation final : public Actuation {
 std::unique_ptr<Actuation> WithRotorFaults(std::unique_ptr<Actuation> inner,
                                            const ExperimentConfig& config,
                                            const VehicleBindings& bindings, int first_vehicle) {
-  std::vector<FaultedActuation::Fault> faults;
-  const int per = bindings.actuators_per_vehicle;
-  for (const ExperimentConfig::RotorFault& f : config.rotor_faults) {
-    if (f.rotor >= per) {
-      SourceLocation{config.source_path, f.line, SectionKey("vehicles", "fault")}.Fail(
-          "rotor " + std::to_string(f.rotor) + ": the vehicle has rotors 0.." +
-          std::to_string(per - 1) + " (the attitude plugin's actuator order)");
-    }
-    const int local = f.follower - first_vehicle;  // vehicle f.follower, 0 = leader
-    if (local < 0 || local >= static_cast<int>(bindings.vehicles.size())) continue;
-    const mjfActuatorInfo& a = bindings.vehicles[local].actuator_info[f.rotor];
-    faults.push_back({static_cast<size_t>(local) * per + f.rotor, f.at, 1.0 - f.thrust_share,
-                      a.ctrl_min, a.ctrl_max});
-  }
+  std::vector<BoundRotorFault> faults = BindRotorFaults(config, bindings, first_vehicle);
   if (faults.empty()) return inner;
   return std::make_unique<FaultedActuation>(std::move(inner), std::move(faults), config.timestep);
 }

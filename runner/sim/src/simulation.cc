@@ -193,21 +193,7 @@ void Simulation::CheckImuSite() {
 }
 
 void Simulation::AdaptForeignVehicle(const mjfPlugin& attitude) {
-  if (config_.vehicle_body.empty() && config_.vehicle_rotors.empty()) return;
-  VehicleMapping m;
-  m.model_path = config_.model_path;
-  m.body = config_.vehicle_body.empty() ? "vehicle" : config_.vehicle_body;
-  for (int k = 0; k < attitude.n_actuators; ++k) m.actuator_names.push_back(attitude.actuators[k]);
-  m.rotors = config_.vehicle_rotors.empty() ? m.actuator_names : config_.vehicle_rotors;
-  auto where = [&](const ValueOrigin& origin, const char* key) {
-    return OriginLocation(config_.source_path, origin, SectionKey("vehicles", key)).Prefix();
-  };
-  m.body_where = where(config_.vehicle_body_origin, "body");
-  // A thrust-and-moment mapping's actuators are named by `thrust` and `moments`, not `rotors`.
-  m.rotors_where = config_.vehicle_actuation == VehicleActuation::kRotors
-                       ? where(config_.vehicle_rotors_origin, "rotors")
-                       : where(config_.vehicle_rotors_origin, "thrust / moments");
-  AdaptedVehicle adapted = AdaptVehicle(m);
+  AdaptedVehicle adapted = AdaptConfiguredVehicle(config_, attitude);
   vehicle_xml_ = std::move(adapted.xml);
   vehicle_notes_ = std::move(adapted.notes);
 }

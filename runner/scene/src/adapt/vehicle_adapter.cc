@@ -17,6 +17,7 @@
 #include "adapt/vehicle_scoping.hpp"
 #include "adapt/vehicle_sensors.hpp"
 #include "mjcf_util.hpp"
+#include "mjformation/config/source_location.hpp"
 #include "mjformation/scene/scene.hpp"
 
 namespace mjf::runner {
@@ -82,6 +83,24 @@ AdaptedVehicle AdaptVehicle(const VehicleMapping& m) {
             " (docs/VEHICLES.md) -->\n" + AddImuAndSensors(printer.CStr(), label, &notes);
   out.notes = notes;
   return out;
+}
+
+AdaptedVehicle AdaptConfiguredVehicle(const ExperimentConfig& config, const mjfPlugin& attitude) {
+  if (config.vehicle_body.empty() && config.vehicle_rotors.empty()) return {};
+  VehicleMapping m;
+  m.model_path = config.model_path;
+  m.body = config.vehicle_body.empty() ? "vehicle" : config.vehicle_body;
+  for (int k = 0; k < attitude.n_actuators; ++k) m.actuator_names.push_back(attitude.actuators[k]);
+  m.rotors = config.vehicle_rotors.empty() ? m.actuator_names : config.vehicle_rotors;
+  auto where = [&](const ValueOrigin& origin, const char* key) {
+    return OriginLocation(config.source_path, origin, SectionKey("vehicles", key)).Prefix();
+  };
+  m.body_where = where(config.vehicle_body_origin, "body");
+  // A thrust-and-moment mapping's actuators are named by `thrust` and `moments`, not `rotors`.
+  m.rotors_where = config.vehicle_actuation == VehicleActuation::kRotors
+                       ? where(config.vehicle_rotors_origin, "rotors")
+                       : where(config.vehicle_rotors_origin, "thrust / moments");
+  return AdaptVehicle(m);
 }
 
 }  // namespace mjf::runner

@@ -16,8 +16,12 @@
 #ifndef MJFORMATION_SCENE_VEHICLE_ADAPTER_HPP_
 #define MJFORMATION_SCENE_VEHICLE_ADAPTER_HPP_
 
+#include <mjformation/plugin.h>
+
 #include <string>
 #include <vector>
+
+#include "mjformation/config/experiment.hpp"
 
 namespace mjf::runner {
 
@@ -39,6 +43,12 @@ struct AdaptedVehicle {
 // mapped body missing or without a free joint, a rotor missing, repeated or of the wrong count,
 // an asset file missing, a name taken by another element.
 AdaptedVehicle AdaptVehicle(const VehicleMapping& mapping);
+
+// The experiment's mapping ([vehicles] body, rotors, or thrust and moments) of its model onto the
+// actuators `attitude` drives, adapted; empty (no text, no notes) when the model follows the
+// contract. Both faces fly the same adapted text: the runner's Simulation and the native swarm
+// plugin, which reads the vehicle's facts from it (BindVehicles' `vehicle_xml`).
+AdaptedVehicle AdaptConfiguredVehicle(const ExperimentConfig& config, const mjfPlugin& attitude);
 
 }  // namespace mjf::runner
 

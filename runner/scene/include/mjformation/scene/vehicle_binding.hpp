@@ -60,7 +60,7 @@ VehicleBindings BindVehicles(const mjModel* composed, const ExperimentConfig& co
 // sensor, actuator or site of `model` (ids stay -1): what a plugin's create() needs, for a
 // model whose sensors and actuators are not compiled yet (a native plugin's nstate).
 VehicleBindings DescribeVehicles(const mjModel* model, const ExperimentConfig& config,
-                                 const mjfPlugin& attitude);
+                                 const mjfPlugin& attitude, const std::string& vehicle_xml = "");
 
 // The vehicles' true states from MuJoCo's sensors (after mj_step1 or mj_forward).
 void ReadTrueStates(const mjData* data, const VehicleBindings& bindings,
