@@ -73,13 +73,18 @@
 namespace mjf::native {
 namespace {
 
-constexpr int kLayout = 0, kCommitted = 1, kHeld = 2, kValid = 3, kHeader = 4;
-constexpr double kLayoutVersion = 1;
+constexpr int kLayout = 0, kCommitted = 1, kHeld = 2, kValid = 3, kPassive = 4, kHeader = 5;
+constexpr double kLayoutVersion = 2;
 
 // What an instance caches in plugin_data: its plugin instances and their initial state.
 struct Holder {
   virtual ~Holder() = default;
-  virtual void Tick(int64_t step, const mjModel* m, const mjData* d, double* controls) = 0;
+  virtual void Tick(int64_t step, const mjModel* m, const mjData* d, double* controls,
+                    double* held) = 0;
+  // The forces besides the actuators' (SwarmHost::held_size; none for mjformation.attitude).
+  virtual size_t held_size() const { return 0; }
+  virtual void AddForces(const mjModel*, mjData*, const double*) {}
+  virtual void Advance(const mjModel*, double*) {}
   virtual size_t state_size() const = 0;
   virtual void GetState(double* out) const = 0;
   virtual void SetState(const double* in) = 0;
@@ -232,9 +237,15 @@ class SwarmModels {
 
 struct SwarmHolder final : Holder {
   std::unique_ptr<SwarmHost> host;
-  void Tick(int64_t step, const mjModel* m, const mjData* d, double* controls) override {
-    host->Tick(step, m, d, controls);
+  void Tick(int64_t step, const mjModel* m, const mjData* d, double* controls,
+            double* held) override {
+    host->Tick(step, m, d, controls, held);
   }
+  size_t held_size() const override { return host->held_size(); }
+  void AddForces(const mjModel* m, mjData* d, const double* held) override {
+    host->AddForces(m, d, held);
+  }
+  void Advance(const mjModel* m, double* held) override { host->Advance(m, held); }
   size_t state_size() const override { return host->state_size(); }
   void GetState(double* out) const override { host->GetState(out); }
   void SetState(const double* in) override { host->SetState(in); }
@@ -253,9 +264,9 @@ std::unique_ptr<Holder> MakeSwarm(const mjModel* m, int instance) {
 size_t SwarmStateSize(const mjModel* m, int instance) {
   const runner::ExperimentConfig config = ReadSwarmConfig(m, instance);
   SwarmNames(m, instance, config);
-  return OnOwnThread(
-             [&] { return std::make_unique<SwarmHost>(SwarmHost::Prepare(m, config, false)); })
-      ->state_size();
+  const std::unique_ptr<SwarmHost> host = OnOwnThread(
+      [&] { return std::make_unique<SwarmHost>(SwarmHost::Prepare(m, config, false)); });
+  return host->held_size() + host->state_size();
 }
 
 // ---- mjformation.attitude
@@ -267,7 +278,7 @@ constexpr size_t kVehicleStateBound = 256;
 
 struct VehicleHolder final : Holder {
   std::unique_ptr<VehicleHost> host;
-  void Tick(int64_t step, const mjModel* m, const mjData* d, double* controls) override {
+  void Tick(int64_t step, const mjModel* m, const mjData* d, double* controls, double*) override {
     host->Tick(step, m, d, controls);
   }
   size_t state_size() const override { return kVehicleStateBound; }
@@ -441,14 +452,18 @@ mjtNum* State(const mjModel* m, mjData* d, int instance) {
   return d->plugin_state + m->plugin_stateadr[instance];
 }
 
-void ClearState(const mjModel* m, mjtNum* state) {
+// The state before the first step. The held forces' block becomes zeros (motor lags at rest);
+// the tick's blocks are not read while [kValid] is 0.
+void ClearState(const mjModel* m, int instance, mjtNum* state) {
   state[kLayout] = kLayoutVersion;
   state[kCommitted] = 0;
   state[kHeld] = -1;
   state[kValid] = 0;
+  state[kPassive] = 0;
   for (int a = 0; a < m->nactuator; ++a) {
     state[kHeader + a] = std::numeric_limits<double>::quiet_NaN();
   }
+  std::fill(state + kHeader + m->nactuator, state + m->plugin_statenum[instance], 0.0);
 }
 
 // d's holder: its own, or one built for it (a copy, an unpickled MjData, a failed build
@@ -478,7 +493,7 @@ int Init(const mjModel* m, mjData* d, int instance) {
                 message.rfind(where, 0) == 0 ? message.c_str() : (where + ": " + message).c_str());
     return -1;
   }
-  ClearState(m, State(m, d, instance));
+  ClearState(m, instance, State(m, d, instance));
   return 0;
 }
 
@@ -489,7 +504,9 @@ void Destroy(mjData* d, int instance) {
 
 // A reset only clears plugin_state: the next tick starts from the holder's initial state.
 // Nothing is rebuilt, no file is read.
-void Reset(const mjModel* m, mjtNum* plugin_state, void*, int) { ClearState(m, plugin_state); }
+void Reset(const mjModel* m, mjtNum* plugin_state, void*, int instance) {
+  ClearState(m, instance, plugin_state);
+}
 
 // The tick of the current step, once (see the file comment).
 template <const Kind& K>
@@ -505,10 +522,11 @@ mjtNum* HeldControls(const mjModel* m, mjData* d, int instance) {
                                " (a state saved by another version, or never initialised)");
     }
     Holder* holder = HolderFor<K>(m, d, instance);
-    mjtNum* blocks = controls + m->nactuator;
+    mjtNum* held = controls + m->nactuator;
+    mjtNum* blocks = held + holder->held_size();
     holder->SetState(state[kValid] != 0 ? blocks : holder->initial.data());
     const auto step = static_cast<int64_t>(state[kCommitted]);
-    holder->Tick(step, m, d, controls);
+    holder->Tick(step, m, d, controls, held);
     holder->GetState(blocks);
     state[kValid] = 1;
     state[kHeld] = state[kCommitted];
@@ -561,10 +579,34 @@ void ActDot(const mjModel* m, mjData* d, int instance) {
   }
 }
 
+// The step's forces besides the actuators' ([wind], the wrench rotor model) into qfrc_passive,
+// once per recomputation of qfrc_passive (see Compute).
+template <const Kind& K>
+void AddHeldForces(const mjModel* m, mjData* d, int instance) {
+  mjtNum* state = State(m, d, instance);
+  if (state[kPassive] == 0) return;
+  state[kPassive] = 0;
+  ErrorFromException([&] {
+    Holder* holder = HolderFor<K>(m, d, instance);
+    if (holder->held_size()) holder->AddForces(m, d, state + kHeader + m->nactuator);
+  });
+}
+
+// The passive stage marks qfrc_passive as recomputed (mj_passive has just cleared and summed
+// it); the actuation stage, after the tick, adds the held forces into it and clears the mark.
+// Forces go into qfrc_passive, not qfrc_applied (the user's input, and part of the state):
+// MuJoCo sums qfrc_smooth = passive - bias + applied + actuator, and with no spring or damper
+// passive is +0 where the runner's qfrc_applied was, so the sums are the runner's bits (the
+// runner adds them into qfrc_passive too, after mj_step1). An evaluation that skips the
+// velocity stage (mjd_transitionFD's control and activation columns, mj_forwardSkip) keeps the
+// qfrc_passive of the evaluation before it, forces included: without the mark they would be
+// added twice.
 template <const Kind& K>
 void Compute(const mjModel* m, mjData* d, int instance, int capability) {
-  // The passive capability only lets a body reference the instance (see Register); the
-  // controllers act in the actuation stage alone.
+  if (capability == mjPLUGIN_PASSIVE) {
+    State(m, d, instance)[kPassive] = 1;
+    return;
+  }
   if (capability != mjPLUGIN_ACTUATOR) return;
   const mjtNum* u = HeldControls<K>(m, d, instance);
   const bool bad = ControlsBad(m, d);
@@ -576,10 +618,22 @@ void Compute(const mjModel* m, mjData* d, int instance, int capability) {
     force += 0.0;
     d->actuator_force[m->actuator_outadr[a]] = force;
   }
+  AddHeldForces<K>(m, d, instance);
 }
 
-// The commit: the step whose tick ran is done.
-void Advance(const mjModel* m, mjData* d, int instance) { State(m, d, instance)[kCommitted] += 1; }
+// The commit: the step whose tick ran is done, and the motor lags of the wrench rotor model
+// follow its controls (the runner's Actuation::Advance after mj_step2).
+template <const Kind& K>
+void Advance(const mjModel* m, mjData* d, int instance) {
+  mjtNum* state = State(m, d, instance);
+  if (state[kHeld] == state[kCommitted]) {
+    ErrorFromException([&] {
+      Holder* holder = HolderFor<K>(m, d, instance);
+      if (holder->held_size()) holder->Advance(m, state + kHeader + m->nactuator);
+    });
+  }
+  state[kCommitted] += 1;
+}
 
 // The copy's state came with plugin_state; dest keeps the holder it had (a viewer copying
 // every frame into one mjData builds nothing) or gets one at its first tick.
@@ -611,7 +665,7 @@ void Register(const std::vector<const char*>& attributes) {
   plugin.copy = Copy<K>;
   plugin.reset = Reset;
   plugin.compute = Compute<K>;
-  plugin.advance = Advance;
+  plugin.advance = Advance<K>;
   plugin.actuator_act_dot = ActDot<K>;
   mjp_registerPlugin(&plugin);
 }
