@@ -14,16 +14,16 @@ namespace mjf::runner {
 // the wrench gear * force acts at the site, in the site's frame.
 //
 // The vehicle's summed wrench (force f at its centre of mass, torque t) goes to MuJoCo as the
-// generalized force J^T [f; t] added into qfrc_passive (see actuation.hpp), computed here from cdof
-// over the vehicle's own dofs only. Handing it over as xfrc_applied instead makes MuJoCo 2.2.2
-// (mj_xfrcAccumulate -> mj_applyFT) build and clear two dense 3 x nv Jacobians per vehicle every
-// step: O(N nv) = O(N^2), 97% of a step at 1000 followers (docs/PERFORMANCE.md). The maths is
-// mj_jac's: for each dof j of the body's chain, J_j . [f; t] = (cdof_lin + cdof_rot x (point -
-// subtree_com)) . f + cdof_rot . t; only the floating-point summation order differs. The small
-// vector helpers are written out in MuJoCo's own operation order (mju_mulMatVec, mju_cross,
-// mju_dot3, without FMA), so the results are bit for bit those of the mju_* calls, at a fraction of
-// the cost of calling through the shared library's PLT for every rotor of every vehicle on every
-// step.
+// generalized force J^T [f; t] in qfrc_passive, computed here from cdof over the vehicle's own
+// dofs only. Handing it over as xfrc_applied instead makes MuJoCo 2.2.2 (mj_xfrcAccumulate ->
+// mj_applyFT) build and clear two dense 3 x nv Jacobians per vehicle every step: O(N nv) =
+// O(N^2), 97% of a step at 1000 followers (docs/PERFORMANCE.md). The maths is mj_jac's: for each
+// dof j of the body's chain, J_j . [f; t] = (cdof_lin + cdof_rot x (point - subtree_com)) . f +
+// cdof_rot . t; only the floating-point summation order differs.
+// The small vector helpers are written out in MuJoCo's own operation order (mju_mulMatVec,
+// mju_cross, mju_dot3, without FMA), so the results are bit for bit those of the mju_* calls, at a
+// fraction of the cost of calling through the shared library's PLT for every rotor of every
+// vehicle on every step.
 namespace {
 inline void MulMat3Vec(mjtNum res[3], const mjtNum m[9], const mjtNum v[3]) {
   for (int r = 0; r < 3; ++r) res[r] = m[3 * r] * v[0] + m[3 * r + 1] * v[1] + m[3 * r + 2] * v[2];
