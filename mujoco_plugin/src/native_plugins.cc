@@ -7,9 +7,10 @@
 //   mjformation.attitude  flies one vehicle of any model with a guidance and an attitude plugin
 //                         of ours (VehicleHost): a Menagerie-style drone in the user's scene.
 // Both are actuator plugins with the same timing and actuation, described here. Both declare
-// the passive capability too, with no passive force, so that a body may reference an instance:
-// MuJoCo's attach keeps only the instances an attached element references, and the bodies
-// referencing an instance tell the names an attach gave its vehicles (attach_names.hpp).
+// the passive capability too, so that a body may reference an instance (MuJoCo's attach keeps
+// only the instances an attached element references, and the bodies referencing an instance
+// tell the names an attach gave its vehicles, attach_names.hpp), and so that the swarm knows
+// when qfrc_passive is recomputed (see Compute: its forces besides the actuators).
 //
 // Timing and state (the tick rule, docs/PLUGINS.md). MuJoCo calls actuator plugins inside
 // mj_fwdActuation, after every position and velocity sensor of the step: the same sensor values
@@ -17,10 +18,14 @@
 // plugin_state, so MuJoCo copies, saves (mj_getState) and restores it with the physics:
 //   [0] layout (kLayout), [1] k = the steps committed (advance adds 1), [2] the step whose
 //   controls are held (-1: none), [3] 1 when the blocks below hold a state (0 after a reset:
-//   the controllers' initial state), [4 + a] the held control of actuator id a (NaN: not
+//   the controllers' initial state), [4] 1 while qfrc_passive is recomputed and the held forces
+//   are not yet added to it (see Compute), [5 + a] the held control of actuator id a (NaN: not
 //   driven; one slot per actuator, nactuator of them: in MuJoCo 4 an actuator may take several
-//   controls, so nu is not the actuator count), then the tick's state blocks
-//   (runner::ControlTick::GetState; ABI 4).
+//   controls, so nu is not the actuator count), then the held forces' block (Holder::held_size:
+//   SwarmHost::held_size, the wind's drag and the wrench rotor model's controls and motor lags;
+//   zeros after a reset), then the state blocks (SwarmHost::GetState: the tick's,
+//   runner::ControlTick::GetState, ABI 4, then the force stages'). Layout 2; layout 1 had
+//   neither the mark nor the held forces.
 // The tick of step k runs at the first evaluation of step k (held != k), from the blocks, and
 // leaves the controls and the new blocks with held = k. Every further evaluation of the same
 // step (RK4's stages, mjd_transitionFD's perturbed evaluations restored to the same state,
@@ -655,9 +660,11 @@ void Register(const std::vector<const char*>& attributes) {
   plugin.name = K.name;
   plugin.nattribute = static_cast<int>(attributes.size());
   plugin.attributes = attributes.data();
-  // Passive too, though it adds no passive force: MuJoCo lets a body reference only a passive
-  // plugin's instance, and an instance that no element of an attached tree references is
-  // dropped by mjs_attach. The exported vehicles' bodies reference theirs (attach_names.hpp).
+  // Passive too: MuJoCo lets a body reference only a passive plugin's instance, and an instance
+  // that no element of an attached tree references is dropped by mjs_attach (the exported
+  // vehicles' bodies reference theirs, attach_names.hpp); and the passive callback marks
+  // qfrc_passive recomputed (Compute). The forces themselves are added in the actuation stage,
+  // after the tick.
   plugin.capabilityflags = mjPLUGIN_ACTUATOR | mjPLUGIN_PASSIVE;
   plugin.nstate = NState<K>;
   plugin.init = Init<K>;
