@@ -185,11 +185,13 @@ SwarmHost::~SwarmHost() {
   if (impl_) impl_->tick.reset();
 }
 
+namespace {
 // The force stages' state, walked by one archive (Sizing, Saving or Loading).
 void VisitForceState(std::vector<std::unique_ptr<runner::ForceStage>>& forces,
                      runner::FixedStateArchive& archive) {
   for (auto& stage : forces) stage->VisitState(archive);
 }
+}  // namespace
 
 size_t SwarmHost::state_size() const {
   runner::FixedStateArchive sizing = runner::FixedStateArchive::Sizing();
