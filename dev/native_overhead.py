@@ -11,7 +11,7 @@ hits both; the median of each is reported with the ratio b / a and the native pa
 per step and vehicle, state handling included. The load (os.getloadavg) is printed beside it.
 
     PYTHONPATH=build/python .venv/bin/python dev/native_overhead.py [--repeats 5] [--duration 10]
-        [--cases exp2,exp2_pointmass,b05] [--stepper rollout|mj_step]
+        [--cases exp2,exp2_pointmass,b05,b06,exp2_wrench] [--stepper rollout|mj_step]
 """
 
 from __future__ import annotations
@@ -39,6 +39,12 @@ CASES = {
     "b05": ("experiments/benchmark/b05_gnss_kf.toml", {}),
     # Per-agent execution over a lossy network: the links' streams and queues in plugin_state.
     "b13": ("experiments/benchmark/b13_lossy_network.toml", {}),
+    # Wind with Dryden turbulence: the wind field's streams in plugin_state, its drag added into
+    # qfrc_passive at every evaluation.
+    "b06": ("experiments/benchmark/b06_gusty_wind.toml", {}),
+    # The wrench rotor model: the rotors' wrenches added by the plugin (motor lags in
+    # plugin_state) instead of by MuJoCo's actuators.
+    "exp2_wrench": ("experiments/exp2.toml", {"vehicles.rotor_model": "wrench"}),
 }
 
 

@@ -3,6 +3,7 @@
 
 #include <mujoco/mjplugin.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <exception>
@@ -18,8 +19,8 @@ namespace mjf::native {
 namespace {
 
 // plugin_state's header (actuator_plugin.hpp).
-constexpr int kLayout = 0, kCommitted = 1, kHeld = 2, kValid = 3, kHeader = 4;
-constexpr double kLayoutVersion = 1;
+constexpr int kLayout = 0, kCommitted = 1, kHeld = 2, kValid = 3, kPassive = 4, kHeader = 5;
+constexpr double kLayoutVersion = 2;
 
 // Runs `body` and raises what it throws as MuJoCo's error. mju_error does not return: MuJoCo's
 // handler longjmp()s (the compiler's) or exits, so no C++ object may be alive in this frame
@@ -39,14 +40,18 @@ mjtNum* State(const mjModel* m, mjData* d, int instance) {
   return d->plugin_state + m->plugin_stateadr[instance];
 }
 
-void ClearState(const mjModel* m, mjtNum* state) {
+// The state before the first step. The held forces' block becomes zeros (motor lags at rest);
+// the tick's blocks are not read while [kValid] is 0.
+void ClearState(const mjModel* m, int instance, mjtNum* state) {
   state[kLayout] = kLayoutVersion;
   state[kCommitted] = 0;
   state[kHeld] = -1;
   state[kValid] = 0;
+  state[kPassive] = 0;
   for (int a = 0; a < m->nactuator; ++a) {
     state[kHeader + a] = std::numeric_limits<double>::quiet_NaN();
   }
+  std::fill(state + kHeader + m->nactuator, state + m->plugin_statenum[instance], 0.0);
 }
 
 // u clamped to actuator a's ctrlrange: ctrllimited and ctrlrange are per control (nu rows).
@@ -122,7 +127,7 @@ int ActuatorPlugin<K>::Init(const mjModel* m, mjData* d, int instance) {
                 message.rfind(where, 0) == 0 ? message.c_str() : (where + ": " + message).c_str());
     return -1;
   }
-  ClearState(m, State(m, d, instance));
+  ClearState(m, instance, State(m, d, instance));
   return 0;
 }
 
@@ -135,8 +140,8 @@ void ActuatorPlugin<K>::Destroy(mjData* d, int instance) {
 // A reset only clears plugin_state: the next tick starts from the holder's initial state.
 // Nothing is rebuilt, no file is read.
 template <const PluginKind& K>
-void ActuatorPlugin<K>::Reset(const mjModel* m, mjtNum* plugin_state, void*, int) {
-  ClearState(m, plugin_state);
+void ActuatorPlugin<K>::Reset(const mjModel* m, mjtNum* plugin_state, void*, int instance) {
+  ClearState(m, instance, plugin_state);
 }
 
 // The tick of the current step, once (see the file comment).
@@ -153,10 +158,11 @@ mjtNum* ActuatorPlugin<K>::HeldControls(const mjModel* m, mjData* d, int instanc
                                " (a state saved by another version, or never initialised)");
     }
     Holder* holder = HolderFor(m, d, instance);
-    mjtNum* blocks = controls + m->nactuator;
+    mjtNum* held = controls + m->nactuator;
+    mjtNum* blocks = held + holder->held_size();
     holder->SetState(state[kValid] != 0 ? blocks : holder->initial.data());
     const auto step = static_cast<int64_t>(state[kCommitted]);
-    holder->Tick(step, m, d, controls);
+    holder->Tick(step, m, d, controls, held);
     holder->GetState(blocks);
     state[kValid] = 1;
     state[kHeld] = state[kCommitted];
@@ -178,8 +184,10 @@ void ActuatorPlugin<K>::ActDot(const mjModel* m, mjData* d, int instance) {
 
 template <const PluginKind& K>
 void ActuatorPlugin<K>::Compute(const mjModel* m, mjData* d, int instance, int capability) {
-  // The passive capability only lets a body reference the instance (see Register); the
-  // controllers act in the actuation stage alone.
+  if (capability == mjPLUGIN_PASSIVE) {
+    State(m, d, instance)[kPassive] = 1;
+    return;
+  }
   if (capability != mjPLUGIN_ACTUATOR) return;
   const mjtNum* u = HeldControls(m, d, instance);
   const bool bad = ControlsBad(m, d);
@@ -191,12 +199,30 @@ void ActuatorPlugin<K>::Compute(const mjModel* m, mjData* d, int instance, int c
     force += 0.0;
     d->actuator_force[m->actuator_outadr[a]] = force;
   }
+  AddHeldForces(m, d, instance);
 }
 
-// The commit: the step whose tick ran is done.
+template <const PluginKind& K>
+void ActuatorPlugin<K>::AddHeldForces(const mjModel* m, mjData* d, int instance) {
+  mjtNum* state = State(m, d, instance);
+  if (state[kPassive] == 0) return;
+  state[kPassive] = 0;
+  ErrorFromException([&] {
+    Holder* holder = HolderFor(m, d, instance);
+    if (holder->held_size()) holder->AddForces(m, d, state + kHeader + m->nactuator);
+  });
+}
+
 template <const PluginKind& K>
 void ActuatorPlugin<K>::Advance(const mjModel* m, mjData* d, int instance) {
-  State(m, d, instance)[kCommitted] += 1;
+  mjtNum* state = State(m, d, instance);
+  if (state[kHeld] == state[kCommitted]) {
+    ErrorFromException([&] {
+      Holder* holder = HolderFor(m, d, instance);
+      if (holder->held_size()) holder->Advance(m, state + kHeader + m->nactuator);
+    });
+  }
+  state[kCommitted] += 1;
 }
 
 // The copy's state came with plugin_state; dest keeps the holder it had (a viewer copying
@@ -219,9 +245,11 @@ void ActuatorPlugin<K>::Register(const std::vector<const char*>& attributes) {
   plugin.name = K.name;
   plugin.nattribute = static_cast<int>(attributes.size());
   plugin.attributes = attributes.data();
-  // Passive too, though it adds no passive force: MuJoCo lets a body reference only a passive
-  // plugin's instance, and an instance that no element of an attached tree references is
-  // dropped by mjs_attach. The exported vehicles' bodies reference theirs (attach_names.hpp).
+  // Passive too: MuJoCo lets a body reference only a passive plugin's instance, and an instance
+  // that no element of an attached tree references is dropped by mjs_attach (the exported
+  // vehicles' bodies reference theirs, attach_names.hpp); and the passive callback marks
+  // qfrc_passive recomputed (Compute). The forces themselves are added in the actuation stage,
+  // after the tick.
   plugin.capabilityflags = mjPLUGIN_ACTUATOR | mjPLUGIN_PASSIVE;
   plugin.nstate = NState;
   plugin.init = Init;

@@ -4,10 +4,11 @@
 // plugins over a bridge to our own plugin ABI, with the same timing, state and actuation,
 // described here. The plugin-specific part (how an instance's bridge is made, its state's size)
 // is a PluginKind: swarm_plugin.hpp (mjformation.swarm), attitude_plugin.hpp
-// (mjformation.attitude). Both declare the passive capability too, with no passive force, so
-// that a body may reference an instance: MuJoCo's attach keeps only the instances an attached
-// element references, and the bodies referencing an instance tell the names an attach gave its
-// vehicles (attach_names.hpp).
+// (mjformation.attitude). Both declare the passive capability too, so that a body may reference
+// an instance (MuJoCo's attach keeps only the instances an attached element references, and the
+// bodies referencing an instance tell the names an attach gave its vehicles, attach_names.hpp),
+// and so that the swarm knows when qfrc_passive is recomputed (see Compute: its forces besides
+// the actuators).
 //
 // Timing and state (the tick rule, docs/PLUGINS.md). MuJoCo calls actuator plugins inside
 // mj_fwdActuation, after every position and velocity sensor of the step: the same sensor values
@@ -15,10 +16,14 @@
 // plugin_state, so MuJoCo copies, saves (mj_getState) and restores it with the physics:
 //   [0] layout (kLayout), [1] k = the steps committed (advance adds 1), [2] the step whose
 //   controls are held (-1: none), [3] 1 when the blocks below hold a state (0 after a reset:
-//   the controllers' initial state), [4 + a] the held control of actuator id a (NaN: not
+//   the controllers' initial state), [4] 1 while qfrc_passive is recomputed and the held forces
+//   are not yet added to it (see Compute), [5 + a] the held control of actuator id a (NaN: not
 //   driven; one slot per actuator, nactuator of them: in MuJoCo 4 an actuator may take several
-//   controls, so nu is not the actuator count), then the tick's state blocks
-//   (runner::ControlTick::GetState; ABI 4).
+//   controls, so nu is not the actuator count), then the held forces' block (Holder::held_size:
+//   SwarmHost::held_size, the wind's drag and the wrench rotor model's controls and motor lags;
+//   zeros after a reset), then the state blocks (SwarmHost::GetState: the tick's,
+//   runner::ControlTick::GetState, ABI 4, then the force stages'). Layout 2; layout 1 had
+//   neither the mark nor the held forces.
 // The tick of step k runs at the first evaluation of step k (held != k), from the blocks, and
 // leaves the controls and the new blocks with held = k. Every further evaluation of the same
 // step (RK4's stages, mjd_transitionFD's perturbed evaluations restored to the same state,
@@ -92,10 +97,21 @@ class ActuatorPlugin {
   // actuator_act_dot (after MuJoCo's own act_dot): act_dot of the driven filter actuators from
   // the held controls, the step's tick run first if it has not run.
   static void ActDot(const mjModel* m, mjData* d, int instance);
-  // compute (mj_fwdActuation, after MuJoCo's own forces): actuator_force of the driven
-  // actuators without activation; the passive capability's call does nothing.
+  // compute. The passive capability's call (mj_passive has just cleared and summed
+  // qfrc_passive) marks qfrc_passive recomputed. The actuator capability's (mj_fwdActuation,
+  // after MuJoCo's own forces): actuator_force of the driven actuators without activation, then
+  // the held forces besides the actuators' ([wind], the wrench rotor model) into qfrc_passive,
+  // once per mark. Forces go into qfrc_passive, not qfrc_applied (the user's input, and part of
+  // the state): MuJoCo sums qfrc_smooth = passive - bias + applied + actuator, and with no spring
+  // or damper passive is +0 where the runner's qfrc_applied was, so the sums are the runner's
+  // bits (the runner adds them into qfrc_passive too, after mj_step1). An evaluation that skips
+  // the velocity stage (mjd_transitionFD's control and activation columns, mj_forwardSkip) keeps
+  // the qfrc_passive of the evaluation before it, forces included: without the mark they would
+  // be added twice.
   static void Compute(const mjModel* m, mjData* d, int instance, int capability);
-  // advance (after the step's integration): commits the step whose tick ran.
+  // advance (after the step's integration): commits the step whose tick ran, and the wrench
+  // rotor model's motor lags follow its controls (the runner's Actuation::Advance after
+  // mj_step2).
   static void Advance(const mjModel* m, mjData* d, int instance);
 
  private:
@@ -104,6 +120,8 @@ class ActuatorPlugin {
   static Holder* HolderFor(const mjModel* m, mjData* d, int instance);
   // The held controls of the current step, the tick run once for it (the tick rule above).
   static mjtNum* HeldControls(const mjModel* m, mjData* d, int instance);
+  // The step's forces besides the actuators' into qfrc_passive, once per mark (Compute).
+  static void AddHeldForces(const mjModel* m, mjData* d, int instance);
 };
 
 }  // namespace mjf::native

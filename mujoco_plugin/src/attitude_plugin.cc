@@ -12,7 +12,7 @@ namespace {
 
 struct VehicleHolder final : Holder {
   std::unique_ptr<VehicleHost> host;
-  void Tick(int64_t step, const mjModel* m, const mjData* d, double* controls) override {
+  void Tick(int64_t step, const mjModel* m, const mjData* d, double* controls, double*) override {
     host->Tick(step, m, d, controls);
   }
   size_t state_size() const override { return AttitudePlugin::kStateBound; }

@@ -23,8 +23,15 @@ namespace mjf::native {
 // What an instance caches in plugin_data: its plugin instances and their initial state.
 struct Holder {
   virtual ~Holder() = default;
-  // One control tick for physics step `step` on the sensors of `d`; controls[actuator id].
-  virtual void Tick(int64_t step, const mjModel* m, const mjData* d, double* controls) = 0;
+  // One control tick for physics step `step` on the sensors of `d`; controls[actuator id], and
+  // the forces besides the actuators' into `held` (held_size() doubles).
+  virtual void Tick(int64_t step, const mjModel* m, const mjData* d, double* controls,
+                    double* held) = 0;
+  // The forces besides the actuators' (SwarmHost::held_size; none for mjformation.attitude):
+  // their block's size, adding them into d->qfrc_passive, and the commit of a step (motor lags).
+  virtual size_t held_size() const { return 0; }
+  virtual void AddForces(const mjModel*, mjData*, const double*) {}
+  virtual void Advance(const mjModel*, double*) {}
   // The tick's state, fixed size (the blocks of plugin_state after the header).
   virtual size_t state_size() const = 0;
   virtual void GetState(double* out) const = 0;

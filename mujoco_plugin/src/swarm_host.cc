@@ -12,14 +12,15 @@
 #include "mjformation/scene/rotor_faults.hpp"
 #include "mjformation/scene/vehicle_adapter.hpp"
 #include "mjformation/scene/vehicle_binding.hpp"
+#include "mjformation/sim/actuation.hpp"
 #include "scene_files.hpp"
 
 namespace mjf::native {
 
 const std::vector<std::string>& CarriedSections() {
   static const std::vector<std::string> kSections = {
-      "run",      "vehicles", "topology",  "leader",    "formation",
-      "attitude", "sensors",  "estimator", "execution", "network"};
+      "run",     "vehicles",  "topology",  "leader",  "formation", "attitude",
+      "sensors", "estimator", "execution", "network", "wind"};
   return kSections;
 }
 
@@ -112,6 +113,15 @@ struct SwarmHost::Impl {
   std::unique_ptr<runner::ControlTick> tick;
   std::vector<mjfVehicleState> truth;
   std::vector<double> faulted;  // the tick's controls with the faults in force
+  // The runner's own force stages and wrench rotor model (null with MuJoCo's actuators), whose
+  // state is loaded from plugin_state before each use: the same code, the same bits.
+  std::vector<std::unique_ptr<runner::ForceStage>> forces;
+  std::unique_ptr<runner::Actuation> wrench;  // made at its first use, on the bound model
+  const mjModel* wrench_model = nullptr;      // the model `wrench` was made for
+  size_t rotors = 0;                          // vehicles x rotors, with the wrench model
+  std::vector<double> external;               // the force stages' sum, [vehicle][xyz]
+  std::vector<double> controls;  // the held controls as the actuation takes them (scratch)
+  size_t tick_state = 0;         // the tick's part of the state
 };
 
 // The same construction as the runner's Simulation, on the scene MuJoCo compiled: the bindings
@@ -139,6 +149,14 @@ std::shared_ptr<const SwarmShared> SwarmHost::Prepare(const mjModel* m,
                                           -1, names)
                    : runner::DescribeVehicles(m, s->config, *s->attitude->descriptor, vehicle_xml);
     s->faults = runner::BindRotorFaults(s->config, s->bindings, 0);
+    // MuJoCo calls an actuator plugin only in a model with an actuator; the wrench rotor model's
+    // rotors have none (export adds one of no force, 'mjformation_swarm_tick').
+    if (bind_model && s->config.rotor_model == runner::RotorModel::kWrench && m->nu == 0) {
+      throw std::runtime_error(
+          "[vehicles] rotor_model = \"wrench\": the scene has no actuator, and MuJoCo calls "
+          "the swarm's controllers only in a model with one; export adds a zero-gear "
+          "actuator, 'mjformation_swarm_tick', for this: keep it");
+    }
     return s;
   } catch (const std::exception& e) {
     throw std::runtime_error(WithoutLine(e.what(), config.source_path));
@@ -162,6 +180,14 @@ SwarmHost::SwarmHost(std::shared_ptr<const SwarmShared> shared) : impl_(std::mak
     s.wiring = std::move(control.wiring);
     s.tick = std::move(control.tick);
     s.tick->RequireSavable();
+    s.tick_state = s.tick->StateSize();
+    s.forces = runner::MakeForceStages(config);
+    s.external.assign(3 * s.truth.size(), 0.0);
+    if (config.rotor_model == runner::RotorModel::kWrench) {
+      const runner::VehicleBindings& b = s.shared->bindings;
+      s.rotors = b.vehicles.size() * static_cast<size_t>(b.actuators_per_vehicle);
+      s.controls.assign(s.rotors, 0.0);
+    }
   } catch (const std::exception& e) {
     throw std::runtime_error(WithoutLine(e.what(), config.source_path));
   }
@@ -172,11 +198,51 @@ SwarmHost::~SwarmHost() {
   if (impl_) impl_->tick.reset();
 }
 
-size_t SwarmHost::state_size() const { return impl_->tick->StateSize(); }
-void SwarmHost::GetState(double* out) const { impl_->tick->GetState(out); }
-void SwarmHost::SetState(const double* in) { impl_->tick->SetState(in); }
+namespace {
+// The force stages' state, walked by one archive (Sizing, Saving or Loading).
+void VisitForceState(std::vector<std::unique_ptr<runner::ForceStage>>& forces,
+                     runner::FixedStateArchive& archive) {
+  for (auto& stage : forces) stage->VisitState(archive);
+}
+}  // namespace
 
-void SwarmHost::Tick(int64_t step, const mjModel* m, const mjData* d, double* controls) {
+size_t SwarmHost::state_size() const {
+  runner::FixedStateArchive sizing = runner::FixedStateArchive::Sizing();
+  VisitForceState(impl_->forces, sizing);
+  return impl_->tick_state + sizing.size();
+}
+void SwarmHost::GetState(double* out) const {
+  impl_->tick->GetState(out);
+  runner::FixedStateArchive saving = runner::FixedStateArchive::Saving(out + impl_->tick_state);
+  VisitForceState(impl_->forces, saving);
+}
+void SwarmHost::SetState(const double* in) {
+  impl_->tick->SetState(in);
+  runner::FixedStateArchive loading = runner::FixedStateArchive::Loading(in + impl_->tick_state);
+  VisitForceState(impl_->forces, loading);
+}
+
+// The wrench model on `m` (its rotors' sites and the vehicles' bodies are m's), loaded with the
+// motor lags of `held`.
+runner::Actuation& SwarmHost::Wrench(const mjModel* m, const double* held) {
+  Impl& s = *impl_;
+  if (!s.wrench || s.wrench_model != m) {
+    s.wrench = runner::MakeActuation(runner::RotorModel::kWrench, m, s.shared->bindings,
+                                     s.shared->config.timestep);
+    s.wrench_model = m;
+  }
+  std::copy(held, held + s.rotors, s.controls.begin());
+  runner::FixedStateArchive lags = runner::FixedStateArchive::Loading(held + s.rotors);
+  s.wrench->VisitState(lags);
+  return *s.wrench;
+}
+
+size_t SwarmHost::held_size() const {
+  return 2 * impl_->rotors + (impl_->forces.empty() ? 0 : impl_->external.size());
+}
+
+void SwarmHost::Tick(int64_t step, const mjModel* m, const mjData* d, double* controls,
+                     double* held) {
   Impl& s = *impl_;
   const runner::VehicleBindings& bindings = s.shared->bindings;
   runner::ReadTrueStates(d, bindings, &s.truth);
@@ -191,11 +257,46 @@ void SwarmHost::Tick(int64_t step, const mjModel* m, const mjData* d, double* co
                              m->opt.timestep, s.faulted.data());
     c = &s.faulted;
   }
-  const int per = bindings.actuators_per_vehicle;
-  for (size_t i = 0; i < bindings.vehicles.size(); ++i) {
-    const std::vector<int>& ids = bindings.vehicles[i].actuators;
-    for (int k = 0; k < per; ++k) controls[ids[k]] = (*c)[i * per + k];
+  if (s.rotors) {
+    std::copy(c->begin(), c->end(), held);  // the wrench model's rotors have no actuator
+  } else {
+    const int per = bindings.actuators_per_vehicle;
+    for (size_t i = 0; i < bindings.vehicles.size(); ++i) {
+      const std::vector<int>& ids = bindings.vehicles[i].actuators;
+      for (int k = 0; k < per; ++k) controls[ids[k]] = (*c)[i * per + k];
+    }
   }
+  if (s.forces.empty()) return;
+  // Simulation::ComputeForces: every stage's force from the tick's true states.
+  std::fill(s.external.begin(), s.external.end(), 0.0);
+  const double time = static_cast<double>(step) * s.shared->config.timestep;
+  for (auto& stage : s.forces) stage->AddForces(step, time, s.truth, &s.external);
+  std::copy(s.external.begin(), s.external.end(), held + 2 * s.rotors);
+}
+
+void SwarmHost::AddForces(const mjModel* m, mjData* d, const double* held) {
+  Impl& s = *impl_;
+  const runner::VehicleBindings& bindings = s.shared->bindings;
+  if (s.rotors) {
+    // Simulation::HandOverControls: the rotor wrenches first, from the held controls and the
+    // motor lags of this step.
+    Wrench(m, held).Apply(s.controls, d);
+  }
+  if (s.forces.empty()) return;
+  // Simulation::ApplyForces: then each vehicle's external force at its centre of mass.
+  const double* f = held + 2 * s.rotors;
+  for (size_t i = 0; i < bindings.vehicles.size(); ++i) {
+    const mjtNum wrench[6] = {f[3 * i], f[3 * i + 1], f[3 * i + 2], 0, 0, 0};
+    runner::AddWrenchAtCentreOfMass(m, d, bindings.vehicles[i].body, wrench);
+  }
+}
+
+void SwarmHost::Advance(const mjModel* m, double* held) {
+  Impl& s = *impl_;
+  if (!s.rotors) return;
+  Wrench(m, held).Advance(s.controls);
+  runner::FixedStateArchive saving = runner::FixedStateArchive::Saving(held + s.rotors);
+  s.wrench->VisitState(saving);
 }
 
 }  // namespace mjf::native

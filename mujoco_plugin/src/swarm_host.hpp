@@ -17,6 +17,10 @@
 #include "mjformation/config/experiment.hpp"
 #include "mjformation/scene/vehicle_binding.hpp"
 
+namespace mjf::runner {
+class Actuation;
+}
+
 namespace mjf::native {
 
 // The experiment sections a native instance carries, each as one MJCF <config> key whose value
@@ -57,15 +61,34 @@ class SwarmHost {
   SwarmHost& operator=(const SwarmHost&) = delete;
 
   // Runs one control tick of our plugins for physics step `step` on the sensors of `d` and
-  // writes each driven actuator's control into `controls` (indexed by actuator id).
-  void Tick(int64_t step, const mjModel* m, const mjData* d, double* controls);
-  // The tick's state (runner::ControlTick::GetState): fixed size, every number a tick leaves
+  // writes each driven actuator's control into `controls` (indexed by actuator id), and what
+  // the step's forces are made of into `held` (held_size() doubles, below).
+  void Tick(int64_t step, const mjModel* m, const mjData* d, double* controls, double* held);
+  // The forces the runner adds besides MuJoCo's actuators ([wind]'s drag, [vehicles]
+  // rotor_model = "wrench"'s rotor wrenches), as a block of plugin_state beside the tick's
+  // state, read at every evaluation of a step: [the tick's controls, [vehicle][rotor]] and [the
+  // motor lags, likewise] with the wrench model, then [each vehicle's wind force, N, world
+  // frame] with [wind]. Zeros are the state before the first step (motor lags at rest). Empty
+  // when neither is on.
+  size_t held_size() const;
+  // Adds the step's forces into d->qfrc_passive (at each vehicle's centre of mass, as the
+  // runner adds them after mj_step1: rotor wrenches, then the wind), from `held` and the
+  // position stage of `d`.
+  void AddForces(const mjModel* m, mjData* d, const double* held);
+  // After the step's integration: the motor lags follow the tick's controls (the runner's
+  // Actuation::Advance after mj_step2).
+  void Advance(const mjModel* m, double* held);
+  // The tick's state (runner::ControlTick::GetState), then the force stages' (the wind field's
+  // Dryden filters, held samples and random streams): fixed size, every number a tick leaves
   // for the next.
   size_t state_size() const;
   void GetState(double* out) const;
   void SetState(const double* in);
 
  private:
+  // The wrench rotor model on `m`, loaded with the motor lags of `held` (its controls copied
+  // into the scratch the actuation takes).
+  runner::Actuation& Wrench(const mjModel* m, const double* held);
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

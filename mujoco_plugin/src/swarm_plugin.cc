@@ -66,9 +66,15 @@ class SwarmModels {
 
 struct SwarmHolder final : Holder {
   std::unique_ptr<SwarmHost> host;
-  void Tick(int64_t step, const mjModel* m, const mjData* d, double* controls) override {
-    host->Tick(step, m, d, controls);
+  void Tick(int64_t step, const mjModel* m, const mjData* d, double* controls,
+            double* held) override {
+    host->Tick(step, m, d, controls, held);
   }
+  size_t held_size() const override { return host->held_size(); }
+  void AddForces(const mjModel* m, mjData* d, const double* held) override {
+    host->AddForces(m, d, held);
+  }
+  void Advance(const mjModel* m, double* held) override { host->Advance(m, held); }
   size_t state_size() const override { return host->state_size(); }
   void GetState(double* out) const override { host->GetState(out); }
   void SetState(const double* in) override { host->SetState(in); }
@@ -109,9 +115,9 @@ std::unique_ptr<Holder> SwarmPlugin::Make(const mjModel* m, int instance) {
 size_t SwarmPlugin::StateSize(const mjModel* m, int instance) {
   const runner::ExperimentConfig config = SwarmPlugin::Config(m, instance);
   SwarmPlugin::Names(m, instance, config);
-  return OnOwnThread(
-             [&] { return std::make_unique<SwarmHost>(SwarmHost::Prepare(m, config, false)); })
-      ->state_size();
+  const std::unique_ptr<SwarmHost> host = OnOwnThread(
+      [&] { return std::make_unique<SwarmHost>(SwarmHost::Prepare(m, config, false)); });
+  return host->held_size() + host->state_size();
 }
 
 const PluginKind kSwarmKind = {SwarmPlugin::kName, SwarmPlugin::Make, SwarmPlugin::StateSize};

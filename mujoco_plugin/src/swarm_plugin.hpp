@@ -30,9 +30,10 @@ class SwarmPlugin {
   // a holder with a SwarmHost of the instance's configuration; the files it names and the
   // plugin libraries are read once per model (shared by every mjData, copy and reset).
   static std::unique_ptr<Holder> Make(const mjModel* m, int instance);
-  // The tick's state size, while the model compiles (its sensors and actuators are not there
-  // yet: the plugins are created on the vehicles' description alone). Checks every section as
-  // the experiment parser does, and that the bodies referencing the instance are its vehicles.
+  // The held forces' and the tick's state size, while the model compiles (its sensors and actuators
+  // are not there yet: the plugins are created on the vehicles' description alone). Checks every
+  // section as the experiment parser does, and that the bodies referencing the instance are its
+  // vehicles.
   static size_t StateSize(const mjModel* m, int instance);
 
   // The instance's configuration, read with the experiment file's parser; relative paths are

@@ -255,6 +255,58 @@ TEST(NativeFlight, JacobiRoundsClocksAndBurstsAreTheRunnersTrajectory) {
   EXPECT_GT(c.moved, 0.1);
 }
 
+// The benchmark's b06, a 3 m/s wind with moderate Dryden turbulence, shortened to 3 s: the wind
+// field (its Dryden filters, held samples and random streams) is in plugin_state, its drag is
+// added into qfrc_passive as the runner adds it, and plain mj_step flies the runner's flight,
+// bit for bit; so it does with a paused viewer's mj_forward calls in between (qfrc_passive is
+// recomputed by each, and the drag added once to each).
+TEST(NativeFlight, GustyWindIsTheRunnersTrajectory) {
+  Scratch dir("gusty_wind");
+  const std::string text = Shortened("benchmark/b06_gusty_wind.toml", 3.0);
+  ASSERT_NE(text.find("\nturbulence = \"moderate\""), std::string::npos);
+  std::ofstream(dir / "experiment.toml") << text;
+  for (const int pause_every : {0, 100}) {
+    const Comparison c = FlyBoth(dir / "experiment.toml", 3.0, pause_every);
+    EXPECT_EQ(c.steps, 3000);
+    EXPECT_TRUE(c.bitwise) << "largest qpos difference " << c.max_diff << " m";
+    EXPECT_GT(c.moved, 0.5);
+  }
+}
+
+// The benchmark's b10, its three 1-cosine gusts moved to 0.2, 1.0 and 1.8 s (from 26, 31 and
+// 35 s) of a 6 s flight: the runner's flight, bit for bit, through the gusts.
+TEST(NativeFlight, GustsAreTheRunnersTrajectory) {
+  Scratch dir("gusts");
+  std::string text = Shortened("benchmark/b10_gusts.toml", 6.0);
+  for (const auto& [from, to] :
+       {std::pair<std::string, std::string>{"26.0", "0.2"}, {"31.0", "1.0"}, {"35.0", "1.8"}}) {
+    const size_t at = text.find("start = " + from);
+    ASSERT_NE(at, std::string::npos) << from;
+    text.replace(at, 8 + from.size(), "start = " + to);
+  }
+  std::ofstream(dir / "experiment.toml") << text;
+  const Comparison c = FlyBoth(dir / "experiment.toml", 6.0);
+  EXPECT_EQ(c.steps, 6000);
+  EXPECT_TRUE(c.bitwise) << "largest qpos difference " << c.max_diff << " m";
+  EXPECT_GT(c.moved, 0.5);
+}
+
+// Exp 2 with [vehicles] rotor_model = "wrench": the runner's rotor wrenches (thrust and yaw
+// torque per rotor, the motor lags in plugin_state) added into qfrc_passive, with the exported
+// scene's one zero-gear actuator only there so that MuJoCo calls the plugin. 10 s, bit for bit.
+TEST(NativeFlight, WrenchRotorModelIsTheRunnersTrajectory) {
+  Scratch dir("wrench");
+  std::string text = Shortened("exp2.toml", 10.0);
+  const size_t at = text.find("followers = 6");
+  ASSERT_NE(at, std::string::npos);
+  text.insert(at + 13, "\nrotor_model = \"wrench\"");
+  std::ofstream(dir / "experiment.toml") << text;
+  const Comparison c = FlyBoth(dir / "experiment.toml", 10.0, 300);
+  EXPECT_EQ(c.steps, 10000);
+  EXPECT_TRUE(c.bitwise) << "largest qpos difference " << c.max_diff << " m";
+  EXPECT_GT(c.moved, 3.0);
+}
+
 // Repeated mj_forward between steps (a paused viewer) leaves the held commands as they were:
 // the flight that follows is still the runner's, bit for bit.
 TEST(NativeFlight, PausedViewerLeavesHeldCommands) {
@@ -425,11 +477,35 @@ TEST(NativeExport, RefusesMessagesInFlightPastTheNativeBound) {
   EXPECT_NE(e.find("at most 100 "), std::string::npos) << e;
 }
 
-TEST(NativeExport, RefusesWind) {
-  const std::string e = ExportRefusal("\n[wind]\nmean = [3.0, 0.0, 0.0]\n");
+// A section no experiment has (a typo) is refused naming what is carried: no stale reason.
+TEST(NativeExport, RefusesASectionItDoesNotCarryNamingWhatItCarries) {
+  const std::string e = ExportRefusal("\n[wnd]\nmean = [3.0, 0.0, 0.0]\n");
   EXPECT_NE(e.find("experiment.toml:"), std::string::npos) << e;
-  EXPECT_NE(e.find("[wind]: the native MuJoCo plugins cannot carry"), std::string::npos) << e;
-  EXPECT_EQ(e.find("sensor"), std::string::npos) << "sensors are carried now: " << e;
+  EXPECT_NE(e.find("[wnd]: the native MuJoCo plugins carry [run], "), std::string::npos) << e;
+  EXPECT_NE(e.find(", [network] and [wind] (and note [render] and [safety]"), std::string::npos)
+      << e;
+  EXPECT_EQ(e.find("no wind or disturbance"), std::string::npos) << "the stale reason: " << e;
+}
+
+// [safety] only records (stop_on, which ends a run, is refused on its own): the scene is
+// written, and a note says that the events are the runner's alone.
+TEST(NativeExport, SafetyIsANoteNotARefusal) {
+  Scratch dir("export_safety");
+  std::string text = ReadFile(Variant("exp2.toml", "", "", dir));
+  text += "\n[safety]\nflip_tilt_deg = 80.0\nnear_miss_m = 0.5\n";
+  std::ofstream(dir / "experiment.toml") << text;
+  const ExportResult result = ExportExperiment(dir / "experiment.toml", dir / "out");
+  EXPECT_TRUE(fs::exists(result.scene_path));
+  std::string safety_note;
+  for (const std::string& note : result.notes) {
+    if (note.rfind("[safety]", 0) == 0) safety_note = note;
+  }
+  EXPECT_NE(safety_note.find("[safety] is not carried: "), std::string::npos) << safety_note;
+  EXPECT_NE(safety_note.find("recorded by the runner only"), std::string::npos) << safety_note;
+  EXPECT_EQ(ReadFile(result.scene_path).find("flip_tilt_deg"), std::string::npos);
+  mjModel* m = LoadNative(result.scene_path);
+  EXPECT_NE(m, nullptr);
+  if (m) mj_deleteModel(m);
 }
 
 // A latency buffer past what plugin_state holds: refused naming the key and both numbers.
@@ -439,11 +515,6 @@ TEST(NativeExport, RefusesALatencyPastTheNativeBound) {
   EXPECT_NE(e.find("[sensors] position_latency = 1.5 s is 1500 physics steps"), std::string::npos)
       << e;
   EXPECT_NE(e.find("at most 1000"), std::string::npos) << e;
-}
-
-TEST(NativeExport, RefusesTheWrenchRotorModel) {
-  const std::string e = ExportRefusal("\nrotor_model = \"wrench\"", "followers = 6");
-  EXPECT_NE(e.find("[vehicles] rotor_model: not carried"), std::string::npos) << e;
 }
 
 // [[vehicles.fault]] is carried on MuJoCo's actuators; with the wrench rotor model it is refused

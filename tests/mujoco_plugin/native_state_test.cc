@@ -47,7 +47,7 @@ using mjf::testing::ReadFile;
 using mjf::testing::Scratch;
 
 // The plugin_state header of mujoco_plugin/src/actuator_plugin.hpp.
-constexpr int kCommitted = 1, kHeld = 2;
+constexpr int kCommitted = 1, kHeld = 2, kHeader = 5;
 
 // MuJoCo's errors as exceptions (as the runner and Python have them), so that a refusal is
 // seen by the test instead of ending the process.
@@ -305,8 +305,8 @@ mjData* FlyProbed(const mjModel* m, int steps) {
     EXPECT_EQ(probed->plugin_state[adr + kCommitted], k + 1);
     EXPECT_EQ(probed->plugin_state[adr + kHeld], k);
     // Controls (NaN for an actuator not driven) and state blocks, bit for bit.
-    if (std::memcmp(held.data() + adr + 4, probed->plugin_state + adr + 4,
-                    sizeof(mjtNum) * (held.size() - adr - 4)) != 0) {
+    if (std::memcmp(held.data() + adr + kHeader, probed->plugin_state + adr + kHeader,
+                    sizeof(mjtNum) * (held.size() - adr - kHeader)) != 0) {
       ADD_FAILURE() << "an evaluation ticked again at step " << k;
       break;
     }
@@ -555,6 +555,95 @@ TEST_F(NativeNetworkState, StateSizeIsFixedAndPrinted) {
   std::printf("b13 exported: npluginstate = %d doubles (mj_stateSize INTEGRATION = %d)\n", nstate,
               static_cast<int>(mj_stateSize(m_, mjSTATE_INTEGRATION)));
   EXPECT_GT(nstate, 13 * 3 * 28) << "13 links' queues of 3 messages at the least";
+}
+
+// b06 shortened: a 3 m/s wind with moderate Dryden turbulence. The wind field's state (each
+// vehicle's Dryden filters and random stream, the held samples) lives in plugin_state, and so
+// does the drag of the step, added into qfrc_passive at every evaluation.
+class NativeWindState : public NativeStreamsState {
+ protected:
+  void SetUp() override {
+    m_ = LoadExported(dir_, NativeExperimentText("benchmark/b06_gusty_wind.toml"));
+    ASSERT_NE(m_, nullptr);
+  }
+};
+
+TEST_F(NativeWindState, CopiesAtTwoTimesFlyOnAsTheOriginal) {
+  CopiesAtTwoTimesFlyOnAsTheOriginal();
+}
+TEST_F(NativeWindState, CheckpointReplayIsExact) { CheckpointReplayIsExact(); }
+TEST_F(NativeWindState, TransitionFdAndResetLeaveTheFlightUnchanged) {
+  TransitionFdAndResetLeaveTheFlightUnchanged();
+}
+
+// B's columns are differenced with the velocity stage skipped, qfrc_passive kept from the
+// evaluation before: the drag is in it once, never added again. A rotor's column equals a
+// difference taken by hand over copies (each copy's step adds the drag once), and a second call
+// gives the same B.
+TEST_F(NativeWindState, TransitionFdBCountsTheDragOnce) {
+  mjData* d = Make();
+  Step(m_, d, 400);
+  const int nx = 2 * m_->nv + m_->na, nu = m_->nu;
+  const int rotor = nu / 2;
+  const mjtNum eps = 1e-6;
+  std::vector<mjtNum> B(nx * nu), again(nx * nu);
+  mjd_transitionFD(m_, d, eps, 0, nullptr, B.data(), nullptr, nullptr);
+  mjd_transitionFD(m_, d, eps, 0, nullptr, again.data(), nullptr, nullptr);
+  EXPECT_EQ(B, again);
+  mjData* base = Own(mj_copyData(nullptr, m_, d));
+  mjData* nudged = Own(mj_copyData(nullptr, m_, d));
+  nudged->ctrl[m_->actuator_ctrladr[rotor]] += eps;
+  Step(m_, base, 1);
+  Step(m_, nudged, 1);
+  std::vector<mjtNum> column(nx);
+  mj_differentiatePos(m_, column.data(), eps, base->qpos, nudged->qpos);
+  for (int v = 0; v < m_->nv; ++v) column[m_->nv + v] = (nudged->qvel[v] - base->qvel[v]) / eps;
+  for (int i = 0; i < m_->na; ++i) column[2 * m_->nv + i] = (nudged->act[i] - base->act[i]) / eps;
+  double largest = 0;
+  for (int r = 0; r < nx; ++r) {
+    EXPECT_NEAR(B[r * nu + rotor], column[r], 1e-9 * (1 + std::fabs(column[r]))) << "row " << r;
+    largest = std::max(largest, std::fabs(B[r * nu + rotor]));
+  }
+  EXPECT_GT(largest, 1e-3) << "the rotor's column is not seen";
+}
+
+// Exp 2 with the wrench rotor model: the tick's controls and the motor lags are in
+// plugin_state; the rotors' wrenches are added into qfrc_passive at every evaluation.
+class NativeWrenchState : public NativeStreamsState {
+ protected:
+  void SetUp() override {
+    std::string text = NativeExperimentText("exp2.toml");
+    const size_t at = text.find("followers = 6");
+    ASSERT_NE(at, std::string::npos);
+    text.insert(at + 13, "\nrotor_model = \"wrench\"");
+    m_ = LoadExported(dir_, text);
+    ASSERT_NE(m_, nullptr);
+  }
+};
+
+TEST_F(NativeWrenchState, CopiesAtTwoTimesFlyOnAsTheOriginal) {
+  CopiesAtTwoTimesFlyOnAsTheOriginal();
+}
+TEST_F(NativeWrenchState, CheckpointReplayIsExact) { CheckpointReplayIsExact(); }
+TEST_F(NativeWrenchState, TransitionFdAndResetLeaveTheFlightUnchanged) {
+  TransitionFdAndResetLeaveTheFlightUnchanged();
+}
+
+// The scene's one actuator is the zero-gear tick actuator: its B column is zero, to the bit (a
+// rotor wrench added a second time in the evaluations that skip the velocity stage would show
+// here, as the whole wrench over eps). A's velocity columns, differenced with the velocity stage
+// run, move the vehicles.
+TEST_F(NativeWrenchState, TransitionFdSeesTheTickActuatorAsNoForce) {
+  ASSERT_EQ(m_->nu, 1);
+  ASSERT_STREQ(mj_id2name(m_, mjOBJ_ACTUATOR, 0), "mjformation_swarm_tick");
+  mjData* d = Make();
+  Step(m_, d, 400);
+  const int nx = 2 * m_->nv + m_->na;
+  std::vector<mjtNum> A(nx * nx), B(nx);
+  mjd_transitionFD(m_, d, 1e-6, 0, A.data(), B.data(), nullptr, nullptr);
+  for (int r = 0; r < nx; ++r) EXPECT_EQ(B[r], 0.0) << "row " << r;
+  // d qpos(next) / d qvel of the leader's x velocity is the timestep.
+  EXPECT_NEAR(A[0 * nx + m_->nv + 0], m_->opt.timestep, 1e-7);
 }
 
 // plugin_state that is not ours (garbage written over it) is refused with a message naming the

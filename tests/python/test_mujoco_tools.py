@@ -154,3 +154,39 @@ def test_transition_fd_is_the_finite_difference_by_hand(model):
     column = B[:, ctrl]
     assert np.flatnonzero(column).tolist() == [2 * nv + act]
     assert column[2 * nv + act] == pytest.approx(model.opt.timestep / tau, rel=1e-6)
+
+
+@pytest.mark.parametrize("experiment, extra", [
+    ("experiments/benchmark/b06_gusty_wind.toml", {}),
+    ("experiments/exp2.toml", {"vehicles.rotor_model": "wrench"}),
+], ids=["wind", "wrench"])
+def test_transition_fd_with_the_forces_besides_the_actuators(source, tmp_path, experiment, extra):
+    """[wind]'s drag and the wrench rotor model's wrenches, added by the plugin into qfrc_passive
+    (docs/PLUGINS.md, "Forces besides the actuators"): A's position and velocity columns are the
+    differences by hand over copies (the drag of a perturbed velocity included), and B's columns,
+    differenced without the velocity stage, see each force once."""
+    mujoco.mj_loadPluginLibrary(mjformation.native_plugin_library())
+    scene = mjformation.export(source / experiment, tmp_path / "scene", set=extra)
+    model = mujoco.MjModel.from_xml_path(str(scene))
+    data = mujoco.MjData(model)
+    for _ in range(500):
+        mujoco.mj_step(model, data)
+    nv, nx, nu = model.nv, 2 * model.nv + model.na, model.nu
+    eps = 1e-6
+    A, B = np.zeros((nx, nx)), np.zeros((nx, nu))
+    C = np.zeros((model.nsensordata, nx))
+    mujoco.mjd_transitionFD(model, data, eps, True, A, B, C, None)
+    dof = model.jnt_dofadr[model.body("uav1_vehicle").jntadr[0]]
+    for name, j in {"x": dof, "vx": nv + dof, "vz": nv + dof + 2, "wx": nv + dof + 3}.items():
+        by_hand = column_by_hand(model, data, j, eps)
+        assert np.allclose(A[:, j], by_hand, rtol=0, atol=1e-6), (
+            name, np.abs(A[:, j] - by_hand).max())
+    if extra:  # the wrench scene's one actuator has no force: its column is zero, to the bit
+        assert model.nu == 1 and not B.any()
+    else:  # a rotor's trim moves its own motor lag only, by h / tau (the drag is not in it)
+        rotor = model.actuator("uav1_rotor0").id
+        act = model.actuator_actadr[rotor]
+        column = B[:, model.actuator_ctrladr[rotor]]
+        assert np.flatnonzero(column).tolist() == [2 * nv + act]
+        tau = model.actuator_dynprm[rotor, 0]
+        assert column[2 * nv + act] == pytest.approx(model.opt.timestep / tau, rel=1e-6)

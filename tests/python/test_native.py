@@ -46,10 +46,10 @@ def test_exported_exp2_flies_the_runners_trajectory(exp2, tmp_path, native_libra
 
 
 def test_export_refuses_what_the_native_path_cannot_carry(source, tmp_path):
-    experiment = tmp_path / "windy.toml"
+    experiment = tmp_path / "late.toml"
     experiment.write_text((source / "experiments/exp2.toml").read_text()
-                          + "\n[wind]\nmean = [1.0, 0.0, 0.0]\n")
-    with pytest.raises(ValueError, match=r"windy.toml:\d+: \[wind\].*cannot carry"):
+                          + "\n[sensors]\nposition_latency = 1.5\n")
+    with pytest.raises(ValueError, match=r"late.toml:\d+: \[sensors\] position_latency = 1.5 s"):
         mjformation.export(experiment, tmp_path / "out")
     assert not (tmp_path / "out").exists()
 

@@ -165,7 +165,8 @@ nlohmann::json BareMujoco(const ExperimentConfig& config) {
   if (m->nu == 0) {
     // Wrench rotor model: the same constant wrench every step, thrust along the body z axis
     // (which the spin about it leaves fixed in the world), handed to MuJoCo as the constant
-    // generalized force qfrc_applied, as the runner does (simulation.cc, ApplyRotorWrenches).
+    // generalized force qfrc_applied: the runner adds it into qfrc_passive after mj_step1
+    // (AddWrenchAtCentreOfMass), which mj_step below would clear every step.
     for (int i = 0; i < sim.n_vehicles(); ++i) {
       const int body = sim.binding(i).body;
       mjtNum force[3];

@@ -63,6 +63,7 @@ class WindDrag final : public WindStage {
   }
   bool saves_state() const override { return true; }
   void VisitState(StateArchive& archive) override { archive(field_); }
+  void VisitState(FixedStateArchive& archive) override { archive(field_); }
   const std::vector<std::array<double, 3>>& wind() const override {
     static const std::vector<std::array<double, 3>> kCalm;
     return wind_ ? *wind_ : kCalm;

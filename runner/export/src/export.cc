@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -38,9 +39,7 @@ struct Carried {
 const std::vector<Carried>& CarriedSections() {
   static const std::vector<Carried> kCarried = {
       {"run", {}, ""},
-      {"vehicles",
-       {"rotor_model"},
-       "the native plugin drives the vehicle model's own MuJoCo actuators, as written"},
+      {"vehicles", {}, ""},
       {"topology", {}, ""},
       {"leader", {}, ""},
       {"formation", {}, ""},
@@ -49,14 +48,37 @@ const std::vector<Carried>& CarriedSections() {
       {"estimator", {}, ""},
       {"execution", {}, ""},
       {"network", {}, ""},
+      {"wind", {}, ""},
   };
   return kCarried;
 }
 
-// Sections that change what is recorded or drawn, never the flight: not carried, and said so.
-const std::set<std::string>& OutputOnlySections() {
-  static const std::set<std::string> kOutput = {"render"};
+// Sections that change what is recorded or drawn, never the flight: not carried, and said so,
+// each with why.
+const std::map<std::string, std::string>& OutputOnlySections() {
+  static const std::map<std::string, std::string> kOutput = {
+      {"render",
+       "it shapes the runner's images, not the flight (MuJoCo's own viewer renders the exported "
+       "scene)"},
+      {"safety",
+       "safety events (flips, ground impacts, collisions, near misses, leaving the region) are "
+       "recorded by the runner only; the exported scene flies the same flight and records "
+       "nothing"},
+  };
   return kOutput;
+}
+
+// "[run], [vehicles], ... and [wind]": what the native plugins carry, for a refusal.
+std::string CarriedList() {
+  std::string list;
+  const std::vector<Carried>& carried = CarriedSections();
+  for (size_t i = 0; i < carried.size(); ++i) {
+    list += std::string(i == 0                    ? ""
+                        : i + 1 == carried.size() ? " and "
+                                                  : ", ") +
+            "[" + carried[i].section + "]";
+  }
+  return list;
 }
 
 std::string Quoted(std::string_view text) {
@@ -146,6 +168,9 @@ std::string XmlEscape(const std::string& text) {
   return out;
 }
 
+// The wrench rotor model's one actuator (AddTickActuator).
+constexpr char kTickActuator[] = "mjformation_swarm_tick";
+
 // The plugin declaration: one instance flies every vehicle of the scene.
 std::string ExtensionBlock(const std::vector<std::pair<std::string, std::string>>& pairs) {
   std::string xml =
@@ -183,6 +208,26 @@ void ReferenceInstanceFromVehicles(std::string* xml, int vehicles) {
     const std::string indent = xml->substr(line + 1, text - line - 1);
     xml->insert(line + 1, indent + "<plugin instance=\"swarm\"/>\n");
   }
+}
+
+// The wrench rotor model's scene has no actuator (the runner strips the rotors' and adds their
+// wrenches itself), and MuJoCo calls an actuator plugin only in a model with an actuator
+// (mj_fwdActuation returns when nu = 0): one actuator of no force (gear 0) on the leader's joint
+// lets the swarm instance tick and add the wrenches. Its force is +0, and so is every entry of
+// qfrc_actuator, as in the runner's scene without actuators: the same sums, the same bits.
+void AddTickActuator(std::string* xml, const mjModel* m) {
+  const std::string leader = VehiclePrefix(0) + "vehicle";
+  const int body = mj_name2id(m, mjOBJ_BODY, leader.c_str());
+  const int joint = body < 0 || m->body_jntnum[body] == 0 ? -1 : m->body_jntadr[body];
+  const char* name = joint < 0 ? nullptr : mj_id2name(m, mjOBJ_JOINT, joint);
+  const size_t end = xml->rfind("</mujoco>");
+  if (!name || end == std::string::npos) {
+    throw ExportError("the composed scene's body '" + leader +
+                      "' has no named joint for the wrench rotor model's tick actuator");
+  }
+  xml->insert(end, std::string("  <actuator>\n    <general name=\"") + kTickActuator +
+                       "\" joint=\"" + XmlEscape(name) + "\" gear=\"0 0 0 0 0 0\"/>\n" +
+                       "  </actuator>\n");
 }
 
 std::string Where(const std::string& file, const toml::node& node, const std::string& key) {
@@ -290,19 +335,18 @@ std::vector<std::pair<std::string, std::string>> CarriedPairs(
   std::vector<std::pair<std::string, std::string>> pairs;
   for (auto&& [key, node] : doc) {
     const std::string section(key.str());
-    if (OutputOnlySections().count(section)) {
-      if (notes)
-        notes->push_back("[" + section + "] is not carried: it shapes the runner's images, not " +
-                         "the flight (MuJoCo's own viewer renders the exported scene)");
+    const auto output_only = OutputOnlySections().find(section);
+    if (output_only != OutputOnlySections().end()) {
+      if (notes) notes->push_back("[" + section + "] is not carried: " + output_only->second);
       continue;
     }
     bool known = false;
     for (const Carried& c : CarriedSections()) known = known || section == c.section;
     if (!known) {
-      throw ExportError(Where(file, node, section) +
-                        ": the native MuJoCo plugins cannot carry this section (they fly " +
-                        "central execution over perfect links, no wind or disturbance); run " +
-                        "it with `mjformation run`");
+      throw ExportError(Where(file, node, section) + ": the native MuJoCo plugins carry " +
+                        CarriedList() +
+                        " (and note [render] and [safety], the runner's outputs), not this " +
+                        "section: run it with `mjformation run`");
     }
   }
   for (const Carried& c : CarriedSections()) {
@@ -349,6 +393,7 @@ std::string SceneXml(const std::string& experiment, const ExportOptions& options
   if (end == std::string::npos) throw ExportError("the composed scene has no <mujoco> element");
   xml.insert(end + 2, ExtensionBlock(pairs));
   ReferenceInstanceFromVehicles(&xml, config.followers + 1);
+  if (config.rotor_model == RotorModel::kWrench) AddTickActuator(&xml, simulation.model());
   return xml;
 }
 

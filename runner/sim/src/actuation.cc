@@ -14,7 +14,7 @@ namespace mjf::runner {
 // the wrench gear * force acts at the site, in the site's frame.
 //
 // The vehicle's summed wrench (force f at its centre of mass, torque t) goes to MuJoCo as the
-// generalized force J^T [f; t] in qfrc_applied, computed here from cdof over the vehicle's own
+// generalized force J^T [f; t] in qfrc_passive, computed here from cdof over the vehicle's own
 // dofs only. Handing it over as xfrc_applied instead makes MuJoCo 2.2.2 (mj_xfrcAccumulate ->
 // mj_applyFT) build and clear two dense 3 x nv Jacobians per vehicle every step: O(N nv) =
 // O(N^2), 97% of a step at 1000 followers (docs/PERFORMANCE.md). The maths is mj_jac's: for each
@@ -51,7 +51,7 @@ void AddWrenchAtCentreOfMass(const mjModel* m, mjData* d, int body, const mjtNum
     mjtNum lin[3];
     Cross(lin, cdof, offset);
     for (int k = 0; k < 3; ++k) lin[k] += cdof[3 + k];
-    d->qfrc_applied[j] += Dot3(lin, wrench) + Dot3(cdof, wrench + 3);
+    d->qfrc_passive[j] += Dot3(lin, wrench) + Dot3(cdof, wrench + 3);
   }
 }
 
@@ -70,7 +70,6 @@ class ActuatorActuation final : public Actuation {
     }
   }
   void Advance(const std::vector<double>&) override {}
-  bool UsesAppliedForces() const override { return false; }
 
  private:
   const VehicleBindings& bindings_;
@@ -91,7 +90,7 @@ class WrenchActuation final : public Actuation {
   void Apply(const std::vector<double>& controls, mjData* data) override;
   void Advance(const std::vector<double>& controls) override;
   void VisitState(StateArchive& archive) override { archive(rotor_state_); }
-  bool UsesAppliedForces() const override { return true; }
+  void VisitState(FixedStateArchive& archive) override { archive(rotor_state_); }
 
  private:
   // What the step reads of one driven actuator, [vehicle][actuator] like the controls: one
@@ -210,7 +209,6 @@ class FaultedActuation final : public Actuation {
   }
   // The controls of this step's Apply, faults included (the wrench model's motor lag).
   void Advance(const std::vector<double>&) override { inner_->Advance(faulted_); }
-  bool UsesAppliedForces() const override { return inner_->UsesAppliedForces(); }
 
  private:
   std::unique_ptr<Actuation> inner_;

@@ -292,8 +292,8 @@ void PartitionedPhysics::RunPartition(int k, Phase phase) {
     std::copy(controls_->begin() + static_cast<ptrdiff_t>(p.first) * per,
               controls_->begin() + static_cast<ptrdiff_t>(p.first + p.count) * per,
               p.controls.begin());
-    // The whole-swarm order (simulation.cc): clear, rotor wrenches, then external forces.
-    if (p.actuation->UsesAppliedForces() || forces_) mju_zero(d->qfrc_applied, m->nv);
+    // The whole-swarm order (simulation.cc): rotor wrenches, then external forces, into the
+    // qfrc_passive of this partition's mj_step1.
     p.actuation->Apply(p.controls, d);
     if (forces_) {
       for (int i = 0; i < p.count; ++i) {

@@ -253,11 +253,9 @@ void Simulation::ComputeActuation(const double* controls, const unsigned char* g
   HandOverControls();
 }
 
-// The tick's controls and the force stages' forces to the single model's mjData.
+// The tick's controls and the force stages' forces to the single model's mjData: forces are
+// added into the qfrc_passive that mj_step1 computed (AddWrenchAtCentreOfMass).
 void Simulation::HandOverControls() {
-  if (actuation_->UsesAppliedForces() || !force_stages_.empty()) {
-    mju_zero(data_->qfrc_applied, model_->nv);
-  }
   actuation_->Apply(tick_->controls(), data_.get());
   if (!force_stages_.empty()) ApplyForces();
 }

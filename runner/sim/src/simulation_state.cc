@@ -2,6 +2,7 @@
 //
 // What a checkpoint of one simulation holds, and which stages cannot be saved yet
 // (docs/ARCHITECTURE.md, "Checkpoint and resume").
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -78,8 +79,15 @@ void Simulation::VisitStateAtTick(StateArchive& archive) {
   std::vector<mjfVehicleState> measured = tick_->measured();
   std::vector<double> controls = tick_->controls();
   archive(truth_, measured, controls);
+  // The forces ComputeActuation added into qfrc_passive (the wrench model's, [wind]'s): a
+  // derived quantity to MuJoCo, which mj_step1 below recomputes without them.
+  const bool adds_forces = config_.rotor_model == RotorModel::kWrench || !force_stages_.empty();
+  std::vector<double> passive;
+  if (adds_forces) passive.assign(data_->qfrc_passive, data_->qfrc_passive + model_->nv);
+  if (adds_forces) FixedBlock(archive, "passive forces", &passive);
   if (!archive.loading()) return;
   mj_step1(model_.get(), data_.get());
+  if (adds_forces) std::copy(passive.begin(), passive.end(), data_->qfrc_passive);
   tick_->RestoreOutputs(step_, measured, controls,
                         reinterpret_cast<const struct mjModel_*>(model_.get()),
                         reinterpret_cast<const struct mjData_*>(data_.get()));

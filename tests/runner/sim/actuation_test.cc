@@ -1,7 +1,7 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
 // runner/sim/src/actuation.cc: MuJoCo's actuators (d->ctrl) against the runner's wrench model
-// (qfrc_applied) on a tiny model: the wrench model must give the generalized force MuJoCo's own
+// (qfrc_passive) on a tiny model: the wrench model must give the generalized force MuJoCo's own
 // site actuators give (qfrc_actuator), clamping and motor lag included; the wrench at the centre
 // of mass against MuJoCo's mj_applyFT.
 #include "mjformation/sim/actuation.hpp"
@@ -92,27 +92,25 @@ void ExpectNear(const double* got, const std::vector<double>& want, double tol) 
 TEST(ActuationTest, ActuatorModelWritesTheControlsToMujoco) {
   Tiny t(false);
   auto act = MakeActuation(RotorModel::kActuator, t.m, t.bindings, 0.001);
-  EXPECT_FALSE(act->UsesAppliedForces());
   act->Apply({3.0, 4.5}, t.d);
   EXPECT_EQ(t.d->ctrl[0], 3.0);
   EXPECT_EQ(t.d->ctrl[1], 4.5);
-  for (int j = 0; j < t.m->nv; ++j) EXPECT_EQ(t.d->qfrc_applied[j], 0.0);
+  for (int j = 0; j < t.m->nv; ++j) EXPECT_EQ(t.d->qfrc_passive[j], 0.0);
 }
 
 TEST(ActuationTest, WrenchModelGivesMujocosActuatorForce) {
   Tiny t(false);
   auto act = MakeActuation(RotorModel::kWrench, t.m, t.bindings, 0.001);
-  EXPECT_TRUE(act->UsesAppliedForces());
   for (const std::vector<double>& ctrl :
        {std::vector<double>{3.0, 4.5}, {0.0, 7.25}, {12.0, -1.0} /* clamped to [0, 10] */}) {
-    mju_zero(t.d->qfrc_applied, t.m->nv);
+    mju_zero(t.d->qfrc_passive, t.m->nv);
     act->Apply(ctrl, t.d);
-    ExpectNear(t.d->qfrc_applied, t.MujocoForce(ctrl), 1e-12);
+    ExpectNear(t.d->qfrc_passive, t.MujocoForce(ctrl), 1e-12);
     for (int a = 0; a < t.m->nu; ++a) EXPECT_EQ(t.d->ctrl[a], 0.0);  // no actuator touched
   }
   // A nonzero force at all (a test comparing zeros would pass on a no-op).
   double norm = 0;
-  for (int j = 0; j < t.m->nv; ++j) norm += std::abs(t.d->qfrc_applied[j]);
+  for (int j = 0; j < t.m->nv; ++j) norm += std::abs(t.d->qfrc_passive[j]);
   EXPECT_GT(norm, 1.0);
 }
 
@@ -122,41 +120,41 @@ TEST(ActuationTest, WrenchModelMotorLagFollowsMujocosFilter) {
   const std::vector<double> ctrl = {10.0, 4.0};
   // Motors start at rest: no force before the first Advance.
   act->Apply(ctrl, t.d);
-  for (int j = 0; j < t.m->nv; ++j) EXPECT_EQ(t.d->qfrc_applied[j], 0.0);
+  for (int j = 0; j < t.m->nv; ++j) EXPECT_EQ(t.d->qfrc_passive[j], 0.0);
   // act += dt (ctrl - act) / tau, as MuJoCo's Euler filter: 0.2 and 0.08 after one step.
   act->Advance(ctrl);
-  mju_zero(t.d->qfrc_applied, t.m->nv);
+  mju_zero(t.d->qfrc_passive, t.m->nv);
   act->Apply(ctrl, t.d);
-  ExpectNear(t.d->qfrc_applied, t.MujocoForce(ctrl, {0.2, 0.08}), 1e-12);
+  ExpectNear(t.d->qfrc_passive, t.MujocoForce(ctrl, {0.2, 0.08}), 1e-12);
   act->Advance({20.0, 4.0});  // clamped to 10 before it enters the lag
-  mju_zero(t.d->qfrc_applied, t.m->nv);
+  mju_zero(t.d->qfrc_passive, t.m->nv);
   act->Apply(ctrl, t.d);
   const double a0 = 0.2 + 0.001 * (10.0 - 0.2) / 0.05, a1 = 0.08 + 0.001 * (4.0 - 0.08) / 0.05;
-  ExpectNear(t.d->qfrc_applied, t.MujocoForce(ctrl, {a0, a1}), 1e-12);
+  ExpectNear(t.d->qfrc_passive, t.MujocoForce(ctrl, {a0, a1}), 1e-12);
 }
 
 TEST(ActuationTest, WrenchAtTheCentreOfMassMatchesMjApplyFT) {
   Tiny t(false);
   const int body = mj_name2id(t.m, mjOBJ_BODY, "vehicle");
   const mjtNum wrench[6] = {1.5, -2.0, 9.0, 0.3, 0.1, -0.7};
-  mju_zero(t.d->qfrc_applied, t.m->nv);
+  mju_zero(t.d->qfrc_passive, t.m->nv);
   AddWrenchAtCentreOfMass(t.m, t.d, body, wrench);
   std::vector<double> reference(t.m->nv, 0.0);
   mj_applyFT(t.m, t.d, wrench, wrench + 3, t.d->xipos + 3 * body, body, reference.data());
-  ExpectNear(t.d->qfrc_applied, reference, 1e-12);
+  ExpectNear(t.d->qfrc_passive, reference, 1e-12);
   // It adds to what is there.
   AddWrenchAtCentreOfMass(t.m, t.d, body, wrench);
   for (double& v : reference) v *= 2;
-  ExpectNear(t.d->qfrc_applied, reference, 1e-12);
+  ExpectNear(t.d->qfrc_passive, reference, 1e-12);
 }
 
 TEST(ActuationTest, NoDofsNoForce) {
   Tiny t(false);
   const mjtNum wrench[6] = {1, 2, 3, 4, 5, 6};
-  mju_zero(t.d->qfrc_applied, t.m->nv);
+  mju_zero(t.d->qfrc_passive, t.m->nv);
   AddWrenchAtCentreOfMass(t.m, t.d, 0, wrench);                                     // the world
   AddWrenchAtCentreOfMass(t.m, t.d, mj_name2id(t.m, mjOBJ_BODY, "fixed"), wrench);  // welded
-  for (int j = 0; j < t.m->nv; ++j) EXPECT_EQ(t.d->qfrc_applied[j], 0.0);
+  for (int j = 0; j < t.m->nv; ++j) EXPECT_EQ(t.d->qfrc_passive[j], 0.0);
 }
 
 // The stage choice through a whole simulation: a hovering quadrotor flown by MuJoCo's

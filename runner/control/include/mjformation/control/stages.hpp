@@ -60,9 +60,11 @@ class ForceStage {
   // Adds this stage's force (N, world frame) to force[3 * i + k] for every vehicle i.
   virtual void AddForces(int64_t step, double time, const std::vector<mjfVehicleState>& truth,
                          std::vector<double>* force) = 0;
-  // Checkpoints, as SensorStage's.
+  // Checkpoints, as SensorStage's; the fixed-length walk is the native MuJoCo plugin's
+  // plugin_state (fixed_state_archive.hpp).
   virtual bool saves_state() const { return false; }
   virtual void VisitState(StateArchive& archive) { (void)archive; }
+  virtual void VisitState(FixedStateArchive& archive) { (void)archive; }
 };
 
 // A force stage that knows the wind at each vehicle (recorded with [wind] on).

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "mjformation/config/experiment.hpp"
+#include "mjformation/config/fixed_state_archive.hpp"
 #include "mjformation/config/state_archive.hpp"
 #include "mjformation/scene/vehicle_binding.hpp"
 
@@ -20,16 +21,17 @@ namespace mjf::runner {
 class Actuation {
  public:
   virtual ~Actuation() = default;
-  // Hands every vehicle's controls ([vehicle][actuator]) to MuJoCo, before mj_step2.
-  // qfrc_applied has been cleared when this model uses it (UsesAppliedForces).
+  // Hands every vehicle's controls ([vehicle][actuator]) to MuJoCo, after mj_step1 and before
+  // mj_step2: into d->ctrl, or (the wrench model) added into qfrc_passive, which mj_step1 has
+  // just computed (AddWrenchAtCentreOfMass).
   virtual void Apply(const std::vector<double>& controls, mjData* data) = 0;
   // After mj_step2: advances the actuation's own state (the wrench model's motor lag).
   virtual void Advance(const std::vector<double>& controls) = 0;
-  // True when Apply writes qfrc_applied (the caller clears it once per step).
-  virtual bool UsesAppliedForces() const = 0;
   // What Advance carries from one step to the next (the wrench model's motor lags), both ways
-  // (checkpoints, state_archive.hpp); nothing for the actuators MuJoCo integrates itself.
+  // (checkpoints, state_archive.hpp; the native plugin's plugin_state, fixed_state_archive.hpp);
+  // nothing for the actuators MuJoCo integrates itself.
   virtual void VisitState(StateArchive& archive) { (void)archive; }
+  virtual void VisitState(FixedStateArchive& archive) { (void)archive; }
 };
 
 // The actuation model the experiment asks for.
@@ -47,7 +49,12 @@ std::unique_ptr<Actuation> WithRotorFaults(std::unique_ptr<Actuation> inner,
                                            const VehicleBindings& bindings, int first_vehicle);
 
 // Adds J^T [force; torque] of a wrench acting at `body`'s centre of mass (world frame) to
-// qfrc_applied, over the dofs that move the body only (O(dofs of the body's chain)).
+// qfrc_passive, over the dofs that move the body only (O(dofs of the body's chain)). Called
+// after the velocity stage (mj_step1; an engine plugin's actuation stage), which computes
+// qfrc_passive: MuJoCo then sums qfrc_smooth = passive - bias + applied + actuator. Not
+// qfrc_applied, which is the user's input and part of MuJoCo's state (mj_getState), so that
+// the native plugin can add the same forces; with no spring or damper qfrc_passive is +0 where
+// qfrc_applied was, and the sums are the same bits.
 void AddWrenchAtCentreOfMass(const mjModel* m, mjData* d, int body, const mjtNum wrench[6]);
 
 }  // namespace mjf::runner
