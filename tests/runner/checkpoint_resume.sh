@@ -61,6 +61,12 @@ resumed_equals_uninterrupted "$src/experiments/exp2.toml" --no-render --threads 
   --set 'vehicles.rotor_model="wrench"'
 
 rm -rf full killed
+case="a rotor fault before the checkpoint on the wrench rotor model (the faulted motor lags)"
+resumed_equals_uninterrupted "$src/experiments/benchmark/b08_rotor_fault.toml" --no-render \
+  --set 'vehicles.rotor_model="wrench"' \
+  --set 'vehicles.fault=[{follower=3, rotor=0, at=0.6, thrust_share=0.5}]'
+
+rm -rf full killed
 case="sensors (noise, bias, latency, rate hold), the kf_ins estimator and wind saved"
 resumed_equals_uninterrupted "$src/experiments/exp2.toml" --no-render \
   --set 'sensors.preset="consumer_gnss"' --set 'estimator.plugin="kf_ins"' \

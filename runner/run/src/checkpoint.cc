@@ -21,8 +21,11 @@ namespace mjf::runner {
 namespace {
 
 // The first words of every checkpoint: another file, or a checkpoint of another layout, is
-// refused by name.
-constexpr const char* kFormat = "mjformation checkpoint 2";
+// refused by name. Layout 3: the wind's and the wrench rotor model's forces go into
+// qfrc_passive (recomputed every step) instead of qfrc_applied, which a checkpoint carries: a
+// layout-2 checkpoint of such a run would add them a second time every step; and a faulted
+// wrench model's motor lags are saved.
+constexpr const char* kFormat = "mjformation checkpoint 3";
 
 std::string ReadWholeFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);

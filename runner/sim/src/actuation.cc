@@ -209,6 +209,9 @@ class FaultedActuation final : public Actuation {
   }
   // The controls of this step's Apply, faults included (the wrench model's motor lag).
   void Advance(const std::vector<double>&) override { inner_->Advance(faulted_); }
+  // The faults are a function of time: the state is the rotor model's (the wrench model's lags).
+  void VisitState(StateArchive& archive) override { inner_->VisitState(archive); }
+  void VisitState(FixedStateArchive& archive) override { inner_->VisitState(archive); }
 
  private:
   std::unique_ptr<Actuation> inner_;
