@@ -377,10 +377,11 @@ bool NonEmptyDirectory(const std::string& dir) {
 // (relative paths, the anchor) and the files to copy recorded in it.
 std::string SceneXml(const std::string& experiment, const ExportOptions& options,
                      std::vector<std::string>* notes, SceneBundle* bundle) {
-  // Refusals first: they name what to remove.
-  CarriedPairs(experiment, options.overrides, nullptr, nullptr);
+  // The file as `run` reads it first (an unknown section or a bad value is worded as there),
+  // then what the native path cannot carry, before anything is composed.
   ExperimentConfig config =
       LoadExperiment(experiment, options.overrides, ExperimentChecks::Rendering(false));
+  CarriedPairs(experiment, options.overrides, nullptr, nullptr);
   for (const std::string& folder : options.plugin_path) config.plugin_path.push_back(folder);
   const std::vector<std::pair<std::string, std::string>> pairs =
       CarriedPairs(experiment, options.overrides, &config, notes, bundle);
