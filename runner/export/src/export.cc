@@ -10,7 +10,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
-#include <set>
 #include <sstream>
 
 #include "bundle.hpp"
@@ -28,28 +27,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// What the native plugin carries: these sections (each as one <config> key, see
-// mujoco_plugin/src/swarm_host.hpp), each without the keys listed against it.
-struct Carried {
-  const char* section;
-  std::set<std::string> refused;  // keys the native path cannot carry
-  const char* why;
-};
-
-const std::vector<Carried>& CarriedSections() {
-  static const std::vector<Carried> kCarried = {
-      {"run", {}, ""},
-      {"vehicles", {}, ""},
-      {"topology", {}, ""},
-      {"leader", {}, ""},
-      {"formation", {}, ""},
-      {"attitude", {}, ""},
-      {"sensors", {}, ""},
-      {"estimator", {}, ""},
-      {"execution", {}, ""},
-      {"network", {}, ""},
-      {"wind", {}, ""},
-  };
+// What the native plugin carries: these sections, every key of each, each section as one
+// <config> key (mujoco_plugin/src/swarm_host.hpp).
+const std::vector<std::string>& CarriedSections() {
+  static const std::vector<std::string> kCarried = {
+      "run",     "vehicles",  "topology",  "leader",  "formation", "attitude",
+      "sensors", "estimator", "execution", "network", "wind"};
   return kCarried;
 }
 
@@ -71,12 +54,12 @@ const std::map<std::string, std::string>& OutputOnlySections() {
 // "[run], [vehicles], ... and [wind]": what the native plugins carry, for a refusal.
 std::string CarriedList() {
   std::string list;
-  const std::vector<Carried>& carried = CarriedSections();
+  const std::vector<std::string>& carried = CarriedSections();
   for (size_t i = 0; i < carried.size(); ++i) {
     list += std::string(i == 0                    ? ""
                         : i + 1 == carried.size() ? " and "
                                                   : ", ") +
-            "[" + carried[i].section + "]";
+            "[" + carried[i] + "]";
   }
   return list;
 }
@@ -341,7 +324,7 @@ std::vector<std::pair<std::string, std::string>> CarriedPairs(
       continue;
     }
     bool known = false;
-    for (const Carried& c : CarriedSections()) known = known || section == c.section;
+    for (const std::string& carried : CarriedSections()) known = known || section == carried;
     if (!known) {
       throw ExportError(Where(file, node, section) + ": the native MuJoCo plugins carry " +
                         CarriedList() +
@@ -349,19 +332,9 @@ std::vector<std::pair<std::string, std::string>> CarriedPairs(
                         "section: run it with `mjformation run`");
     }
   }
-  for (const Carried& c : CarriedSections()) {
-    const toml::table* section = doc[c.section].as_table();
-    if (!section) {
-      pairs.emplace_back(c.section, "");
-      continue;
-    }
-    for (auto&& [key, node] : *section) {
-      if (c.refused.count(std::string(key.str()))) {
-        throw ExportError(Where(file, node, std::string(c.section)) + " " + std::string(key.str()) +
-                          ": not carried by the native MuJoCo " + "plugins (" + c.why + ")");
-      }
-    }
-    pairs.emplace_back(c.section, InlineBody(*section));
+  for (const std::string& carried : CarriedSections()) {
+    const toml::table* section = doc[carried].as_table();
+    pairs.emplace_back(carried, section ? InlineBody(*section) : "");
   }
   return pairs;
 }
