@@ -2,6 +2,9 @@
 """An exported experiment flown through MuJoCo's own Python bindings (the `mujoco` package, the
 native plugins loaded with mujoco.mj_loadPluginLibrary) flies the runner's trajectory."""
 
+import os
+from pathlib import Path
+
 import mujoco
 import numpy as np
 import pytest
@@ -162,3 +165,44 @@ def test_export_takes_a_folder_and_a_bool(exp2, tmp_path, monkeypatch):
         mjformation.export(exp2, mine, overwrite="no")
     assert sorted(p.name for p in tmp_path.iterdir()) == ["mine"]
     assert sorted(p.name for p in mine.iterdir()) == ["notes.txt"]
+
+
+def experiment_files() -> list:
+    """Every experiment file the project ships (laws.toml and the tuning spec are not runs)."""
+    root = Path(os.environ.get("MJF_SOURCE_DIR", Path(__file__).resolve().parents[2]))
+    return sorted(str(p.relative_to(root / "experiments"))
+                  for p in (root / "experiments").rglob("*.toml")
+                  if p.name != "laws.toml" and "tuning" not in p.parts)
+
+
+# Files whose timed events (topology switches, a rotor fault, gusts) must lie inside the run:
+# flown just past the last one, so that the event is flown through both faces too.
+PAST_THE_LAST_EVENT = {"benchmark/b07_switching_topology.toml": 30.3,
+                       "benchmark/b08_rotor_fault.toml": 15.3,
+                       "benchmark/b10_gusts.toml": 39.0}
+
+
+@pytest.mark.parametrize("name", experiment_files())
+def test_every_experiment_file_exports_and_flies_the_runners_trajectory(name, source, tmp_path,
+                                                                         native_library):
+    """Export refuses nothing the runner flies: each file, exported and stepped with mj_step
+    (for 0.3 s, or past its last timed event), ends with the runner's positions and velocities,
+    bit for bit."""
+    experiment = source / "experiments" / name
+    duration = PAST_THE_LAST_EVENT.get(name, 0.3)
+    short = {"run.duration": duration, "run.metric_window": [0.0, duration],
+             "render.snapshots": []}
+    scene = mjformation.export(experiment, tmp_path / "scene", set=short)
+    model = mujoco.MjModel.from_xml_path(str(scene))
+    data = mujoco.MjData(model)
+    sim = mjformation.Simulation(experiment, set=short)
+    steps = round(duration / model.opt.timestep)
+    for _ in range(steps):
+        mujoco.mj_step(model, data)
+    sim.step(steps)
+    mujoco.mj_forward(model, data)
+    native = np.array([np.concatenate([sensor_block(model, data, f"uav{i}_pos"),
+                                       sensor_block(model, data, f"uav{i}_vel")])
+                       for i in range(sim.n_vehicles)])
+    assert np.array_equal(native, sim.states[:, 0:6]), np.abs(native - sim.states[:, 0:6]).max()
+    assert np.abs(native[:, 3:6]).max() > 0  # it moved

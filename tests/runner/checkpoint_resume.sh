@@ -61,6 +61,11 @@ resumed_equals_uninterrupted "$src/experiments/exp2.toml" --no-render --threads 
   --set 'vehicles.rotor_model="wrench"'
 
 rm -rf full killed
+case="topology switches on both sides of the checkpoint (every switch's law instance saved)"
+resumed_equals_uninterrupted "$src/experiments/benchmark/b07_switching_topology.toml" --no-render \
+  --set 'topology.switch=[{at=0.7, leader_links=[4], edges=[[4, 5], [5, 6], [6, 1], [1, 2], [2, 3]]}, {at=1.6, leader_links=[1], edges=[[1, 2], [2, 1], [2, 3], [3, 2], [3, 4], [4, 3], [4, 5], [5, 4], [5, 6], [6, 5], [6, 1], [1, 6]]}]'
+
+rm -rf full killed
 case="a rotor fault before the checkpoint on the wrench rotor model (the faulted motor lags)"
 resumed_equals_uninterrupted "$src/experiments/benchmark/b08_rotor_fault.toml" --no-render \
   --set 'vehicles.rotor_model="wrench"' \

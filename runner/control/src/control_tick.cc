@@ -101,8 +101,8 @@ void ControlTick::RunGuidanceAndFormation(mjfStepContext& ctx,
   Call(*plugins_.leader, ctx, 0);
   ResetFollowerSetpoints();
   SwitchTopology(ctx.step);
-  if (plugins_.formation) {
-    Call(*plugins_.formation, ctx, -1);
+  if (PluginInstance* formation = formation_law()) {
+    Call(*formation, ctx, -1);
     return;
   }
   if (!plugins_.formation_agents.empty()) {
@@ -117,21 +117,26 @@ void ControlTick::RunGuidanceAndFormation(mjfStepContext& ctx,
 // The new instance was created with the new graph (the ABI's graph of an instance never
 // changes, docs/PLUGINS.md); what the law carries from tick to tick (integrators, adaptive
 // gains, its sampling clock) is its declared state, copied over so that only the graph changes.
-// A law that declares no state (or another size) starts afresh.
+// A law that declares no state (or another size) starts afresh. The instances taken over stay
+// (the state's layout holds every instance, whichever flies).
 void ControlTick::SwitchTopology(int64_t step) {
   auto& switches = plugins_.formation_switches;
   while (next_switch_ < switches.size() && switches[next_switch_].step <= step) {
-    std::unique_ptr<PluginInstance>& next = switches[next_switch_].instance;
-    PluginInstance& old = *plugins_.formation;
-    if (old.declares_state() && next->declares_state() && old.state_size() == next->state_size() &&
+    PluginInstance& old = *formation_law();
+    PluginInstance& next = *switches[next_switch_].instance;
+    if (old.declares_state() && next.declares_state() && old.state_size() == next.state_size() &&
         old.state_size() > 0) {
       std::vector<double> state(old.state_size());
       old.GetState(state.data());
-      next->SetState(state.data());
+      next.SetState(state.data());
     }
-    plugins_.formation = std::move(next);
     ++next_switch_;
   }
+}
+
+PluginInstance* ControlTick::formation_law() const {
+  return next_switch_ == 0 ? plugins_.formation.get()
+                           : plugins_.formation_switches[next_switch_ - 1].instance.get();
 }
 
 // Per-agent execution: the channel delivers, then each follower's instance runs each round with
@@ -216,8 +221,8 @@ void ControlTick::ResetFollowerSetpoints() {
 void ControlTick::RequireFiniteSetpoints(double time) const {
   for (int i = 0; i < n_vehicles(); ++i) {
     if (IsFinite(setpoints_[i])) continue;
-    const PluginInstance& writer = i == 0               ? *plugins_.leader
-                                   : plugins_.formation ? *plugins_.formation
+    const PluginInstance& writer = i == 0            ? *plugins_.leader
+                                   : formation_law() ? *formation_law()
                                    : !plugins_.formation_agents.empty()
                                        ? *plugins_.formation_agents[i - 1]
                                        : *plugins_.follower_guidance[i - 1];
@@ -288,6 +293,7 @@ std::vector<PluginInstance*> ControlTick::Instances() const {
   std::vector<PluginInstance*> all;
   if (plugins_.leader) all.push_back(plugins_.leader.get());
   if (plugins_.formation) all.push_back(plugins_.formation.get());
+  for (const FormationSwitch& s : plugins_.formation_switches) all.push_back(s.instance.get());
   for (const auto* group :
        {&plugins_.follower_guidance, &plugins_.formation_agents, &plugins_.attitude}) {
     for (const auto& p : *group) all.push_back(p.get());
@@ -296,11 +302,6 @@ std::vector<PluginInstance*> ControlTick::Instances() const {
 }
 
 void ControlTick::RequireSavable() const {
-  if (!plugins_.formation_switches.empty()) {
-    throw SimulationError(
-        "a switching topology ([[topology.switch]]) holds instances not yet in the state layout: "
-        "a tick with it cannot be copied or checkpointed");
-  }
   if (channel_) {
     const std::string why = NetworkStateRefusal(channel_->config(), timestep_, /*native=*/true);
     if (!why.empty()) throw SimulationError(why);
@@ -320,7 +321,7 @@ static_assert(sizeof(mjfSetpoint) == 12 * sizeof(double), "mjfSetpoint holds dou
 }  // namespace
 
 size_t ControlTick::StateSize() const {
-  size_t n = setpoints_.size() * kSetpointDoubles;
+  size_t n = setpoints_.size() * kSetpointDoubles + SwitchesTakenSize();
   for (const PluginInstance* p : Instances()) n += p->state_size();
   if (stage_state_size_ == kUnsized) {
     // Fixed at construction (fixed_state_archive.hpp): counted once.
@@ -340,6 +341,7 @@ void ControlTick::VisitStageState(FixedStateArchive& archive) const {
 void ControlTick::GetState(double* out) const {
   std::memcpy(out, setpoints_.data(), setpoints_.size() * sizeof(mjfSetpoint));
   out += setpoints_.size() * kSetpointDoubles;
+  if (SwitchesTakenSize()) *out++ = static_cast<double>(next_switch_);
   for (const PluginInstance* p : Instances()) {
     p->GetState(out);
     out += p->state_size();
@@ -351,6 +353,16 @@ void ControlTick::GetState(double* out) const {
 void ControlTick::SetState(const double* in) {
   std::memcpy(setpoints_.data(), in, setpoints_.size() * sizeof(mjfSetpoint));
   in += setpoints_.size() * kSetpointDoubles;
+  if (SwitchesTakenSize()) {
+    const double taken = *in++;
+    if (!(taken >= 0 && taken <= static_cast<double>(plugins_.formation_switches.size()) &&
+          taken == static_cast<double>(static_cast<size_t>(taken)))) {
+      throw StateArchiveError("the saved state holds " + std::to_string(taken) +
+                              " topology switches taken, where this configuration has " +
+                              std::to_string(plugins_.formation_switches.size()));
+    }
+    next_switch_ = static_cast<size_t>(taken);
+  }
   for (PluginInstance* p : Instances()) {
     p->SetState(in);
     in += p->state_size();

@@ -113,6 +113,9 @@ class ControlTick {
   const std::vector<mjfSetpoint>& setpoints() const { return setpoints_; }
   const std::vector<double>& controls() const { return controls_; }  // [vehicle][actuator]
   const ControlPlugins& plugins() const { return plugins_; }
+  // The central formation law flying now: plugins().formation until the first topology switch,
+  // then the instance of the last switch taken (null without a central formation law).
+  PluginInstance* formation_law() const;
   const AgentChannel* channel() const { return channel_.get(); }
   const SensorStage& sensors() const { return *sensors_; }
 
@@ -131,8 +134,10 @@ class ControlTick {
   // The sensor stage's and the channel's blocks (their state is theirs to change, even when
   // walked by a GetState: the walk writes through the archive, it changes nothing).
   void VisitStageState(FixedStateArchive& archive) const;
-  // Every plugin instance, in the order of the state layout.
+  // Every plugin instance, in the order of the state layout (every switch's instance too).
   std::vector<PluginInstance*> Instances() const;
+  // The switches taken (next_switch_) in the state: one double, with [[topology.switch]] only.
+  size_t SwitchesTakenSize() const { return plugins_.formation_switches.empty() ? 0 : 1; }
 
   ControlPlugins plugins_;
   size_t next_switch_ = 0;  // the first of plugins_.formation_switches not yet taken over

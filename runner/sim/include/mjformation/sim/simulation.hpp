@@ -127,7 +127,7 @@ class Simulation {
   // The desired formation (nullptr when [formation.shape] type = "none").
   const formation::Shape* shape() const { return wiring_->shape(); }
   const PluginInstance& leader_plugin() const { return *tick_->plugins().leader; }
-  const PluginInstance* formation_plugin() const { return tick_->plugins().formation.get(); }
+  const PluginInstance* formation_plugin() const { return tick_->formation_law(); }
   // Per-agent execution: the channel stage (network, links, metrics); nullptr in central mode.
   const AgentChannel* channel() const { return tick_->channel(); }
   const PluginInstance& attitude_plugin(int vehicle) const {
