@@ -477,7 +477,6 @@ TEST(NativeExport, RefusesMessagesInFlightPastTheNativeBound) {
   EXPECT_NE(e.find("at most 100 "), std::string::npos) << e;
 }
 
-// A section no experiment has (a typo) is refused naming what is carried: no stale reason.
 // Every section the runner reads is carried or noted: a section export refuses is one the
 // runner refuses too, worded as `run` words it (the known sections listed).
 TEST(NativeExport, RefusesAnUnknownSectionAsTheRunnerDoes) {
