@@ -205,7 +205,23 @@ void ActuatorPlugin<K>::Compute(const mjModel* m, mjData* d, int instance, int c
 template <const PluginKind& K>
 void ActuatorPlugin<K>::AddHeldForces(const mjModel* m, mjData* d, int instance) {
   mjtNum* state = State(m, d, instance);
-  if (state[kPassive] == 0) return;
+  if (state[kPassive] == 0) {
+    // With springs and dampers both disabled MuJoCo skips mj_passive and its plugins: the
+    // forces would never be added, and the scene would fly on without its wind or rotors.
+    const int both = mjDSBL_SPRING | mjDSBL_DAMPER;
+    if ((m->opt.disableflags & both) == both) {
+      ErrorFromException([&] {
+        if (HolderFor(m, d, instance)->held_size() == 0) return;
+        throw std::runtime_error(
+            InstanceWhere(K.name, m, instance) +
+            ": springs and dampers are both disabled (<flag spring=\"disable\" "
+            "damper=\"disable\"/>, m.opt.disableflags), so MuJoCo skips the passive stage "
+            "where this scene's forces besides the actuators ([wind], the wrench rotor model) "
+            "are added; enable either");
+      });
+    }
+    return;
+  }
   state[kPassive] = 0;
   ErrorFromException([&] {
     Holder* holder = HolderFor(m, d, instance);

@@ -576,6 +576,29 @@ TEST_F(NativeWindState, TransitionFdAndResetLeaveTheFlightUnchanged) {
   TransitionFdAndResetLeaveTheFlightUnchanged();
 }
 
+// With springs and dampers both disabled MuJoCo skips the passive stage, where the wind's drag
+// goes: the step raises, naming the flags, instead of flying on without the wind. Either flag
+// alone leaves the stage, and the flight, as it was.
+TEST_F(NativeWindState, SpringsAndDampersBothDisabledAreRefused) {
+  mjData* reference = Make();
+  Step(m_, reference, 50);
+  m_->opt.disableflags |= mjDSBL_SPRING;
+  mjData* spring_off = Make();
+  Step(m_, spring_off, 50);
+  EXPECT_TRUE(SameBits(m_, spring_off, reference));
+  m_->opt.disableflags |= mjDSBL_DAMPER;
+  mjData* both_off = Make();
+  try {
+    Step(m_, both_off, 1);
+    ADD_FAILURE() << "a step without the passive stage's forces";
+  } catch (const std::exception& e) {  // MuJoCo's error, as the installed handler throws it
+    EXPECT_NE(std::string(e.what()).find("springs and dampers are both disabled"),
+              std::string::npos)
+        << e.what();
+  }
+  m_->opt.disableflags &= ~(mjDSBL_SPRING | mjDSBL_DAMPER);
+}
+
 // B's columns are differenced with the velocity stage skipped, qfrc_passive kept from the
 // evaluation before: the drag is in it once, never added again. A rotor's column equals a
 // difference taken by hand over copies (each copy's step adds the drag once), and a second call
