@@ -96,6 +96,17 @@ Comparison FlyBoth(const std::string& experiment, double seconds, int pause_ever
   return c;
 }
 
+// FlyBoth, expecting `steps` steps flown bit for bit with the runner and a vehicle moved by more
+// than `least_moved` m (so that a scene that never flew cannot pass).
+Comparison ExpectTheRunnersFlight(const std::string& experiment, double seconds, int64_t steps,
+                                  double least_moved, int pause_every = 0) {
+  const Comparison c = FlyBoth(experiment, seconds, pause_every);
+  EXPECT_EQ(c.steps, steps);
+  EXPECT_TRUE(c.bitwise) << "largest qpos difference " << c.max_diff << " m";
+  EXPECT_GT(c.moved, least_moved);
+  return c;
+}
+
 void ExpectSameFlight(const std::string& experiment, const std::string& model,
                       const std::string& attitude) {
   Scratch dir("flight");
@@ -128,10 +139,7 @@ TEST(NativeFlight, GnssAndKalmanFilterAreTheRunnersTrajectory) {
   text = std::regex_replace(text, std::regex("\nmetric_window = [^\n]*"),
                             "\nmetric_window = [1.0, 2.0]");
   std::ofstream(dir / "experiment.toml") << text;
-  const Comparison c = FlyBoth(dir / "experiment.toml", 2.0);
-  EXPECT_EQ(c.steps, 2000);
-  EXPECT_TRUE(c.bitwise) << "largest qpos difference " << c.max_diff << " m";
-  EXPECT_GT(c.moved, 0.5);
+  ExpectTheRunnersFlight(dir / "experiment.toml", 2.0, 2000, 0.5);
 }
 
 // `experiment` of experiments/ shortened to `seconds` (its metric window the last half).
@@ -153,10 +161,7 @@ TEST(NativeFlight, PerAgentOverALossyNetworkIsTheRunnersTrajectory) {
   const std::string text = Shortened("benchmark/b13_lossy_network.toml", 2.0);
   ASSERT_NE(text.find("\nmode = \"per_agent\""), std::string::npos);
   std::ofstream(dir / "experiment.toml") << text;
-  const Comparison c = FlyBoth(dir / "experiment.toml", 2.0);
-  EXPECT_EQ(c.steps, 2000);
-  EXPECT_TRUE(c.bitwise) << "largest qpos difference " << c.max_diff << " m";
-  EXPECT_GT(c.moved, 0.5);
+  ExpectTheRunnersFlight(dir / "experiment.toml", 2.0, 2000, 0.5);
 }
 
 // The benchmark's b08 ([[vehicles.fault]]: rotor 0 of follower 3 keeps 70 % of its clamped
@@ -169,10 +174,7 @@ TEST(NativeFlight, RotorFaultIsTheRunnersTrajectory) {
   ASSERT_NE(text.find("\nat = 15.0"), std::string::npos);
   text = std::regex_replace(text, std::regex("\nat = 15.0"), "\nat = 1.0");
   std::ofstream(dir / "experiment.toml") << text;
-  const Comparison c = FlyBoth(dir / "experiment.toml", 2.0);
-  EXPECT_EQ(c.steps, 2000);
-  EXPECT_TRUE(c.bitwise) << "largest qpos difference " << c.max_diff << " m";
-  EXPECT_GT(c.moved, 0.5);
+  const Comparison c = ExpectTheRunnersFlight(dir / "experiment.toml", 2.0, 2000, 0.5);
   // The same flight without the fault: the faulted follower's position differs by more than
   // rounding (its qpos entries are not the faulted flight's).
   const size_t fault = text.find("\n[[vehicles.fault]]");
@@ -206,10 +208,7 @@ TEST(NativeFlight, ForeignVehicleMappingIsTheRunnersTrajectory) {
   text = std::regex_replace(text, std::regex("\nmetric_window = [^\n]*"),
                             "\nmetric_window = [1.0, 2.0]");
   std::ofstream(dir / "experiment.toml") << text;
-  const Comparison c = FlyBoth(dir / "experiment.toml", 2.0);
-  EXPECT_EQ(c.steps, 2000);
-  EXPECT_TRUE(c.bitwise) << "largest qpos difference " << c.max_diff << " m";
-  EXPECT_GT(c.moved, 0.1);  // the leader flies a 2 m circle
+  ExpectTheRunnersFlight(dir / "experiment.toml", 2.0, 2000, 0.1);  // the leader flies a 2 m circle
 }
 
 // examples/vehicles/bumblebee: a foreign rotor vehicle (its own body and rotor names, its own
@@ -230,10 +229,7 @@ TEST(NativeFlight, ForeignRotorVehicleWithAssetsIsTheRunnersTrajectory) {
   text = std::regex_replace(text, std::regex("\nmetric_window = [^\n]*"),
                             "\nmetric_window = [1.0, 2.0]");
   std::ofstream(dir / "experiment.toml") << text;
-  const Comparison c = FlyBoth(dir / "experiment.toml", 2.0);
-  EXPECT_EQ(c.steps, 2000);
-  EXPECT_TRUE(c.bitwise) << "largest qpos difference " << c.max_diff << " m";
-  EXPECT_GT(c.moved, 0.5);
+  ExpectTheRunnersFlight(dir / "experiment.toml", 2.0, 2000, 0.5);
 }
 
 // The channel's other parts (Jacobi rounds, input prediction, clock offsets and drift, jitter,
@@ -249,10 +245,7 @@ TEST(NativeFlight, JacobiRoundsClocksAndBurstsAreTheRunnersTrajectory) {
                             "burst_enter = 0.1\nburst_exit = 0.5\nloss = 0.05 ");
   text += "\n[[network.link]]\nfrom = 0\nto = 1\nlatency = 0.004\nloss = 0.0\n";
   std::ofstream(dir / "experiment.toml") << text;
-  const Comparison c = FlyBoth(dir / "experiment.toml", 1.0);
-  EXPECT_EQ(c.steps, 1000);
-  EXPECT_TRUE(c.bitwise) << "largest qpos difference " << c.max_diff << " m";
-  EXPECT_GT(c.moved, 0.1);
+  ExpectTheRunnersFlight(dir / "experiment.toml", 1.0, 1000, 0.1);
 }
 
 // The benchmark's b06, a 3 m/s wind with moderate Dryden turbulence, shortened to 3 s: the wind
@@ -266,10 +259,7 @@ TEST(NativeFlight, GustyWindIsTheRunnersTrajectory) {
   ASSERT_NE(text.find("\nturbulence = \"moderate\""), std::string::npos);
   std::ofstream(dir / "experiment.toml") << text;
   for (const int pause_every : {0, 100}) {
-    const Comparison c = FlyBoth(dir / "experiment.toml", 3.0, pause_every);
-    EXPECT_EQ(c.steps, 3000);
-    EXPECT_TRUE(c.bitwise) << "largest qpos difference " << c.max_diff << " m";
-    EXPECT_GT(c.moved, 0.5);
+    ExpectTheRunnersFlight(dir / "experiment.toml", 3.0, 3000, 0.5, pause_every);
   }
 }
 
@@ -285,10 +275,7 @@ TEST(NativeFlight, GustsAreTheRunnersTrajectory) {
     text.replace(at, 8 + from.size(), "start = " + to);
   }
   std::ofstream(dir / "experiment.toml") << text;
-  const Comparison c = FlyBoth(dir / "experiment.toml", 6.0);
-  EXPECT_EQ(c.steps, 6000);
-  EXPECT_TRUE(c.bitwise) << "largest qpos difference " << c.max_diff << " m";
-  EXPECT_GT(c.moved, 0.5);
+  ExpectTheRunnersFlight(dir / "experiment.toml", 6.0, 6000, 0.5);
 }
 
 // Exp 2 with [vehicles] rotor_model = "wrench": the runner's rotor wrenches (thrust and yaw
@@ -301,10 +288,7 @@ TEST(NativeFlight, WrenchRotorModelIsTheRunnersTrajectory) {
   ASSERT_NE(at, std::string::npos);
   text.insert(at + 13, "\nrotor_model = \"wrench\"");
   std::ofstream(dir / "experiment.toml") << text;
-  const Comparison c = FlyBoth(dir / "experiment.toml", 10.0, 300);
-  EXPECT_EQ(c.steps, 10000);
-  EXPECT_TRUE(c.bitwise) << "largest qpos difference " << c.max_diff << " m";
-  EXPECT_GT(c.moved, 3.0);
+  ExpectTheRunnersFlight(dir / "experiment.toml", 10.0, 10000, 3.0, 300);
 }
 
 // Repeated mj_forward between steps (a paused viewer) leaves the held commands as they were:
