@@ -17,13 +17,6 @@
 
 namespace mjf::native {
 
-const std::vector<std::string>& CarriedSections() {
-  static const std::vector<std::string> kSections = {
-      "run",     "vehicles",  "topology",  "leader",  "formation", "attitude",
-      "sensors", "estimator", "execution", "network", "wind"};
-  return kSections;
-}
-
 // The runner names a file and line ("WHERE:3: [formation] q: ..."); the lines of the text built
 // above mean nothing to the MJCF's author, the section and key say it all.
 std::string WithoutLine(const std::string& message, const std::string& where) {

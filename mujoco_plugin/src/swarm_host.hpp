@@ -15,6 +15,7 @@
 
 #include "mjformation/config/config_error.hpp"
 #include "mjformation/config/experiment.hpp"
+#include "mjformation/export/carried_sections.hpp"
 #include "mjformation/scene/vehicle_binding.hpp"
 
 namespace mjf::runner {
@@ -24,8 +25,8 @@ class Actuation;
 namespace mjf::native {
 
 // The experiment sections a native instance carries, each as one MJCF <config> key whose value
-// is the body of a TOML inline table (`radius = 20.0, omega = 0.157`).
-const std::vector<std::string>& CarriedSections();
+// is the body of a TOML inline table (`radius = 20.0, omega = 0.157`): export's list.
+using runner::CarriedSections;
 
 // Builds the experiment from an instance's <config> pairs with the experiment file's own parser,
 // so names, defaults, validation and messages are those of the experiment file. `where` names

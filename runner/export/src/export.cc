@@ -18,6 +18,7 @@
 #include "mjformation/config/paths.hpp"
 #include "mjformation/control/agent_channel.hpp"
 #include "mjformation/control/stages.hpp"
+#include "mjformation/export/carried_sections.hpp"
 #include "mjformation/export/scene_anchor.hpp"
 #include "mjformation/scene/scene.hpp"
 #include "mjformation/sim/simulation.hpp"
@@ -26,15 +27,6 @@ namespace mjf::runner {
 namespace {
 
 namespace fs = std::filesystem;
-
-// What the native plugin carries: these sections, every key of each, each section as one
-// <config> key (mujoco_plugin/src/swarm_host.hpp).
-const std::vector<std::string>& CarriedSections() {
-  static const std::vector<std::string> kCarried = {
-      "run",     "vehicles",  "topology",  "leader",  "formation", "attitude",
-      "sensors", "estimator", "execution", "network", "wind"};
-  return kCarried;
-}
 
 // Sections that change what is recorded or drawn, never the flight: not carried, and said so,
 // each with why.
