@@ -160,10 +160,16 @@ mjtNum* ActuatorPlugin<K>::HeldControls(const mjModel* m, mjData* d, int instanc
     Holder* holder = HolderFor(m, d, instance);
     mjtNum* held = controls + m->nactuator;
     mjtNum* blocks = held + holder->held_size();
-    holder->SetState(state[kValid] != 0 ? blocks : holder->initial.data());
+    const bool from_blocks = state[kValid] != 0;
+    holder->SetState(from_blocks ? blocks : holder->initial.data());
     const auto step = static_cast<int64_t>(state[kCommitted]);
     holder->Tick(step, m, d, controls, held);
-    holder->GetState(blocks);
+    // Loaded from the blocks, they hold the state before the tick: only what changed is written.
+    if (from_blocks) {
+      holder->UpdateState(blocks);
+    } else {
+      holder->GetState(blocks);
+    }
     state[kValid] = 1;
     state[kHeld] = state[kCommitted];
   });

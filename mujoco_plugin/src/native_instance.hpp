@@ -35,6 +35,8 @@ struct Holder {
   // The tick's state, fixed size (the blocks of plugin_state after the header).
   virtual size_t state_size() const = 0;
   virtual void GetState(double* out) const = 0;
+  // GetState into the block it last got or set, writing only what changed.
+  virtual void UpdateState(double* block) const { GetState(block); }
   virtual void SetState(const double* in) = 0;
   std::vector<double> initial;  // the state before the first tick (what a reset restores)
 };

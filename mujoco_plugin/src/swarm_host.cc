@@ -209,6 +209,12 @@ void SwarmHost::GetState(double* out) const {
   runner::FixedStateArchive saving = runner::FixedStateArchive::Saving(out + impl_->tick_state);
   VisitForceState(impl_->forces, saving);
 }
+void SwarmHost::UpdateState(double* block) const {
+  impl_->tick->UpdateState(block);
+  runner::FixedStateArchive updating =
+      runner::FixedStateArchive::Updating(block + impl_->tick_state);
+  VisitForceState(impl_->forces, updating);
+}
 void SwarmHost::SetState(const double* in) {
   impl_->tick->SetState(in);
   runner::FixedStateArchive loading = runner::FixedStateArchive::Loading(in + impl_->tick_state);

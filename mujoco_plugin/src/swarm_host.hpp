@@ -84,6 +84,8 @@ class SwarmHost {
   // for the next.
   size_t state_size() const;
   void GetState(double* out) const;
+  // GetState into the block it last got or set (ControlTick::UpdateState).
+  void UpdateState(double* block) const;
   void SetState(const double* in);
 
  private:

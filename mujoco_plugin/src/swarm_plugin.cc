@@ -77,6 +77,7 @@ struct SwarmHolder final : Holder {
   void Advance(const mjModel* m, double* held) override { host->Advance(m, held); }
   size_t state_size() const override { return host->state_size(); }
   void GetState(double* out) const override { host->GetState(out); }
+  void UpdateState(double* block) const override { host->UpdateState(block); }
   void SetState(const double* in) override { host->SetState(in); }
 };
 

@@ -338,7 +338,10 @@ void ControlTick::VisitStageState(FixedStateArchive& archive) const {
   if (channel_) channel_->VisitState(archive);
 }
 
-void ControlTick::GetState(double* out) const {
+void ControlTick::GetState(double* out) const { WriteState(out, false); }
+void ControlTick::UpdateState(double* block) const { WriteState(block, true); }
+
+void ControlTick::WriteState(double* out, bool updating) const {
   std::memcpy(out, setpoints_.data(), setpoints_.size() * sizeof(mjfSetpoint));
   out += setpoints_.size() * kSetpointDoubles;
   if (SwitchesTakenSize()) *out++ = static_cast<double>(next_switch_);
@@ -346,7 +349,8 @@ void ControlTick::GetState(double* out) const {
     p->GetState(out);
     out += p->state_size();
   }
-  FixedStateArchive saving = FixedStateArchive::Saving(out);
+  FixedStateArchive saving =
+      updating ? FixedStateArchive::Updating(out) : FixedStateArchive::Saving(out);
   VisitStageState(saving);
 }
 

@@ -8,6 +8,15 @@
 //   - a container's length is never stored: it is the one the stage was built with from the
 //     configuration (a latency buffer, one sensor model per vehicle), and loading never resizes;
 //   - a random engine is stored as its own words, not as text (whose length varies).
+// The native plugin saves and loads the whole state at every step, and a Mersenne twister is
+// most of it (313 64-bit words per stream; a scene with sensors holds dozens of streams). A
+// twister rewrites all its state words together, once every state_size draws, and in between
+// moves only its index; so its words in a block are identified by their first and last word
+// (both are rewritten at every twist: equal in both means the same twist of the same stream,
+// but for a chance of 2^-64 per word for a block of another stream). Loading skips the words of
+// a twister whose block holds its own words (the native plugin's cache, loaded from the same
+// block at the last step), and Updating, a Saving into a block that holds what this walk last
+// saved or loaded, writes a twister's words only after a twist: the index alone otherwise.
 // Every number goes in exactly: a double as itself; an integer of up to 32 bits as its value; a
 // 64-bit integer and an engine's words as 32-bit halves, each an exact integer value, so the
 // block holds no NaN pattern of our making and any copy of the doubles (mju_copy, numpy) keeps it.
@@ -38,6 +47,13 @@ class FixedStateArchive {
   static FixedStateArchive Sizing() { return FixedStateArchive(nullptr, nullptr); }
   static FixedStateArchive Saving(double* out) { return FixedStateArchive(out, nullptr); }
   static FixedStateArchive Loading(const double* in) { return FixedStateArchive(nullptr, in); }
+  // Saving into a block that holds the state this walk's owner last saved or loaded (plugin_state
+  // from one step to the next): what has not changed since is not written again.
+  static FixedStateArchive Updating(double* block) {
+    FixedStateArchive archive(block, nullptr);
+    archive.updating_ = true;
+    return archive;
+  }
 
   bool loading() const { return in_ != nullptr; }
   // Doubles walked so far (after a Sizing walk: the state's length).
@@ -105,6 +121,37 @@ class FixedStateArchive {
     }
     if (!in_) cursor_ += n;
   }
+  // A Mersenne twister: its state words, then its index (libstdc++'s layout, as Words copies it).
+  // Between twists only the index is walked when the block already holds the words (the file
+  // comment).
+  template <typename T>
+  void Twister(T& engine) {
+    using Word = typename T::result_type;
+    static_assert(sizeof(T) == T::state_size * sizeof(Word) + sizeof(size_t),
+                  "a twister stored as its state words then its index");
+    constexpr size_t kWordHalves = sizeof(Word) / sizeof(uint32_t);
+    constexpr size_t kStateHalves = T::state_size * kWordHalves;
+    char* const at = reinterpret_cast<char*>(&engine);
+    if ((in_ || updating_) && BlockHolds(at, kStateHalves, kWordHalves)) {
+      cursor_ += kStateHalves;
+      Words(at + kStateHalves * sizeof(uint32_t), sizeof(size_t));
+      return;
+    }
+    Words(&engine, sizeof(T));
+  }
+  // Whether the block at the cursor holds these state words: its first and last word are theirs.
+  bool BlockHolds(const char* words, size_t halves, size_t word_halves) const {
+    const double* block = in_ ? in_ + cursor_ : out_ + cursor_;
+    for (size_t k : {size_t{0}, halves - word_halves}) {
+      for (size_t h = k; h < k + word_halves; ++h) {
+        uint32_t half;
+        std::memcpy(&half, words + h * sizeof(half), sizeof(half));
+        if (block[h] != static_cast<double>(half)) return false;
+      }
+    }
+    return true;
+  }
+
   // Doubles stored as themselves, in one copy.
   void Doubles(double* values, size_t n) {
     if (out_) std::memcpy(out_ + cursor_, values, n * sizeof(double));
@@ -147,6 +194,8 @@ class FixedStateArchive {
       auto underlying = static_cast<std::underlying_type_t<T>>(value);
       Integer(underlying);
       if (in_) value = static_cast<T>(underlying);
+    } else if constexpr (state_kinds::kIsTwister<T>) {
+      Twister(value);
     } else if constexpr (state_kinds::kIsEngine<T>) {
       static_assert(std::is_trivially_copyable_v<T> && sizeof(T) % sizeof(uint32_t) == 0,
                     "an engine stored as its words");
@@ -171,6 +220,7 @@ class FixedStateArchive {
 
   double* out_;
   const double* in_;
+  bool updating_ = false;
   size_t cursor_ = 0;
 };
 

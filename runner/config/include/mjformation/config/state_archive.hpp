@@ -56,6 +56,11 @@ inline constexpr bool kIsEngine =
     std::is_same_v<T, std::mt19937> || std::is_same_v<T, std::mt19937_64> ||
     std::is_same_v<T, std::minstd_rand> || std::is_same_v<T, std::minstd_rand0>;
 
+// The Mersenne twisters among them (FixedStateArchive walks their words twist by twist).
+template <typename T>
+inline constexpr bool kIsTwister =
+    std::is_same_v<T, std::mt19937> || std::is_same_v<T, std::mt19937_64>;
+
 template <typename T>
 inline constexpr bool kIsSequence = false;
 template <typename T, typename A>

@@ -93,6 +93,10 @@ class ControlTick {
   void RequireSavable() const;
   size_t StateSize() const;
   void GetState(double* out) const;
+  // GetState into a block that holds the state this tick last got or set (plugin_state from one
+  // step to the next): the random streams' words are written only after they change
+  // (FixedStateArchive::Updating). Same result as GetState, less to write.
+  void UpdateState(double* block) const;
   void SetState(const double* in);
   // Beside the fixed block, for checkpoints only: the channel's lists that grow with the run
   // (AgentChannel::VisitEvents); nothing without a channel.
@@ -134,6 +138,8 @@ class ControlTick {
   // The sensor stage's and the channel's blocks (their state is theirs to change, even when
   // walked by a GetState: the walk writes through the archive, it changes nothing).
   void VisitStageState(FixedStateArchive& archive) const;
+  // GetState and UpdateState: the stages' blocks through `updating` or a plain Saving.
+  void WriteState(double* out, bool updating) const;
   // Every plugin instance, in the order of the state layout (every switch's instance too).
   std::vector<PluginInstance*> Instances() const;
   // The switches taken (next_switch_) in the state: one double, with [[topology.switch]] only.
