@@ -4,14 +4,16 @@
 
 For each experiment: (a) the runner's stepping loop, as `run --no-render` times it (summary.json
 timing.wall_time_s: the tick, actuation, mj_step and recording, no composition, no rendering);
-(b) the exported scene stepped by `mujoco.rollout` (MuJoCo's own C loop, one thread, no Python
-per step) for the same step count: the native plugin's tick with its state round trip through
-plugin_state every step. Runs alternate (a, b, a, b, ...) so that a change in the machine's load
+(b) the exported scene stepped for the same step count, one thread: by a C program that calls
+mj_step and nothing else (`--stepper c`, tests/bench/scene_step_time.cc, the default), by
+`mujoco.rollout` (MuJoCo's C loop, which also records the full state after every step) or by
+mj_step called from Python (about a microsecond per call of its own): the native plugin's tick
+with its state round trip through plugin_state every step. Runs alternate (a, b, a, b, ...) so that a change in the machine's load
 hits both; the median of each is reported with the ratio b / a and the native path's extra cost
 per step and vehicle, state handling included. The load (os.getloadavg) is printed beside it.
 
     PYTHONPATH=build/python .venv/bin/python dev/native_overhead.py [--repeats 5] [--duration 10]
-        [--cases exp2,exp2_pointmass,b05,b06,exp2_wrench] [--stepper rollout|mj_step]
+        [--cases exp2,exp2_pointmass,b05,b06,exp2_wrench] [--stepper c|rollout|mj_step]
 """
 
 from __future__ import annotations
@@ -20,6 +22,7 @@ import argparse
 import json
 import os
 import statistics
+import subprocess
 import tempfile
 import time
 from pathlib import Path
@@ -57,9 +60,17 @@ def runner_seconds(experiment: Path, overrides: dict, out: Path) -> tuple[float,
     return summary["timing"]["wall_time_s"], summary["steps"], summary["n_followers"] + 1
 
 
-def native_seconds(model: mujoco.MjModel, steps: int, stepper: str) -> float:
-    """The exported scene from its initial state, one thread: mujoco.rollout (which also records
-    the full state, plugin_state included, after every step) or mj_step called from Python."""
+STEP_TIME = ROOT / "build" / "tests" / "bench" / "scene_step_time"
+
+
+def native_seconds(model: mujoco.MjModel, scene: Path, steps: int, stepper: str) -> float:
+    """The exported scene from its initial state, one thread: a C loop of mj_step, mujoco.rollout
+    (which also records the full state, plugin_state included, after every step) or mj_step
+    called from Python."""
+    if stepper == "c":
+        out = subprocess.run([str(STEP_TIME), mjformation.native_plugin_library(), str(scene),
+                              str(steps)], check=True, capture_output=True, text=True)
+        return float(out.stdout)
     data = mujoco.MjData(model)
     full = mujoco.mjtState.mjSTATE_FULLPHYSICS
     initial = np.empty((1, mujoco.mj_stateSize(model, full)))
@@ -85,7 +96,7 @@ def measure(name: str, repeats: int, duration: float, scratch: Path, stepper: st
         seconds, steps, vehicles = runner_seconds(ROOT / experiment, overrides,
                                                   scratch / f"{name}_run")
         runner.append(seconds)
-        native.append(native_seconds(model, steps, stepper))
+        native.append(native_seconds(model, scene, steps, stepper))
     a, b = statistics.median(runner), statistics.median(native)
     return {"case": name, "steps": steps, "vehicles": vehicles, "runner_s": a, "native_s": b,
             "ratio": b / a, "extra_us_per_vehicle_step": 1e6 * (b - a) / (steps * vehicles),
@@ -98,11 +109,14 @@ def main() -> None:
     parser.add_argument("--duration", type=float, default=10.0, help="simulated seconds per run")
     parser.add_argument("--cases", default="exp2,exp2_pointmass", help="comma-separated: " +
                         ", ".join(CASES))
-    parser.add_argument("--stepper", choices=("rollout", "mj_step"), default="rollout",
-                        help="how the exported scene is stepped: mujoco.rollout (its C loop; it "
+    parser.add_argument("--stepper", choices=("c", "rollout", "mj_step"), default="c",
+                        help="how the exported scene is stepped: a C loop of mj_step (" +
+                        str(STEP_TIME.relative_to(ROOT)) + "), mujoco.rollout (its C loop; it "
                         "records the full state every step, which grows with plugin_state) or "
                         "mj_step from Python (about a microsecond per call of its own)")
     args = parser.parse_args()
+    if args.stepper == "c" and not STEP_TIME.is_file():
+        parser.error(f"{STEP_TIME} is not built: cmake --build build --target scene_step_time")
     mujoco.mj_loadPluginLibrary(mjformation.native_plugin_library())
     print(f"load before: {os.getloadavg()[0]:.2f}  {time.strftime('%Y-%m-%d %H:%M')}")
     with tempfile.TemporaryDirectory(prefix="mjformation_overhead_") as scratch:

@@ -172,14 +172,12 @@ void EstimatedSensors::EstimateOne(int vehicle, int64_t step, double time) {
 
 void EstimatedSensors::VisitState(FixedStateArchive& archive) {
   archive(models_, held_, estimates_);
-  // Each instance's declared state, of the fixed size it declared at create(), through one
-  // buffer (the native MuJoCo plugin walks this every step).
-  std::vector<double>& state = state_buffer_;
+  // Each instance's declared state, of the fixed size it declared at create(), written and
+  // read in place (the native MuJoCo plugin walks this every step).
   for (auto& estimator : estimators_) {
-    state.resize(estimator->state_size());
-    if (!archive.loading()) estimator->GetState(state.data());
-    archive(state);
-    if (archive.loading()) estimator->SetState(state.data());
+    archive.Block(
+        estimator->state_size(), [&](double* out) { estimator->GetState(out); },
+        [&](const double* in) { estimator->SetState(in); });
   }
 }
 

@@ -64,6 +64,16 @@ class FixedStateArchive {
     (Visit(values), ...);
   }
 
+  // n doubles that another walk writes or reads in place, with no copy between (a plugin's
+  // declared state, ABI 4): save(double* out) while saving or updating, load(const double* in)
+  // while loading, neither while sizing.
+  template <typename Save, typename Load>
+  void Block(size_t n, Save save, Load load) {
+    if (out_) save(out_ + cursor_);
+    if (in_) load(in_ + cursor_);
+    cursor_ += n;
+  }
+
  private:
   FixedStateArchive(double* out, const double* in) : out_(out), in_(in) {}
 

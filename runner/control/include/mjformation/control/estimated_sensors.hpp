@@ -69,7 +69,6 @@ class EstimatedSensors final : public SensorStage {
   std::vector<std::vector<mjfMeasurement>> arrived_;  // per vehicle, reused every step
   std::array<char, 512> error_{};
   std::string native_refusal_;        // NativeSensorRefusal of the configuration
-  std::vector<double> state_buffer_;  // an estimator's declared state on its way (VisitState)
   double sensor_model_seconds_ = 0, estimator_seconds_ = 0;
 };
 
