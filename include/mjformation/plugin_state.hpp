@@ -111,6 +111,14 @@ class StateVisitor {
     if constexpr (Op == StateOp::kLoad) v = *cursor_++;
   }
 
+  // n doubles side by side, as n Number() calls would walk them.
+  void Doubles(double* data, size_t n) {
+    count_ += n;
+    if constexpr (Op == StateOp::kSave) std::memcpy(cursor_, data, n * sizeof(double));
+    if constexpr (Op == StateOp::kLoad) std::memcpy(data, cursor_, n * sizeof(double));
+    if constexpr (Op != StateOp::kCount) cursor_ += n;
+  }
+
   // A 64-bit integer as its two 32-bit halves (each exact in a double).
   template <typename T>
   void Wide(T& value) {
@@ -188,7 +196,12 @@ class StateVisitor {
     } else if constexpr (state_detail::IsContiguous<T>::value) {
       auto* data = value.data();
       const size_t n = static_cast<size_t>(value.size());
-      for (size_t k = 0; k < n; ++k) Visit(data[k]);
+      if constexpr (std::is_same_v<std::remove_cv_t<std::remove_pointer_t<decltype(data)>>,
+                                   double>) {
+        Doubles(data, n);  // a filter's matrices: one copy, not a call per number
+      } else {
+        for (size_t k = 0; k < n; ++k) Visit(data[k]);
+      }
     } else {
       static_assert(sizeof(T) == 0,
                     "this member cannot be visited as state: give its type a VisitState member "

@@ -267,6 +267,48 @@ TEST(NetworkTest, StateLoadedIntoAnotherNetworkFliesOnTheSameBytes) {
   }
 }
 
+// The native plugin's walk (FixedStateArchive::Updating into the block it loaded from at the
+// last step): its queues' unused slots are zeroed only where they held messages, and the block
+// stays what a full save writes, step after step, as queues fill and drain.
+TEST(NetworkTest, StateUpdatedInPlaceIsTheFullSaveAtEveryStep) {
+  std::vector<LinkSpec> specs;
+  LinkParams p;
+  p.period_steps = 1;
+  p.latency = 0.01;
+  p.jitter = 0.02;
+  p.loss = 0.3;
+  specs.push_back({0, 1, p});
+  for (int i = 1; i <= 3; ++i) specs.push_back({i, i % 3 + 1, p});
+  Network net(3, specs, kDt, 5);
+  using runner::FixedStateArchive;
+  FixedStateArchive sizing = FixedStateArchive::Sizing();
+  net.VisitState(sizing);
+  std::vector<double> block(sizing.size()), full(sizing.size());
+  std::vector<mjfMessage> inbox;
+  const mjfMessage* leader = nullptr;
+  int steps_clearing = 0;  // steps at which a number the block held became zero
+  for (int64_t step = 0; step < 400; ++step) {
+    FixedStateArchive loading = FixedStateArchive::Loading(block.data());
+    if (step > 0) net.VisitState(loading);
+    for (int v = 0; v <= 3; ++v) net.Broadcast(step, v, MessageAt(v, step));
+    net.Deliver(step);
+    for (int v = 1; v <= 3; ++v) net.Inbox(v, -1, &inbox, &leader);
+    const std::vector<double> before = block;
+    FixedStateArchive updating = FixedStateArchive::Updating(block.data());
+    net.VisitState(updating);
+    FixedStateArchive saving = FixedStateArchive::Saving(full.data());
+    net.VisitState(saving);
+    ASSERT_EQ(block, full) << "step " << step;
+    for (size_t k = 0; k < block.size(); ++k) {
+      if (before[k] != 0 && block[k] == 0) {
+        ++steps_clearing;
+        break;
+      }
+    }
+  }
+  EXPECT_GT(steps_clearing, 50);  // queues drained: there were slots to clear
+}
+
 // The bound of a link's queue: one message per broadcast within the longest delay, plus one.
 TEST(NetworkTest, MaxInFlightIsTheDelayOverThePeriodPlusOne) {
   LinkParams p;

@@ -24,6 +24,7 @@
 #ifndef MJFORMATION_CONFIG_FIXED_STATE_ARCHIVE_HPP_
 #define MJFORMATION_CONFIG_FIXED_STATE_ARCHIVE_HPP_
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -62,6 +63,30 @@ class FixedStateArchive {
   template <typename... T>
   void operator()(T&... values) {
     (Visit(values), ...);
+  }
+
+  // The unused slots of a bounded queue, after its used ones were walked: `count` slots of `size`
+  // doubles, blank. Loading skips them (never read); Saving writes zeros; Updating writes zeros
+  // over the first `were_used` of them only (slots the block used before this walk), the others
+  // hold the zeros the last walk left.
+  void UnusedSlots(size_t count, size_t size, size_t were_used) {
+    if (out_) {
+      const size_t zeroed = updating_ ? std::min(count, were_used) : count;
+      std::fill(out_ + cursor_, out_ + cursor_ + zeroed * size, 0.0);
+    }
+    cursor_ += count * size;
+  }
+  // While updating, the whole number the block holds at the cursor (what the last walk wrote
+  // there: a queue's length), else `otherwise`; also `otherwise` when the block holds no whole
+  // number in [0, otherwise] there.
+  size_t BlockCount(size_t otherwise) const {
+    if (!updating_) return otherwise;
+    const double value = out_[cursor_];
+    if (!(value >= 0 && value <= static_cast<double>(otherwise)) ||
+        static_cast<double>(static_cast<size_t>(value)) != value) {
+      return otherwise;
+    }
+    return static_cast<size_t>(value);
   }
 
   // n doubles that another walk writes or reads in place, with no copy between (a plugin's

@@ -13,6 +13,8 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace mjf::network {
@@ -44,13 +46,25 @@ void VisitFlags(Archive& archive, std::vector<bool>& flags) {
   }
 }
 
+// An archive that walks a queue's unused slots in one call (FixedStateArchive::UnusedSlots).
+template <typename Archive, typename = void>
+struct WalksUnusedSlots : std::false_type {};
+template <typename Archive>
+struct WalksUnusedSlots<Archive, std::void_t<decltype(std::declval<Archive&>().UnusedSlots(
+                                     size_t{}, size_t{}, size_t{}))>> : std::true_type {};
+
 // A queue of at most `capacity` items (a bound the configuration fixes): its length, then
 // `capacity` slots, the unused ones blank, so the walk has the same length whatever the queue
 // holds. `what` names the queue when it holds more than the bound (a bound computed wrongly)
-// or a saved length is past it (a state of another configuration).
+// or a saved length is past it (a state of another configuration). The native plugin walks
+// every queue at every step, mostly empty: an archive that can walks the unused slots at once
+// (never read when loading; zeros written only where the block held items before when
+// updating).
 template <typename Archive, typename T, typename VisitItem>
 void VisitBounded(Archive& archive, std::vector<T>& items, size_t capacity, const char* what,
                   VisitItem visit_item) {
+  size_t were_used = capacity;
+  if constexpr (WalksUnusedSlots<Archive>::value) were_used = archive.BlockCount(capacity);
   uint32_t length = static_cast<uint32_t>(items.size());
   if (items.size() > capacity) {
     throw std::length_error(std::string(what) + " holds " + std::to_string(items.size()) +
@@ -68,9 +82,18 @@ void VisitBounded(Archive& archive, std::vector<T>& items, size_t capacity, cons
     }
     items.resize(length);
   }
-  for (size_t k = 0; k < capacity; ++k) {
+  if constexpr (WalksUnusedSlots<Archive>::value) {
+    for (T& item : items) visit_item(archive, item);
+    Archive sizing = Archive::Sizing();
     T blank{};
-    visit_item(archive, k < items.size() ? items[k] : blank);
+    visit_item(sizing, blank);
+    archive.UnusedSlots(capacity - items.size(), sizing.size(),
+                        were_used > items.size() ? were_used - items.size() : 0);
+  } else {
+    for (size_t k = 0; k < capacity; ++k) {
+      T blank{};
+      visit_item(archive, k < items.size() ? items[k] : blank);
+    }
   }
 }
 
