@@ -10,6 +10,8 @@
 //     visit(held_);               // std::vector / std::array / Eigen matrix / C array, of any
 //                                 // of these, its size fixed at create()
 //     inner_.VisitState(visit);   // or visit(inner_): a member with a VisitState of its own
+//     for (Item& item : used_) visit(item);    // a table of at most kMax items: the rest
+//     visit.Unused(kMax - used_.size(), blank);  // as slots of a blank item (all zeros)
 //   }
 //
 // and StateSize / GetState / SetState (below) count, write and read exactly those numbers, in
@@ -23,6 +25,7 @@
 #ifndef MJFORMATION_PLUGIN_STATE_HPP_
 #define MJFORMATION_PLUGIN_STATE_HPP_
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -103,6 +106,20 @@ class StateVisitor {
     (Visit(rest), ...);
   }
   size_t count() const { return count_; }
+
+  // `slots` unused slots of a table of fixed size, each as many numbers as `blank` lists (an item
+  // whose numbers are all zero): written as zeros, skipped when read back (a blank slot has
+  // nothing to restore; the host walks the state at every step, so the usually empty part of a
+  // table costs no copy in).
+  template <typename T>
+  void Unused(size_t slots, T& blank) {
+    StateVisitor<StateOp::kCount> sizing;
+    sizing(blank);
+    const size_t n = slots * sizing.count();
+    count_ += n;
+    if constexpr (Op == StateOp::kSave) std::fill(cursor_, cursor_ + n, 0.0);
+    if constexpr (Op != StateOp::kCount) cursor_ += n;
+  }
 
  private:
   void Number(double& v) {

@@ -80,4 +80,36 @@ TEST(PluginState, CountsEveryMemberAndRoundTripsEveryBit) {
   EXPECT_FALSE(mjf::plugin::kHasVisitState<std::vector<double>>);
 }
 
+// A table of at most four items, the rest as unused slots: counted as four items, written as
+// zeros, and skipped when read (the reader's blank slots keep what they hold).
+struct Table {
+  std::vector<Inner> used;
+  template <typename Visit>
+  void VisitState(Visit& visit) {
+    int count = static_cast<int>(used.size());
+    visit(count);
+    used.resize(static_cast<size_t>(count));
+    for (Inner& item : used) visit(item);
+    Inner blank;
+    visit.Unused(4 - used.size(), blank);
+  }
+};
+
+TEST(PluginState, UnusedSlotsAreZerosCountedAndNotRead) {
+  Table a;
+  a.used.push_back(Inner{3, {1, 2}});
+  ASSERT_EQ(mjf::plugin::StateSize(a), 1 + 4 * 4u);
+  std::vector<double> state(mjf::plugin::StateSize(a), -1.0);
+  mjf::plugin::GetState(a, state.data());
+  EXPECT_EQ(std::vector<double>(state.begin() + 5, state.end()), std::vector<double>(12, 0.0));
+  EXPECT_EQ(state[3], 1);
+  Table b;
+  b.used.resize(3);
+  std::fill(state.begin() + 5, state.end(), std::nan(""));  // never read
+  mjf::plugin::SetState(b, state.data());
+  ASSERT_EQ(b.used.size(), 1u);
+  EXPECT_EQ(b.used[0].count, 3);
+  EXPECT_EQ(b.used[0].held[1], 2);
+}
+
 }  // namespace

@@ -21,6 +21,7 @@
 #define MJFORMATION_ESTIMATOR_KF_INS_HPP_
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -106,11 +107,13 @@ class KfIns {
     visit(x_, P_, step_, history_, fused_, rejected_, too_old_);
     int64_t n = static_cast<int64_t>(corrections_.size());
     visit(n);
-    corrections_.resize(static_cast<size_t>(n));                  // on a read, the count just read
-    Correction unused{0, 0, StateVec::Zero(), StateMat::Zero()};  // the empty slots: zeros
-    for (size_t k = 0; k < max_corrections(); ++k) {
-      visit(k < corrections_.size() ? corrections_[k] : unused);
-    }
+    // On a read, the count just read (within the table: a state of another configuration
+    // cannot make it overflow).
+    corrections_.resize(
+        static_cast<size_t>(std::clamp<int64_t>(n, 0, static_cast<int64_t>(max_corrections()))));
+    for (Correction& c : corrections_) visit(c);
+    Correction blank{0, 0, StateVec::Zero(), StateMat::Zero()};  // the empty slots: zeros
+    visit.Unused(max_corrections() - corrections_.size(), blank);
   }
 
  private:
