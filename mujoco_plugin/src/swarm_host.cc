@@ -85,13 +85,6 @@ runner::ExperimentConfig ConfigFromPairs(
   }
 }
 
-// The faults are applied to the held controls of MuJoCo's actuators; the wrench rotor model's
-// motor lag would need them too, which the native path does not carry.
-constexpr char kWrenchFaultRefusal[] =
-    "[vehicles] rotor_model = \"wrench\" with [[vehicles.fault]]: not carried by the native "
-    "MuJoCo plugins (they fault the held controls of the vehicle's own actuators); fly it with "
-    "rotor_model = \"actuator\" or with `mjformation run`";
-
 struct SwarmShared {
   runner::ExperimentConfig config;
   std::unique_ptr<runner::PluginRegistry> registry;
@@ -124,9 +117,6 @@ std::shared_ptr<const SwarmShared> SwarmHost::Prepare(const mjModel* m,
                                                       bool bind_model,
                                                       const runner::SceneNames& names) {
   try {
-    if (config.rotor_model == runner::RotorModel::kWrench && !config.rotor_faults.empty()) {
-      throw runner::ConfigError(config.source_path + ": " + kWrenchFaultRefusal);
-    }
     auto s = std::make_shared<SwarmShared>();
     s->config = config;
     s->config.timestep = m->opt.timestep;

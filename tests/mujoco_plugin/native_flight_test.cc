@@ -278,6 +278,20 @@ TEST(NativeFlight, GustsAreTheRunnersTrajectory) {
   ExpectTheRunnersFlight(dir / "experiment.toml", 6.0, 6000, 0.5);
 }
 
+// A rotor fault with the wrench rotor model: the faulted controls are held in plugin_state and
+// drive the rotors' motor lags there, as the runner's faulted actuation drives its wrench model.
+TEST(NativeFlight, RotorFaultOnTheWrenchRotorModelIsTheRunnersTrajectory) {
+  Scratch dir("wrench_fault");
+  std::string text = Shortened("benchmark/b08_rotor_fault.toml", 2.0);
+  ASSERT_NE(text.find("\nat = 15.0"), std::string::npos);
+  text = std::regex_replace(text, std::regex("\nat = 15.0"), "\nat = 1.0");
+  const size_t at = text.find("followers = 6");
+  ASSERT_NE(at, std::string::npos);
+  text.insert(at + 13, "\nrotor_model = \"wrench\"");
+  std::ofstream(dir / "experiment.toml") << text;
+  ExpectTheRunnersFlight(dir / "experiment.toml", 2.0, 2000, 0.5);
+}
+
 // Exp 2 with [vehicles] rotor_model = "wrench": the runner's rotor wrenches (thrust and yaw
 // torque per rotor, the motor lags in plugin_state) added into qfrc_passive, with the exported
 // scene's one zero-gear actuator only there so that MuJoCo calls the plugin. 10 s, bit for bit.
@@ -499,19 +513,6 @@ TEST(NativeExport, RefusesALatencyPastTheNativeBound) {
   EXPECT_NE(e.find("[sensors] position_latency = 1.5 s is 1500 physics steps"), std::string::npos)
       << e;
   EXPECT_NE(e.find("at most 1000"), std::string::npos) << e;
-}
-
-// [[vehicles.fault]] is carried on MuJoCo's actuators; with the wrench rotor model it is refused
-// naming both keys.
-TEST(NativeExport, RefusesTheWrenchRotorModelWithARotorFault) {
-  const std::string e = ExportRefusal(
-      "\nrotor_model = \"wrench\"\nfault = [{ follower = 3, rotor = 0, at = 1.0, "
-      "thrust_share = 0.3 }]",
-      "followers = 6");
-  EXPECT_NE(e.find("experiment.toml:"), std::string::npos) << e;
-  EXPECT_NE(e.find("[vehicles] rotor_model = \"wrench\" with [[vehicles.fault]]"),
-            std::string::npos)
-      << e;
 }
 
 TEST(NativeExport, NeverWritesIntoAUsersDirectory) {

@@ -263,21 +263,6 @@ void RefuseStopOn(const std::string& file, const toml::table& doc) {
   }
 }
 
-// [[vehicles.fault]] is carried on MuJoCo's actuators (the plugin faults their held controls);
-// with the wrench rotor model the faulted controls would drive the runner's motor lag too, which
-// the native path does not carry: refused naming both keys.
-void RefuseFaultedWrench(const std::string& file, const toml::table& doc) {
-  const toml::node* model = doc.at_path("vehicles.rotor_model").node();
-  const toml::array* faults = doc.at_path("vehicles.fault").as_array();
-  if (!model || model->value_exact<std::string>() != "wrench" || !faults || faults->empty()) return;
-  throw ExportError(Where(file, *model, "vehicles") +
-                    " rotor_model = \"wrench\" with [[vehicles.fault]] (line " +
-                    std::to_string(faults->source().begin.line) +
-                    "): not carried by the native MuJoCo plugins (they fault the held controls of "
-                    "the vehicle's own actuators); export with rotor_model = \"actuator\" or fly "
-                    "it with `mjformation run`");
-}
-
 // The native plugin's state has a length fixed when MuJoCo compiles the scene, and it bounds
 // what would grow with the configuration (a latency buffer): refused here, naming the key and the
 // number, rather than when MuJoCo loads the scene.
@@ -301,7 +286,6 @@ std::vector<std::pair<std::string, std::string>> CarriedPairs(
     SceneBundle* bundle = nullptr) {
   toml::table doc = ExperimentTable(file, overrides);
   RefuseStopOn(file, doc);
-  RefuseFaultedWrench(file, doc);
   if (config) {
     RefuseUnboundedState(file, doc, *config);
     ResolvePaths(doc, file, *config);
