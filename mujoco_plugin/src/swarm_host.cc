@@ -237,6 +237,9 @@ void SwarmHost::Tick(int64_t step, const mjModel* m, const mjData* d, double* co
   runner::ReadTrueStates(d, bindings, &s.truth);
   s.tick->Run(step, s.truth, reinterpret_cast<const struct mjModel_*>(m),
               reinterpret_cast<const struct mjData_*>(d));
+  // The range topology's changes are the runner's to report; the flight needs only the links'
+  // state, which is in plugin_state.
+  s.tick->ForgetTopologyEvents();
   const std::vector<double>* c = &s.tick->controls();
   if (!s.shared->faults.empty()) {
     // Where the runner's actuation applies them (sim/actuation.cc, FaultedActuation), at the

@@ -44,13 +44,6 @@ std::string NetworkStateRefusal(const NetworkConfig& n, double timestep, bool na
            "fly the experiment with `mjformation run` without checkpoints";
   }
   for (const auto& [key, p] : KeyedLinks(n)) {
-    if (native && p.range > 0.0) {
-      return fmt::format(
-          "{} range = {} m: a range-limited link records the topology's changes in a list that "
-          "grows with the run, not in plugin_state; leave range out or fly the experiment with "
-          "`mjformation run`",
-          key, p.range);
-    }
     const int64_t in_flight = network::MaxInFlight(p, timestep);
     if (native && in_flight > kNativeMessagesInFlight) {
       return fmt::format(

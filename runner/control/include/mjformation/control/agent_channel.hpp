@@ -105,6 +105,7 @@ class AgentChannel {
   void VisitState(FixedStateArchive& archive);
   // What grows with the run beside that block: the range topology's events (checkpoints only).
   void VisitEvents(StateArchive& archive) { routing_.network().VisitEvents(archive); }
+  void ForgetTopologyEvents() { routing_.network().ForgetEvents(); }
 
  private:
   NetworkConfig config_;

@@ -121,6 +121,10 @@ class ControlTick {
   // then the instance of the last switch taken (null without a central formation law).
   PluginInstance* formation_law() const;
   const AgentChannel* channel() const { return channel_.get(); }
+  // Drops the range topology's events recorded so far (network::Network::ForgetEvents).
+  void ForgetTopologyEvents() {
+    if (channel_) channel_->ForgetTopologyEvents();
+  }
   const SensorStage& sensors() const { return *sensors_; }
 
  private:

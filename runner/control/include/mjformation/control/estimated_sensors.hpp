@@ -68,7 +68,7 @@ class EstimatedSensors final : public SensorStage {
   std::vector<mjfEstimatorInput> inputs_;             // per vehicle, rebuilt every step
   std::vector<std::vector<mjfMeasurement>> arrived_;  // per vehicle, reused every step
   std::array<char, 512> error_{};
-  std::string native_refusal_;        // NativeSensorRefusal of the configuration
+  std::string native_refusal_;  // NativeSensorRefusal of the configuration
   double sensor_model_seconds_ = 0, estimator_seconds_ = 0;
 };
 

@@ -105,6 +105,9 @@ class Network {
   void VisitEvents(Archive& archive) {
     archive(events_);
   }
+  // Drops the topology events recorded so far, for a host that reports none (the native MuJoCo
+  // plugin: its state is plugin_state, and the list would only grow).
+  void ForgetEvents() { events_.clear(); }
 
   // Everything the network carries from step to step, of a length fixed by the links'
   // parameters (a fixed-length archive, message_state.hpp): each link's stream and counts, its
