@@ -25,6 +25,14 @@ mjfMessage MessageAt(int sender, int64_t step) {
   return m;
 }
 
+// The leader's link to follower 1 and a directed ring 1 -> 2 -> ... -> n -> 1, every link with
+// parameters p.
+std::vector<LinkSpec> LeaderAndRing(int n, const LinkParams& p) {
+  std::vector<LinkSpec> specs = {{0, 1, p}};
+  for (int i = 1; i <= n; ++i) specs.push_back({i, i % n + 1, p});
+  return specs;
+}
+
 TEST(LinkTest, DeliversExactlyTheConfiguredLatency) {
   for (double latency : {0.0, 0.001, 0.01, 0.02, 0.05, 0.1}) {
     LinkSpec spec{0, 1, {}};
@@ -177,13 +185,11 @@ TEST(LinkTest, JitterStatistics) {
 
 // A ring of 4 followers plus the leader link, lossy with jitter: the bytes every receiver holds.
 std::vector<unsigned char> Trace(uint64_t seed) {
-  std::vector<LinkSpec> specs;
   LinkParams p;
   p.latency = 0.005;
   p.jitter = 0.02;
   p.loss = 0.3;
-  specs.push_back({0, 1, p});
-  for (int i = 1; i <= 4; ++i) specs.push_back({i, i % 4 + 1, p});
+  const std::vector<LinkSpec> specs = LeaderAndRing(4, p);
   Network net(4, specs, kDt, seed);
   std::vector<unsigned char> bytes;
   std::vector<mjfMessage> inbox;
@@ -222,7 +228,6 @@ TEST(NetworkTest, TwoInstancesOnTwoThreadsAreIndependent) {
 // bursty ring whose state is taken at every step (a queue past MaxInFlight would throw) and,
 // at step 2500, loaded into a network of another seed: both fly on to the same bytes.
 TEST(NetworkTest, StateLoadedIntoAnotherNetworkFliesOnTheSameBytes) {
-  std::vector<LinkSpec> specs;
   LinkParams p;
   p.period_steps = 3;
   p.latency = 0.005;
@@ -231,8 +236,7 @@ TEST(NetworkTest, StateLoadedIntoAnotherNetworkFliesOnTheSameBytes) {
   p.loss = 0.1;
   p.burst_enter = 0.2;
   p.burst_exit = 0.4;
-  specs.push_back({0, 1, p});
-  for (int i = 1; i <= 4; ++i) specs.push_back({i, i % 4 + 1, p});
+  const std::vector<LinkSpec> specs = LeaderAndRing(4, p);
   Network net(4, specs, kDt, 42), other(4, specs, kDt, 7);
   using runner::FixedStateArchive;
   FixedStateArchive sizing = FixedStateArchive::Sizing();
@@ -271,14 +275,12 @@ TEST(NetworkTest, StateLoadedIntoAnotherNetworkFliesOnTheSameBytes) {
 // last step): its queues' unused slots are zeroed only where they held messages, and the block
 // stays what a full save writes, step after step, as queues fill and drain.
 TEST(NetworkTest, StateUpdatedInPlaceIsTheFullSaveAtEveryStep) {
-  std::vector<LinkSpec> specs;
   LinkParams p;
   p.period_steps = 1;
   p.latency = 0.01;
   p.jitter = 0.02;
   p.loss = 0.3;
-  specs.push_back({0, 1, p});
-  for (int i = 1; i <= 3; ++i) specs.push_back({i, i % 3 + 1, p});
+  const std::vector<LinkSpec> specs = LeaderAndRing(3, p);
   Network net(3, specs, kDt, 5);
   using runner::FixedStateArchive;
   FixedStateArchive sizing = FixedStateArchive::Sizing();
