@@ -20,7 +20,7 @@ namespace {
 
 // plugin_state's header (actuator_plugin.hpp).
 constexpr int kLayout = 0, kCommitted = 1, kHeld = 2, kValid = 3, kPassive = 4, kHeader = 5;
-constexpr double kLayoutVersion = 2;
+constexpr double kLayoutVersion = 3;
 
 // Runs `body` and raises what it throws as MuJoCo's error. mju_error does not return: MuJoCo's
 // handler longjmp()s (the compiler's) or exits, so no C++ object may be alive in this frame

@@ -22,8 +22,9 @@
 //   controls, so nu is not the actuator count), then the held forces' block (Holder::held_size:
 //   SwarmHost::held_size, the wind's drag and the wrench rotor model's controls and motor lags;
 //   zeros after a reset), then the state blocks (SwarmHost::GetState: the tick's,
-//   runner::ControlTick::GetState, ABI 4, then the force stages'). Layout 2; layout 1 had
-//   neither the mark nor the held forces.
+//   runner::ControlTick::GetState, ABI 4, then the force stages'). Layout 3; layout 2 stored the
+//   plugin ABI's vehicle states and estimates as 32-bit halves (fixed_state_archive.hpp), and
+//   layout 1 had neither the mark nor the held forces.
 // The tick of step k runs at the first evaluation of step k (held != k), from the blocks, and
 // leaves the controls and the new blocks with held = k. Every further evaluation of the same
 // step (RK4's stages, mjd_transitionFD's perturbed evaluations restored to the same state,

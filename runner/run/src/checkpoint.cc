@@ -24,8 +24,10 @@ namespace {
 // refused by name. Layout 3: the wind's and the wrench rotor model's forces go into
 // qfrc_passive (recomputed every step) instead of qfrc_applied, which a checkpoint carries: a
 // layout-2 checkpoint of such a run would add them a second time every step; and a faulted
-// wrench model's motor lags are saved.
-constexpr const char* kFormat = "mjformation checkpoint 3";
+// wrench model's motor lags are saved. Layout 4: the control tick's block stores the plugin
+// ABI's vehicle states and estimates field by field (doubles as themselves), not as 32-bit
+// halves, so a layout-3 block has another length.
+constexpr const char* kFormat = "mjformation checkpoint 4";
 
 std::string ReadWholeFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);

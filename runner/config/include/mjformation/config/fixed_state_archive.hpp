@@ -24,6 +24,8 @@
 #ifndef MJFORMATION_CONFIG_FIXED_STATE_ARCHIVE_HPP_
 #define MJFORMATION_CONFIG_FIXED_STATE_ARCHIVE_HPP_
 
+#include <mjformation/plugin.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -242,9 +244,14 @@ class FixedStateArchive {
       for (auto& element : value) Visit(element);
     } else if constexpr (state_kinds::kIsPairLike<T>) {
       std::apply([&](auto&... parts) { (Visit(parts), ...); }, value);
+    } else if constexpr (std::is_same_v<T, mjfVehicleState>) {
+      // The plugin ABI's plain structs field by field: their doubles as themselves (one copy
+      // per array), their counters as integers. Walked for every vehicle at every native step.
+      Visit(value.pos), Visit(value.vel), Visit(value.quat), Visit(value.gyro);
+    } else if constexpr (std::is_same_v<T, mjfEstimate>) {
+      Visit(value.state), Visit(value.covariance), Visit(value.rejected), Visit(value.fused);
     } else if constexpr (std::is_trivially_copyable_v<T> && sizeof(T) % sizeof(uint32_t) == 0) {
-      // The plugin ABI's plain structs (mjfVehicleState, mjfEstimate): doubles and 64-bit
-      // counters without padding, as their words.
+      // Another plain struct without padding, as its words.
       Words(&value, sizeof(T));
     } else {
       static_assert(sizeof(T) == 0,
