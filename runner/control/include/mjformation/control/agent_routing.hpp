@@ -81,8 +81,7 @@ class AgentRouting {
   void VisitState(Archive& archive) {
     network_.VisitState(archive);
     network::VisitMessages(archive, outgoing_);
-    for (mjfVehicleState& s : self_) network::VisitVehicleState(archive, s);
-    archive(sample_age_, time_, step_);
+    archive(self_, sample_age_, time_, step_);
   }
 
  private:

@@ -2,9 +2,10 @@
 //
 // The network's state walked by a fixed-length archive (runner/config's FixedStateArchive, the
 // control tick's state that the native MuJoCo plugin keeps in plugin_state and the runner's
-// checkpoints hold): an Archive has operator()(values...) and loading(). A message is walked
-// field by field (never as its bytes: mjfMessage has padding, whose bytes are nobody's), and
-// a queue that grows and shrinks is walked as its length and a fixed number of slots.
+// checkpoints hold): an Archive has operator()(values...) and loading(), and walks an
+// mjfVehicleState field by field. A message is walked field by field (never as its bytes:
+// mjfMessage has padding, whose bytes are nobody's), and a queue that grows and shrinks is
+// walked as its length and a fixed number of slots.
 #ifndef MJFORMATION_NETWORK_MESSAGE_STATE_HPP_
 #define MJFORMATION_NETWORK_MESSAGE_STATE_HPP_
 
@@ -20,15 +21,8 @@
 namespace mjf::network {
 
 template <typename Archive>
-void VisitVehicleState(Archive& archive, mjfVehicleState& s) {
-  archive(s.pos, s.vel, s.quat, s.gyro);
-}
-
-template <typename Archive>
 void VisitMessage(Archive& archive, mjfMessage& m) {
-  archive(m.sender, m.round, m.send_time);
-  VisitVehicleState(archive, m.state);
-  archive(m.input, m.n_payload, m.payload);
+  archive(m.sender, m.round, m.send_time, m.state, m.input, m.n_payload, m.payload);
 }
 
 template <typename Archive>
