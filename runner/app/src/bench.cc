@@ -15,6 +15,7 @@
 #include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -209,6 +210,16 @@ nlohmann::json Pipeline(const ExperimentConfig& config, const std::string& scrat
   const auto& timing = r.summary["timing"];
   for (const char* key : {"estimator_wall_s", "sensor_models_wall_s", "estimator_plugins_wall_s"}) {
     if (timing.contains(key)) out[key] = timing[key];
+  }
+  // Per-agent runs: the broadcasts every link carried (sent; delivered, neither lost nor late).
+  if (r.summary.contains("network")) {
+    int64_t sent = 0, delivered = 0;
+    for (const auto& link : r.summary["network"]["links"]) {
+      sent += link.value("sent", int64_t{0});
+      delivered += link.value("delivered", int64_t{0});
+    }
+    out["messages_sent"] = sent;
+    out["messages_delivered"] = delivered;
   }
   return out;
 }
@@ -453,11 +464,24 @@ Json BenchExecution(const ExperimentConfig& base, int n, const std::string& scra
   const double rate_central = b["steps"].get<double>() / b["wall_s"].get<double>();
   const double ratio = rate_central / rate_agent;  // cost per step, per-agent over central
   const NetworkConfig& net = per_agent.network;
+  // What a message costs: the per-agent run's extra wall time over central mode, per message
+  // sent (a message is one broadcast on one link: sending, queueing, losing or delivering it, and
+  // the per-agent law's reading of it).
+  const int64_t sent = a.value("messages_sent", int64_t{0});
+  const double extra_s = a["wall_s"].get<double>() - b["wall_s"].get<double>() *
+                                                         a["steps"].get<double>() /
+                                                         b["steps"].get<double>();
+  const double us_per_message = sent > 0 ? 1e6 * extra_s / static_cast<double>(sent) : 0.0;
   std::printf(
       "execution: %d followers, per_agent (coupling %s, predict %s) %.0f steps/s, central %.0f "
-      "steps/s; cost per step per_agent/central %.3f (target <= 1.3)\n",
-      n, ToString(net.coupling), ToString(net.predict), rate_agent, rate_central, ratio);
+      "steps/s; cost per step per_agent/central %.3f (target <= 1.3); %.0f messages sent per "
+      "step, %.3f us of extra wall time per message\n",
+      n, ToString(net.coupling), ToString(net.predict), rate_agent, rate_central, ratio,
+      static_cast<double>(sent) / a["steps"].get<double>(), us_per_message);
   return {{"followers", n},
+          {"messages_sent", sent},
+          {"messages_delivered", a.value("messages_delivered", int64_t{0})},
+          {"extra_us_per_message", us_per_message},
           {"coupling", ToString(net.coupling)},
           {"predict", ToString(net.predict)},
           {"steps_per_s_per_agent", rate_agent},

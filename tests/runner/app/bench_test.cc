@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -141,6 +143,18 @@ TEST(BenchTest, PerAgentExecutionCostLine) {
   EXPECT_NEAR(printed, ratio, 5e-4);  // printed with three decimals
   EXPECT_EQ(j["coupling"], "central_solve");
   EXPECT_EQ(j["predict"], "input");
+  // The messages the per-agent run sent: every one of Exp 2's 13 links (the ring's 12 and the
+  // leader's) carries each broadcast, so the count is a multiple of 13; what the cost per
+  // message divides by.
+  const int64_t sent = j["messages_sent"].get<int64_t>();
+  EXPECT_GT(sent, 0);
+  EXPECT_EQ(sent % 13, 0) << sent;
+  EXPECT_LE(j["messages_delivered"].get<int64_t>(), sent);
+  EXPECT_GT(j["messages_delivered"].get<int64_t>(), 0);
+  EXPECT_TRUE(std::isfinite(j["extra_us_per_message"].get<double>()));
+  char per_step[64];
+  std::snprintf(per_step, sizeof(per_step), "%.0f messages sent per step", sent / 300.0);
+  EXPECT_NE(out.find(per_step, at), std::string::npos) << out;
   // Both flights really ran Exp 2: a finite formation error each.
   EXPECT_TRUE(std::isfinite(j["sigma_f_mean_per_agent"].get<double>()));
   EXPECT_TRUE(std::isfinite(j["sigma_f_mean_central"].get<double>()));
