@@ -624,11 +624,24 @@ def section_provenance(results, cells):
     loads = ", ".join(f"{c['load'][0]:.1f}" for c in cells if c.get("load"))
     rounded = lambda xs: tuple(round(x, 2) for x in xs) if xs else "-"
     return (f"Measured from {inv.get('started')} to {inv.get('finished') or last} on the machine above "
-            f"(2 cores shared with other work, which was running: the load average (1, 5, 15 min) was "
-            f"{rounded(inv.get('loadavg'))} at the start and {rounded(inv.get('loadavg_end'))} at the end, "
-            f"and {loads or '-'} (1-min, one sample per cell, in the table's order): more runnable work than cores, "
-            f"so every wall time here is longer than on an idle machine), with:\n\n```bash\n/usr/bin/python3 "
-            f"{checkout_command(inv.get('command') or '')}\n```")
+            f"(the load average (1, 5, 15 min) was {rounded(inv.get('loadavg'))} at the start and "
+            f"{rounded(inv.get('loadavg_end'))} at the end, and {loads or '-'} (1-min, one sample per cell, "
+            f"in the table's order): {load_meaning(inv, cells, results['machine'].get('nproc'))}), with:"
+            f"\n\n```bash\n/usr/bin/python3 {checkout_command(inv.get('command') or '')}\n```")
+
+
+def load_meaning(invocation, cells, cores):
+    """What the 1-min load averages around and during the cells say of the wall times: with fewer
+    runnable processes than cores (about one: the measured run itself) the machine was otherwise
+    idle; with more, other work took turns on the cores and every wall time is longer."""
+    samples = [c["load"][0] for c in cells if c.get("load")]
+    samples += [x[0] for x in (invocation.get("loadavg"), invocation.get("loadavg_end")) if x]
+    cores = cores or 2
+    if samples and max(samples) < cores - 0.5:
+        return (f"below {cores - 0.5:g} throughout on {cores} cores, so the machine was otherwise idle "
+                f"and the measured run had a core of its own")
+    return (f"{cores} cores shared with other work, which was running: more runnable work than cores, "
+            f"so every wall time here is longer than on an idle machine")
 
 
 def section(results, sizes):

@@ -21,8 +21,11 @@
 #include <string>
 #include <vector>
 
+#include "mjformation/config/config.hpp"
+#include "mjformation/control/agent_channel.hpp"
 #include "mjformation/export/export.hpp"
 #include "mjformation/sim/mujoco_errors.hpp"
+#include "mjformation/sim/simulation.hpp"
 #include "native_fixture.hpp"
 
 #if defined(__has_feature)
@@ -546,6 +549,73 @@ class NativeFaultState : public NativeStreamsState {
 
 TEST_F(NativeFaultState, CopiesAtTwoTimesFlyOnAsTheOriginal) {
   CopiesAtTwoTimesFlyOnAsTheOriginal();
+}
+
+// b08 with the wrench rotor model and its fault moved to 0.5 s: the faulted controls that drive
+// the rotors' motor lags are held in plugin_state, so copies taken before and after the fault,
+// a checkpoint and finite differences fly on as the uncopied flight.
+class NativeWrenchFaultState : public NativeStreamsState {
+ protected:
+  void SetUp() override {
+    std::string text = NativeExperimentText("benchmark/b08_rotor_fault.toml");
+    ASSERT_NE(text.find("\nat = 15.0"), std::string::npos);
+    text = std::regex_replace(text, std::regex("\nat = 15.0"), "\nat = 0.5");
+    const size_t at = text.find("followers = 6");
+    ASSERT_NE(at, std::string::npos);
+    text.insert(at + 13, "\nrotor_model = \"wrench\"");
+    m_ = LoadExported(dir_, text);
+    ASSERT_NE(m_, nullptr);
+  }
+};
+
+TEST_F(NativeWrenchFaultState, CopiesAtTwoTimesFlyOnAsTheOriginal) {
+  CopiesAtTwoTimesFlyOnAsTheOriginal();
+}
+TEST_F(NativeWrenchFaultState, CheckpointReplayIsExact) { CheckpointReplayIsExact(); }
+TEST_F(NativeWrenchFaultState, TransitionFdAndResetLeaveTheFlightUnchanged) {
+  TransitionFdAndResetLeaveTheFlightUnchanged();
+}
+
+// b13 with a range-limited link from follower 1 to 2 (kRange): up while they start 1.5 m apart,
+// down once the reaching phase has spread them, between the copies at 0.3 and 0.8 s, inside the
+// checkpoint's replay (0.5-0.8 s) and the steps after finite differences (0.4-0.6 s); the
+// runner shows when below. Whether the link is up is in plugin_state, so all of them fly on as
+// the uncopied flight across the change.
+class NativeRangeLinkState : public NativeStreamsState {
+ protected:
+  static constexpr double kRange = 1.8;  // m: down at 0.534 s in the runner
+  static std::string Text() {
+    return NativeExperimentText("benchmark/b13_lossy_network.toml") +
+           "\n[[network.link]]\nfrom = 1\nto = 2\nrange = " + std::to_string(kRange) + "\n";
+  }
+  void SetUp() override {
+    m_ = LoadExported(dir_, Text());
+    ASSERT_NE(m_, nullptr);
+  }
+};
+
+TEST_F(NativeRangeLinkState, TheLinkGoesDownBetweenTheCopies) {
+  std::ofstream(dir_ / "runner.toml") << Text();
+  Simulation runner(LoadExperiment(dir_ / "runner.toml", {}, ExperimentChecks::Rendering(false)));
+  for (int k = 0; k < 800; ++k) {
+    runner.ComputeControls();
+    runner.Integrate();
+  }
+  ASSERT_NE(runner.channel(), nullptr);
+  const auto& events = runner.channel()->network().events();
+  ASSERT_FALSE(events.empty()) << "the link never went down";
+  EXPECT_EQ(events[0].from, 1);
+  EXPECT_EQ(events[0].to, 2);
+  EXPECT_FALSE(events[0].up);
+  EXPECT_GT(events[0].time, 0.3);
+  EXPECT_LT(events[0].time, 0.8);
+}
+TEST_F(NativeRangeLinkState, CopiesAtTwoTimesFlyOnAsTheOriginal) {
+  CopiesAtTwoTimesFlyOnAsTheOriginal();
+}
+TEST_F(NativeRangeLinkState, CheckpointReplayIsExact) { CheckpointReplayIsExact(); }
+TEST_F(NativeRangeLinkState, TransitionFdAndResetLeaveTheFlightUnchanged) {
+  TransitionFdAndResetLeaveTheFlightUnchanged();
 }
 
 // What b13's plugin_state holds (docs/PLUGINS.md quotes it): the swarm's doubles.
