@@ -656,8 +656,10 @@ def section(results, sizes):
     ratios_text = summary({"speed": cells})
     lines = [f"## Speed at N = {label}", "",
              section_provenance(results, cells), "",
-             f"Simulated seconds asked for per run: {', '.join(fmt(d, 3) for d in durations)} (not the 40 s of "
-             "the table above, so that a cell costs minutes, not hours; a peer run still stops at "
+             f"Simulated seconds asked for per run: {', '.join(fmt(d, 3) for d in durations)} ("
+             + ("the 40 s of the table above" if durations == [40.0] else
+                "not the 40 s of the table above, so that a cell costs minutes, not hours") +
+             "; a peer run still stops at "
              f"{fmt(results['args']['wall_budget'], 3)} s of wall time, \"budget\"). Runs shorter than 25 s give "
              "their error at their last time. Simulators measured: " + ", ".join(measured) + "; not run at this "
              "size: " + (", ".join(missing) or "none") + " (see \"What is not done here\").", "",
