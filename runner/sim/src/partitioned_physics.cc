@@ -12,6 +12,7 @@
 #include <cstring>
 #include <exception>
 #include <mutex>
+#include <stdexcept>
 #include <thread>
 
 #include "mjformation/config/source_location.hpp"
@@ -208,21 +209,43 @@ void CheckPartitionable(const ExperimentConfig& config, const mjModel* whole,
   }
 }
 
+namespace {
+// Partition k's first vehicle of n, out of k_parts contiguous ranges.
+int FirstOfPartition(int n, int k, int k_parts) {
+  return static_cast<int>(static_cast<int64_t>(n) * k / k_parts);
+}
+}  // namespace
+
+PartitionModels ComposePartitions(int k_parts, const SceneRequest& request) {
+  const int n = static_cast<int>(request.positions.size());
+  PartitionModels models;
+  for (int k = 0; k < k_parts; ++k) {
+    const int first = FirstOfPartition(n, k, k_parts);
+    const int last = FirstOfPartition(n, k + 1, k_parts);
+    SceneRequest part = request;
+    part.positions.assign(request.positions.begin() + first, request.positions.begin() + last);
+    part.first_vehicle = first;
+    part.write_text = false;
+    models.push_back(ComposeScene(part, fmt::format("partition {} of the scene", k)).model);
+  }
+  return models;
+}
+
 PartitionedPhysics::PartitionedPhysics(const ExperimentConfig& config, const SceneRequest& request,
-                                       const mjfPlugin& attitude, const std::string& vehicle_xml,
-                                       const mjModel* whole) {
+                                       PartitionModels models, const mjfPlugin& attitude,
+                                       const std::string& vehicle_xml, const mjModel* whole) {
   const int n = static_cast<int>(request.positions.size());
   const int k_parts = config.threads;
+  if (static_cast<int>(models.size()) != k_parts) {
+    throw std::logic_error("PartitionedPhysics: " + std::to_string(models.size()) +
+                           " partition models for " + std::to_string(k_parts) + " threads");
+  }
   int nq = 0, nv = 0, na = 0, nu = 0;
   for (int k = 0; k < k_parts; ++k) {
     auto p = std::make_unique<Partition>();
-    p->first = static_cast<int>(static_cast<int64_t>(n) * k / k_parts);
-    p->count = static_cast<int>(static_cast<int64_t>(n) * (k + 1) / k_parts) - p->first;
-    SceneRequest part = request;
-    part.positions.assign(request.positions.begin() + p->first,
-                          request.positions.begin() + p->first + p->count);
-    part.first_vehicle = p->first;
-    p->model = ComposeScene(part, fmt::format("partition {} of the scene", k)).model;
+    p->first = FirstOfPartition(n, k, k_parts);
+    p->count = FirstOfPartition(n, k + 1, k_parts) - p->first;
+    p->model = std::move(models[k]);
     p->data.reset(mj_makeData(p->model.get()));
     p->bindings = BindVehicles(p->model.get(), config, attitude, vehicle_xml, p->first, p->count);
     p->actuation = WithRotorFaults(

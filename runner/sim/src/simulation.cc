@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <future>
 
 #include "mjformation/config/paths.hpp"
 #include "mjformation/config/source_location.hpp"
@@ -47,10 +48,18 @@ Simulation::Simulation(const ExperimentConfig& config) : config_(config) {
 
   std::vector<std::array<double, 3>> initial_positions = InitialPositions(config_);
   AdaptForeignVehicle(*attitude.descriptor);  // [vehicles] body / rotors (docs/VEHICLES.md)
+  const SceneRequest request =
+      MakeSceneRequest(config_, initial_positions, vehicle_xml_, vehicle_notes_);
+  // Partitioned physics: the partitions' models are composed on a thread of their own while
+  // this one composes the whole swarm's (composing is most of a large swarm's start, the two do
+  // not depend on each other; their peak memory adds up, docs/PERFORMANCE.md). More threads than
+  // vehicles start nothing here: CheckPartitionable refuses them after the whole swarm's model.
+  std::future<PartitionModels> partition_models;
+  if (config_.threads > 1 && config_.threads <= static_cast<int>(request.positions.size())) {
+    partition_models = std::async(std::launch::async, ComposePartitions, config_.threads, request);
+  }
   const auto compose_start = std::chrono::steady_clock::now();
-  ComposedScene scene =
-      ComposeScene(MakeSceneRequest(config_, initial_positions, vehicle_xml_, vehicle_notes_),
-                   "composed scene of " + config_.model_path);
+  ComposedScene scene = ComposeScene(request, "composed scene of " + config_.model_path);
   compose_seconds_ =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - compose_start).count();
   scene_xml_ = std::move(scene.xml);
@@ -74,7 +83,7 @@ Simulation::Simulation(const ExperimentConfig& config) : config_(config) {
                       config_, bindings_, 0);
   force_stages_ = MakeForceStages(config_);
   external_force_.assign(3 * truth_.size(), 0.0);
-  MakePartitions(*attitude.descriptor);
+  MakePartitions(*attitude.descriptor, &partition_models);
   ReadContracts();
   CheckTorqueAuthority();
   CheckImuSite();
@@ -132,15 +141,17 @@ void Simulation::CheckTorqueAuthority() {
 }
 
 // [run] threads > 1: the same scene request, split by vehicle ranges (partitioned_physics.hpp).
-void Simulation::MakePartitions(const mjfPlugin& attitude) {
+void Simulation::MakePartitions(const mjfPlugin& attitude, std::future<PartitionModels>* models) {
   std::vector<int> bodies;
   for (const VehicleBinding& b : bindings_.vehicles) bodies.push_back(b.body);
   CheckPartitionable(config_, model_.get(), bodies);
   if (config_.threads == 1) return;
+  const SceneRequest request =
+      MakeSceneRequest(config_, wiring_->initial_positions(), vehicle_xml_, vehicle_notes_);
   partitions_ = std::make_unique<PartitionedPhysics>(
-      config_,
-      MakeSceneRequest(config_, wiring_->initial_positions(), vehicle_xml_, vehicle_notes_),
-      attitude, vehicle_xml_, model_.get());
+      config_, request,
+      models->valid() ? models->get() : ComposePartitions(config_.threads, request), attitude,
+      vehicle_xml_, model_.get());
 }
 
 Simulation::~Simulation() = default;

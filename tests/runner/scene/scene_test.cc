@@ -140,6 +140,26 @@ TEST(SceneTest, VehiclesComposedInBlocksAreTheSceneOfOneAttachEach) {
   EXPECT_EQ(m->nmat, 1 + 5);
 }
 
+// Without its text (a partition's scene): the same compiled model, byte for byte, in blocks
+// (23 vehicles from 8) and alone (one vehicle), and no text.
+TEST(SceneTest, WithoutTheTextTheModelIsTheSame) {
+  auto bytes = [](const mjModel* m) {
+    std::vector<char> out(mj_sizeModel(m));
+    mj_saveModel(m, nullptr, out.data(), static_cast<int>(out.size()));
+    return out;
+  };
+  for (const int vehicles : {23, 1}) {
+    SceneRequest r = Request(vehicles);
+    r.first_vehicle = 8;
+    const ComposedScene with = ComposeScene(r, "test");
+    r.write_text = false;
+    const ComposedScene without = ComposeScene(r, "test");
+    EXPECT_FALSE(with.xml.empty());
+    EXPECT_TRUE(without.xml.empty()) << vehicles;
+    EXPECT_TRUE(bytes(with.model.get()) == bytes(without.model.get())) << vehicles;
+  }
+}
+
 // Composition costs O(N) (O(N log N) attaches, one pass for the rest): four times the vehicles
 // take about four times the processor time; one attach per vehicle took sixteen (each attach
 // rebuilds every list of the scene). The point-mass vehicle keeps MuJoCo's own compilation

@@ -255,8 +255,8 @@ constexpr size_t kTextPerVehicle = 8192;
 
 // Composition in O(N log N): the first vehicle attached with the assets, the others in decimal
 // blocks (scene_blocks.hpp), their asset references pointed at the shared assets, each placed;
-// compiled once; the text without what the blocks left (scene_text.hpp). Nothing when that text
-// cannot be had; `scene` and `vehicle` are then spent.
+// compiled once; the text without what the blocks left (scene_text.hpp), when the request asks
+// for it. Nothing when that text cannot be had; `scene` and `vehicle` are then spent.
 std::optional<ComposedScene> ComposeInBlocks(mjSpec* scene, mjSpec* vehicle, mjsBody* body,
                                              const SceneRequest& request, const std::string& name) {
   const std::set<std::string> assets = spec::AssetNames(vehicle);
@@ -273,6 +273,7 @@ std::optional<ComposedScene> ComposeInBlocks(mjSpec* scene, mjSpec* vehicle, mjs
   ComposedScene out;
   out.model.reset(mj_compile(scene, nullptr));
   if (!out.model) throw SceneError(name + ": MuJoCo cannot load the model: " + mjs_getError(scene));
+  if (!request.write_text) return out;
   std::optional<std::string> xml = WithoutBlocks(
       spec::SaveXml(scene, name, kTextPerVehicle * request.positions.size()), kBlockMarker);
   if (!xml) return std::nullopt;
@@ -365,7 +366,7 @@ ComposedScene ComposeScene(const SceneRequest& request, const std::string& name)
             ComposeInBlocks(scene_copy.get(), vehicle_copy.get(),
                             VehicleBody(vehicle_copy.get(), request.vehicle_path), request, name)) {
       out.model = std::move(blocks->model);
-      out.xml = Header(request) + blocks->xml;
+      if (request.write_text) out.xml = Header(request) + blocks->xml;
       return out;
     }
   }
@@ -374,7 +375,7 @@ ComposedScene ComposeScene(const SceneRequest& request, const std::string& name)
   if (!out.model) {
     throw SceneError(name + ": MuJoCo cannot load the model: " + mjs_getError(scene.get()));
   }
-  out.xml = Header(request) + spec::SaveXml(scene.get(), name);
+  if (request.write_text) out.xml = Header(request) + spec::SaveXml(scene.get(), name);
   return out;
 }
 

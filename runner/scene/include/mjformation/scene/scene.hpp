@@ -38,6 +38,9 @@ struct SceneRequest {
   // instead of reading vehicle_path when not empty; the notes go into the scene's header.
   std::string vehicle_xml;
   std::vector<std::string> vehicle_notes;
+  // false: the compiled model only, ComposedScene::xml left empty (MuJoCo's writer is about a
+  // seventh of a large swarm's composition; a partition's text is never recorded).
+  bool write_text = true;
 };
 
 struct ModelDeleter {

@@ -36,15 +36,23 @@ namespace mjf::runner {
 class LockstepPool;
 struct Partition;
 
+using PartitionModels = std::vector<std::unique_ptr<mjModel, ModelDeleter>>;
+
+// Composes and compiles one model per partition from `request` (the whole swarm's scene request:
+// only the vehicle range differs), partition k holding vehicles [n k / K, n (k + 1) / K). Their
+// text is not written (the whole swarm's scene is the one a run records). Independent of the
+// whole swarm's composition, so a caller may run it on another thread meanwhile.
+PartitionModels ComposePartitions(int k_parts, const SceneRequest& request);
+
 class PartitionedPhysics {
  public:
-  // Composes and compiles one model per partition from `request` (the whole swarm's scene
-  // request: only the vehicle range differs) and binds its vehicles. `whole` is the swarm's
-  // single model, used to check the split keeps every degree of freedom exactly once.
-  // Throws ConfigError (FILE:LINE: [run] threads: ...) when the model cannot be partitioned.
+  // Binds the vehicles of `models` (ComposePartitions of the same `request`, config.threads
+  // partitions). `whole` is the swarm's single model, used to check the split keeps every degree
+  // of freedom exactly once. Throws ConfigError (FILE:LINE: [run] threads: ...) when the model
+  // cannot be partitioned.
   PartitionedPhysics(const ExperimentConfig& config, const SceneRequest& request,
-                     const mjfPlugin& attitude, const std::string& vehicle_xml,
-                     const mjModel* whole);
+                     PartitionModels models, const mjfPlugin& attitude,
+                     const std::string& vehicle_xml, const mjModel* whole);
   ~PartitionedPhysics();
   PartitionedPhysics(const PartitionedPhysics&) = delete;
   PartitionedPhysics& operator=(const PartitionedPhysics&) = delete;

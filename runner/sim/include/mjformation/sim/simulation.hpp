@@ -12,6 +12,7 @@
 #include <mujoco/mujoco.h>
 
 #include <array>
+#include <future>
 #include <memory>
 #include <mjformation/plugin_contract.hpp>
 #include <string>
@@ -173,7 +174,9 @@ class Simulation {
   void ComputeForces();
   void HandOverControls();
   void ApplyForces();
-  void MakePartitions(const mjfPlugin& attitude);
+  // The partitions' physics from `models` (ComposePartitions, started when the scene was
+  // composed; composed here when it was not started).
+  void MakePartitions(const mjfPlugin& attitude, std::future<PartitionModels>* models);
   void CheckState() const;
   void SyncWholeData() const;
 
