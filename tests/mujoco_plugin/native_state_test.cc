@@ -419,6 +419,21 @@ TEST(NativeStateFiles, AnInitThatCannotReadItsFilesRaises) {
   mj_deleteModel(m);
 }
 
+// experiments/<experiment> (NativeExperimentText) flown with [vehicles] rotor_model = "wrench".
+std::string WithWrenchRotors(std::string text) {
+  const size_t at = text.find("followers = 6");
+  EXPECT_NE(at, std::string::npos) << "no [vehicles] followers = 6 to add the rotor model after";
+  if (at != std::string::npos) text.insert(at + 13, "\nrotor_model = \"wrench\"");
+  return text;
+}
+
+// The benchmark's b08 with its rotor fault moved from 15 s to 0.5 s, between the copies.
+std::string RotorFaultAtHalfASecond() {
+  const std::string text = NativeExperimentText("benchmark/b08_rotor_fault.toml");
+  EXPECT_NE(text.find("\nat = 15.0"), std::string::npos) << "b08's fault is no longer at 15 s";
+  return std::regex_replace(text, std::regex("\nat = 15.0"), "\nat = 0.5");
+}
+
 // A scene whose controllers draw random numbers and keep queues (sensor noise and latency
 // buffers, a lossy network): the flights MuJoCo's tools give stay the uncopied flight.
 class NativeStreamsState : public NativeState {
@@ -539,10 +554,7 @@ TEST_F(NativeMappedState, CheckpointReplayIsExact) { CheckpointReplayIsExact(); 
 class NativeFaultState : public NativeStreamsState {
  protected:
   void SetUp() override {
-    std::string text = NativeExperimentText("benchmark/b08_rotor_fault.toml");
-    ASSERT_NE(text.find("\nat = 15.0"), std::string::npos);
-    text = std::regex_replace(text, std::regex("\nat = 15.0"), "\nat = 0.5");
-    m_ = LoadExported(dir_, text);
+    m_ = LoadExported(dir_, RotorFaultAtHalfASecond());
     ASSERT_NE(m_, nullptr);
   }
 };
@@ -557,13 +569,7 @@ TEST_F(NativeFaultState, CopiesAtTwoTimesFlyOnAsTheOriginal) {
 class NativeWrenchFaultState : public NativeStreamsState {
  protected:
   void SetUp() override {
-    std::string text = NativeExperimentText("benchmark/b08_rotor_fault.toml");
-    ASSERT_NE(text.find("\nat = 15.0"), std::string::npos);
-    text = std::regex_replace(text, std::regex("\nat = 15.0"), "\nat = 0.5");
-    const size_t at = text.find("followers = 6");
-    ASSERT_NE(at, std::string::npos);
-    text.insert(at + 13, "\nrotor_model = \"wrench\"");
-    m_ = LoadExported(dir_, text);
+    m_ = LoadExported(dir_, WithWrenchRotors(RotorFaultAtHalfASecond()));
     ASSERT_NE(m_, nullptr);
   }
 };
@@ -705,11 +711,7 @@ TEST_F(NativeWindState, TransitionFdBCountsTheDragOnce) {
 class NativeWrenchState : public NativeStreamsState {
  protected:
   void SetUp() override {
-    std::string text = NativeExperimentText("exp2.toml");
-    const size_t at = text.find("followers = 6");
-    ASSERT_NE(at, std::string::npos);
-    text.insert(at + 13, "\nrotor_model = \"wrench\"");
-    m_ = LoadExported(dir_, text);
+    m_ = LoadExported(dir_, WithWrenchRotors(NativeExperimentText("exp2.toml")));
     ASSERT_NE(m_, nullptr);
   }
 };
