@@ -248,20 +248,54 @@ TEST(NativeFlight, ForeignRotorVehicleWithAssetsIsTheRunnersTrajectory) {
   ExpectTheRunnersFlight(dir / "experiment.toml", 2.0, 2000, 0.5);
 }
 
+// b13 shortened to 1 s, with `execution` added to its [execution] table and `network` in place
+// of its `loss = 0.1` line.
+std::string B13Variant(const std::string& execution, const std::string& network) {
+  std::string text = Shortened("benchmark/b13_lossy_network.toml", 1.0);
+  EXPECT_NE(text.find("\nloss = 0.1 "), std::string::npos) << "b13's [network] loss moved";
+  text = std::regex_replace(text, std::regex("\n\\[execution\\]"), "\n[execution]\n" + execution);
+  return std::regex_replace(text, std::regex("\nloss = 0.1 "), "\n" + network + " ");
+}
+
 // The channel's other parts (Jacobi rounds, input prediction, clock offsets and drift, jitter,
 // Gilbert-Elliott bursts, a link of its own) on b13, 1 s: the runner's flight, bit for bit.
 TEST(NativeFlight, JacobiRoundsClocksAndBurstsAreTheRunnersTrajectory) {
   Scratch dir("jacobi_network");
-  std::string text = Shortened("benchmark/b13_lossy_network.toml", 1.0);
-  text = std::regex_replace(text, std::regex("\n\\[execution\\]"),
-                            "\n[execution]\ncoupling = \"jacobi\"\njacobi_rounds = 2\n"
-                            "predict = \"input\"\nclock_offset = 0.004\nclock_drift_ppm = 50.0");
-  text = std::regex_replace(text, std::regex("\nloss = 0.1 "),
-                            "\njitter = 0.005\nloss_model = \"gilbert_elliott\"\n"
-                            "burst_enter = 0.1\nburst_exit = 0.5\nloss = 0.05 ");
+  std::string text = B13Variant(
+      "coupling = \"jacobi\"\njacobi_rounds = 2\npredict = \"input\"\nclock_offset = 0.004\n"
+      "clock_drift_ppm = 50.0",
+      "jitter = 0.005\nloss_model = \"gilbert_elliott\"\nburst_enter = 0.1\nburst_exit = 0.5\n"
+      "loss = 0.05");
   text += "\n[[network.link]]\nfrom = 0\nto = 1\nlatency = 0.004\nloss = 0.0\n";
   std::ofstream(dir / "experiment.toml") << text;
   ExpectTheRunnersFlight(dir / "experiment.toml", 1.0, 1000, 0.1);
+}
+
+// Jacobi's exchange rounds carried over b13's lossy, late links, with a round timeout, 1 s: the
+// letters in flight, the exchanges waiting for them and their counts are in plugin_state, and
+// plain mj_step flies the runner's flight, bit for bit.
+TEST(NativeFlight, JacobiRoundsOverTheLinksAreTheRunnersTrajectory) {
+  Scratch dir("rounds_over_links");
+  std::ofstream(dir / "experiment.toml")
+      << B13Variant("coupling = \"jacobi\"\njacobi_rounds = 3\npredict = \"input\"",
+                    "rounds = \"over_links\"\nround_timeout = 0.02\nloss = 0.1");
+  ExpectTheRunnersFlight(dir / "experiment.toml", 1.0, 1000, 0.1);
+}
+
+// The central solve over the links (each R_i up to the solver, each W_i back down its own link)
+// with the followers' clocks out of phase, on the point mass, 2 s: the runner's flight.
+TEST(NativeFlight, CentralSolveOverTheLinksIsTheRunnersTrajectory) {
+  Scratch dir("solve_over_links");
+  std::string text = Shortened("exp2.toml", 2.0);
+  text = std::regex_replace(text, std::regex("\nmodel = \"quadrotor\""), "\nmodel = \"pointmass\"");
+  text = std::regex_replace(text, std::regex("\\[attitude\\][^\\[]*"),
+                            "[attitude]\nplugin = \"pointmass_direct\"\n\n");
+  text +=
+      "\n[execution]\nmode = \"per_agent\"\ncoupling = \"central_solve\"\n"
+      "predict = \"input\"\nclock_offset = 0.02\n"
+      "[network]\nlatency = 0.004\nrounds = \"over_links\"\n";
+  std::ofstream(dir / "experiment.toml") << text;
+  ExpectTheRunnersFlight(dir / "experiment.toml", 2.0, 2000, 0.5);
 }
 
 // The benchmark's b06, a 3 m/s wind with moderate Dryden turbulence, shortened to 3 s: the wind
@@ -461,13 +495,19 @@ std::string ExportRefusal(const std::string& append, const std::string& after = 
   return "";
 }
 
-// Rounds over the links keep lists that grow with the run: refused, naming the key.
-TEST(NativeExport, RefusesRoundsOverTheLinks) {
+// Exchange rounds over the links whose letters in flight pass what plugin_state holds: 60
+// Jacobi rounds a sample every 50 steps over links 1 ms late keep 60 x (1 / 49 + 2) = 120 letters
+// on a link, refused naming the keys and the numbers.
+TEST(NativeExport, RefusesRoundLettersInFlightPastTheNativeBound) {
   const std::string e = ExportRefusal(
-      "\n[execution]\nmode = \"per_agent\"\ncoupling = \"jacobi\"\n"
-      "[network]\nlatency = 0.01\nrounds = \"over_links\"\n");
+      "\n[execution]\nmode = \"per_agent\"\ncoupling = \"jacobi\"\njacobi_rounds = 60\n"
+      "[network]\nlatency = 0.001\nrounds = \"over_links\"\n");
   EXPECT_NE(e.find("experiment.toml:"), std::string::npos) << e;
-  EXPECT_NE(e.find("[network] rounds = \"over_links\""), std::string::npos) << e;
+  EXPECT_NE(e.find("[network] latency = 0.001 s and jitter = 0 s with 60 exchange rounds a "
+                   "sample every 0.05 s keep up to 120 round letters in flight on a link"),
+            std::string::npos)
+      << e;
+  EXPECT_NE(e.find("at most 100"), std::string::npos) << e;
 }
 
 // A link whose messages in flight pass what plugin_state holds: refused naming the keys and the

@@ -624,6 +624,32 @@ TEST_F(NativeRangeLinkState, TransitionFdAndResetLeaveTheFlightUnchanged) {
   TransitionFdAndResetLeaveTheFlightUnchanged();
 }
 
+// b13 with Jacobi's exchange rounds carried over its lossy, late links (a round timeout): the
+// letters in flight, the exchanges waiting for them and their counts live in plugin_state, so
+// the copies, a checkpoint and finite differences fly on as the uncopied flight.
+class NativeRoundsState : public NativeStreamsState {
+ protected:
+  void SetUp() override {
+    std::string text = NativeExperimentText("benchmark/b13_lossy_network.toml");
+    ASSERT_NE(text.find("\n[execution]"), std::string::npos);
+    text = std::regex_replace(text, std::regex("\n\\[execution\\]"),
+                              "\n[execution]\ncoupling = \"jacobi\"\njacobi_rounds = 3");
+    ASSERT_NE(text.find("\n[network]"), std::string::npos);
+    text = std::regex_replace(text, std::regex("\n\\[network\\]"),
+                              "\n[network]\nrounds = \"over_links\"\nround_timeout = 0.02");
+    m_ = LoadExported(dir_, text);
+    ASSERT_NE(m_, nullptr);
+  }
+};
+
+TEST_F(NativeRoundsState, CopiesAtTwoTimesFlyOnAsTheOriginal) {
+  CopiesAtTwoTimesFlyOnAsTheOriginal();
+}
+TEST_F(NativeRoundsState, CheckpointReplayIsExact) { CheckpointReplayIsExact(); }
+TEST_F(NativeRoundsState, TransitionFdAndResetLeaveTheFlightUnchanged) {
+  TransitionFdAndResetLeaveTheFlightUnchanged();
+}
+
 // What b13's plugin_state holds (docs/PLUGINS.md quotes it): the swarm's doubles.
 TEST_F(NativeNetworkState, StateSizeIsFixedAndPrinted) {
   ASSERT_EQ(m_->nplugin, 1);

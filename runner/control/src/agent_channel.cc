@@ -3,12 +3,15 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include "mjformation/control/central_solver.hpp"
 #include "mjformation/control/channel_summary.hpp"
 #include "mjformation/control/delay_margin.hpp"
 #include "mjformation/control/rounds_over_links.hpp"
 #include "mjformation/formation/discrete_smc_agent.hpp"
 #include "mjformation/formation/graph.hpp"
+#include "mjformation/time_steps.hpp"
 
 namespace mjf::runner {
 namespace {
@@ -38,20 +41,29 @@ std::vector<std::pair<std::string, network::LinkParams>> KeyedLinks(const Networ
 
 std::string NetworkStateRefusal(const NetworkConfig& n, double timestep, bool native) {
   if (n.execution != Execution::kPerAgent) return "";
-  if (n.rounds == ExchangeRounds::kOverLinks) {
-    return "[network] rounds = \"over_links\": the rounds in flight and the exchanges waiting "
-           "for them are not in the fixed-length state yet; use rounds = \"instantaneous\" or "
-           "fly the experiment with `mjformation run` without checkpoints";
-  }
+  if (!native) return "";
   for (const auto& [key, p] : KeyedLinks(n)) {
     const int64_t in_flight = network::MaxInFlight(p, timestep);
-    if (native && in_flight > kNativeMessagesInFlight) {
+    if (in_flight > kNativeMessagesInFlight) {
       return fmt::format(
           "{} latency = {} s and jitter = {} s at a broadcast every {} physics steps keep up to "
           "{} messages in flight on a link; the native MuJoCo plugin holds at most {} (its "
           "queues are part of plugin_state, copied every step): shorten the delay, lower the "
           "rate or fly the experiment with `mjformation run`",
           key, p.latency, p.jitter, p.period_steps, in_flight, kNativeMessagesInFlight);
+    }
+    if (n.rounds != ExchangeRounds::kOverLinks) continue;
+    // The most a link carries: Jacobi's rounds 0 .. n - 2 a sample (the central solve's star
+    // carries one R_i and one W_i, fewer).
+    const int64_t letters = network::MaxRoundLettersInFlight(
+        p, timestep, std::max(1, RoundsFor(n) - 1), NearestSteps(n.sample_period, timestep));
+    if (letters > kNativeMessagesInFlight) {
+      return fmt::format(
+          "{} latency = {} s and jitter = {} s with {} exchange rounds a sample every {} s keep "
+          "up to {} round letters in flight on a link; the native MuJoCo plugin holds at most "
+          "{}: shorten the delay, use fewer rounds or fly the experiment with `mjformation run`",
+          key, p.latency, p.jitter, RoundsFor(n) - 1, n.sample_period, letters,
+          kNativeMessagesInFlight);
     }
   }
   return "";
@@ -73,7 +85,9 @@ AgentChannel::AgentChannel(const formation::Graph& graph, const NetworkConfig& c
   if (config.rounds != ExchangeRounds::kOverLinks || n_rounds_ <= 1) return;
   rounds_ = std::make_unique<RoundsOverLinks>(&routing_, central_.get(), config, n_rounds_);
   // The star's streams follow every graph link's: the graph keeps an instantaneous run's.
-  if (central_) central_->SetUpStar(routing_.network(), config.defaults, seed);
+  if (!central_) return;
+  central_->SetUpStar(routing_.network(), config.defaults, seed);
+  central_->SetStarCapacity(1, NearestSteps(config.sample_period, timestep));
 }
 
 AgentChannel::~AgentChannel() = default;
@@ -148,11 +162,9 @@ void AgentChannel::HoldPendingCommands(std::vector<mjfSetpoint>* setpoints) {
 }
 
 void AgentChannel::VisitState(FixedStateArchive& archive) {
-  if (rounds_) {
-    throw std::logic_error("the exchange rounds over the links are not in the channel's state");
-  }
   routing_.VisitState(archive);
   if (central_) central_->VisitState(archive);
+  if (rounds_) rounds_->VisitState(archive);
 }
 
 nlohmann::json AgentChannel::Summary() const {

@@ -76,6 +76,18 @@ void CentralSolver::SetUpStar(const network::Network& network, const network::Li
   }
 }
 
+void CentralSolver::SetStarCapacity(int64_t per_sample, int64_t period_steps) {
+  int64_t up = 0, down = 0;
+  for (int i = 0; i < n_followers_; ++i) {
+    up += network::MaxRoundLettersInFlight(up_[i].params(), up_[i].timestep(), per_sample,
+                                           period_steps);
+    down += network::MaxRoundLettersInFlight(down_[i].params(), down_[i].timestep(), per_sample,
+                                             period_steps);
+  }
+  up_in_flight_.SetCapacity(static_cast<size_t>(up));
+  down_in_flight_.SetCapacity(static_cast<size_t>(down));
+}
+
 // Tagged with the sample index: in phase the same one-to-one key as the step; out of phase the
 // solver gathers one index's R_i, taken up to clock_offset apart.
 void CentralSolver::PostR(int follower, int64_t step, int64_t sample_index, const mjfMessage& r) {

@@ -38,6 +38,18 @@ RoundsOverLinks::RoundsOverLinks(AgentRouting* routing, CentralSolver* central,
   }
   late_.assign(routing_.network().n_links(), 0);
   unmatched_.assign(routing_.network().n_links(), 0);
+  // The fixed-length state's bound on Jacobi letters in flight: rounds 0 .. n_rounds - 2 of a
+  // sample go out on every follower link (the central solve's travel over its star instead,
+  // bounded by AgentChannel once the star is set up).
+  if (central_) return;
+  network::Network& network = routing_.network();
+  int64_t letters = 0;
+  for (int l = 0; l < network.n_links(); ++l) {
+    if (network.spec(l).from == 0) continue;
+    letters += network::MaxRoundLettersInFlight(network.spec(l).params, timestep, n_rounds_ - 1,
+                                                steps_per_sample_);
+  }
+  network.SetRoundCapacity(static_cast<size_t>(letters));
 }
 
 void RoundsOverLinks::HoldPendingCommands(std::vector<mjfSetpoint>* setpoints) {

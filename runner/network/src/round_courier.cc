@@ -1,7 +1,20 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 #include "mjformation/network/round_courier.hpp"
 
+#include <algorithm>
+
+#include "mjformation/time_steps.hpp"
+
 namespace mjf::network {
+
+int64_t MaxRoundLettersInFlight(const LinkParams& params, double timestep, int64_t per_sample,
+                                int64_t period_steps) {
+  // Letters in flight after step k were sent in (k - D, k]; the sample periods that window
+  // meets, a period shortened by one step by a drifting clock included, each sent per_sample.
+  const int64_t longest = StepsAtOrAfter(params.latency + params.jitter, timestep);
+  const int64_t shortest_period = std::max<int64_t>(period_steps - 1, 1);
+  return per_sample * (longest / shortest_period + 2);
+}
 
 void RoundCourier::Post(Link& link, int link_index, int64_t step, int64_t sample_step,
                         const mjfMessage& message) {

@@ -41,10 +41,9 @@ class RoundsOverLinks;
 // (every step copies the whole state in and out, so the queue is bounded; b13's links hold 3).
 constexpr int64_t kNativeMessagesInFlight = 100;
 // Why the channel of `network` (per-agent execution) cannot be saved, naming the key and the
-// numbers, or empty when it can: rounds over the links keep lists that grow with the run; with
-// `native` (the fixed-length plugin_state, nothing beside it), also range limits (their
-// topology's events grow with the run) and a link whose messages in flight (MaxInFlight) pass
-// kNativeMessagesInFlight.
+// numbers, or empty when it can: with `native` (the fixed-length plugin_state, copied in and out
+// every step), a link whose messages in flight (MaxInFlight) or exchange-round letters in flight
+// (MaxRoundLettersInFlight, rounds = "over_links") pass kNativeMessagesInFlight.
 std::string NetworkStateRefusal(const NetworkConfig& network, double timestep, bool native);
 
 class AgentChannel {
@@ -99,9 +98,9 @@ class AgentChannel {
   const AgentClocks& clocks() const { return clocks_; }
 
   // What the channel carries from tick to tick, of a length fixed at construction (the control
-  // tick's state, ControlTick::GetState): the routing and the network, the central solve. The
-  // clocks are drawn once from the seed (configuration, not state). Throws std::logic_error on
-  // a channel NetworkStateRefusal refuses.
+  // tick's state, ControlTick::GetState): the routing and the network, the central solve, the
+  // exchange rounds over the links. The clocks are drawn once from the seed (configuration, not
+  // state).
   void VisitState(FixedStateArchive& archive);
   // What grows with the run beside that block: the range topology's events (checkpoints only).
   void VisitEvents(StateArchive& archive) { routing_.network().VisitEvents(archive); }

@@ -64,11 +64,22 @@ class CentralSolver {
   const network::Link& up_link(int follower) const { return up_[follower]; }
   const network::Link& down_link(int follower) const { return down_[follower]; }
   int64_t up_late(int follower) const { return up_late_[follower]; }
-  // The instantaneous solve's state (a fixed-length archive); the star over the links is not
-  // in it (rounds over the links refuse to be saved: NetworkStateRefusal).
+  // The star's couriers hold at most `per_sample` letters a sample each way per follower, the
+  // sample period being `period_steps` (MaxRoundLettersInFlight): the fixed-length state's
+  // bound. After SetUpStar.
+  void SetStarCapacity(int64_t per_sample, int64_t period_steps);
+  // The solve's state (a fixed-length archive): the instantaneous solve's, then, with a star over
+  // the links, its links' streams and counts, the R_i and W_i in flight, the sample being
+  // gathered and what of it has arrived.
   template <typename Archive>
   void VisitState(Archive& archive) {
     archive(solved_, have_solution_, skipped_samples_, solves_);
+    if (up_.empty()) return;
+    for (network::Link& link : up_) link.VisitState(archive);
+    for (network::Link& link : down_) link.VisitState(archive);
+    up_in_flight_.VisitState(archive);
+    down_in_flight_.VisitState(archive);
+    archive(sample_, has_, rows_, count_, up_late_, down_late_);
   }
   int64_t down_late(int follower) const { return down_late_[follower]; }
 

@@ -29,6 +29,7 @@
 #include "mjformation/config/experiment.hpp"
 #include "mjformation/control/agent_routing.hpp"
 #include "mjformation/control/central_solver.hpp"
+#include "mjformation/network/message_state.hpp"
 #include "mjformation/network/round_courier.hpp"
 
 namespace mjf::runner {
@@ -90,6 +91,30 @@ class RoundsOverLinks {
   // last finished exchange (setpoint acc x, y); one whose exchange has ended keeps its plugin's
   // command, which becomes the held one.
   void HoldPendingCommands(std::vector<mjfSetpoint>* setpoints);
+
+  // Everything the rounds carry from step to step, of a length fixed at construction (the
+  // control tick's state, AgentChannel::VisitState): each follower's exchange (its inbox as a
+  // bounded queue of its in-neighbours' messages) and counts, each link's late and unmatched
+  // letters, the held commands. The letters in flight are the network's and the star's.
+  template <typename Archive>
+  void VisitState(Archive& archive) {
+    for (int i = 0; i < n_followers_; ++i) {
+      Exchange& ex = exchanges_[i];
+      archive(ex.waiting, ex.sample_step, ex.sample_index, ex.local_time, ex.local_step,
+              ex.next_round, ex.round_start_step, ex.timed_out, ex.self);
+      network::VisitBounded(archive, ex.inbox, routing_.neighbour_ids(i).size(),
+                            "an exchange's inbox",
+                            [](Archive& a, mjfMessage& m) { network::VisitMessage(a, m); });
+      network::VisitMessage(archive, ex.leader);
+      archive(ex.has_leader, ex.got);
+      network::VisitMessages(archive, ex.letters);
+      archive(ex.has_solved, ex.solved);
+      RoundStats& st = round_stats_[i];
+      archive(st.samples, st.complete, st.timed_out, st.incomplete, st.rounds_run,
+              st.completion_sum, st.completion_max);
+    }
+    archive(late_, unmatched_, held_acc_);
+  }
 
   const Exchange& exchange(int follower) const { return exchanges_[follower]; }
   const RoundStats& stats(int follower) const { return round_stats_[follower]; }

@@ -68,6 +68,7 @@ class Link {
   Link(const LinkParams& params, double timestep, uint64_t seed);
 
   const LinkParams& params() const { return params_; }
+  double timestep() const { return timestep_; }  // s, the physics step
   // Whether the sender broadcasts over this link at `step` (the link's rate).
   bool Broadcasts(int64_t step) const { return step % params_.period_steps == 0; }
   // A message sent at `send_step`: the physics step at which it is delivered (the first step

@@ -109,17 +109,18 @@ class Network {
   // plugin: its state is plugin_state, and the list would only grow).
   void ForgetEvents() { events_.clear(); }
 
+  // The most exchange-round letters in flight at once over all links ([network] rounds =
+  // "over_links": RoundsOverLinks computes it); the fixed-length state holds that many. 0, the
+  // default: no rounds travel, and the state holds none.
+  void SetRoundCapacity(size_t letters) { rounds_in_flight_.SetCapacity(letters); }
+
   // Everything the network carries from step to step, of a length fixed by the links'
   // parameters (a fixed-length archive, message_state.hpp): each link's stream and counts, its
   // messages in flight (at most MaxInFlight), held and of this tick's round, the range
-  // topology and the ages. Not walked: the topology events (VisitEvents) and the rounds carried
-  // over the links, lists that grow with the run: a network with rounds in flight refuses.
+  // topology, the ages and the exchange-round letters in flight (at most SetRoundCapacity's).
+  // Not walked: the topology events (VisitEvents), a list that grows with the run.
   template <typename Archive>
   void VisitState(Archive& archive) {
-    if (!rounds_in_flight_.empty()) {
-      throw std::logic_error(
-          "network: the rounds over the links are not in the fixed-length state");
-    }
     for (size_t l = 0; l < links_.size(); ++l) {
       links_[l].VisitState(archive);
       VisitBounded(archive, in_flight_[l], static_cast<size_t>(capacity_[l]),
@@ -132,6 +133,7 @@ class Network {
     VisitMessages(archive, round_);
     for (std::vector<bool>* flags : {&up_, &has_held_, &has_round_}) VisitFlags(archive, *flags);
     archive(spanning_, topology_known_, steps_without_tree_, age_);
+    rounds_in_flight_.VisitState(archive);
   }
 
  private:
