@@ -29,6 +29,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
 #include <deque>
@@ -250,6 +251,16 @@ class FixedStateArchive {
       Visit(value.pos), Visit(value.vel), Visit(value.quat), Visit(value.gyro);
     } else if constexpr (std::is_same_v<T, mjfEstimate>) {
       Visit(value.state), Visit(value.covariance), Visit(value.rejected), Visit(value.fused);
+    } else if constexpr (std::is_same_v<T, mjfMessage>) {
+      // The same numbers in the same order as field by field, with send_time, the state and the
+      // input (17 doubles side by side in the ABI's struct) in one copy: every link's messages
+      // are walked at every native step.
+      static_assert(offsetof(mjfMessage, input) + sizeof(value.input) ==
+                        offsetof(mjfMessage, send_time) + kMessageDoubles * sizeof(double),
+                    "mjfMessage: send_time, state and input side by side");
+      Visit(value.sender), Visit(value.round);
+      Doubles(&value.send_time, kMessageDoubles);
+      Visit(value.n_payload), Visit(value.payload);
     } else if constexpr (std::is_trivially_copyable_v<T> && sizeof(T) % sizeof(uint32_t) == 0) {
       // Another plain struct without padding, as its words.
       Words(&value, sizeof(T));
@@ -259,6 +270,9 @@ class FixedStateArchive {
                     "its members one by one");
     }
   }
+
+  // mjfMessage's doubles from send_time to the end of input: 1 + 13 (mjfVehicleState) + 3.
+  static constexpr size_t kMessageDoubles = 1 + sizeof(mjfVehicleState) / sizeof(double) + 3;
 
   double* out_;
   const double* in_;

@@ -20,9 +20,11 @@
 
 namespace mjf::network {
 
+// Field by field: sender, round, send_time, state, input, n_payload, payload (the archive walks
+// the struct in that order: FixedStateArchive, whose doubles of the state go as one copy).
 template <typename Archive>
 void VisitMessage(Archive& archive, mjfMessage& m) {
-  archive(m.sender, m.round, m.send_time, m.state, m.input, m.n_payload, m.payload);
+  archive(m);
 }
 
 template <typename Archive>
