@@ -7,6 +7,8 @@
 #include <cstring>
 #include <vector>
 
+#include "mjformation/config/fixed_state_archive.hpp"
+
 namespace mjf::realism {
 namespace {
 
@@ -120,6 +122,33 @@ TEST(SensorModel, RateAndLatencyAreExact) {
       ASSERT_EQ(m.gyro[a], seen_gyro + a) << "step " << k;
     }
     ASSERT_EQ(0, std::memcmp(m.quat, truth.quat, sizeof(m.quat)));
+  }
+}
+
+// The native plugin's walk (FixedStateArchive::Updating into the block it loaded from at the
+// last step): a latency buffer gets only the slot written since, and the block stays what a
+// full save writes, step after step, while the buffers fill and wrap (consumer_gnss: 110 ms).
+TEST(SensorModel, StateUpdatedInPlaceIsTheFullSaveAtEveryStep) {
+  SensorModel model(SensorParams::ConsumerGnss(), kDt, 11);
+  using runner::FixedStateArchive;
+  FixedStateArchive sizing = FixedStateArchive::Sizing();
+  model.VisitState(sizing);
+  std::vector<double> block(sizing.size()), full(sizing.size());
+  FixedStateArchive first = FixedStateArchive::Saving(block.data());
+  model.VisitState(first);
+  for (int64_t k = 0; k < 400; ++k) {
+    if (k % 7 == 3) {  // as a copied mjData's holder does: load the block, then go on
+      FixedStateArchive loading = FixedStateArchive::Loading(block.data());
+      model.VisitState(loading);
+    }
+    mjfVehicleState truth = State(0), m;
+    for (int a = 0; a < 3; ++a) truth.pos[a] = truth.vel[a] = 0.01 * k + a;
+    model.Measure(k, truth, &m);
+    FixedStateArchive updating = FixedStateArchive::Updating(block.data());
+    model.VisitState(updating);
+    FixedStateArchive saving = FixedStateArchive::Saving(full.data());
+    model.VisitState(saving);
+    ASSERT_EQ(block, full) << "step " << k;
   }
 }
 

@@ -92,6 +92,18 @@ class FixedStateArchive {
     return static_cast<size_t>(value);
   }
 
+  // n doubles stored as themselves (as Visit stores a vector of them), of which only
+  // [changed, changed + count) can differ from what the block holds while updating: only those
+  // are written then. `count` past n: all of them.
+  void DoublesChanged(double* values, size_t n, size_t changed, size_t count) {
+    if (updating_ && count <= n && changed + count <= n) {
+      std::memcpy(out_ + cursor_ + changed, values + changed, count * sizeof(double));
+      cursor_ += n;
+      return;
+    }
+    Doubles(values, n);
+  }
+
   // n doubles that another walk writes or reads in place, with no copy between (a plugin's
   // declared state, ABI 4): save(double* out) while saving or updating, load(const double* in)
   // while loading, neither while sizing.

@@ -13,6 +13,8 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "mjformation/plugin.h"
@@ -20,6 +22,15 @@
 #include "mjformation/realism/sensor_params.hpp"
 
 namespace mjf::realism {
+
+// An archive that can update only the changed part of a run of doubles (DoublesChanged).
+template <typename Archive, typename = void>
+inline constexpr bool kUpdatesChangedDoubles = false;
+template <typename Archive>
+inline constexpr bool
+    kUpdatesChangedDoubles<Archive, std::void_t<decltype(std::declval<Archive&>().DoublesChanged(
+                                        std::declval<double*>(), size_t{}, size_t{}, size_t{}))>> =
+        true;
 
 class SensorModel {
  public:
@@ -64,7 +75,8 @@ class SensorModel {
     a(normal_, next_step_, own_normal_, common_normal_, accel_bias_);
     a(previous_truth_, previous_measured_);
     for (auto& ch : channels_) {
-      a(ch.history, ch.held, ch.bias, ch.last_sample, ch.write_slot, ch.phase, ch.bias_count);
+      VisitHistory(a, ch);
+      a(ch.held, ch.bias, ch.last_sample, ch.write_slot, ch.phase, ch.bias_count);
       a(ch.wander_own, ch.wander_common, ch.fresh);
     }
     // The fresh samples in slots of a fixed number (a state's length is fixed by the
@@ -90,7 +102,11 @@ class SensorModel {
     int64_t last_sample = -1;      // truth step of the held sample
     // Counters instead of step % n (integer division was most of a channel's cost per step).
     int64_t write_slot = 0;  // where this step's truth goes in history
-    int64_t phase = 0;       // steps since the last sample, once the delay has passed
+    // The slot the last step's truth went to, and how many truths went in since the state was
+    // last walked (not state: what a block updated in place still lacks).
+    int64_t written_slot = -1;
+    int written_since_walk = 2;
+    int64_t phase = 0;  // steps since the last sample, once the delay has passed
     // The bias walks every `bias_every` samples (at least every 10 ms: a drift that matters over
     // seconds need not cost three normal draws per 1 kHz gyro sample); var(b) = q^2 t at those
     // times, held in between.
@@ -100,6 +116,21 @@ class SensorModel {
     bool fresh = false;  // a new sample in this step
   };
   void StepChannel(ChannelState& ch, int64_t step, const double* truth);
+  // A channel's latency buffer: whole, but for an archive that updates a block holding the
+  // buffer as the last walk left it (the native plugin, every step), which gets the one slot
+  // written since (FixedStateArchive::DoublesChanged).
+  template <typename Archive>
+  static void VisitHistory(Archive& a, ChannelState& ch) {
+    if constexpr (kUpdatesChangedDoubles<Archive>) {
+      const size_t dim = static_cast<size_t>(ch.dim);
+      a.DoublesChanged(ch.history.data(), ch.history.size(),
+                       static_cast<size_t>(std::max<int64_t>(ch.written_slot, 0)) * dim,
+                       ch.written_since_walk == 1 ? dim : ch.history.size() + 1);
+    } else {
+      a(ch.history);
+    }
+    ch.written_since_walk = 0;
+  }
   void StepWander(ChannelState& ch, bool first, double error[3]);
 
   bool ideal_;
