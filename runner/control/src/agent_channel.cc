@@ -39,9 +39,8 @@ std::vector<std::pair<std::string, network::LinkParams>> KeyedLinks(const Networ
 
 }  // namespace
 
-std::string NetworkStateRefusal(const NetworkConfig& n, double timestep, bool native) {
+std::string NativeNetworkRefusal(const NetworkConfig& n, double timestep) {
   if (n.execution != Execution::kPerAgent) return "";
-  if (!native) return "";
   for (const auto& [key, p] : KeyedLinks(n)) {
     const int64_t in_flight = network::MaxInFlight(p, timestep);
     if (in_flight > kNativeMessagesInFlight) {

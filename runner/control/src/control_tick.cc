@@ -303,7 +303,7 @@ std::vector<PluginInstance*> ControlTick::Instances() const {
 
 void ControlTick::RequireSavable() const {
   if (channel_) {
-    const std::string why = NetworkStateRefusal(channel_->config(), timestep_, /*native=*/true);
+    const std::string why = NativeNetworkRefusal(channel_->config(), timestep_);
     if (!why.empty()) throw SimulationError(why);
   }
   if (!sensors_->saves_state()) {

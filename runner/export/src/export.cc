@@ -269,9 +269,8 @@ void RefuseStopOn(const std::string& file, const toml::table& doc) {
 void RefuseUnboundedState(const std::string& file, const toml::table& doc,
                           const ExperimentConfig& config) {
   const std::string sensors_why = NativeSensorRefusal(config);
-  const std::string why = !sensors_why.empty()
-                              ? sensors_why
-                              : NetworkStateRefusal(config.network, config.timestep, true);
+  const std::string why =
+      !sensors_why.empty() ? sensors_why : NativeNetworkRefusal(config.network, config.timestep);
   if (why.empty()) return;
   const toml::node* section = doc.get(sensors_why.empty() ? "network" : "sensors");
   const int line = section ? static_cast<int>(section->source().begin.line) : 0;

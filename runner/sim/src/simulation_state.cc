@@ -6,7 +6,6 @@
 #include <string>
 #include <vector>
 
-#include "mjformation/control/agent_channel.hpp"
 #include "mjformation/sim/simulation.hpp"
 
 namespace mjf::runner {
@@ -35,10 +34,7 @@ void FixedBlock(StateArchive& archive, const char* what, std::vector<double>* bl
 }  // namespace
 
 void Simulation::RequireSavable() const {
-  // The channel's state is in the control tick's block; what it cannot hold is named by key.
-  const std::string channel = NetworkStateRefusal(config_.network, config_.timestep, false);
-  if (!channel.empty())
-    throw ConfigError("checkpoints (--checkpoint-every, --resume, get_state): " + channel);
+  // The channel's state is in the control tick's block, whatever its configuration.
   if (!tick_->sensors().saves_state()) Unsavable("the sensor stage", "[sensors]");
   for (const auto& stage : force_stages_) {
     if (!stage->saves_state()) Unsavable("a force stage", "[wind]");

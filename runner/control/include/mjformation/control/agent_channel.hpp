@@ -40,11 +40,11 @@ class RoundsOverLinks;
 // The most messages in flight on one link that the native MuJoCo plugin holds in plugin_state
 // (every step copies the whole state in and out, so the queue is bounded; b13's links hold 3).
 constexpr int64_t kNativeMessagesInFlight = 100;
-// Why the channel of `network` (per-agent execution) cannot be saved, naming the key and the
-// numbers, or empty when it can: with `native` (the fixed-length plugin_state, copied in and out
-// every step), a link whose messages in flight (MaxInFlight) or exchange-round letters in flight
-// (MaxRoundLettersInFlight, rounds = "over_links") pass kNativeMessagesInFlight.
-std::string NetworkStateRefusal(const NetworkConfig& network, double timestep, bool native);
+// Why the native MuJoCo plugin cannot hold the channel of `network` (per-agent execution) in
+// plugin_state, naming the key and the numbers, or empty when it can: a link whose messages in
+// flight (MaxInFlight) or exchange-round letters in flight (MaxRoundLettersInFlight, rounds =
+// "over_links") pass kNativeMessagesInFlight. The runner's checkpoints hold any channel.
+std::string NativeNetworkRefusal(const NetworkConfig& network, double timestep);
 
 class AgentChannel {
  public:

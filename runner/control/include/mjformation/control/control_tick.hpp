@@ -89,7 +89,7 @@ class ControlTick {
   // another tick built from the same configuration, Run gives the same bits. RequireSavable()
   // throws naming the first stage the native MuJoCo plugin cannot hold (a switching topology, a
   // latency buffer past kNativeLatencySteps, an estimator without declared state, a channel
-  // NetworkStateRefusal refuses).
+  // NativeNetworkRefusal refuses).
   void RequireSavable() const;
   size_t StateSize() const;
   void GetState(double* out) const;
