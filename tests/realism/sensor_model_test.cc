@@ -144,6 +144,13 @@ TEST(SensorModel, StateUpdatedInPlaceIsTheFullSaveAtEveryStep) {
     mjfVehicleState truth = State(0), m;
     for (int a = 0; a < 3; ++a) truth.pos[a] = truth.vel[a] = 0.01 * k + a;
     model.Measure(k, truth, &m);
+    if (k % 11 == 2) {
+      // Two steps between two walks of the block, with a walk that only counts (a host sizing
+      // the state) between them: both slots must reach the block.
+      FixedStateArchive counting = FixedStateArchive::Sizing();
+      model.VisitState(counting);
+      model.Measure(++k, truth, &m);
+    }
     FixedStateArchive updating = FixedStateArchive::Updating(block.data());
     model.VisitState(updating);
     FixedStateArchive saving = FixedStateArchive::Saving(full.data());

@@ -60,6 +60,8 @@ class FixedStateArchive {
   }
 
   bool loading() const { return in_ != nullptr; }
+  // A Sizing walk: it neither reads nor writes a block.
+  bool sizing() const { return in_ == nullptr && out_ == nullptr; }
   // Doubles walked so far (after a Sizing walk: the state's length).
   size_t size() const { return cursor_; }
 

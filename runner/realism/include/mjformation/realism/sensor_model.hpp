@@ -117,8 +117,9 @@ class SensorModel {
   };
   void StepChannel(ChannelState& ch, int64_t step, const double* truth);
   // A channel's latency buffer: whole, but for an archive that updates a block holding the
-  // buffer as the last walk left it (the native plugin, every step), which gets the one slot
-  // written since (FixedStateArchive::DoublesChanged).
+  // buffer as the last walk that read or wrote a block left it (the native plugin, every step),
+  // which gets the one slot written since (FixedStateArchive::DoublesChanged). A walk that only
+  // counts (Sizing) leaves the count of slots written as it was.
   template <typename Archive>
   static void VisitHistory(Archive& a, ChannelState& ch) {
     if constexpr (kUpdatesChangedDoubles<Archive>) {
@@ -126,6 +127,7 @@ class SensorModel {
       a.DoublesChanged(ch.history.data(), ch.history.size(),
                        static_cast<size_t>(std::max<int64_t>(ch.written_slot, 0)) * dim,
                        ch.written_since_walk == 1 ? dim : ch.history.size() + 1);
+      if (a.sizing()) return;
     } else {
       a(ch.history);
     }
