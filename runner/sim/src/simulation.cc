@@ -83,7 +83,7 @@ Simulation::Simulation(const ExperimentConfig& config) : config_(config) {
                       config_, bindings_, 0);
   force_stages_ = MakeForceStages(config_);
   external_force_.assign(3 * truth_.size(), 0.0);
-  MakePartitions(*attitude.descriptor, &partition_models);
+  MakePartitions(*attitude.descriptor, request, &partition_models);
   ReadContracts();
   CheckTorqueAuthority();
   CheckImuSite();
@@ -140,18 +140,16 @@ void Simulation::CheckTorqueAuthority() {
   warnings_ = AuthorityWarnings(authority_, demand_, name);
 }
 
-// [run] threads > 1: the same scene request, split by vehicle ranges (partitioned_physics.hpp).
-void Simulation::MakePartitions(const mjfPlugin& attitude, std::future<PartitionModels>* models) {
+// [run] threads > 1: the whole swarm's scene request, split by vehicle ranges
+// (partitioned_physics.hpp); `models` was started with it in the constructor.
+void Simulation::MakePartitions(const mjfPlugin& attitude, const SceneRequest& request,
+                                std::future<PartitionModels>* models) {
   std::vector<int> bodies;
   for (const VehicleBinding& b : bindings_.vehicles) bodies.push_back(b.body);
   CheckPartitionable(config_, model_.get(), bodies);
   if (config_.threads == 1) return;
-  const SceneRequest request =
-      MakeSceneRequest(config_, wiring_->initial_positions(), vehicle_xml_, vehicle_notes_);
-  partitions_ = std::make_unique<PartitionedPhysics>(
-      config_, request,
-      models->valid() ? models->get() : ComposePartitions(config_.threads, request), attitude,
-      vehicle_xml_, model_.get());
+  partitions_ = std::make_unique<PartitionedPhysics>(config_, request, models->get(), attitude,
+                                                     vehicle_xml_, model_.get());
 }
 
 Simulation::~Simulation() = default;

@@ -174,9 +174,10 @@ class Simulation {
   void ComputeForces();
   void HandOverControls();
   void ApplyForces();
-  // The partitions' physics from `models` (ComposePartitions, started when the scene was
-  // composed; composed here when it was not started).
-  void MakePartitions(const mjfPlugin& attitude, std::future<PartitionModels>* models);
+  // The partitions' physics from `models` (ComposePartitions of `request`, started when the
+  // scene was composed); refuses a model that cannot be partitioned ([run] threads).
+  void MakePartitions(const mjfPlugin& attitude, const SceneRequest& request,
+                      std::future<PartitionModels>* models);
   void CheckState() const;
   void SyncWholeData() const;
 
