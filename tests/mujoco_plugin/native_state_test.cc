@@ -19,6 +19,7 @@
 #include <regex>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "mjformation/config/config.hpp"
@@ -495,6 +496,65 @@ class NativeStreamsState : public NativeState {
     Step(m_, d, 600);
     EXPECT_TRUE(SameBits(m_, d, reference));
   }
+
+  // What mujoco.rollout does over threads: batches set from states of one flight (0.1 to 0.4 s)
+  // and stepped 0.15 s, on two threads each with its own mjData going from batch to batch, give
+  // the bits of a serial loop that flies each batch on an mjData of its own.
+  void BatchesOverTwoThreadsAreTheSerialLoop() {
+    constexpr int kBatches = 4, kSpacing = 100, kSteps = 150;
+    const int spec = mjSTATE_INTEGRATION;
+    const auto state_of = [&](const mjData* d) {
+      std::vector<mjtNum> state(mj_stateSize(m_, spec));
+      mj_getState(m_, d, state.data(), spec);
+      return state;
+    };
+    std::vector<std::vector<mjtNum>> initial;
+    mjData* flight = Make();
+    for (int b = 0; b < kBatches; ++b) {
+      Step(m_, flight, kSpacing);
+      initial.push_back(state_of(flight));
+    }
+    std::vector<std::vector<mjtNum>> serial;
+    for (const std::vector<mjtNum>& state : initial) {
+      mjData* d = Make();
+      mj_setState(m_, d, state.data(), spec);
+      Step(m_, d, kSteps);
+      serial.push_back(state_of(d));
+    }
+    std::vector<std::vector<mjtNum>> threaded(kBatches);
+    std::vector<mjData*> own = {Make(), Make()};
+    Step(m_, own[1], 50);  // one of them holds a flight of its own before its first batch
+    std::vector<std::thread> threads;
+    for (int t = 0; t < 2; ++t) {
+      threads.emplace_back([&, t] {
+        for (int b = t; b < kBatches; b += 2) {
+          mj_setState(m_, own[t], initial[b].data(), spec);
+          Step(m_, own[t], kSteps);
+          threaded[b] = state_of(own[t]);
+        }
+      });
+    }
+    for (std::thread& t : threads) t.join();
+    for (int b = 0; b < kBatches; ++b) {
+      EXPECT_EQ(
+          std::memcmp(threaded[b].data(), serial[b].data(), sizeof(mjtNum) * serial[b].size()), 0)
+          << "batch " << b;
+      EXPECT_NE(std::memcmp(serial[b].data(), initial[b].data(), sizeof(mjtNum) * 8), 0)
+          << "batch " << b << " did not fly";
+    }
+    // The serial loop continues the flight the states were taken from.
+    Step(m_, flight, kSteps);  // `flight` stands at the last batch's start
+    const std::vector<mjtNum> continued = state_of(flight);
+    EXPECT_EQ(
+        std::memcmp(continued.data(), serial.back().data(), sizeof(mjtNum) * continued.size()), 0);
+  }
+
+  // RK4 (four evaluations a step, no sensors at the inner stages): the controllers tick once per
+  // step, so copies at two times still fly on as the uncopied RK4 flight.
+  void Rk4CopiesFlyOnAsTheOriginal() {
+    m_->opt.integrator = mjINT_RK4;
+    CopiesAtTwoTimesFlyOnAsTheOriginal();
+  }
 };
 
 // The benchmark's b05: GNSS-grade sensors (noise, bias walk, wander, rates, latency) and a
@@ -515,6 +575,10 @@ TEST_F(NativeSensorState, CheckpointReplayIsExact) { CheckpointReplayIsExact(); 
 TEST_F(NativeSensorState, TransitionFdAndResetLeaveTheFlightUnchanged) {
   TransitionFdAndResetLeaveTheFlightUnchanged();
 }
+TEST_F(NativeSensorState, BatchesOverTwoThreadsAreTheSerialLoop) {
+  BatchesOverTwoThreadsAreTheSerialLoop();
+}
+TEST_F(NativeSensorState, Rk4CopiesFlyOnAsTheOriginal) { Rk4CopiesFlyOnAsTheOriginal(); }
 
 // The benchmark's b13: per-agent execution over a lossy network. Every link's random stream,
 // its messages in flight and held, the ages and each follower's instance live in plugin_state.
@@ -532,6 +596,9 @@ TEST_F(NativeNetworkState, CopiesAtTwoTimesFlyOnAsTheOriginal) {
 TEST_F(NativeNetworkState, CheckpointReplayIsExact) { CheckpointReplayIsExact(); }
 TEST_F(NativeNetworkState, TransitionFdAndResetLeaveTheFlightUnchanged) {
   TransitionFdAndResetLeaveTheFlightUnchanged();
+}
+TEST_F(NativeNetworkState, BatchesOverTwoThreadsAreTheSerialLoop) {
+  BatchesOverTwoThreadsAreTheSerialLoop();
 }
 
 // examples/vehicles/midge: a foreign thrust-and-moment model mapped onto the contract; the
@@ -649,6 +716,10 @@ TEST_F(NativeRoundsState, CheckpointReplayIsExact) { CheckpointReplayIsExact(); 
 TEST_F(NativeRoundsState, TransitionFdAndResetLeaveTheFlightUnchanged) {
   TransitionFdAndResetLeaveTheFlightUnchanged();
 }
+TEST_F(NativeRoundsState, BatchesOverTwoThreadsAreTheSerialLoop) {
+  BatchesOverTwoThreadsAreTheSerialLoop();
+}
+TEST_F(NativeRoundsState, Rk4CopiesFlyOnAsTheOriginal) { Rk4CopiesFlyOnAsTheOriginal(); }
 
 // What b13's plugin_state holds (docs/PLUGINS.md quotes it): the swarm's doubles.
 TEST_F(NativeNetworkState, StateSizeIsFixedAndPrinted) {
