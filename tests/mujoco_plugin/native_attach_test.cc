@@ -46,21 +46,25 @@ class NativeAttach : public ::testing::Test {
     dir_ = new Scratch("attach");
     std::ofstream(*dir_ / "experiment.toml") << NativeExperimentText("exp2.toml");
     runner::ExportExperiment(*dir_ / "experiment.toml", *dir_ / "export");
+    std::ofstream(*dir_ / "rounds.toml") << mjf::testing::RoundsOverTheLinksText();
+    runner::ExportExperiment(*dir_ / "rounds.toml", *dir_ / "rounds");
   }
   static void TearDownTestSuite() {
     delete dir_;
     dir_ = nullptr;
   }
   static std::string Scene() { return *dir_ / "export/scene.xml"; }
+  // b13 with Jacobi's rounds over its lossy links (RoundsOverTheLinksText), exported.
+  static std::string RoundsScene() { return *dir_ / "rounds/scene.xml"; }
 
-  // The world with one copy of the exported scene per (prefix, suffix), each at the origin.
+  // The world with one copy of the exported `scene` per (prefix, suffix), each at the origin.
   static mjModel* Attached(const std::vector<std::pair<std::string, std::string>>& affixes,
-                           std::string* error) {
+                           std::string* error, const std::string& scene = Scene()) {
     char text[2048] = {0};
     mjSpec* world = mj_parseXMLString(kWorld, nullptr, text, sizeof(text));
     std::vector<mjSpec*> children;
     for (const auto& [prefix, suffix] : affixes) {
-      mjSpec* child = mj_parseXML(Scene().c_str(), nullptr, text, sizeof(text));
+      mjSpec* child = mj_parseXML(scene.c_str(), nullptr, text, sizeof(text));
       children.push_back(child);
       mjsFrame* frame = mjs_addFrame(mjs_findBody(world, "world"), nullptr);
       if (!mjs_attach(frame->element, child->element, prefix.c_str(), suffix.c_str())) {
@@ -164,6 +168,16 @@ TEST_F(NativeAttach, TwoCopiesUnderTheirOwnPrefixesEachFly) {
   mjModel* m = Attached({{"a/", ""}, {"b/", ""}}, &error);
   ASSERT_NE(m, nullptr) << error;
   ExpectEachCopyFliesTheScene(Scene(), m, {{"a/", ""}, {"b/", ""}});
+  mj_deleteModel(m);
+}
+
+// Per-agent execution with its exchange rounds carried over lossy links (queues, letters in
+// flight, random streams in plugin_state), two copies attached: each flies the scene's bits.
+TEST_F(NativeAttach, RoundsOverTheLinksUnderTwoPrefixesEachFly) {
+  std::string error;
+  mjModel* m = Attached({{"a/", ""}, {"b/", ""}}, &error, RoundsScene());
+  ASSERT_NE(m, nullptr) << error;
+  ExpectEachCopyFliesTheScene(RoundsScene(), m, {{"a/", ""}, {"b/", ""}});
   mj_deleteModel(m);
 }
 

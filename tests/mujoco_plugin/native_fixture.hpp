@@ -78,6 +78,21 @@ inline std::string MidgeExperimentText() {
   return text;
 }
 
+// The benchmark's b13 (per-agent execution over lossy links) with Jacobi's exchange rounds
+// carried over its late links, with a round timeout: the letters in flight, the exchanges
+// waiting for them and their counts are state too. Empty when b13 no longer has the sections.
+inline std::string RoundsOverTheLinksText() {
+  std::string text = NativeExperimentText("benchmark/b13_lossy_network.toml");
+  if (text.find("\n[execution]") == std::string::npos ||
+      text.find("\n[network]") == std::string::npos) {
+    return "";
+  }
+  text = std::regex_replace(text, std::regex("\n\\[execution\\]"),
+                            "\n[execution]\ncoupling = \"jacobi\"\njacobi_rounds = 3");
+  return std::regex_replace(text, std::regex("\n\\[network\\]"),
+                            "\n[network]\nrounds = \"over_links\"\nround_timeout = 0.02");
+}
+
 }  // namespace mjf::testing
 
 #endif  // MJFORMATION_TESTS_MUJOCO_PLUGIN_NATIVE_FIXTURE_HPP_

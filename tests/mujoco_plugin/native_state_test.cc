@@ -697,13 +697,8 @@ TEST_F(NativeRangeLinkState, TransitionFdAndResetLeaveTheFlightUnchanged) {
 class NativeRoundsState : public NativeStreamsState {
  protected:
   void SetUp() override {
-    std::string text = NativeExperimentText("benchmark/b13_lossy_network.toml");
-    ASSERT_NE(text.find("\n[execution]"), std::string::npos);
-    text = std::regex_replace(text, std::regex("\n\\[execution\\]"),
-                              "\n[execution]\ncoupling = \"jacobi\"\njacobi_rounds = 3");
-    ASSERT_NE(text.find("\n[network]"), std::string::npos);
-    text = std::regex_replace(text, std::regex("\n\\[network\\]"),
-                              "\n[network]\nrounds = \"over_links\"\nround_timeout = 0.02");
+    const std::string text = mjf::testing::RoundsOverTheLinksText();
+    ASSERT_FALSE(text.empty()) << "b13 has no [execution] or [network] to add the rounds to";
     m_ = LoadExported(dir_, text);
     ASSERT_NE(m_, nullptr);
   }
