@@ -90,13 +90,19 @@ Mixer::Mixer(const std::array<RotorGeometry, kRotors>& rotors) {
   inverse_ = allocation_.inverse();
 }
 
+// A rotor's room / delta is divided out only when it is below 1: s starts at 1 and only falls,
+// so a quotient of at least 1 never lowers it, and room >= delta (room <= delta for a negative
+// delta) says so exactly (a correctly rounded quotient of a value >= 1 is >= 1). Unsaturated,
+// the usual case, this costs no division; the result is the same number either way.
 double Mixer::MaxScale(const Eigen::Vector4d& base, const Eigen::Vector4d& delta) const {
   double s = 1;
   for (int k = 0; k < kRotors; ++k) {
     if (delta[k] > 0) {
-      s = std::min(s, (ctrl_max_[k] - base[k]) / delta[k]);
+      const double room = ctrl_max_[k] - base[k];
+      if (!(room >= delta[k])) s = std::min(s, room / delta[k]);
     } else if (delta[k] < 0) {
-      s = std::min(s, (ctrl_min_[k] - base[k]) / delta[k]);
+      const double room = ctrl_min_[k] - base[k];
+      if (!(room <= delta[k])) s = std::min(s, room / delta[k]);
     }
   }
   return std::max(s, 0.0);

@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <random>
 #include <string>
 
 #include "error_of.hpp"
@@ -88,6 +90,55 @@ TEST(MixerTest, XQuadTorqueAuthorityAtHover) {
   // 1 N more or less (floor 0): 4 x 1 N x a.
   EXPECT_NEAR(m.TorqueAuthority(0, 4.0), 4 * 0.1 / std::sqrt(2.0), 1e-12);
   EXPECT_NEAR(m.TorqueAuthority(2, 4.0), 4 * 0.01, 1e-12);
+}
+
+// Thrust first, each stage's scale is the smallest quotient room / delta over the rotors, capped
+// at 1 and floored at 0 (Mixer::MaxScale, which divides only when the quotient can be below 1):
+// the same numbers, bit for bit, as dividing every rotor out, over wrenches that saturate the
+// collective, the roll/pitch torque, the yaw torque or none.
+double ScaleByDivision(const Eigen::Vector4d& base, const Eigen::Vector4d& delta,
+                       const Rotors& rotors) {
+  double s = 1;
+  for (int k = 0; k < Mixer::kRotors; ++k) {
+    if (delta[k] > 0) s = std::min(s, (rotors[k].ctrl_max - base[k]) / delta[k]);
+    if (delta[k] < 0) s = std::min(s, (rotors[k].ctrl_min - base[k]) / delta[k]);
+  }
+  return std::max(s, 0.0);
+}
+
+TEST(MixerTest, ThrustFirstScalesAreTheRotorsQuotients) {
+  const Rotors rotors = XQuad({1, -1, 1, -1});
+  const Mixer m(rotors);
+  std::mt19937_64 random(7);
+  std::uniform_real_distribution<double> thrust(-5, 60), torque(-6, 6), yaw(-1, 1);
+  int saturated[3] = {0, 0, 0};
+  for (int i = 0; i < 20000; ++i) {
+    // A quarter of the torques tiny: unsaturated stages, where no quotient falls below 1.
+    const double small = i % 4 == 0 ? 1e-3 : 1.0;
+    const Wrench wanted(thrust(random), small * torque(random), small * torque(random),
+                        small * yaw(random));
+    const Mixer::Result r = m.Mix(wanted);
+    const Eigen::Vector4d u_thrust = m.inverse().col(0) * wanted[0];
+    const Eigen::Vector4d u_roll_pitch =
+        m.inverse().col(1) * wanted[1] + m.inverse().col(2) * wanted[2];
+    const Eigen::Vector4d u_yaw = m.inverse().col(3) * wanted[3];
+    const double thrust_scale = ScaleByDivision(Eigen::Vector4d::Zero(), u_thrust, rotors);
+    Eigen::Vector4d u = thrust_scale * u_thrust;
+    const double roll_pitch_scale = ScaleByDivision(u, u_roll_pitch, rotors);
+    u += roll_pitch_scale * u_roll_pitch;
+    const double yaw_scale = ScaleByDivision(u, u_yaw, rotors);
+    ASSERT_EQ(r.thrust, thrust_scale * wanted[0]) << i;
+    ASSERT_EQ(r.roll_pitch_scale, roll_pitch_scale) << i;
+    ASSERT_EQ(r.yaw_scale, yaw_scale) << i;
+    saturated[0] += thrust_scale < 1;
+    saturated[1] += roll_pitch_scale < 1;
+    saturated[2] += yaw_scale < 1;
+  }
+  // Every stage was both saturated and not, many times.
+  for (const int n : saturated) {
+    EXPECT_GT(n, 1000);
+    EXPECT_LT(n, 19000);
+  }
 }
 
 }  // namespace
