@@ -72,7 +72,6 @@ void SensorModel::StepWander(ChannelState& ch, bool first, double error[3]) {
 void SensorModel::StepChannel(ChannelState& ch, int64_t step, const double* truth) {
   const int64_t slots = ch.latency_steps + 1;
   std::memcpy(ch.history.data() + ch.write_slot * ch.dim, truth, sizeof(double) * ch.dim);
-  ch.written_slot = ch.write_slot;
   ++ch.written_since_walk;
   // The truth the sensor reports now is `latency` steps old: the slot after this step's in the
   // ring (step 0's, in slot 0, until that much history exists).

@@ -102,9 +102,8 @@ class SensorModel {
     int64_t last_sample = -1;      // truth step of the held sample
     // Counters instead of step % n (integer division was most of a channel's cost per step).
     int64_t write_slot = 0;  // where this step's truth goes in history
-    // The slot the last step's truth went to, and how many truths went in since the state was
-    // last walked (not state: what a block updated in place still lacks).
-    int64_t written_slot = -1;
+    // How many truths went in since the state was last walked (not state: what a block updated
+    // in place still lacks; the last one went to the slot before write_slot).
     int written_since_walk = 2;
     int64_t phase = 0;  // steps since the last sample, once the delay has passed
     // The bias walks every `bias_every` samples (at least every 10 ms: a drift that matters over
@@ -124,8 +123,8 @@ class SensorModel {
   static void VisitHistory(Archive& a, ChannelState& ch) {
     if constexpr (kUpdatesChangedDoubles<Archive>) {
       const size_t dim = static_cast<size_t>(ch.dim);
-      a.DoublesChanged(ch.history.data(), ch.history.size(),
-                       static_cast<size_t>(std::max<int64_t>(ch.written_slot, 0)) * dim,
+      const int64_t written = ch.write_slot == 0 ? ch.latency_steps : ch.write_slot - 1;
+      a.DoublesChanged(ch.history.data(), ch.history.size(), static_cast<size_t>(written) * dim,
                        ch.written_since_walk == 1 ? dim : ch.history.size() + 1);
       if (a.sizing()) return;
     } else {
