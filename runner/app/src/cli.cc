@@ -237,7 +237,9 @@ void AddExportCommand(CLI::App& app, CliCommands* c) {
   c->export_scene =
       app.add_subcommand("export",
                          "Write the experiment as a MuJoCo scene flown by the native plugins "
-                         "(libmjformation_mujoco.so; docs/PLUGINS.md)");
+                         "(libmjformation_mujoco.so; docs/PLUGINS.md). Stock MuJoCo must load "
+                         "that library before it compiles the scene: in Python `import "
+                         "mjformation` first, in C mj_loadPluginLibrary");
   c->export_scene->add_option("experiment", c->experiment, "experiment file (TOML)")->required();
   c->export_scene
       ->add_option("--out,-o", c->out,

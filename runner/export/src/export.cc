@@ -146,9 +146,16 @@ std::string XmlEscape(const std::string& text) {
 // The wrench rotor model's one actuator (AddTickActuator).
 constexpr char kTickActuator[] = "mjformation_swarm_tick";
 
-// The plugin declaration: one instance flies every vehicle of the scene.
+// The plugin declaration: one instance flies every vehicle of the scene. The comment above it is
+// for whoever opens the scene without our library loaded: MuJoCo then stops at this element with
+// "plugin mjformation.swarm not found", which does not say where the plugin comes from.
 std::string ExtensionBlock(const std::vector<std::pair<std::string, std::string>>& pairs) {
   std::string xml =
+      "  <!-- Flown by mjformation's native MuJoCo plugins: load libmjformation_mujoco.so before\n"
+      "       compiling this scene. Python: `import mjformation` (then mujoco.MjModel.from_xml_path\n"
+      "       flies it); a pip-installed mjformation loads it with `import mujoco`; C:\n"
+      "       mj_loadPluginLibrary(\"PATH/libmjformation_mujoco.so\"). Keep the files beside this\n"
+      "       scene: it names them by relative paths. -->\n"
       "  <extension>\n    <plugin plugin=\"mjformation.swarm\">\n"
       "      <instance name=\"" +
       std::string(kSwarmInstance) + "\">\n";
@@ -356,8 +363,8 @@ std::string ExportedSceneXml(const std::string& experiment, const ExportOptions&
 ExportResult ExportExperiment(const std::string& experiment, const std::string& out_dir,
                               const ExportOptions& options) {
   if (NonEmptyDirectory(out_dir) && !options.overwrite) {
-    throw ExportError(out_dir + ": exists and is not empty; pass --overwrite to replace " +
-                      "scene.xml and the files export wrote in it");
+    throw ExportError(out_dir + ": exists and is not empty; pass --overwrite (Python: " +
+                      "overwrite=True) to replace scene.xml and the files export wrote in it");
   }
   ExportResult result;
   SceneBundle bundle(out_dir);
