@@ -65,8 +65,10 @@ void AddSweepCommand(CLI::App& app, CliCommands* c) {
       ->check(IntegerOption(1, 1024));
   c->sweep->add_option("--plugin-path", c->plugin_path, "extra folder to search for plugins");
   c->sweep->add_flag("--overwrite", c->overwrite, "replace an existing sweep directory");
-  c->sweep->add_flag("--resume", c->sweep_resume,
-                     "finish an interrupted sweep: rerun only runs missing or incomplete");
+  c->sweep
+      ->add_flag("--resume", c->sweep_resume,
+                 "finish an interrupted sweep: rerun only runs missing or incomplete")
+      ->excludes("--overwrite");
   c->sweep->add_flag(
       "--no-render", c->no_render,
       "skip snapshots and video (and the render-only checks: snapshot times beyond the run)");

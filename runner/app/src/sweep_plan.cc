@@ -84,6 +84,28 @@ std::vector<Axis> ParseAxes(const std::vector<std::string>& texts) {
 
 namespace {
 
+std::string TrimmedKey(const std::string& text) {
+  const std::string key = text.substr(0, text.find('='));
+  const size_t first = key.find_first_not_of(" \t");
+  if (first == std::string::npos) return "";
+  return key.substr(first, key.find_last_not_of(" \t") - first + 1);
+}
+
+// A key both fixed by --set and swept by --vary: every run takes the swept value (the axis is
+// applied last), so the --set would be dropped without a word. Refused, naming both.
+void RefuseFixedAndVaried(const std::vector<std::string>& overrides,
+                          const std::vector<Axis>& axes) {
+  for (const std::string& set : overrides) {
+    for (const Axis& axis : axes) {
+      if (TrimmedKey(set) == TrimmedKey(axis.key)) {
+        throw ConfigError("--set " + set + " and --vary " + axis.key +
+                          "=...: the sweep sets this key in every run; drop the --set or put "
+                          "its value among the --vary values");
+      }
+    }
+  }
+}
+
 // A run folder name's piece: letters, digits and . _ + - = { } kept, every other byte as %XX (like
 // a URL), so no value can add a separator (','), a path component, a glob ('[' '*' '?') or a byte
 // a shell would mangle; a table reads {preset=typical}.
@@ -272,6 +294,7 @@ void AddCellRuns(const CliCommands& c, SweepPlan& plan, size_t cell) {
 SweepPlan PlanSweep(const CliCommands& c) {
   SweepPlan plan;
   plan.axes = ParseAxes(c.sweep_vary);
+  RefuseFixedAndVaried(c.overrides, plan.axes);
   if (c.sweep_seeds < 0 || (c.sweep->count("--seeds") && c.sweep_seeds == 0)) {
     throw ConfigError("sweep: --seeds must be >= 1 (seeds per grid cell)");
   }

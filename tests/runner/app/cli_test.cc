@@ -100,6 +100,29 @@ TEST(CliTest, AKeyVariedTwiceIsRefused) {
   EXPECT_FALSE(std::filesystem::exists(dir + "/s"));
 }
 
+// A key both fixed and swept would run at the swept values with the --set dropped silently; a
+// sweep asked to resume and to start over at once has no meaning. Both refused before anything
+// is written.
+TEST(CliTest, ASweepRefusesAKeyFixedAndVariedAndResumeWithOverwrite) {
+  const std::string dir = TempDir("cli_sweep_conflicts");
+  const std::string exp = WriteFile(dir + "/e.toml", HoverExperiment(1, 0.2));
+  {
+    const auto [code, err] =
+        CliStderr({"sweep", exp, "--vary", "vehicles.altitude=1.0,2.0", "--set",
+                   " vehicles.altitude =3.0", "--out", dir + "/s", "--no-render"});
+    EXPECT_EQ(code, 1);
+    EXPECT_THAT(err, HasSubstr("--set  vehicles.altitude =3.0 and --vary vehicles.altitude=..."));
+  }
+  {
+    const auto [code, err] =
+        CliStderr({"sweep", exp, "--vary", "vehicles.altitude=1.0,2.0", "--resume", "--overwrite",
+                   "--out", dir + "/s", "--no-render"});
+    EXPECT_NE(code, 0);
+    EXPECT_THAT(err, HasSubstr("excludes"));
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir + "/s"));
+}
+
 // Values from the command line are named by their origin, not by a line of the experiment file
 // (which does not hold them): the number of partitions, a plugin's refusal, a section a --set
 // made.
