@@ -373,16 +373,17 @@ ExperimentConfig::RotorFault ReadRotorFault(const Reporter& reporter, const toml
   if (!t) reporter.Fail(&item, "[vehicles] fault", "expected [[vehicles.fault]] tables");
   SectionReader keys(reporter.path(), t, "vehicles] fault[" + std::to_string(index),
                      "vehicles.fault");
-  for (const char* key : {"follower", "rotor", "at", "thrust_share"}) {
-    if (!keys.Has(key)) keys.Fail(key, "missing (a fault needs follower, rotor, at, thrust_share)");
-  }
   ExperimentConfig::RotorFault f;
   f.line = static_cast<int>(item.source().begin.line);
   f.follower = static_cast<int>(keys.Integer("follower", 1));
   f.rotor = static_cast<int>(keys.Integer("rotor", 0));
   f.at = keys.Number("at", 0.0);
   f.thrust_share = keys.Number("thrust_share", 0.0);
+  // Unknown keys first: a misspelt key is named as the user wrote it, not as a missing one.
   keys.RejectUnknown();
+  for (const char* key : {"follower", "rotor", "at", "thrust_share"}) {
+    if (!keys.Has(key)) keys.Fail(key, "missing (a fault needs follower, rotor, at, thrust_share)");
+  }
   if (f.follower < 1 || f.follower > c.followers) {
     keys.Fail("follower", "must be a follower number in 1.." + std::to_string(c.followers));
   }
@@ -544,11 +545,11 @@ ExperimentConfig::TopologySwitch ReadTopologySwitch(const Reporter& reporter,
                      "topology.switch");
   ExperimentConfig::TopologySwitch s;
   s.line = static_cast<int>(item.source().begin.line);
-  if (!keys.Has("at")) keys.Fail("at", "missing: the time of the switch, s");
   s.at = keys.Number("at", 0.0);
   s.leader_weight = ReadLeaderWeights(reporter, keys, c.followers, label);
   s.edges = ReadEdges(reporter, keys, c.followers, label);
-  keys.RejectUnknown();
+  keys.RejectUnknown();  // before "missing": a misspelt key is named as the user wrote it
+  if (!keys.Has("at")) keys.Fail("at", "missing: the time of the switch, s");
   if (!(s.at > 0.0 && s.at < c.duration)) {
     keys.Fail("at", "must lie inside the run (0, " + fmt::format("{}", c.duration) + ") s");
   }

@@ -157,13 +157,13 @@ realism::OneCosineGust ReadGust(const SectionReader& keys, const toml::node& ite
   if (!g) keys.FailAt(&item, "gusts", "expected {start = s, duration = s, amplitude = [x, y, z]}");
   SectionReader gust(path, g, "wind] gusts[" + std::to_string(index), "wind.gusts");
   realism::OneCosineGust one;
-  if (!g->contains("start") || !g->contains("duration") || !g->contains("amplitude")) {
-    keys.FailAt(&item, "gusts", "each gust needs start, duration and amplitude");
-  }
   one.start = gust.Number("start", 0);
   one.duration = gust.Number("duration", 1);
   one.amplitude = gust.Vector3("amplitude", {0, 0, 0});
-  gust.RejectUnknown();
+  gust.RejectUnknown();  // before "missing": a misspelt key is named as the user wrote it
+  if (!g->contains("start") || !g->contains("duration") || !g->contains("amplitude")) {
+    keys.FailAt(&item, "gusts", "each gust needs start, duration and amplitude");
+  }
   if (!(one.duration >= 2 * timestep)) {  // a shorter 1-cosine gust never acts on a step
     gust.Fail("duration",
               "must be at least two physics steps (" + std::to_string(2 * timestep) + " s)");
@@ -201,8 +201,8 @@ void ParseWind(const toml::table* table, const std::string& path, ExperimentConf
   ApplyTurbulence(keys, ReadTurbulenceKeys(keys, *c, w), w);
   if (const toml::array* gusts = keys.Array("gusts")) {
     for (const toml::node& item : *gusts) {
-      w.params.gusts.push_back(ReadGust(keys, item, static_cast<int>(w.params.gusts.size()), path,
-                                        c->duration, c->timestep));
+      w.params.gusts.push_back(ReadGust(keys, item, static_cast<int>(w.params.gusts.size()) + 1,
+                                        path, c->duration, c->timestep));
     }
   }
   ReadDragKeys(keys, w.drag);

@@ -160,7 +160,7 @@ TEST(RealismConfig, BadInputNamesFileLineAndKey) {
               AllOf(HasSubstr("[wind] turbulence"), HasSubstr("unknown level")));
   EXPECT_THAT(ErrorOf(base + "[wind]\ngusts = [{start = 1.5, duration = 1.0, amplitude = [1, 0, "
                              "0]}]\n"),
-              AllOf(HasSubstr("exp.toml:18:"), HasSubstr("gusts[0] start"),
+              AllOf(HasSubstr("exp.toml:18:"), HasSubstr("gusts[1] start"),
                     HasSubstr("must lie in the run")));
   EXPECT_THAT(ErrorOf(base + "[wind]\nmean = [1.0, nan, 0.0]\n"),
               AllOf(HasSubstr("[wind] mean"), HasSubstr("finite")));
@@ -265,17 +265,21 @@ TEST(RealismConfigTest, GustErrors) {
               HasSubstr("[wind] gusts: expected {start = s, duration = s, amplitude = [x, y, z]}"));
   EXPECT_THAT(SectionErrorOf("[wind]\ngusts = [{start = 0.5, duration = 1.0}]\n"),
               HasSubstr("each gust needs start, duration and amplitude"));
+  // A misspelt key is named as written, not reported as the key it was meant to be.
+  EXPECT_THAT(SectionErrorOf("[wind]\ngusts = [{start = 0.5, duration = 1.0, amplitud = [1, 0, "
+                             "0]}]\n"),
+              AllOf(HasSubstr("gusts[1] amplitud"), HasSubstr("unknown key")));
   EXPECT_THAT(
       SectionErrorOf("[wind]\ngusts = [{start = 0.5, duration = 0.0, amplitude = [1, 0, 0]}]\n"),
-      HasSubstr("[wind] gusts[0] duration: must be at least two physics steps"));
+      HasSubstr("[wind] gusts[1] duration: must be at least two physics steps"));
   EXPECT_THAT(
       SectionErrorOf("[wind]\ngusts = [{start = 0.5, duration = 1.0, amplitude = [1, 0, 0]}, "
                      "{start = 0.1, duration = 0.5, amplitude = [0, 60, 0]}]\n"),
-      HasSubstr("[wind] gusts[1] amplitude: components must be within +-50 m/s"));
+      HasSubstr("[wind] gusts[2] amplitude: components must be within +-50 m/s"));
   EXPECT_THAT(
       SectionErrorOf("[wind]\ngusts = [{start = 0.5, duration = 1.0, amplitude = [1, 0, 0], "
                      "shape = \"square\"}]\n"),
-      AllOf(HasSubstr("gusts[0] shape"), HasSubstr("unknown key")));
+      AllOf(HasSubstr("gusts[1] shape"), HasSubstr("unknown key")));
   // A gust alone is wind.
   EXPECT_TRUE(
       Parse(With("[wind]\ngusts = [{start = 0.5, duration = 1.0, amplitude = [1, 0, 0]}]\n"))

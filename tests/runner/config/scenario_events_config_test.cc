@@ -55,6 +55,8 @@ TEST(ScenarioEventsConfigTest, BadSwitchesAreRefused) {
   const std::string chain = "leader_links = [1]\nedges = [[1, 2], [2, 3]]\n";
   EXPECT_THAT(ErrorOf([&] { Parse(WithExtra("[[topology.switch]]\n" + chain)); }),
               AllOf(HasSubstr("switch[1] at"), HasSubstr("missing")));
+  EXPECT_THAT(ErrorOf([&] { Parse(WithExtra("[[topology.switch]]\nt = 1.0\n" + chain)); }),
+              AllOf(HasSubstr("switch[1] t"), HasSubstr("unknown key")));
   EXPECT_THAT(ErrorOf([&] { Parse(WithExtra("[[topology.switch]]\nat = 10.0\n" + chain)); }),
               AllOf(HasSubstr("switch[1] at"), HasSubstr("inside the run")));
   EXPECT_THAT(ErrorOf([&] {
@@ -92,6 +94,12 @@ TEST(ScenarioEventsConfigTest, BadFaultsAreRefusedNamingTheKey) {
               AllOf(HasSubstr("fault[1] thrust_share"), HasSubstr("[0, 1]")));
   EXPECT_THAT(ErrorOf([&] { Parse(WithExtra("[[vehicles.fault]]\nfollower = 1\nrotor = 0\n")); }),
               AllOf(HasSubstr("fault[1] at"), HasSubstr("missing")));
+  // A misspelt key is named as written, not reported as the key it was meant to be.
+  EXPECT_THAT(ErrorOf([&] {
+                Parse(WithExtra(
+                    "[[vehicles.fault]]\nfollower = 1\nrotor = 0\nat = 1.0\nthrust_shar = 0.5\n"));
+              }),
+              AllOf(HasSubstr("fault[1] thrust_shar"), HasSubstr("unknown key")));
   // The point mass has no rotors: refused by name rather than ignored.
   std::string point_mass = fault("1", "0.5");
   point_mass.replace(point_mass.find("\"quadrotor\""), 11, "\"pointmass\"");
