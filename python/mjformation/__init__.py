@@ -206,11 +206,13 @@ def _override_value(overrides: list[str], key: str):
     return value
 
 
-def _proportionate_window(experiment, overrides: list[str], caller: str) -> list[str]:
+def _proportionate_window(experiment, overrides: list[str], caller: str,
+                          stacklevel: int = 3) -> list[str]:
     """A run.duration override without run.metric_window, on a file whose [run] metric_window
     would reach past the new duration: the window scaled with the duration (the file's
     [25, 40] s of 40 s become [2.5, 4] s of a 4 s run), added as an override and stated in a
-    warning. Nothing otherwise (the runner's default window already follows the duration)."""
+    warning. Nothing otherwise (the runner's default window already follows the duration).
+    stacklevel: the warning's, so that it names the user's line (3: the caller's caller)."""
     duration = _override_value(overrides, "run.duration")
     if not isinstance(duration, (int, float)) or isinstance(duration, bool) or duration <= 0:
         return []
@@ -227,7 +229,7 @@ def _proportionate_window(experiment, overrides: list[str], caller: str) -> list
     warnings.warn(f"{caller}: {experiment}: run.duration = {duration:g} s ends before the file's "
                   f"[run] metric_window [{window[0]:g}, {window[1]:g}] s (of {full:g} s): averaging "
                   f"over the proportionate window [{scaled[0]:g}, {scaled[1]:g}] s; pass "
-                  "run.metric_window to choose another", UserWarning, stacklevel=3)
+                  "run.metric_window to choose another", UserWarning, stacklevel=stacklevel)
     return [f"run.metric_window={_toml_value(scaled)}"]
 
 
@@ -381,15 +383,21 @@ class Simulation:
     step(n) integrates n physics steps, each followed by the next tick (sensors, plugins or the
     Python law). After reset() it stands inside the tick, before the attitude plugins: the
     formation law's commands are on the bus (law_actions) and step(actions) replaces them.
+    set: as for run(); a shorter run.duration alone scales the file's metric_window with it (a
+    UserWarning states the window used), as run() does.
     """
 
     def __init__(self, experiment, set=None, formation=None, plugin_path=None, driven=False,
                  seed=None):
+        # A shorter run.duration alone scales the file's metric_window, as run() does: the runner
+        # refuses a configuration whose window reaches past its duration.
+        overrides = _overrides(set)
+        overrides += _proportionate_window(experiment, overrides, "mjformation.Simulation")
         self._law = _LawInUse(formation, experiment)
         self._stopped = None  # why the simulation stopped (a SimulationError), once it has
         self._experiment = str(experiment)
         self._plugin_path = _plugin_path(plugin_path)
-        self._overrides = self._law.__enter__() + _overrides(set)
+        self._overrides = self._law.__enter__() + overrides
         self.driven = False
         try:
             if driven:

@@ -9,23 +9,40 @@
 Both fly the runner's own simulation (mjformation.Simulation after reset(seed)): the same
 vehicles, attitude plugins, sensors, network, wind and safety events as `mjformation run`;
 stepped with the formation law's own commands they fly the runner's flight bit for bit.
-gymnasium and pettingzoo are pinned in requirements.txt; only this module imports them.
+gymnasium and pettingzoo are pyproject.toml's "envs" extra (pinned in requirements.txt, which
+scripts/setup.sh installs into the project's .venv); only this module imports them.
 """
 
 from __future__ import annotations
 
+import sys
+from collections.abc import Iterable, Mapping
 from typing import Callable
 
 import numpy as np
-import gymnasium
-from gymnasium import spaces
-from pettingzoo import ParallelEnv
 
-from . import STATE_COLUMNS, Simulation, SimulationError
+try:
+    import gymnasium
+    from gymnasium import spaces
+    from pettingzoo import ParallelEnv
+except ModuleNotFoundError as missing:
+    # The rest of mjformation runs without them (Debian's python3 imports it), so say what to
+    # install rather than leave a bare "No module named 'gymnasium'".
+    raise ImportError(
+        f"mjformation.envs needs gymnasium and pettingzoo, and {sys.executable} cannot import "
+        f"{missing.name!r}: install the \"envs\" extra (pip install '.[envs]' from the source "
+        "tree: gymnasium, pettingzoo and their dependencies, pinned in pyproject.toml), or run "
+        "the project's .venv/bin/python, which bash scripts/setup.sh fills from "
+        "requirements.txt") from missing
+
+from . import STATE_COLUMNS, Simulation, SimulationError, _overrides, _proportionate_window
 
 STATE = len(STATE_COLUMNS)  # 13
 OFFSET = 6  # f_i(t): px py vx vy ax ay
 NEIGHBOUR = STATE + OFFSET + 1  # a neighbour's state, its offset, heard (1) or not (0)
+# The runner's safety event kinds (kSafetyEventKinds, runner/config experiment.hpp): what
+# Simulation.events reports and [run] stop_on takes, so what terminate_on may name.
+SAFETY_EVENTS = ("flip", "ground_impact", "collision", "near_miss", "left_region")
 TERMINATE_ON = ("flip", "ground_impact", "collision")
 ACTIONS = ("acceleration", "thrust_moment")
 
@@ -42,21 +59,46 @@ def observation_layout(max_neighbours: int) -> dict:
     return layout
 
 
+def terminate_kinds(terminate_on) -> tuple:
+    """terminate_on as a tuple of safety event kinds: one kind (a str) or an iterable of kinds,
+    () for none. A str is one kind, not iterated (its letters would name no event), and every
+    kind must be one of SAFETY_EVENTS: a misspelt kind matches no event, and the episode would
+    never end on it."""
+    if isinstance(terminate_on, str):
+        kinds = (terminate_on,)
+    elif isinstance(terminate_on, Iterable):
+        kinds = tuple(terminate_on)
+    else:
+        raise TypeError(f"terminate_on={terminate_on!r}: a safety event kind or an iterable of "
+                        f"kinds (() for none), from {', '.join(SAFETY_EVENTS)}")
+    for kind in kinds:
+        if not isinstance(kind, str) or kind not in SAFETY_EVENTS:
+            raise ValueError(f"terminate_on: {kind!r} is not a safety event kind; the kinds are "
+                             f"{', '.join(SAFETY_EVENTS)}")
+    return kinds
+
+
 class _Swarm:
     """What both environments share: the simulation, the per-follower observation vectors, the
     reward and the episode's end."""
 
-    def __init__(self, experiment, set=None, plugin_path=None, action_steps=None,
+    def __init__(self, caller, experiment, set=None, plugin_path=None, action_steps=None,
                  accel_max=5.0, vertical_max=2.0, terminate_on=TERMINATE_ON,
                  crash_penalty=10.0, velocity_weight=0.1, truth=False, action="acceleration"):
         if action not in ACTIONS:
             raise ValueError(f"action={action!r}: one of {ACTIONS}")
-        self.sim = Simulation(experiment, set=set, plugin_path=plugin_path, driven=True)
+        self.terminate_on = terminate_kinds(terminate_on)
+        # A shorter run.duration alone scales the file's metric_window, as mjformation.run does;
+        # done here so that the warning names the environment and the user's line (stacklevel 4:
+        # past this and the environment's __init__), and the Simulation finds the window given.
+        overrides = _overrides(set)
+        overrides += _proportionate_window(experiment, overrides, f"mjformation.envs.{caller}",
+                                           stacklevel=4)
+        self.sim = Simulation(experiment, set=overrides, plugin_path=plugin_path, driven=True)
         self.n = self.sim.n_vehicles - 1
         self.action = action
         # Thrust and moments replace the attitude loop, which runs every physics step.
         self._action_steps = action_steps or (1 if action == "thrust_moment" else None)
-        self.terminate_on = tuple(terminate_on)
         self.crash_penalty = float(crash_penalty)
         self.velocity_weight = float(velocity_weight)
         self.truth = truth
@@ -77,6 +119,10 @@ class _Swarm:
             self.action_spaces = [spaces.Box(-bound, bound, (3,), np.float64)] * self.n
         self.events_seen = 0
         self.steps = 0
+        # An episode starts with reset(seed) (the Simulation above stands at t = 0 already, but
+        # with the file's seed) and ends as `ended` says: no step is flown outside one.
+        self.started = False
+        self.ended = None
 
     @property
     def action_steps(self) -> int:
@@ -86,7 +132,17 @@ class _Swarm:
         self.sim.reset(seed)
         self.events_seen = 0
         self.steps = 0
+        self.started, self.ended = True, None
         return self.sim.observe(truth=self.truth)
+
+    def require_episode(self, what: str) -> None:
+        """RuntimeError before the first reset() and after the episode ended: what a step
+        returned then would belong to no episode (and, before reset, self._obs is None)."""
+        if not self.started:
+            raise RuntimeError(f"{what} called before reset(): call reset() before {what}")
+        if self.ended is not None:
+            raise RuntimeError(f"{what} called after the episode ended ({self.ended}): call "
+                               "reset() to start a new episode")
 
     def vectors(self, obs: dict) -> np.ndarray:
         """(N, size): each follower's observation (observation_layout)."""
@@ -153,6 +209,7 @@ class _Swarm:
             obs = self.fly(actions, given, commands)
         except SimulationError as e:
             info["error"] = str(e)
+            self.ended = f"stopped by an error at t = {self.sim.time:.3f} s: {e}"
             return None, np.full(self.n, -self.crash_penalty * (1 + self.steps_left())), True, \
                 False, info
         self.steps += 1
@@ -171,6 +228,11 @@ class _Swarm:
         if fresh:
             info["events"] = fresh
         truncated = self.sim.step_index >= self.sim.total_steps
+        if ending:
+            kinds = ", ".join(sorted({e["kind"] for e in ending}))
+            self.ended = f"terminated at t = {self.sim.time:.3f} s by {kinds}"
+        elif truncated:
+            self.ended = f"truncated at t = {self.sim.time:.3f} s, the [run] duration"
         return obs, rewards, bool(ending), truncated, info
 
     def steps_left(self) -> int:
@@ -185,17 +247,22 @@ class FormationParallelEnv(ParallelEnv):
     feedforward; m/s^2, world frame), held for action_steps physics steps (default: the
     formation law's sample period, else one step); with action="thrust_moment" its collective
     thrust (N) and body moments (N m), its attitude plugin bypassed (default one physics step).
-    See docs/PYTHON.md for the observation, reward, termination and truncation."""
+    terminate_on: the safety event kind (a str) or kinds ending an episode, of SAFETY_EVENTS.
+    `agents` is empty until reset() and after the episode's end; step() outside an episode
+    raises RuntimeError. See docs/PYTHON.md for the observation, reward, termination and
+    truncation."""
 
     metadata = {"name": "mjformation_formation_v0", "render_modes": []}
 
     def __init__(self, experiment, set=None, plugin_path=None, action_steps=None, accel_max=5.0,
                  vertical_max=2.0, terminate_on=TERMINATE_ON, crash_penalty=10.0,
                  velocity_weight=0.1, truth=False, action="acceleration"):
-        self.swarm = _Swarm(experiment, set, plugin_path, action_steps, accel_max, vertical_max,
-                            terminate_on, crash_penalty, velocity_weight, truth, action)
+        self.swarm = _Swarm("FormationParallelEnv", experiment, set, plugin_path, action_steps,
+                            accel_max, vertical_max, terminate_on, crash_penalty,
+                            velocity_weight, truth, action)
         self.possible_agents = [f"uav{i + 1}" for i in range(self.swarm.n)]
-        self.agents = list(self.possible_agents)
+        # PettingZoo: reset() sets the live agents; none is live before it (nor after the end).
+        self.agents = []
         self.render_mode = None
         self._rng = np.random.default_rng()
         self._obs = None
@@ -229,6 +296,8 @@ class FormationParallelEnv(ParallelEnv):
 
     def law_actions(self) -> dict:
         """The experiment's formation law's commands for this tick, per agent (float64)."""
+        if self._obs is None:
+            raise RuntimeError("law_actions() called before reset(): call reset() first")
         law = self._obs["law_actions"]
         return {a: law[i].copy() for i, a in enumerate(self.possible_agents)}
 
@@ -238,6 +307,22 @@ class FormationParallelEnv(ParallelEnv):
         return {a: hover[i] for i, a in enumerate(self.possible_agents)}
 
     def step(self, actions: dict):
+        """actions: {agent: action} of live agents (ValueError for any other key); an agent
+        left out flies the law's command."""
+        self.swarm.require_episode("step()")
+        if not isinstance(actions, Mapping):
+            raise TypeError(f"step(actions): actions is a dict {{agent: action}}, not "
+                            f"{type(actions).__name__}")
+        # A key that is no live agent would be ignored: a typo or the leader's name would fly
+        # the law's command in silence.
+        unknown = [a for a in actions if a not in self.agents]
+        if unknown:
+            named = ", ".join(map(repr, unknown))
+            verb = "is not a live agent" if len(unknown) == 1 else "are not live agents"
+            leader = "; uav0 is the leader, which flies its own guidance" if "uav0" in unknown \
+                else ""
+            raise ValueError(f"step(actions): {named} {verb} (the live agents: "
+                             f"{', '.join(self.agents)}{leader})")
         # An agent without an action flies the law's command through its attitude plugin.
         commands = self._obs["law_actions"].copy()
         given = [a in actions for a in self.possible_agents]
@@ -279,8 +364,9 @@ class FormationEnv(gymnasium.Env):
     "uav<follower + 1>"), the others flown by `others`: None (default) the experiment's own
     formation law (Exp 2's: smc_discrete, eq. (48)), or a callable others(obs) -> (N, 3)
     commands, obs being Simulation.observe()'s dict (the learner's row is replaced). The same
-    observation, action (action="acceleration" or "thrust_moment"), reward and episode end as
-    FormationParallelEnv, for that follower."""
+    observation, action (action="acceleration" or "thrust_moment"), reward, terminate_on and
+    episode end as FormationParallelEnv, for that follower: step() before reset() or after the
+    episode ended raises RuntimeError."""
 
     metadata = {"render_modes": []}
 
@@ -288,8 +374,9 @@ class FormationEnv(gymnasium.Env):
                  plugin_path=None, action_steps=None, accel_max=5.0, vertical_max=2.0,
                  terminate_on=TERMINATE_ON, crash_penalty=10.0, velocity_weight=0.1, truth=False,
                  action="acceleration"):
-        self.swarm = _Swarm(experiment, set, plugin_path, action_steps, accel_max, vertical_max,
-                            terminate_on, crash_penalty, velocity_weight, truth, action)
+        self.swarm = _Swarm("FormationEnv", experiment, set, plugin_path, action_steps, accel_max,
+                            vertical_max, terminate_on, crash_penalty, velocity_weight, truth,
+                            action)
         if not 0 <= follower < self.swarm.n:
             raise ValueError(f"follower={follower}: the experiment has followers 0..{self.swarm.n - 1}")
         self.follower = follower
@@ -322,9 +409,12 @@ class FormationEnv(gymnasium.Env):
 
     def law_action(self) -> np.ndarray:
         """The experiment's formation law's command for the learner at this tick."""
+        if self._obs is None:
+            raise RuntimeError("law_action() called before reset(): call reset() first")
         return self._obs["law_actions"][self.follower].copy()
 
     def step(self, action):
+        self.swarm.require_episode("step()")
         if self.others is None:
             commands = self._obs["law_actions"].copy()
         else:

@@ -3,6 +3,9 @@
 environments of mjformation.envs: the runner's flight bit for bit under the law's own commands,
 determinism under reset(seed), what a follower knows, the episode's end, the API checkers."""
 
+import re
+import subprocess
+import sys
 import warnings
 
 import numpy as np
@@ -10,7 +13,9 @@ import pytest
 
 import mjformation
 from conftest import short
-from mjformation.envs import FormationEnv, FormationParallelEnv
+from mjformation.envs import SAFETY_EVENTS, FormationEnv, FormationParallelEnv
+
+FOLLOWERS = "uav1, uav2, uav3, uav4, uav5, uav6"  # Exp 2's agents
 
 
 def noisy(duration):
@@ -108,6 +113,132 @@ def test_a_ground_impact_ends_the_episode(exp2):
     assert rewards["uav2"] < rewards["uav1"] - 5  # the crash penalty
 
 
+def cut_thrust_of_uav2(env, steps=80):
+    """Flies the law but for uav2, whose vertical feedforward cuts its thrust (a ground impact
+    at 2.97 s); returns uav2's termination and truncation at the end."""
+    env.reset(seed=0)
+    actions = env.law_actions()
+    actions["uav2"] = np.array([0.0, 0.0, -30.0])
+    for _ in range(steps):
+        _, _, terminations, truncations, _ = env.step(actions)
+        if terminations["uav2"] or truncations["uav2"]:
+            break
+    return terminations["uav2"], truncations["uav2"]
+
+
+def test_terminate_on_takes_one_kind_as_a_string(exp2):
+    # A string is one kind, not its letters: "ground_impact" ends the flight at the impact ...
+    env = FormationParallelEnv(exp2, set=short(4.0), terminate_on="ground_impact")
+    assert env.swarm.terminate_on == ("ground_impact",)
+    assert cut_thrust_of_uav2(env) == (True, False) and env.sim.time < 3.1
+    # ... and "collision" alone lets the same flight run to its end
+    env = FormationParallelEnv(exp2, set=short(4.0), terminate_on="collision")
+    assert cut_thrust_of_uav2(env) == (False, True) and env.sim.time == pytest.approx(4.0)
+
+
+def test_terminate_on_refuses_what_is_no_safety_event_kind(exp2):
+    kinds = re.escape("the kinds are flip, ground_impact, collision, near_miss, left_region")
+    for env in (FormationEnv, FormationParallelEnv):
+        for bad, named in ((["colision"], "'colision'"), ("flip,collision", "'flip,collision'"),
+                           (("flip", 3), "3")):
+            with pytest.raises(ValueError, match=f"terminate_on: {re.escape(named)} is not a "
+                                                 f"safety event kind; {kinds}"):
+                env(exp2, set=short(0.2), terminate_on=bad)
+        with pytest.raises(TypeError, match=r"terminate_on=None: .*\(\(\) for none\)"):
+            env(exp2, set=short(0.2), terminate_on=None)
+    assert FormationEnv(exp2, set=short(0.2), terminate_on=()).swarm.terminate_on == ()
+
+
+def test_the_safety_event_kinds_are_the_runners(source):
+    """terminate_on is checked against SAFETY_EVENTS: the runner's list, as its header has it."""
+    header = (source / "runner/config/include/mjformation/config/experiment.hpp").read_text()
+    listed = re.search(r"kSafetyEventKinds\[\] = \{([^}]*)\}", header).group(1)
+    assert SAFETY_EVENTS == tuple(re.findall(r'"([a-z_]+)"', listed))
+
+
+def test_step_refuses_a_key_that_is_no_live_agent(exp2):
+    env = FormationParallelEnv(exp2, set=short(0.2))
+    env.reset(seed=0)
+    law = env.law_actions()
+    for key in ("uav9", "uav0", "UAV1"):
+        with pytest.raises(ValueError, match=rf"step\(actions\): '{key}' is not a live agent "
+                                             rf"\(the live agents: {FOLLOWERS}"):
+            env.step({**law, key: np.zeros(3)})
+    with pytest.raises(ValueError, match="uav0 is the leader"):
+        env.step({"uav0": np.zeros(3)})
+    with pytest.raises(TypeError, match=r"a dict \{agent: action\}, not ndarray"):
+        env.step(np.zeros((6, 3)))
+    assert env.sim.step_index == 0  # nothing flew
+    # A live agent left out still flies the law's command (PettingZoo's partial action dict)
+    env.step({"uav1": law["uav1"]})
+    assert env.sim.step_index == env.swarm.action_steps
+
+
+def test_step_outside_an_episode_raises_and_says_to_reset(exp2):
+    before = re.escape("step() called before reset(): call reset() before step()")
+    ended = re.escape("step() called after the episode ended (truncated at t = 0.100 s, the "
+                      "[run] duration): call reset() to start a new episode")
+    # The parallel env: no live agent before reset, as PettingZoo's environments
+    env = FormationParallelEnv(exp2, set=short(0.1))
+    assert env.agents == [] and env.possible_agents == FOLLOWERS.split(", ")
+    with pytest.raises(RuntimeError, match=before):
+        env.step({})
+    with pytest.raises(RuntimeError, match=re.escape("law_actions() called before reset()")):
+        env.law_actions()
+    env.reset(seed=0)
+    while env.agents:
+        env.step(env.law_actions())
+    with pytest.raises(RuntimeError, match=ended):
+        env.step({})
+    obs, _ = env.reset(seed=0)  # a new episode steps again
+    assert env.agents == env.possible_agents and env.step(env.law_actions())[0].keys() == obs.keys()
+    # The gymnasium env
+    env = FormationEnv(exp2, set=short(0.1))
+    with pytest.raises(RuntimeError, match=before):
+        env.step(np.zeros(3))
+    with pytest.raises(RuntimeError, match=re.escape("law_action() called before reset()")):
+        env.law_action()
+    env.reset(seed=0)
+    done = False
+    while not done:
+        _, _, terminated, truncated, _ = env.step(env.law_action())
+        done = terminated or truncated
+    with pytest.raises(RuntimeError, match=ended):
+        env.step(env.law_action())
+    env.reset(seed=0)
+    env.step(env.law_action())
+
+
+def test_a_terminated_episode_says_how_it_ended(exp2):
+    env = FormationParallelEnv(exp2, set=short(4.0))
+    assert cut_thrust_of_uav2(env) == (True, False)
+    with pytest.raises(RuntimeError, match=r"ended \(terminated at t = 3\.000 s by "
+                                           r"ground_impact\)"):
+        env.step({})
+
+
+def test_a_shorter_duration_alone_scales_the_metric_window_in_both_envs(exp2):
+    # exp2.toml averages over [25, 40] s of 40 s: the runner refuses that window in a 0.4 s run
+    for env_class in (FormationEnv, FormationParallelEnv):
+        with pytest.warns(UserWarning, match=rf"mjformation\.envs\.{env_class.__name__}: .*"
+                                             r"proportionate window \[0\.25, 0\.4\] s") as caught:
+            env = env_class(exp2, set={"run.duration": 0.4})
+        assert [w.filename for w in caught if "proportionate" in str(w.message)] == [__file__]
+        env.reset(seed=0)
+        assert env.sim.total_steps == 400
+
+
+def test_without_gymnasium_the_import_says_what_to_install():
+    # As in Debian's python3, which runs mjformation but has no gymnasium
+    code = "import sys; sys.modules['gymnasium'] = None; import mjformation.envs"
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 1
+    last = done.stderr.strip().splitlines()[-1]
+    assert last.startswith("ImportError: mjformation.envs needs gymnasium and pettingzoo"), last
+    assert "cannot import 'gymnasium'" in last and "pip install '.[envs]'" in last, last
+    assert ".venv/bin/python" in last, last
+
+
 def test_a_crash_is_charged_the_steps_it_does_not_fly(exp2):
     """A learner that holds still is rammed within a second: the step that ends the episode
     charges its reward for every step left to the horizon, so ending early is not a way out of
@@ -143,9 +274,17 @@ def test_the_gymnasium_env_passes_its_checker(exp2):
     from gymnasium.utils.env_checker import check_env
 
     env = FormationEnv(exp2, follower=2, set=short(0.5))
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")  # float64 spaces: kept for the bit-exact commands
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
         check_env(env, skip_render_check=True)
+    # What docs/PYTHON.md says it prints: the action Box is in physical units, the observation
+    # Box unbounded; nothing of the float64 dtype
+    said = [str(w.message) for w in caught if "gymnasium" in w.filename]
+    expected = ("we recommend using a symmetric and normalized space (range=[-1, 1] or [0, 1])",
+                "A Box observation space minimum value is -infinity",
+                "A Box observation space maximum value is infinity")
+    assert len(said) == len(expected), said
+    assert all(any(e in message for message in said) for e in expected), said
     obs, _ = env.reset(seed=5)
     obs2, reward, terminated, truncated, info = env.step(env.law_action())
     assert obs.shape == env.observation_space.shape and reward < 0 and not terminated

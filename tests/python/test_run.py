@@ -140,3 +140,19 @@ def test_simulation_steps_to_the_recorded_rows(exp2, tmp_path):
     g = sim.graph
     assert g.leader_weight.tolist() == [1, 0, 0, 0, 0, 0] and g.adjacency[0, 1] == 1.0
     assert np.allclose(g.laplacian.sum(axis=1), g.leader_weight)
+
+
+def test_simulation_scales_the_metric_window_of_a_shorter_run(exp2, recwarn):
+    # exp2.toml averages over [25, 40] s of 40 s, a window the runner refuses in a 0.4 s run:
+    # a duration alone scales it, as run() does, and says so at the caller's line
+    with pytest.warns(UserWarning, match=r"mjformation\.Simulation: .*proportionate window "
+                                         r"\[0\.25, 0\.4\] s; pass run\.metric_window") as caught:
+        sim = mjformation.Simulation(exp2, set={"run.duration": 0.4})
+    assert [w.filename for w in caught if "proportionate" in str(w.message)] == [__file__]
+    assert sim.step(10**6).step_index == sim.total_steps == 400
+    driven = mjformation.Simulation(exp2, set=["run.duration=0.4"], driven=True)  # the CLI's syntax
+    assert driven.total_steps == 400
+    # A window given is kept, without a warning
+    recwarn.clear()
+    mjformation.Simulation(exp2, set={"run.duration": 0.4, "run.metric_window": [0.0, 0.4]})
+    assert not [w for w in recwarn if "proportionate" in str(w.message)]

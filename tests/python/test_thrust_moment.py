@@ -113,7 +113,7 @@ def test_the_gymnasium_env_passes_its_checker_with_thrust_and_moments(exp2):
     env = FormationEnv(exp2, follower=1, set=short(0.3), action=THRUST_MOMENT)
     assert env.action_space.shape == (4,) and env.swarm.action_steps == 1
     with warnings.catch_warnings():
-        warnings.simplefilter("ignore")  # float64 spaces
+        warnings.simplefilter("ignore")  # unnormalised action Box, unbounded observations
         check_env(env, skip_render_check=True)
     env.reset(seed=0)
     _, reward, terminated, _, _ = env.step(env.hover_action())
