@@ -78,6 +78,16 @@ def terminate_kinds(terminate_on) -> tuple:
     return kinds
 
 
+def refuse_render_mode(render_mode) -> None:
+    """render_mode: None only. The environments draw nothing themselves; a Gymnasium wrapper
+    asking for frames (RecordVideo) is told where pictures come from rather than handed None."""
+    if render_mode is not None:
+        raise ValueError(f"render_mode={render_mode!r}: the environments render nothing "
+                         "(render_modes is empty); for pictures, mjformation.run(...) writes "
+                         "snapshots and video (docs/PYTHON.md), and an exported scene flies in "
+                         "MuJoCo's viewer (docs/PLUGINS.md)")
+
+
 class _Swarm:
     """What both environments share: the simulation, the per-follower observation vectors, the
     reward and the episode's end."""
@@ -256,7 +266,8 @@ class FormationParallelEnv(ParallelEnv):
 
     def __init__(self, experiment, set=None, plugin_path=None, action_steps=None, accel_max=5.0,
                  vertical_max=2.0, terminate_on=TERMINATE_ON, crash_penalty=10.0,
-                 velocity_weight=0.1, truth=False, action="acceleration"):
+                 velocity_weight=0.1, truth=False, action="acceleration", render_mode=None):
+        refuse_render_mode(render_mode)
         self.swarm = _Swarm("FormationParallelEnv", experiment, set, plugin_path, action_steps,
                             accel_max, vertical_max, terminate_on, crash_penalty,
                             velocity_weight, truth, action)
@@ -373,7 +384,8 @@ class FormationEnv(gymnasium.Env):
     def __init__(self, experiment, follower: int = 0, others: Callable | None = None, set=None,
                  plugin_path=None, action_steps=None, accel_max=5.0, vertical_max=2.0,
                  terminate_on=TERMINATE_ON, crash_penalty=10.0, velocity_weight=0.1, truth=False,
-                 action="acceleration"):
+                 action="acceleration", render_mode=None):
+        refuse_render_mode(render_mode)
         self.swarm = _Swarm("FormationEnv", experiment, set, plugin_path, action_steps, accel_max,
                             vertical_max, terminate_on, crash_penalty, velocity_weight, truth,
                             action)
@@ -436,3 +448,10 @@ class FormationEnv(gymnasium.Env):
         info.update(self._info(obs))
         return (self.swarm.vectors(obs)[self.follower], reward, terminated,
                 truncated and not terminated, info)
+
+
+# gymnasium.make("mjformation/Formation-v0", experiment=...) builds FormationEnv with the same
+# keywords. No step limit or other wrapper is added: the episode's end is the experiment's own
+# [run] duration (truncation) and its safety events (termination).
+if "mjformation/Formation-v0" not in gymnasium.registry:
+    gymnasium.register(id="mjformation/Formation-v0", entry_point=FormationEnv)

@@ -290,6 +290,29 @@ def test_the_gymnasium_env_passes_its_checker(exp2):
     assert obs.shape == env.observation_space.shape and reward < 0 and not terminated
 
 
+def test_gymnasium_make_builds_the_env_and_flies_the_runners_flight(exp2):
+    import gymnasium
+
+    env = gymnasium.make("mjformation/Formation-v0", experiment=exp2, follower=1,
+                         set=short(0.2))
+    direct = FormationEnv(exp2, follower=1, set=short(0.2))
+    assert isinstance(env.unwrapped, FormationEnv)
+    obs, _ = env.reset(seed=3)
+    obs_direct, _ = direct.reset(seed=3)
+    assert np.array_equal(obs, obs_direct)
+    obs, *_ = env.step(env.unwrapped.law_action())
+    obs_direct, *_ = direct.step(direct.law_action())
+    assert np.array_equal(obs, obs_direct)
+
+
+def test_a_render_mode_is_refused_saying_where_pictures_come_from(exp2):
+    for make in (lambda: FormationEnv(exp2, set=short(0.2), render_mode="rgb_array"),
+                 lambda: FormationParallelEnv(exp2, set=short(0.2), render_mode="human")):
+        with pytest.raises(ValueError, match="render nothing.*snapshots and video"):
+            make()
+    FormationEnv(exp2, set=short(0.2), render_mode=None)  # Gymnasium's default is accepted
+
+
 def test_the_parallel_env_passes_pettingzoos_api_test(exp2):
     from pettingzoo.test import parallel_api_test
 
