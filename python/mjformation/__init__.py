@@ -10,6 +10,7 @@ Python on the same vehicles, runner, recorders and summary as a C++ plugin (docs
 from __future__ import annotations
 
 import ctypes
+import errno
 import json
 import os
 import shutil
@@ -283,6 +284,7 @@ def run(experiment, set=None, out=None, render=False, formation=None, overwrite=
     inside the duration), as the CLI's --no-render. A shorter run.duration alone scales the
     file's metric_window with it (a UserWarning states the window used).
     """
+    experiment = _experiment_file(experiment)
     temporary = out is None
     out = Path(tempfile.mkdtemp(prefix="mjformation_")) / "run" if temporary else Path(out)
     in_use = _LawInUse(formation, experiment)
@@ -313,11 +315,26 @@ def run(experiment, set=None, out=None, render=False, formation=None, overwrite=
 def check(experiment, set=None, formation=None, plugin_path=None, render=True) -> dict:
     """Validates an experiment (config, model, plugins, topology) without running it; with
     render=False, not [render]'s checks (as run(render=False) and the CLI's --no-render)."""
+    experiment = _experiment_file(experiment)
     with _LawInUse(formation, experiment) as law_overrides:
         overrides = _overrides(set)
         overrides += _proportionate_window(experiment, overrides, "mjformation.check")
         return _core.check(str(experiment), law_overrides + overrides,
                            _plugin_path(plugin_path), bool(render))
+
+
+def _experiment_file(experiment) -> str:
+    """The experiment file's path, or FileNotFoundError (an OSError, as open() raises) saying
+    where it was looked for: a relative path is read from the working folder."""
+    if not isinstance(experiment, (str, os.PathLike)):
+        raise TypeError(f"experiment= takes a file's path (str or os.PathLike), not {experiment!r}")
+    path = os.fspath(experiment)
+    if not os.path.isfile(path):
+        where = os.path.abspath(path)
+        what = "is a folder, not an experiment file" if os.path.isdir(path) else "does not exist"
+        raise FileNotFoundError(errno.ENOENT, f"{path}: {what} (looked at {where}; the working "
+                                f"folder is {os.getcwd()})", path)
+    return path
 
 
 def _require_bool(name: str, value) -> bool:
@@ -345,7 +362,7 @@ def export(experiment, out, overwrite=False, set=None, plugin_path=None) -> Path
     set and plugin_path: as for run() (the CLI's --set and --plugin-path)."""
     # The user's folders only: an export carries them, and the native library finds the
     # installed plugins from its own place (a folder of this machine would not travel).
-    scene, notes = _core.export(str(experiment), _require_path("out", out),
+    scene, notes = _core.export(_experiment_file(experiment), _require_path("out", out),
                                 _require_bool("overwrite", overwrite), _overrides(set),
                                 _user_plugin_path(plugin_path))
     for note in notes:
@@ -389,6 +406,7 @@ class Simulation:
 
     def __init__(self, experiment, set=None, formation=None, plugin_path=None, driven=False,
                  seed=None):
+        experiment = _experiment_file(experiment)
         # A shorter run.duration alone scales the file's metric_window, as run() does: the runner
         # refuses a configuration whose window reaches past its duration.
         overrides = _overrides(set)

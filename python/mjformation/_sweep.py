@@ -24,7 +24,10 @@ def sweep(experiment, vary=None, seeds=None, jobs=2, set=None, out=None, render=
     (finish with resume=True). The CLI's exit code 3 (some run failed) is not an exception:
     see Sweep.complete and each cell's complete_runs.
     """
-    from . import _LawInUse, _overrides, _plugin_path, _proportionate_window, _toml_value
+    from . import (_experiment_file, _LawInUse, _overrides, _plugin_path, _proportionate_window,
+                   _toml_value)
+
+    experiment = _experiment_file(experiment)
 
     out = Path(tempfile.mkdtemp(prefix="mjformation_sweep_")) / "sweep" if out is None else Path(out)
     args = ["sweep", str(experiment), "--out", str(out), "--jobs", str(int(jobs))]

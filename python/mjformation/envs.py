@@ -35,7 +35,8 @@ except ModuleNotFoundError as missing:
         "the project's .venv/bin/python, which bash scripts/setup.sh fills from "
         "requirements.txt") from missing
 
-from . import STATE_COLUMNS, Simulation, SimulationError, _overrides, _proportionate_window
+from . import (STATE_COLUMNS, Simulation, SimulationError, _experiment_file, _overrides,
+               _proportionate_window)
 
 STATE = len(STATE_COLUMNS)  # 13
 OFFSET = 6  # f_i(t): px py vx vy ax ay
@@ -98,6 +99,7 @@ class _Swarm:
         if action not in ACTIONS:
             raise ValueError(f"action={action!r}: one of {ACTIONS}")
         self.terminate_on = terminate_kinds(terminate_on)
+        experiment = _experiment_file(experiment)
         # A shorter run.duration alone scales the file's metric_window, as mjformation.run does;
         # done here so that the warning names the environment and the user's line (stacklevel 4:
         # past this and the environment's __init__), and the Simulation finds the window given.

@@ -67,6 +67,25 @@ def test_bad_config_raises_value_error_with_the_cli_message(cli, exp2, tmp_path)
         assert not (tmp_path / "never").exists()  # nothing written
 
 
+def test_a_missing_experiment_file_is_a_file_not_found_error_saying_where(exp2, tmp_path):
+    from mjformation.envs import FormationEnv
+
+    missing = tmp_path / "nope.toml"
+    for call in (lambda: mjformation.run(missing, out=tmp_path / "never"),
+                 lambda: mjformation.check(missing),
+                 lambda: mjformation.export(missing, tmp_path / "never"),
+                 lambda: mjformation.sweep(missing, seeds=2, out=tmp_path / "never"),
+                 lambda: mjformation.Simulation(missing),
+                 lambda: FormationEnv(missing)):
+        with pytest.raises(FileNotFoundError, match="does not exist.*the working folder is"):
+            call()
+    with pytest.raises(FileNotFoundError, match="is a folder"):
+        mjformation.check(tmp_path)
+    with pytest.raises(TypeError, match="a file's path"):
+        mjformation.check(None)
+    assert not (tmp_path / "never").exists()  # nothing written
+
+
 def test_timeseries_is_the_analysis_loader_in_numpy(exp2, tmp_path):
     from mjfanalysis import io
 
