@@ -214,6 +214,10 @@ void OnlineMetrics::StepControls(const Simulation& sim) {
 nlohmann::ordered_json OnlineMetrics::Summary(const Simulation& sim) const {
   nlohmann::ordered_json m;
   m["sigma_f_window"] = {window_[0], window_[1]};
+  // A run that stopped before the window's end (interrupted, failed, [run] stop_on) averaged
+  // over less than the window it names: the last time it sampled is stated beside it. A run
+  // that reached the end has sampled there, and its summary has no such key.
+  if (have_initial_ && last_time_ < window_[1] - 1e-9) m["sigma_f_sampled_until_s"] = last_time_;
   m["sigma_f_mean"] = JsonNumber(sigma_count_ ? sigma_sum_ / sigma_count_ : kNaN);
   m["sigma_f_samples"] = sigma_count_;
   m["sigma_f_initial"] = JsonNumber(have_initial_ ? sigma_initial_ : kNaN);

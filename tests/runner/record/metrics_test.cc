@@ -131,7 +131,27 @@ TEST(MetricsTest, MeanOverTheWindowOnly) {
   EXPECT_DOUBLE_EQ(m["sigma_f_mean"].get<double>(), sigma[1]);
   EXPECT_DOUBLE_EQ(m["sigma_f_initial"].get<double>(), sigma[0]);
   EXPECT_DOUBLE_EQ(m["sigma_f_final"].get<double>(), sigma[1]);
-  EXPECT_NE(sigma[0], sigma[1]);  // the followers moved towards their slots
+  EXPECT_NE(sigma[0], sigma[1]);                        // the followers moved towards their slots
+  EXPECT_FALSE(m.contains("sigma_f_sampled_until_s"));  // it sampled to the window's end
+}
+
+// A run stopped at 0.01 s of a window [0.005, 0.02]: the mean covers less than the window it
+// names, and the summary says up to when it sampled.
+TEST(MetricsTest, AWindowCutShortSaysWhenItsSamplesEnd) {
+  ExperimentConfig c = Parse(PointMassExperiment(-1.7, 0.4, 2.0, -1.2, 0.02));
+  c.metric_window = {0.005, 0.02};
+  Simulation stopped(c);
+  OnlineMetrics metrics(stopped);
+  std::vector<double> slots(6);
+  for (int64_t step = 0; step <= 10; ++step) {  // half the run: records at 0 and 0.01 s
+    stopped.ComputeControls();
+    if (step % 10 == 0) metrics.Sample(stopped, &slots, true);
+    if (step < 10) stopped.Integrate();
+  }
+  const auto m = metrics.Summary(stopped);
+  EXPECT_EQ(m["sigma_f_samples"], 1);
+  EXPECT_EQ(m["sigma_f_window"], (nlohmann::ordered_json{0.005, 0.02}));
+  EXPECT_DOUBLE_EQ(m["sigma_f_sampled_until_s"].get<double>(), 0.01);
 }
 
 TEST(MetricsTest, WithoutAFormationTheSlotsAreTheHeldSetpoints) {
