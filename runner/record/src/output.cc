@@ -226,9 +226,11 @@ TimeseriesWriter::TimeseriesWriter(const std::string& path, int n_vehicles, bool
       measured_(measured),
       wind_(wind),
       estimated_(estimated) {
-  file_ = std::fopen(path.c_str(), resume ? "r+b" : "wb");
+  // The header is in a resumed run's file already: Rewind opens it once the checkpoint has
+  // been read whole, and places the next row.
+  if (resume) return;
+  file_ = std::fopen(path.c_str(), "wb");
   if (!file_) throw OutputError(path + ": cannot write: " + std::strerror(errno));
-  if (resume) return;  // the header is in the file already; Rewind places the next row
   static const char* const kColumns[] = {"px",     "py",   "pz",    "vx",     "vy",
                                          "vz",     "roll", "pitch", "yaw",    "ax_cmd",
                                          "ay_cmd", "sx",   "sy",    "slot_x", "slot_y"};
@@ -435,6 +437,8 @@ uint64_t TimeseriesWriter::Checkpoint() {
 }
 
 void TimeseriesWriter::Rewind(uint64_t length) {
+  if (!file_) file_ = std::fopen(path_.c_str(), "r+b");
+  if (!file_) throw OutputError(path_ + ": cannot write: " + std::strerror(errno));
   struct stat info {};
   if (fstat(fileno(file_), &info) != 0 || static_cast<uint64_t>(info.st_size) < length) {
     throw OutputError(path_ + ": shorter than the checkpoint recorded (" + std::to_string(length) +

@@ -66,13 +66,15 @@ class TimeseriesRecorder final : public Recorder {
   void VisitState(StateArchive& archive) override {
     uint64_t length = archive.loading() ? 0 : writer_.Checkpoint();
     archive(length);
-    if (archive.loading()) writer_.Rewind(length);
+    if (archive.loading()) resumed_length_ = length;
   }
+  void ResumeFiles() override { writer_.Rewind(resumed_length_); }
 
  private:
   const LeaderAccelerationRecorder* leader_;  // owned by the same recorder list
   TimeseriesWriter writer_;
   int64_t every_, last_;
+  uint64_t resumed_length_ = 0;  // the file's length in the checkpoint loaded
 };
 
 std::vector<Vec3> Positions(const Simulation& sim) {

@@ -26,8 +26,14 @@ namespace {
 // layout-2 checkpoint of such a run would add them a second time every step; and a faulted
 // wrench model's motor lags are saved. Layout 4: the control tick's block stores the plugin
 // ABI's vehicle states and estimates field by field (doubles as themselves), not as 32-bit
-// halves, so a layout-3 block has another length.
-constexpr const char* kFormat = "mjformation checkpoint 4";
+// halves, so a layout-3 block has another length. Layout 5: the file ends with the SHA-256 of
+// everything before it, checked before any of it is read (a flipped bit in a number would
+// otherwise load and resume into another run).
+constexpr int kFormatNumber = 5;
+constexpr const char* kFormatPrefix = "mjformation checkpoint ";
+const std::string kFormat = kFormatPrefix + std::to_string(kFormatNumber);
+// The checksum's place: the last bytes of the file, the hex digits of Sha256Hex.
+constexpr size_t kChecksumChars = 64;
 
 std::string ReadWholeFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -63,6 +69,38 @@ void WriteAtomically(const std::string& path, const std::string& bytes) {
   }
 }
 
+// True when `bytes` end with the SHA-256 of what comes before.
+bool ChecksumHolds(const std::string& bytes) {
+  if (bytes.size() < kChecksumChars) return false;
+  const size_t payload = bytes.size() - kChecksumChars;
+  return bytes.compare(payload, kChecksumChars, Sha256Hex(bytes.substr(0, payload))) == 0;
+}
+
+// Refuses a file whose checksum does not hold, saying why as closely as its first words tell:
+// a checkpoint of another format (an older build's has no checksum), or a damaged file.
+[[noreturn]] void RefuseUnverified(const std::string& path, const std::string& bytes) {
+  std::string first;
+  try {
+    StateArchive probe(bytes);
+    probe(first);
+  } catch (const StateArchiveError&) {
+    first.clear();
+  }
+  const std::string prefix = kFormatPrefix;
+  if (first.compare(0, prefix.size(), prefix) == 0 && first != kFormat) {
+    throw ConfigError(path + ": a checkpoint of format " +
+                      PrintableExcerpt(first.substr(prefix.size())) +
+                      ", where this build reads format " + std::to_string(kFormatNumber) +
+                      ": a checkpoint resumes a run of the build that wrote it; start the run "
+                      "afresh with --overwrite");
+  }
+  const std::string what = first == kFormat ? "the checkpoint is damaged"
+                                            : "not a mjformation checkpoint, or a damaged one";
+  throw ConfigError(path + ": " + what +
+                    " (its SHA-256 does not match its contents): it cannot be resumed; start "
+                    "the run afresh with --overwrite");
+}
+
 void VisitRecording(StateArchive& archive, OnlineMetrics& metrics,
                     std::vector<std::unique_ptr<Recorder>>& recorders) {
   archive.Tag("metrics");
@@ -90,12 +128,16 @@ void RequireCheckpointable(const Simulation& sim, bool render) {
   }
 }
 
-StateArchive ResumeSimulation(const CheckpointPlan& plan, Simulation& sim) {
-  StateArchive archive(ReadWholeFile(plan.path));
+StateArchive ReadCheckpoint(const CheckpointPlan& plan) {
+  std::string bytes = ReadWholeFile(plan.path);
+  if (!ChecksumHolds(bytes)) RefuseUnverified(plan.path, bytes);
+  bytes.resize(bytes.size() - kChecksumChars);
+  StateArchive archive(std::move(bytes));
   try {
     archive.Tag(kFormat);
   } catch (const StateArchiveError&) {
-    throw ConfigError(plan.path + ": not a mjformation checkpoint (or one of another version)");
+    throw ConfigError(plan.path + ": not a mjformation checkpoint of format " +
+                      std::to_string(kFormatNumber));
   }
   std::string sha;
   archive(sha);
@@ -107,18 +149,27 @@ StateArchive ResumeSimulation(const CheckpointPlan& plan, Simulation& sim) {
                       ": resume with the same experiment file and --set options, or start "
                       "afresh with --overwrite");
   }
+  return archive;
+}
+
+void ResumeSimulation(const CheckpointPlan& plan, StateArchive& archive, Simulation& sim) {
   try {
     sim.VisitState(archive);
   } catch (const StateArchiveError& e) {
     throw ConfigError(plan.path + ": " + e.what());
   }
-  return archive;
 }
 
-void ResumeRecording(StateArchive& archive, OnlineMetrics& metrics,
+void ResumeRecording(const CheckpointPlan& plan, StateArchive& archive, OnlineMetrics& metrics,
                      std::vector<std::unique_ptr<Recorder>>& recorders) {
-  VisitRecording(archive, metrics, recorders);
-  if (!archive.at_end()) throw StateArchiveError("the checkpoint holds more than this run reads");
+  try {
+    VisitRecording(archive, metrics, recorders);
+    if (!archive.at_end()) {
+      throw StateArchiveError("the checkpoint holds more than this run reads");
+    }
+  } catch (const StateArchiveError& e) {
+    throw ConfigError(plan.path + ": " + e.what());
+  }
 }
 
 void WriteCheckpoint(const CheckpointPlan& plan, Simulation& sim, OnlineMetrics& metrics,
@@ -129,7 +180,7 @@ void WriteCheckpoint(const CheckpointPlan& plan, Simulation& sim, OnlineMetrics&
   archive(sha);
   sim.VisitState(archive);
   VisitRecording(archive, metrics, recorders);
-  WriteAtomically(plan.path, archive.bytes());
+  WriteAtomically(plan.path, archive.bytes() + Sha256Hex(archive.bytes()));
 }
 
 bool CheckpointDue(const CheckpointPlan& plan, const Simulation& sim, int64_t step) {

@@ -116,17 +116,33 @@ void Guarded(RunResult* result, Action action) {
   }
 }
 
+// What a run records into: the online metrics and the recorders (made and loaded before the
+// run directory is written to when the run resumes).
+struct Recording {
+  explicit Recording(const Simulation& sim) : metrics(sim) {}
+  OnlineMetrics metrics;
+  std::vector<std::unique_ptr<Recorder>> recorders;
+};
+
+// The recorders of a resumed run, with the checkpoint's metrics and recorder states loaded to
+// its end. Throws (ConfigError: the checkpoint is not this run's) before any file is changed.
+void LoadResumedRecording(const Simulation& sim, const RunDirectory* dir, const RunOptions& options,
+                          const CheckpointPlan& plan, StateArchive& checkpoint,
+                          Recording* recording) {
+  recording->recorders = MakeRecorders(sim, dir, {options.record, options.render, true});
+  ResumeRecording(plan, checkpoint, recording->metrics, recording->recorders);
+}
+
 // Everything after the run directory exists: recorders, steps, closing. Never throws.
 void RunInDirectory(Simulation& sim, const RunDirectory* dir, const RunOptions& options,
-                    const CheckpointPlan& plan, std::optional<StateArchive>& resumed,
-                    RunResult* result, nlohmann::ordered_json* recorder_summary) {
-  std::vector<std::unique_ptr<Recorder>> recorders;
-  OnlineMetrics metrics(sim);
+                    const CheckpointPlan& plan, Recording& recording, RunResult* result,
+                    nlohmann::ordered_json* recorder_summary) {
+  auto& recorders = recording.recorders;
+  OnlineMetrics& metrics = recording.metrics;
   ProgressLine progress(options.progress, sim.config().name, sim.config().duration);
   const auto start = Clock::now();
   Guarded(result, [&] {
-    recorders = MakeRecorders(sim, dir, {options.record, options.render, plan.resume});
-    if (resumed) ResumeRecording(*resumed, metrics, recorders);
+    if (!plan.resume) recorders = MakeRecorders(sim, dir, {options.record, options.render, false});
     StepLoop(sim, recorders, metrics, progress, plan, result);
   });
   progress.Finish();
@@ -166,12 +182,21 @@ RunResult RunExperiment(const ExperimentConfig& config, const RunOptions& option
       std::fprintf(stderr, "mjformation: warning: %s\n", w.c_str());
   }
   const CheckpointPlan plan = MakeCheckpointPlan(sim, options);
-  std::optional<StateArchive>
-      resumed;  // read before anything is written: a mismatch changes nothing
-  if (plan.resume) resumed = ResumeSimulation(plan, sim);
+  // A resume reads the whole checkpoint before anything is written: a checkpoint that is
+  // damaged, foreign or not this run's changes nothing.
+  std::optional<StateArchive> checkpoint;
+  if (plan.resume) {
+    checkpoint = ReadCheckpoint(plan);
+    ResumeSimulation(plan, *checkpoint, sim);
+  }
   std::unique_ptr<RunDirectory> dir;
   if (!options.out_dir.empty()) {
     dir = std::make_unique<RunDirectory>(options.out_dir, options.overwrite, options.resume);
+  }
+  Recording recording(sim);
+  if (checkpoint) {
+    LoadResumedRecording(sim, dir.get(), options, plan, *checkpoint, &recording);
+    for (auto& r : recording.recorders) r->ResumeFiles();
   }
   RunResult result;
   nlohmann::ordered_json recorded = nlohmann::ordered_json::object();
@@ -181,7 +206,7 @@ RunResult RunExperiment(const ExperimentConfig& config, const RunOptions& option
     dir->WriteText("scene.xml", sim.scene_xml());
   });
   if (result.error.empty()) {
-    RunInDirectory(sim, dir.get(), options, plan, resumed, &result, &recorded);
+    RunInDirectory(sim, dir.get(), options, plan, recording, &result, &recorded);
   }
   result.summary = BuildSummary(sim, result, recorded);
   try {

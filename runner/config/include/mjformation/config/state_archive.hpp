@@ -97,6 +97,25 @@ inline constexpr bool kIsPairLike<std::tuple<T...>> = true;
 
 }  // namespace state_kinds
 
+// `bytes` as a message can quote them: printable ASCII as it is, every other byte as \xNN (a NUL
+// would end the message where it is printed), and at most the first 48 bytes (a damaged length
+// can make a label of the rest of the file).
+inline std::string PrintableExcerpt(const std::string& bytes) {
+  constexpr size_t kShown = 48;
+  static const char* const kHex = "0123456789abcdef";
+  std::string out;
+  for (size_t i = 0; i < bytes.size() && i < kShown; ++i) {
+    const auto c = static_cast<unsigned char>(bytes[i]);
+    if (c >= 0x20 && c < 0x7f && c != '\\') {
+      out += static_cast<char>(c);
+    } else {
+      out += std::string("\\x") + kHex[c >> 4] + kHex[c & 15];
+    }
+  }
+  if (bytes.size() > kShown) out += "... (" + std::to_string(bytes.size()) + " bytes)";
+  return out;
+}
+
 class StateArchive {
  public:
   // Saving: an empty archive that grows. Loading: reads `bytes` from the start.
@@ -138,7 +157,8 @@ class StateArchive {
     std::string seen = name;
     Visit(seen);
     if (seen != name) {
-      throw StateArchiveError("the saved state holds '" + seen + "' where '" + name +
+      throw StateArchiveError("the saved state holds '" + PrintableExcerpt(seen) + "' where '" +
+                              name +
                               "' was expected: it was written by another version or "
                               "configuration");
     }

@@ -64,8 +64,9 @@ class TimeseriesWriter {
                    bool estimated = false, bool resume = false);
   ~TimeseriesWriter();
   // Checkpoints: Checkpoint() puts every row written so far on disk and returns the file's
-  // length; a writer made with `resume` opens the existing file without writing the header, and
-  // Rewind(length) cuts it back to a checkpoint's length (the rows after it are written again).
+  // length; a writer made with `resume` opens nothing until Rewind(length) opens the existing
+  // file (its header is there) and cuts it back to a checkpoint's length (the rows after it are
+  // written again).
   uint64_t Checkpoint();
   void Rewind(uint64_t length);
   // extra: one value per extra column (NaN: an empty cell), or nullptr when there are none.

@@ -43,9 +43,13 @@ class Recorder {
   // Adds what it wrote to summary.json (e.g. the snapshot files).
   virtual void Summarize(nlohmann::ordered_json* summary) const { (void)summary; }
   // What it carries from one step to the next (accumulators, the length of its file), both
-  // ways, for checkpoints (run --checkpoint-every, --resume). Loading a file's length cuts the
-  // file back to it. A recorder that cannot be saved throws; the run refuses it at startup.
+  // ways, for checkpoints (run --checkpoint-every, --resume). Loading touches no file (a
+  // checkpoint that fails further on leaves the run directory as it was). A recorder that
+  // cannot be saved throws; the run refuses it at startup.
   virtual void VisitState(StateArchive& archive);
+  // After a checkpoint was loaded whole: continues the files from where it left them (a file is
+  // cut back to the length it recorded).
+  virtual void ResumeFiles() {}
 };
 
 struct RecorderOptions {

@@ -6,7 +6,7 @@
 // holds, taken between two steps: the config's sha256, the simulation's state (the step,
 // MuJoCo's integration state with plugin_state, the control tick's bus and every plugin
 // instance's ABI state, the actuation's state), the online metrics and every recorder's state
-// (accumulators, the length of timeseries.csv).
+// (accumulators, the length of timeseries.csv); and it ends with the SHA-256 of all that.
 #ifndef MJFORMATION_RUN_CHECKPOINT_HPP_
 #define MJFORMATION_RUN_CHECKPOINT_HPP_
 
@@ -34,12 +34,20 @@ struct CheckpointPlan {
 // it on (Simulation::RequireSavable), or video (it cannot be continued).
 void RequireCheckpointable(const Simulation& sim, bool render);
 
-// The checkpoint of `plan`, read and checked (its format and its config hash against the
-// run's: a mismatch names both hashes), with the simulation's state loaded into `sim`; the
-// archive is left at the metrics' state (ResumeRecording reads on).
-StateArchive ResumeSimulation(const CheckpointPlan& plan, Simulation& sim);
-// Loads the metrics' and the recorders' states (cutting the files back) from the archive.
-void ResumeRecording(StateArchive& archive, OnlineMetrics& metrics,
+// A resume reads and checks the whole checkpoint before the run directory is written to: a
+// damaged or foreign checkpoint, or one of another run, throws ConfigError naming the file and
+// leaves every file as it was. The steps, in order:
+//
+// The checkpoint of `plan`, read and checked: its checksum (a damaged file is refused before
+// any of it is read), its format (another format names both numbers) and its config hash
+// against the run's (a mismatch names both hashes). The archive is left at the simulation's
+// state.
+StateArchive ReadCheckpoint(const CheckpointPlan& plan);
+// Loads the simulation's state from the archive; leaves it at the metrics' state.
+void ResumeSimulation(const CheckpointPlan& plan, StateArchive& archive, Simulation& sim);
+// Loads the metrics' and the recorders' states from the archive, to its end (the number of
+// recorders must be this run's). Touches no file: Recorder::ResumeFiles then continues them.
+void ResumeRecording(const CheckpointPlan& plan, StateArchive& archive, OnlineMetrics& metrics,
                      std::vector<std::unique_ptr<Recorder>>& recorders);
 
 // Writes a checkpoint of everything, atomically, at the current step (between steps).
