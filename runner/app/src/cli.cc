@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -256,18 +257,35 @@ void AddExportCommand(CLI::App& app, CliCommands* c) {
 
 namespace {
 
+// A finite number of seconds > 0. CLI::PositiveNumber lets NaN through (a period that is never
+// due: no checkpoint is ever written) and names its range in 309 digits.
+CLI::Validator PositiveSecondsOption() {
+  const std::string what = "a finite number of seconds > 0";
+  return CLI::Validator(
+      [=](std::string& text) {
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        const bool whole = !text.empty() && end == text.c_str() + text.size();
+        if (whole && std::isfinite(v) && v > 0) return std::string();
+        return what + ", got '" + EscapeControl(text) + "'";
+      },
+      what);
+}
+
 // run --checkpoint-every S, --resume (docs/ARCHITECTURE.md, "Checkpoint and resume").
 void AddCheckpointOptions(CLI::App* run, CliCommands* c) {
   run->add_option("--checkpoint-every", c->checkpoint_every,
                   "write a checkpoint every S simulated seconds into the run directory "
-                  "(checkpoint.mjfstate, replaced atomically): MuJoCo's state, every plugin's, "
-                  "the sensors, estimator, wind, metrics and outputs; per-agent execution, "
-                  "threads > 1 and video are refused at startup")
-      ->check(CLI::PositiveNumber);
+                  "(checkpoint.mjfstate, replaced atomically, with its SHA-256): MuJoCo's "
+                  "state, every plugin's, the partitions' (threads > 1), the per-agent "
+                  "network's, the sensors, estimator, wind, metrics and outputs; video "
+                  "([render] video = true) is refused at startup: run with --no-render")
+      ->check(PositiveSecondsOption());
   run->add_flag("--resume", c->resume,
                 "continue a killed run from the last checkpoint in its run directory (the same "
                 "experiment file and --set options: the config's sha256 is checked); the output "
-                "files end byte for byte as an uninterrupted run's")
+                "files end byte for byte as an uninterrupted run's. A damaged checkpoint, or one "
+                "of another run or build, is refused and changes nothing")
       ->excludes("--overwrite");
 }
 

@@ -87,6 +87,26 @@ TEST(CliTest, EveryIntegerOptionSaysWhatItTakes) {
   }
 }
 
+// --checkpoint-every takes a finite number of seconds > 0: NaN compared false against every
+// step, so a run given it never wrote a checkpoint; a negative value was named with a range of
+// 309 digits.
+TEST(CliTest, CheckpointEveryTakesAFinitePositiveNumberOfSeconds) {
+  const std::string dir = TempDir("cli_checkpoint_every");
+  const std::string exp = WriteFile(dir + "/e.toml", HoverExperiment(1, 0.2));
+  for (const std::string value : {"nan", "NaN", "inf", "-1", "0", "-0", "1e-400x", "soon"}) {
+    const auto [code, err] =
+        CliStderr({"run", exp, "--no-render", "-o", dir + "/r", "--checkpoint-every", value});
+    EXPECT_EQ(code, 2) << value;
+    EXPECT_THAT(
+        err, HasSubstr("--checkpoint-every: a finite number of seconds > 0, got '" + value + "'"));
+    EXPECT_THAT(err, ::testing::Not(HasSubstr("1797693134")));
+    EXPECT_FALSE(std::filesystem::exists(dir + "/r")) << value;
+  }
+  EXPECT_EQ(Cli({"run", exp, "--no-render", "-q", "-o", dir + "/r", "--checkpoint-every", "0.1"}),
+            0);
+  EXPECT_TRUE(std::filesystem::exists(dir + "/r/checkpoint.mjfstate"));
+}
+
 // A key varied twice would run every cell at the last value while the run names and sweep.csv
 // showed both: refused before anything is written.
 TEST(CliTest, AKeyVariedTwiceIsRefused) {
