@@ -97,7 +97,8 @@ TEST(CheckpointTest, AFlippedBitIsRefusedAsDamaged) {
   ExpectRefusedResume(run, "the checkpoint is damaged");
 }
 
-// The last bytes zeroed (they held the file's length, which cut timeseries.csv back).
+// The last 8 bytes zeroed: the damage lies past the recorders' states, so a resume that checked
+// the end last would have cut timeseries.csv back to the checkpoint first.
 TEST(CheckpointTest, AZeroedTailIsRefusedAndNoRowIsCut) {
   const CheckpointedRun run = RunWithCheckpoints("ckpt_tail");
   std::string bytes = ReadFile(run.checkpoint);
@@ -120,8 +121,7 @@ TEST(CheckpointTest, AnOlderFormatNamesBothNumbers) {
   ExpectRefusedResume(run, "a checkpoint of format 4, where this build reads format 5");
 }
 
-// Another file in the checkpoint's place: its binary bytes are quoted printably, never cut the
-// message short.
+// Another file (binary, with a NUL in its first label) in the checkpoint's place.
 TEST(CheckpointTest, AForeignFileIsRefused) {
   const CheckpointedRun run = RunWithCheckpoints("ckpt_foreign");
   WriteFile(run.checkpoint, std::string("\x05\0\0\0\0\0\0\0ab\0cd", 13) + std::string(64, '0'));
