@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
+#include <string_view>
 
 #include "mjformation/record/estimation_metrics.hpp"
 #include "mjformation/sim/simulation.hpp"
@@ -24,25 +25,71 @@ namespace fs = std::filesystem;
 // Written first into every run directory: what --overwrite checks before it deletes anything.
 constexpr const char* kMarker = ".mjformation-run";
 
-// What a run directory may hold: the runner's files, the analysis' figures, leftovers of an
-// interrupted atomic write. Anything else is the user's and stops --overwrite.
-bool IsRunEntry(const fs::directory_entry& e) {
+bool EndsWith(std::string_view s, std::string_view end) {
+  return s.size() >= end.size() && s.compare(s.size() - end.size(), end.size(), end) == 0;
+}
+
+// A snapshot as SnapshotRecorder names it (recorders.cc): t<sss.ss>.png, the time with at least
+// three digits before the point and two after; with ".tmp", the leftover of an interrupted write.
+bool IsSnapshotName(std::string_view name) {
+  if (EndsWith(name, ".tmp")) name.remove_suffix(4);
+  if (!EndsWith(name, ".png")) return false;
+  name.remove_suffix(4);
+  if (name.size() < 7 || name.front() != 't') return false;
+  name.remove_prefix(1);
+  const size_t point = name.size() - 3;
+  if (name[point] != '.') return false;
+  for (size_t i = 0; i < name.size(); ++i) {
+    if (i != point && (name[i] < '0' || name[i] > '9')) return false;
+  }
+  return true;
+}
+
+// The figures analysis/figures.py draws into RUN_DIR/figures (plots.FIGURE_NAMES).
+bool IsFigureName(std::string_view name) {
+  static const char* const kFigures[] = {"trajectories_xy.png",     "final_positions.png",
+                                         "attitude_pitch_roll.png", "attitude_yaw.png",
+                                         "sliding_s1.png",          "sigma_f.png"};
+  for (const char* f : kFigures) {
+    if (name == f) return true;
+  }
+  return false;
+}
+
+// The runner's own files at the top of a run directory, and leftovers of an interrupted atomic
+// write.
+bool IsRunFileName(std::string_view name) {
   static const char* const kFiles[] = {kMarker,          "config.toml",  "scene.xml",
                                        "timeseries.csv", "summary.json", "video.mp4",
                                        kCheckpointFile};
-  const std::string name = e.path().filename().string();
   for (const char* f : kFiles) {
-    if (name == f) return !e.is_symlink();
+    if (name == f) return true;
   }
-  if (name.size() > 4 && name.compare(name.size() - 4, 4, ".tmp") == 0) return !e.is_symlink();
-  if ((name == "snapshots" || name == "figures") && e.is_directory() && !e.is_symlink()) {
-    // Only regular files inside, no deeper folders and no links out of the run directory.
-    for (const auto& child : fs::directory_iterator(e.path())) {
-      if (child.is_symlink() || !child.is_regular_file()) return false;
+  return EndsWith(name, ".tmp");
+}
+
+// Appends to `foreign` what a run directory holds that the runner did not write: the runner's
+// files, snapshots/ with the snapshots and figures/ with the analysis' figures are its own;
+// anything else is the user's and stops --overwrite. A folder's foreign files are named inside
+// it (snapshots/notes.txt), so the user sees which file is in the way. Links are never the
+// run's: nothing is followed out of the run directory.
+void ListForeignEntries(const fs::path& dir, std::vector<std::string>* foreign) {
+  for (const auto& e : fs::directory_iterator(dir)) {
+    const std::string name = e.path().filename().string();
+    const bool link = e.is_symlink();
+    if (!link && e.is_regular_file() && IsRunFileName(name)) continue;
+    const bool snapshots = name == "snapshots", figures = name == "figures";
+    if ((snapshots || figures) && !link && e.is_directory()) {
+      for (const auto& child : fs::directory_iterator(e.path())) {
+        const std::string file = child.path().filename().string();
+        const bool own = !child.is_symlink() && child.is_regular_file() &&
+                         (snapshots ? IsSnapshotName(file) : IsFigureName(file));
+        if (!own) foreign->push_back(name + "/" + file);
+      }
+      continue;
     }
-    return true;
+    foreign->push_back(name);
   }
-  return false;
 }
 
 }  // namespace
@@ -57,9 +104,7 @@ void CheckRunDirectory(const std::string& path) {
                       "deleted. Choose another --out.");
   }
   std::vector<std::string> foreign;
-  for (const auto& e : fs::directory_iterator(dir)) {
-    if (!IsRunEntry(e)) foreign.push_back(e.path().filename().string());
-  }
+  ListForeignEntries(dir, &foreign);
   if (!foreign.empty()) {
     std::string list;
     for (const auto& f : foreign) list += (list.empty() ? "" : ", ") + f;

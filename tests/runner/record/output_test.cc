@@ -202,22 +202,53 @@ TEST(OutputTest, OverwriteRefusesLinksAndFoldersInsideSnapshots) {
   WriteFile(outside + "/precious.png", "keep");
   { RunDirectory first(dir, false); }
   fs::create_symlink(outside + "/precious.png", dir + "/snapshots/t001.00.png");
-  EXPECT_THAT(OutputErrorOf([&] { RunDirectory(dir, true); }), HasSubstr("(snapshots)"));
+  EXPECT_THAT(OutputErrorOf([&] { RunDirectory(dir, true); }),
+              HasSubstr("(snapshots/t001.00.png)"));
   fs::remove(dir + "/snapshots/t001.00.png");
   fs::create_symlink(outside, dir + "/figures");
   EXPECT_THAT(OutputErrorOf([&] { RunDirectory(dir, true); }), HasSubstr("(figures)"));
   EXPECT_EQ(ReadFile(outside + "/precious.png"), "keep");
 }
 
+// Inside snapshots/ and figures/ only the names the runner and analysis/figures.py give their
+// pictures are the run's: a user's file there is refused by its path, as at the top level.
+TEST(OutputTest, OverwriteRefusesAUsersFileInsideSnapshotsOrFigures) {
+  const std::string dir = TempDir("out_foreign_inside");
+  { RunDirectory first(dir, false); }
+  WriteFile(dir + "/snapshots/t000.50.png", "run");
+  WriteFile(dir + "/snapshots/keep_me.txt", "the user's");
+  EXPECT_THAT(OutputErrorOf([&] { RunDirectory(dir, true); }),
+              AllOf(HasSubstr("holds files mjformation did not write (snapshots/keep_me.txt)"),
+                    HasSubstr("nothing was deleted")));
+  EXPECT_EQ(ReadFile(dir + "/snapshots/keep_me.txt"), "the user's");
+  EXPECT_EQ(ReadFile(dir + "/snapshots/t000.50.png"), "run");
+  fs::remove(dir + "/snapshots/keep_me.txt");
+  // Near misses of a snapshot's name are not the run's either.
+  for (const char* name : {"t0.50.png", "t000.5.png", "tabc.de.png", "t000.50.jpg"}) {
+    WriteFile(dir + "/snapshots/" + name, "the user's");
+    EXPECT_THAT(OutputErrorOf([&] { RunDirectory(dir, true); }),
+                HasSubstr(std::string("(snapshots/") + name + ")"));
+    fs::remove(dir + "/snapshots/" + name);
+  }
+  fs::create_directories(dir + "/figures");
+  WriteFile(dir + "/figures/sigma_f.png", "run");
+  WriteFile(dir + "/figures/my_plot.png", "the user's");
+  EXPECT_THAT(OutputErrorOf([&] { RunDirectory(dir, true); }), HasSubstr("(figures/my_plot.png)"));
+  EXPECT_EQ(ReadFile(dir + "/figures/my_plot.png"), "the user's");
+  EXPECT_EQ(ReadFile(dir + "/figures/sigma_f.png"), "run");
+}
+
 TEST(OutputTest, OverwriteReplacesARunsOwnFiles) {
   const std::string dir = TempDir("out_replace");
   { RunDirectory first(dir, false); }
   for (const char* f : {"config.toml", "scene.xml", "timeseries.csv", "summary.json", "video.mp4",
-                        "summary.json.tmp", "snapshots/t001.00.png"}) {
+                        "summary.json.tmp", "snapshots/t001.00.png", "snapshots/t1234.50.png",
+                        "snapshots/t002.00.png.tmp"}) {
     WriteFile(dir + "/" + f, "old");
   }
   fs::create_directories(dir + "/figures");
-  WriteFile(dir + "/figures/sigma.png", "old");
+  WriteFile(dir + "/figures/sigma_f.png", "old");
+  WriteFile(dir + "/figures/trajectories_xy.png", "old");
   RunDirectory again(dir, true);
   std::vector<std::string> left;
   for (const auto& e : fs::recursive_directory_iterator(dir)) {
