@@ -90,5 +90,62 @@ TEST(ExportOptions, DataFilesAreWrittenResolved) {
   EXPECT_EQ(fs::weakly_canonical(named).string(), csv);
 }
 
+// Where export lists what it wrote into a folder (SceneBundle::kManifest).
+constexpr char kManifest[] = "mjformation_export.txt";
+
+// The message of the ExportError `export_to` throws ("" when it throws none).
+template <typename F>
+std::string ExportRefusal(F export_to) {
+  try {
+    export_to();
+  } catch (const ExportError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// -o naming a file is refused as a file, with or without --overwrite, and the file is kept.
+TEST(ExportOptions, AFileIsRefusedAsNotAFolder) {
+  const std::string experiment = WriteFile(TempDir("export") + "/e.toml", HoverExperiment());
+  const std::string file = WriteFile(TempDir("export_file") + "/plain.txt", "mine");
+  for (const bool overwrite : {false, true}) {
+    ExportOptions options;
+    options.overwrite = overwrite;
+    const std::string e = ExportRefusal([&] { ExportExperiment(experiment, file, options); });
+    EXPECT_NE(e.find(file + ": is a file, not a folder"), std::string::npos) << e;
+  }
+  EXPECT_EQ(ReadFile(file), "mine");
+}
+
+// --overwrite replaces what an export wrote (its manifest says so) and refuses a scene.xml, or
+// a manifest, of the user's, naming it, before anything is written.
+TEST(ExportOptions, OverwriteRefusesAScenesXmlExportDidNotWrite) {
+  const std::string experiment = WriteFile(TempDir("export") + "/e.toml", HoverExperiment());
+  ExportOptions overwrite;
+  overwrite.overwrite = true;
+  const std::string users = TempDir("export_users_scene");
+  WriteFile(users + "/scene.xml", "<mujoco/>  <!-- mine -->");
+  std::string e = ExportRefusal([&] { ExportExperiment(experiment, users, overwrite); });
+  EXPECT_NE(e.find(users + "/scene.xml: exists and was not written by export"), std::string::npos)
+      << e;
+  EXPECT_EQ(ReadFile(users + "/scene.xml"), "<mujoco/>  <!-- mine -->");
+  EXPECT_FALSE(fs::exists(users + "/" + kManifest));
+
+  const std::string listed = TempDir("export_users_list");
+  WriteFile(listed + "/" + kManifest, "scene.xml\n");
+  WriteFile(listed + "/scene.xml", "<mujoco/>  <!-- mine -->");
+  // A manifest without export's header line is the user's: it vouches for nothing.
+  e = ExportRefusal([&] { ExportExperiment(experiment, listed, overwrite); });
+  EXPECT_NE(e.find(listed + "/scene.xml: exists and was not written by export"), std::string::npos)
+      << e;
+  EXPECT_EQ(ReadFile(listed + "/scene.xml"), "<mujoco/>  <!-- mine -->");
+  EXPECT_EQ(ReadFile(listed + "/" + kManifest), "scene.xml\n");
+
+  const std::string exported = TempDir("export_again");
+  ExportExperiment(experiment, exported);
+  ExportExperiment(experiment, exported, overwrite);  // its own scene.xml: replaced
+  EXPECT_NE(ReadFile(exported + "/scene.xml").find("<mujoco"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace mjf::runner

@@ -63,11 +63,19 @@ std::vector<std::string> AssetPaths(const mjModel* m) {
 
 fs::path Absolute(const std::string& path) { return fs::absolute(path).lexically_normal(); }
 
-// What export wrote into `out_dir` before (the manifest), as relative names.
-std::set<std::string> Manifest(const fs::path& out_dir) {
-  std::set<std::string> written;
+// The manifest's first line: a folder whose manifest starts with it was written by export.
+constexpr char kManifestHeader[] =
+    "# written by mjformation export; --overwrite replaces scene.xml and these only";
+
+// What export wrote into `out_dir` before, as relative names: the manifest, scene.xml (which the
+// manifest's header names) and the files it lists; nothing when the folder holds no manifest of
+// export's.
+std::set<std::string> WrittenBefore(const fs::path& out_dir) {
   std::ifstream in(out_dir / SceneBundle::kManifest);
-  for (std::string line; std::getline(in, line);) {
+  std::string line;
+  if (!std::getline(in, line) || line != kManifestHeader) return {};
+  std::set<std::string> written = {SceneBundle::kManifest, "scene.xml"};
+  while (std::getline(in, line)) {
     if (!line.empty() && line[0] != '#') written.insert(line);
   }
   return written;
@@ -204,13 +212,17 @@ std::string SceneBundle::Relocated(std::string xml) {
 
 void SceneBundle::Write(const std::string& scene_xml) const {
   const fs::path out(out_dir_);
-  const std::set<std::string> written_before = Manifest(out);
+  const std::set<std::string> written_before = WrittenBefore(out);
   std::vector<std::pair<std::string, std::string>> files;  // relative name, bytes
+  std::string manifest = std::string(kManifestHeader) + "\n";
   for (const auto& [relative, source] : copies_) {
     files.emplace_back(relative, source == kAnchorSource
                                      ? std::string(std::begin(kAnchorPng), std::end(kAnchorPng))
                                      : ReadBytes(source));
+    manifest += relative + "\n";
   }
+  files.emplace_back("scene.xml", scene_xml);
+  files.emplace_back(kManifest, manifest);  // last: the folder is export's once it is there
   // Refusals first: nothing is written when one file would be lost.
   for (const auto& [relative, bytes] : files) {
     std::error_code ec;
@@ -221,14 +233,7 @@ void SceneBundle::Write(const std::string& scene_xml) const {
                         "away or export into another folder");
     }
   }
-  std::string manifest =
-      "# written by mjformation export; --overwrite replaces scene.xml and these only\n";
-  for (const auto& [relative, bytes] : files) {
-    WriteBytes(out / relative, bytes);
-    manifest += relative + "\n";
-  }
-  WriteBytes(out / "scene.xml", scene_xml);
-  WriteBytes(out / kManifest, manifest);
+  for (const auto& [relative, bytes] : files) WriteBytes(out / relative, bytes);
 }
 
 }  // namespace mjf::runner

@@ -152,7 +152,8 @@ constexpr char kTickActuator[] = "mjformation_swarm_tick";
 std::string ExtensionBlock(const std::vector<std::pair<std::string, std::string>>& pairs) {
   std::string xml =
       "  <!-- Flown by mjformation's native MuJoCo plugins: load libmjformation_mujoco.so before\n"
-      "       compiling this scene. Python: `import mjformation` (then mujoco.MjModel.from_xml_path\n"
+      "       compiling this scene. Python: `import mjformation` (then "
+      "mujoco.MjModel.from_xml_path\n"
       "       flies it); a pip-installed mjformation loads it with `import mujoco`; C:\n"
       "       mj_loadPluginLibrary(\"PATH/libmjformation_mujoco.so\"). Keep the files beside this\n"
       "       scene: it names them by relative paths. -->\n"
@@ -362,6 +363,11 @@ std::string ExportedSceneXml(const std::string& experiment, const ExportOptions&
 
 ExportResult ExportExperiment(const std::string& experiment, const std::string& out_dir,
                               const ExportOptions& options) {
+  std::error_code ec;
+  if (fs::exists(out_dir, ec) && !fs::is_directory(out_dir, ec)) {
+    throw ExportError(out_dir + ": is a file, not a folder; export writes a folder (scene.xml " +
+                      "and the files it needs): name a folder that is new or empty");
+  }
   if (NonEmptyDirectory(out_dir) && !options.overwrite) {
     throw ExportError(out_dir + ": exists and is not empty; pass --overwrite (Python: " +
                       "overwrite=True) to replace scene.xml and the files export wrote in it");
@@ -369,7 +375,6 @@ ExportResult ExportExperiment(const std::string& experiment, const std::string& 
   ExportResult result;
   SceneBundle bundle(out_dir);
   const std::string xml = SceneXml(experiment, options, &result.notes, &bundle);
-  std::error_code ec;
   fs::create_directories(out_dir, ec);
   if (ec) throw ExportError(out_dir + ": cannot create it: " + ec.message());
   result.scene_path = (fs::path(out_dir) / "scene.xml").string();

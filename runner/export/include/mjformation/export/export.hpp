@@ -32,8 +32,10 @@ struct ExportOptions {
 // names (the vehicle and scene models with their asset files, the data files), named relative
 // to the scene, so DIR can be moved (docs/PLUGINS.md, "Scenes that travel"). Refuses, naming
 // the file and the key, whatever the native path cannot carry (see the list in export.cc), and
-// refuses to write into an existing non-empty DIR unless `options.overwrite`, which replaces
-// scene.xml and the files export wrote there, never another. Throws ExportError or ConfigError.
+// refuses a DIR that is a file, and an existing non-empty DIR unless `options.overwrite`, which
+// replaces scene.xml and the files export wrote there (its manifest, mjformation_export.txt,
+// says which), never another: a file export would replace that it did not write is refused,
+// naming it, before anything is written. Throws ExportError or ConfigError.
 ExportResult ExportExperiment(const std::string& experiment, const std::string& out_dir,
                               const ExportOptions& options = {});
 
