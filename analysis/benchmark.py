@@ -10,11 +10,34 @@ puts analysis/ on PYTHONPATH (analysis/README.md).
 """
 
 import argparse
+import math
 import shlex
 import sys
 from pathlib import Path
 
 from mjfanalysis import benchmark as b
+
+
+def positive_int(text: str) -> int:
+    """argparse type: an integer of at least 1 (argparse names the option in its error)."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"takes a whole number of at least 1, not '{text}'")
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"takes a whole number of at least 1, not {value}")
+    return value
+
+
+def positive_float(text: str) -> float:
+    """argparse type: a finite number above 0."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"takes a number above 0, not '{text}'")
+    if not math.isfinite(value) or value <= 0:
+        raise argparse.ArgumentTypeError(f"takes a number above 0, not {text}")
+    return value
 
 
 def parse(argv):
@@ -23,9 +46,14 @@ def parse(argv):
                    "(default: all)")
     p.add_argument("--scenarios", help="comma-separated scenarios of experiments/benchmark/ "
                    "(default: all)")
-    p.add_argument("--seeds", type=int, default=3, help="seeds per cell: run.seed = 1..N")
+    p.add_argument("--seeds", type=positive_int, default=3,
+                   help="seeds per cell: run.seed = 1..N (N >= 1)")
     p.add_argument("--out", help="output folder (default runs/benchmark, with --law "
-                   "runs/benchmark_<NAME>); cells done there before are skipped")
+                   "runs/benchmark_<NAME>); cells done there before are skipped. A folder "
+                   f"that exists must be a benchmark's (it holds {b.MARKER}) or empty")
+    p.add_argument("--overwrite", action="store_true",
+                   help="write the board into an existing --out that is not a benchmark's "
+                   "(its leaderboard.md, .json and .png are replaced; nothing else is touched)")
     p.add_argument("--law", help="fly this one law on every scenario and print its row beside "
                    "the stored board (experiments/benchmark/leaderboard.json)")
     p.add_argument("--baseline", default=str(b.BASELINE),
@@ -34,9 +62,9 @@ def parse(argv):
                    help="an override for every run, as mjformation run --set (repeat)")
     p.add_argument("--plugin-path", action="append", default=[],
                    help="extra folder to search for plugins (a law of your own)")
-    p.add_argument("--jobs", type=int, default=2, help="runs at once (default 2)")
-    p.add_argument("--band", type=float, default=b.bm.DEFAULT_BAND_M,
-                   help="reaching band b of the reaching time, m (default 1)")
+    p.add_argument("--jobs", type=positive_int, default=2, help="runs at once (default 2)")
+    p.add_argument("--band", type=positive_float, default=b.bm.DEFAULT_BAND_M,
+                   help="reaching band b of the reaching time, m, above 0 (default 1)")
     p.add_argument("--mjformation", default="mjformation", help="the runner to fly with")
     return p.parse_args(argv)
 
@@ -64,13 +92,14 @@ def plan_of(args, baseline_meta) -> b.Plan:
     return b.Plan(mjformation=args.mjformation, laws=laws,
                   scenarios=b.pick(args.scenarios, b.known_scenarios(), "scenario"),
                   seeds=seeds, out=out, sets=sets, plugin_path=args.plugin_path,
-                  jobs=max(1, args.jobs), band=args.band)
+                  jobs=args.jobs, band=args.band)
 
 
 def main(argv):
     args = parse(argv)
     stored, stored_meta = b.baseline_records(args.baseline) if args.law else ([], {})
     plan = plan_of(args, stored_meta)
+    b.claim_out(plan.out, args.overwrite)
     records = b.fly_all(plan)
     info = b.meta(plan, [shlex.quote(a) for a in argv if a != "--mjformation"
                          and a != args.mjformation])

@@ -190,6 +190,36 @@ def meta(plan: Plan, argv: list) -> dict:
             "command": " ".join(["mjformation", "benchmark", *argv])}
 
 
+# Written first into every benchmark folder, as `mjformation run` marks its run directory
+# (.mjformation-run): a folder with it is the benchmark's, to resume and to write the board in.
+MARKER = ".mjformation-benchmark"
+BOARD_FILES = ("leaderboard.md", "leaderboard.json", "leaderboard.png")
+
+
+def claim_out(out: Path, overwrite: bool = False) -> None:
+    """Makes out the benchmark's folder before anything is flown: a new or empty folder gets the
+    marker; a marked one is resumed; any other is refused (SystemExit, nothing written) unless
+    overwrite, which lets the board replace its leaderboard files and marks it."""
+    if out.exists() and not out.is_dir():
+        raise SystemExit(f"benchmark: --out {out}: is a file, not a folder; nothing was run")
+    marker = out / MARKER
+    if marker.is_file() and not marker.is_symlink():
+        return
+    if out.exists() and any(out.iterdir()) and not overwrite:
+        held = sorted(p.name for p in out.iterdir())
+        mine = [f for f in BOARD_FILES if f in held]
+        raise SystemExit(
+            f"benchmark: --out {out}: exists, is not empty ({', '.join(held[:5])}"
+            f"{', ...' if len(held) > 5 else ''}) and is not a benchmark folder (no {MARKER} "
+            f"marker); the board would replace {', '.join(mine or BOARD_FILES)} there. Nothing "
+            "was run or written: choose another --out, or pass --overwrite to write the board "
+            "into it")
+    out.mkdir(parents=True, exist_ok=True)
+    marker.write_text("This folder is a mjformation benchmark folder: `mjformation benchmark "
+                      "--out` resumes it\nand replaces its leaderboard files. Delete this file "
+                      "to protect the folder from that.\n")
+
+
 def write_board(records: list, info: dict, out: Path) -> dict:
     """leaderboard.json, leaderboard.md and leaderboard.png in out; returns the board."""
     board = leaderboard.build(records)

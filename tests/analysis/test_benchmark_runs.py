@@ -133,3 +133,62 @@ def test_python_law_cell_runs_through_mjformation_run():
                        str(b.SCENARIO_DIR / "s.toml"), "o/runs/my_law/s/seed2", "2"]
     assert " ".join(cmd[6:]) == ("--mjformation build/runner/mjformation "
                                  "--set run.duration=2.0 --plugin-path p")
+
+
+def test_the_folder_is_claimed_before_anything_is_flown(tmp_path):
+    new = tmp_path / "new"
+    b.claim_out(new)
+    assert (new / b.MARKER).is_file()
+    (new / "leaderboard.md").write_text("an earlier board")
+    b.claim_out(new)  # the benchmark's own folder: resumed
+    users = tmp_path / "users"
+    users.mkdir()
+    (users / "leaderboard.md").write_text("notes")
+    with pytest.raises(SystemExit, match=r"users: exists, is not empty \(leaderboard.md\) and is "
+                       r"not a benchmark folder .*would replace leaderboard.md there.*--overwrite"):
+        b.claim_out(users)
+    assert [p.name for p in users.iterdir()] == ["leaderboard.md"]
+    b.claim_out(users, overwrite=True)
+    assert (users / b.MARKER).is_file() and (users / "leaderboard.md").read_text() == "notes"
+    (tmp_path / "file").write_text("mine")
+    with pytest.raises(SystemExit, match="file: is a file, not a folder"):
+        b.claim_out(tmp_path / "file", overwrite=True)
+
+
+SCRIPT = Path(__file__).resolve().parents[2] / "analysis" / "benchmark.py"
+
+
+def _benchmark(fake, *args):
+    """analysis/benchmark.py as `mjformation benchmark` starts it (benchmark_cli.cc)."""
+    import os
+    import subprocess
+    env = dict(os.environ, PYTHONPATH=str(SCRIPT.parent))
+    return subprocess.run([sys.executable, str(SCRIPT), "--mjformation", str(fake),
+                           "--scenarios", "b01_paper_circle", "--laws", "smc_discrete", *args],
+                          capture_output=True, text=True, env=env)
+
+
+def test_a_users_folder_is_refused_before_anything_is_flown(fake, tmp_path):
+    out = tmp_path / "d"
+    out.mkdir()
+    (out / "leaderboard.md").write_text("notes\n")
+    done = _benchmark(fake, "--seeds", "1", "--out", str(out))
+    assert done.returncode == 1
+    assert "is not a benchmark folder" in done.stderr and "--overwrite" in done.stderr
+    assert sorted(p.name for p in out.iterdir()) == ["leaderboard.md"]
+    assert (out / "leaderboard.md").read_text() == "notes\n"
+    assert _calls(tmp_path) == []
+    done = _benchmark(fake, "--seeds", "1", "--out", str(out), "--overwrite")
+    assert done.returncode == 0, done.stderr
+    assert len(_calls(tmp_path)) == 1 and "smc_discrete" in (out / "leaderboard.md").read_text()
+
+
+@pytest.mark.parametrize("option, value, takes", [
+    ("--seeds", "0", "at least 1"), ("--seeds", "-2", "at least 1"),
+    ("--jobs", "0", "at least 1"), ("--band", "-1", "above 0"), ("--band", "nan", "above 0")])
+def test_options_out_of_range_are_refused_naming_them(fake, tmp_path, option, value, takes):
+    args = ["--seeds", "1", "--out", str(tmp_path / "board"), option, value]
+    done = _benchmark(fake, *args)
+    assert done.returncode == 2
+    assert f"argument {option}: takes" in done.stderr and takes in done.stderr, done.stderr
+    assert not (tmp_path / "board").exists() and _calls(tmp_path) == []
