@@ -282,23 +282,19 @@ void AddBenchCommand(CLI::App& app, CliCommands* c) {
       "bench",
       "Time bare MuJoCo against the full pipeline on the same composed scene; scale the swarm");
   c->bench->add_option("experiment", c->experiment, "experiment file (TOML)")->required();
-  c->bench
-      ->add_option("--followers", c->bench_followers,
-                   "swarm sizes to measure (default: the file's); other sizes use a "
-                   "generated ring topology")
-      ->delimiter(',')
-      ->check(IntegerOption(1, 100000));  // [vehicles] followers' bound, before any vector
+  AddIntegerListOption(c->bench, "--followers", &c->bench_followers,
+                       "swarm sizes to measure (default: the file's); other sizes use a "
+                       "generated ring topology",
+                       1, 100000);  // [vehicles] followers' bound, before any vector
   c->bench->add_option("--duration", c->bench_duration, "simulated seconds (default: the file's)")
       ->check(kPositiveFinite);
   c->bench->add_option("--set", c->overrides, "override a value: section.key=value");
   c->bench->add_option("--json", c->bench_json, "also write the figures to this JSON file");
   c->bench->add_flag("--render", c->bench_render, "also time offscreen rendering");
-  c->bench
-      ->add_option("--threads", c->bench_threads,
-                   "physics partitions to time the full pipeline with, e.g. 1,2 (prints the "
-                   "speed-up over the first)")
-      ->delimiter(',')
-      ->check(IntegerOption(1, kMaxThreads));
+  AddIntegerListOption(c->bench, "--threads", &c->bench_threads,
+                       "physics partitions to time the full pipeline with, e.g. 1,2 (prints the "
+                       "speed-up over the first)",
+                       1, kMaxThreads);
   c->bench->add_flag("--memory", c->bench_memory,
                      "also run the first size 10x longer and compare peak memory");
 }
@@ -537,7 +533,7 @@ Json EchoSettings(const CliCommands& c, const ExperimentConfig& base) {
   report["version"] = VersionString();
   report["contacts"] = base.contacts;
   std::printf(
-      "%s: %.1f s at %g s steps, rotor model %s, recording at %g Hz, contacts=%s, sensors=%s, "
+      "%s: %g s at %g s steps, rotor model %s, recording at %g Hz, contacts=%s, sensors=%s, "
       "wind=%s, estimator=%s, execution=%s\n",
       c.experiment.c_str(), base.duration, base.timestep, ToString(base.rotor_model),
       base.record_rate, base.contacts ? "true" : "false", base.sensors.enabled() ? "on" : "ideal",

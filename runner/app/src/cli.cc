@@ -223,6 +223,50 @@ CLI::Validator IntegerOption(long long min, long long max) {
       what);
 }
 
+namespace {
+
+// The items of a comma-separated list, empty ones kept.
+std::vector<std::string> CommaItems(const std::string& text) {
+  std::vector<std::string> items;
+  size_t start = 0;
+  for (size_t comma; (comma = text.find(',', start)) != std::string::npos; start = comma + 1) {
+    items.push_back(text.substr(start, comma - start));
+  }
+  items.push_back(text.substr(start));
+  return items;
+}
+
+}  // namespace
+
+CLI::Option* AddIntegerListOption(CLI::App* app, const std::string& name, std::vector<int>* values,
+                                  const std::string& description, long long min, long long max) {
+  const CLI::Validator item = IntegerOption(min, max);
+  const CLI::Validator list(
+      [item](std::string& text) {
+        const bool several = text.find(',') != std::string::npos;
+        for (std::string part : CommaItems(text)) {
+          if (part.empty()) {
+            return "an empty item in '" + EscapeControl(text) +
+                   "' (each item: " + item.get_description() + ")";
+          }
+          const std::string why = item(part);
+          if (!why.empty()) return several ? why + " in '" + EscapeControl(text) + "'" : why;
+        }
+        return std::string();
+      },
+      item.get_description() + ", comma-separated");
+  return app
+      ->add_option_function<std::vector<std::string>>(
+          name,
+          [values](const std::vector<std::string>& texts) {
+            for (const std::string& text : texts) {
+              for (const std::string& part : CommaItems(text)) values->push_back(std::stoi(part));
+            }
+          },
+          description)
+      ->check(list);
+}
+
 int ExportCommand(const CliCommands& c) {
   ExportOptions options;
   options.overrides = c.overrides;

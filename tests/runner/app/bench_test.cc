@@ -160,7 +160,8 @@ TEST(BenchTest, PerAgentExecutionCostLine) {
   EXPECT_TRUE(std::isfinite(j["sigma_f_mean_central"].get<double>()));
 }
 
-// Central mode prints no execution line.
+// Central mode prints no execution line. The header gives the duration as benched, every digit
+// (a fixed one decimal showed 0.05 s as 0.1 s).
 TEST(BenchTest, NoExecutionLineInCentralMode) {
   ::testing::internal::CaptureStdout();
   const int code =
@@ -168,6 +169,7 @@ TEST(BenchTest, NoExecutionLineInCentralMode) {
   const std::string out = ::testing::internal::GetCapturedStdout();
   ASSERT_EQ(code, 0);
   EXPECT_EQ(out.find("execution:"), std::string::npos) << out;
+  EXPECT_NE(out.find("exp2.toml: 0.05 s at "), std::string::npos) << out;
 }
 
 TEST(BenchTest, BadInputIsExitCodeOne) {

@@ -76,6 +76,9 @@ TEST(CliTest, EveryIntegerOptionSaysWhatItTakes) {
       {{"run", exp, "--threads", "100000"}, "--threads: an integer in [1, 1024], got '100000'"},
       {{"bench", exp, "--threads", "1,0"}, "--threads: an integer in [1, 1024], got '0'"},
       {{"bench", exp, "--followers", "x"}, "--followers: an integer in [1, 100000], got 'x'"},
+      // An empty item of a list is refused, not dropped.
+      {{"bench", exp, "--followers", "2,,4"}, "--followers: an empty item in '2,,4'"},
+      {{"bench", exp, "--threads", "1,"}, "--threads: an empty item in '1,'"},
       {{"sweep", exp, "--seeds", "0"}, "--seeds: an integer in [1, 100000], got '0'"},
       {{"sweep", exp, "--vary", "run.seed=1,2", "--jobs", "-1"},
        "--jobs: an integer in [1, 1024], got '-1'"}};

@@ -55,6 +55,12 @@ struct CliCommands {
 // a whole decimal number, instead of CLI11's floating-point range message.
 CLI::Validator IntegerOption(long long min, long long max);
 
+// An option of comma-separated integers in [min, max] ("2,4,8", also repeated), appended to
+// *values. CLI11's own delimiter drops an empty item ("2,,4" would read as 2,4), so each value
+// is split here and one with an empty item is refused, naming the value.
+CLI::Option* AddIntegerListOption(CLI::App* app, const std::string& name, std::vector<int>* values,
+                                  const std::string& description, long long min, long long max);
+
 // Nothing of the user's is replaced: the commands that write a file the user names (replay's
 // --video and snapshots, bench --json) have no --overwrite, so a file that exists already (or
 // its ".tmp" sibling, which the PNG writer renames into place) is refused before any work, with
