@@ -77,3 +77,11 @@ def test_sigma_f_without_a_transient_has_one_panel(tmp_path, monkeypatch):
                         lambda fig, path: drawn.append(fig) or saved(fig, path))
     plots.fig_sigma_f(load_run(d), tmp_path / "sigma_f.png")
     assert len(drawn[0].axes) == 1
+
+
+def test_run_overwrite_knows_every_figure_name():
+    # `mjformation run --overwrite` deletes from RUN_DIR/figures only the files named here;
+    # a figure it does not know would be refused as the user's.
+    output_cc = (ANALYSIS.parent / "runner" / "record" / "src" / "output.cc").read_text()
+    for name in plots.FIGURE_NAMES.values():
+        assert f'"{name}"' in output_cc, name
