@@ -65,7 +65,11 @@ runner::ExperimentConfig ConfigFromPairs(
     toml << key << " = {" << value << "}\n";
   }
   try {
-    return runner::ParseExperiment(toml.str(), where, RebasedPathOverrides(toml.str(), folder));
+    // The scene may have travelled: [run] plugin_path names the folders it was exported with.
+    runner::ExperimentChecks checks;
+    checks.plugin_folders = false;
+    return runner::ParseExperiment(toml.str(), where, RebasedPathOverrides(toml.str(), folder),
+                                   checks);
   } catch (const runner::ConfigError& e) {
     std::string message = WithoutLine(e.what(), where);
     // A syntax error: name the <config> key whose value does not parse on its own.

@@ -40,9 +40,9 @@ namespace rn = mjf::runner;
 
 namespace {
 
-// The runner's SIGINT/SIGTERM handling for as long as some run or sweep is under way (several
-// may run on Python threads at once), then Python's own handlers again. A Ctrl-C thus ends
-// every run cleanly (marked incomplete) and the caller raises KeyboardInterrupt.
+// The runner's SIGINT/SIGTERM/SIGHUP handling for as long as some run or sweep is under way
+// (several may run on Python threads at once), then Python's own handlers again. A Ctrl-C thus
+// ends every run cleanly (marked incomplete) and the caller raises KeyboardInterrupt.
 class SignalScope {
  public:
   SignalScope() {
@@ -51,6 +51,7 @@ class SignalScope {
     rn::ClearInterrupt();
     sigaction(SIGINT, nullptr, &old_int_);
     sigaction(SIGTERM, nullptr, &old_term_);
+    sigaction(SIGHUP, nullptr, &old_hup_);
     sigaction(SIGXFSZ, nullptr, &old_xfsz_);
     rn::InstallInterruptHandlers();
   }
@@ -59,6 +60,7 @@ class SignalScope {
     if (--active_ > 0) return;
     sigaction(SIGINT, &old_int_, nullptr);
     sigaction(SIGTERM, &old_term_, nullptr);
+    sigaction(SIGHUP, &old_hup_, nullptr);
     sigaction(SIGXFSZ, &old_xfsz_, nullptr);
   }
   SignalScope(const SignalScope&) = delete;
@@ -67,7 +69,7 @@ class SignalScope {
  private:
   static inline std::mutex mutex_;
   static inline int active_ = 0;
-  static inline struct sigaction old_int_ { }, old_term_{}, old_xfsz_{}; };
+  static inline struct sigaction old_int_ { }, old_term_{}, old_hup_{}, old_xfsz_{}; };
 
 // `render`: whether [render]'s snapshot times and sizes are checked; a run that renders nothing
 // skips them, as the CLI's --no-render does (a short run needs no snapshot-time override).

@@ -516,7 +516,8 @@ int Main(int argc, char** argv) {
   app.add_option("experiment", o.experiment, "experiment file (TOML)");
   app.add_option("--replay", o.replay_dir, "show this run directory instead");
   app.add_option("--set", o.overrides, "override a value: section.key=value (as `run`)");
-  app.add_option("--plugin-path", o.plugin_path, "extra folder to search for plugins");
+  app.add_option("--plugin-path", o.plugin_path, "extra folder to search for plugins")
+      ->check(CLI::ExistingDirectory);
   app.add_option("--speed", o.speed, "simulated seconds per second (default 1)")
       ->check(CLI::Range(1e-3, 1e3));
   app.add_option("--screenshot", o.screenshot,

@@ -46,6 +46,34 @@ def test_keyboard_interrupt_during_run_leaves_a_marked_partial_run(exp2, tmp_pat
     assert len(rows) > 2  # the rows recorded before Ctrl-C are kept
 
 
+HUNG_UP = textwrap.dedent("""
+    import os, signal, sys, threading, json, warnings
+    import mjformation
+    threading.Timer(float(sys.argv[3]), lambda: os.kill(os.getpid(), signal.SIGHUP)).start()
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        mjformation.run(sys.argv[1], out=sys.argv[2], set={"run.duration": 400.0})
+    # Python's own disposition (the default: end the process) is back once the run is over
+    print(json.dumps({"warned": [str(w.message) for w in caught],
+                      "handler": signal.getsignal(signal.SIGHUP) == signal.SIG_DFL}))
+""")
+
+
+def test_hangup_during_run_leaves_a_marked_partial_run(exp2, tmp_path):
+    # A closed terminal or a dropped ssh session sends SIGHUP: the rows and the summary are kept.
+    out = tmp_path / "r"
+    result = subprocess.run([sys.executable, "-c", HUNG_UP, str(exp2), str(out), "1.5"],
+                            capture_output=True, text=True, env=os.environ, timeout=300)
+    assert result.returncode == 0, result.stderr
+    report = json.loads(result.stdout.strip().splitlines()[-1])
+    assert any("interrupted by SIGHUP" in w for w in report["warned"]) and report["handler"]
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["complete"] is False and summary["interrupted_by_signal"] == 1
+    assert summary["error"] == "interrupted by SIGHUP"
+    assert 0 < summary["sim_time_s"] < 400.0
+    assert len((out / "timeseries.csv").read_text().splitlines()) > 2
+
+
 class Law:
     """A sampled law that notes when (wall clock) each call happened."""
 

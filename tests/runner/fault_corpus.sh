@@ -70,13 +70,13 @@ if expect_incomplete r3 $code 3 "MuJoCo error: test_engine_error"; then
   [ ! -e MUJOCO_LOG.TXT ] && ok || fail "MuJoCo wrote MUJOCO_LOG.TXT into the working directory"
 fi
 
-for sig in INT TERM; do
+for sig in INT TERM HUP; do
   case="SIG$sig mid-run"
   experiment test_fail_message 1e9 600 > e.toml
   "$bin" run e.toml --out "r_$sig" --plugin-path "$plugins" -q 2>/dev/null & pid=$!
   for _ in $(seq 100); do [ "$(rows "r_$sig")" -gt 200 ] && break; sleep 0.1; done
   kill -s "$sig" $pid; wait $pid; code=$?
-  want=$([ $sig = INT ] && echo 130 || echo 143)
+  want=$((128 + $(kill -l "$sig")))
   if expect_incomplete "r_$sig" $code $want "interrupted by SIG$sig"; then
     reached=$(field "r_$sig" "['sim_time_s']")
     last=$(tail -n 1 "r_$sig/timeseries.csv" | cut -d, -f1)
@@ -132,9 +132,13 @@ experiment test_fail_message 1e9 600 > e.toml
 if expect_incomplete r5 $code 3 "timeseries.csv: write failed: File too large"; then
   # The writer flushes every MiB: the failure comes at the first flush, long before t = 600 s.
   reached=$(field r5 "['sim_time_s']")
+  # What reached the file ends with a whole row: as many cells as the header, then a line break.
+  cells() { awk -F, '{ print NF }' | sort -u | tr '\n' ' '; }
   [ "$(stat -c %s r5/timeseries.csv)" -le 65536 ] && [ "$(rows r5)" -gt 10 ] &&
+    [ "$(tail -c 1 r5/timeseries.csv | od -An -c | tr -d ' ')" = '\n' ] &&
+    [ "$(cells < r5/timeseries.csv)" = "$(head -n 1 r5/timeseries.csv | cells)" ] &&
     /usr/bin/python3 -c "import sys; sys.exit(not $reached < 600)" && ok ||
-    fail "timeseries.csv size $(stat -c %s r5/timeseries.csv)"
+    fail "timeseries.csv size $(stat -c %s r5/timeseries.csv), cells per line $(cells < r5/timeseries.csv)"
 fi
 
 case="--overwrite on a folder that is not a run directory"

@@ -247,6 +247,18 @@ case="an imu site at NaN"
 sed 's|<site name="imu" pos="0 0 0"|<site name="imu" pos="nan 0 0"|' "$source/mjcf/pointmass.xml" > nan_imu.xml
 refused 1 "nan_imu.xml: the site 'imu' is at nan" -- run e.toml -o out -q --no-render \
   --set "vehicles.model=\"$work/nan_imu.xml\""
+case="--set with a line break (a second key smuggled in)"
+refused 1 "override 'run.seed=7\\nduration=0.2': holds a line break" -- run e.toml -o out -q --set $'run.seed=7\nduration=0.2'
+case="--plugin-path naming no folder"
+refused 2 "/no/such" -- run e.toml -o out -q --plugin-path /no/such
+case="[run] plugin_path naming no folder"
+sed 's|^duration = 1.0|duration = 1.0\nplugin_path = ["no_such_plugins"]|' e.toml > pp.toml
+refused 1 "pp.toml:4: [run] plugin_path: 'no_such_plugins' is not a folder" -- run pp.toml -o out -q
+case="a video without ffmpeg on PATH"
+rm -rf out
+env PATH=/nonexistent "$bin" run e.toml -o out -q --set render.video=true --set render.snapshots=[] >/dev/null 2>err.txt; code=$?
+[ $code = 1 ] && [ ! -e out ] && grep -qF "ffmpeg not found on PATH; install ffmpeg" err.txt &&
+  ok "exit $code: $(head -c 300 err.txt)" || fail "exit $code, out/ $([ -e out ] && echo exists): $(head -c 300 err.txt)"
 case="[vehicles] followers = 4294967297"
 refused 1 "[vehicles] followers: must be in [1, 100000]" -- run e.toml -o out -q --set vehicles.followers=4294967297
 case="[run] stop_on with an unknown kind"

@@ -578,7 +578,10 @@ double PrintScaling(const Json& points, size_t sizes, size_t threads) {
 }  // namespace
 
 int BenchCommand(const CliCommands& c) {
-  if (!c.bench_json.empty()) RefuseExistingFiles({c.bench_json});
+  if (!c.bench_json.empty()) {
+    RefuseExistingFiles({c.bench_json});
+    RequireWritableFolderOf(c.bench_json);
+  }
   const ExperimentConfig base = BenchedExperiment(c);
   std::vector<int> sizes = c.bench_followers;
   if (sizes.empty()) sizes.push_back(base.followers);

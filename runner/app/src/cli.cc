@@ -3,12 +3,14 @@
 
 #include <fmt/format.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <exception>
 #include <limits>
 
@@ -207,6 +209,22 @@ void RefuseExistingFiles(const std::vector<std::string>& paths) {
   }
 }
 
+void RequireWritableFolderOf(const std::string& path) {
+  const auto slash = path.find_last_of('/');
+  const std::string folder = slash == std::string::npos ? "."
+                             : slash == 0               ? "/"
+                                                        : path.substr(0, slash);
+  struct stat st {};
+  if (stat(folder.c_str(), &st) != 0 || !S_ISDIR(st.st_mode)) {
+    throw ConfigError(path + ": the folder " + folder +
+                      " does not exist; create it or choose another path");
+  }
+  if (access(folder.c_str(), W_OK | X_OK) != 0) {
+    throw ConfigError(path + ": the folder " + folder + " is not writable (" +
+                      std::strerror(errno) + "); choose another path");
+  }
+}
+
 CLI::Validator IntegerOption(long long min, long long max) {
   const bool bounded = max < std::numeric_limits<int>::max();
   const std::string what = bounded ? fmt::format("an integer in [{}, {}]", min, max)
@@ -292,8 +310,10 @@ void AddExportCommand(CLI::App& app, CliCommands* c) {
                    "can be moved)")
       ->required();
   c->export_scene->add_option("--set", c->overrides, "override a value: section.key=value");
-  c->export_scene->add_option("--plugin-path", c->plugin_path,
-                              "extra folder to search for plugins (carried into the scene)");
+  c->export_scene
+      ->add_option("--plugin-path", c->plugin_path,
+                   "extra folder to search for plugins (carried into the scene)")
+      ->check(CLI::ExistingDirectory);
   c->export_scene->add_flag("--overwrite", c->overwrite,
                             "write into an existing non-empty directory (replaces scene.xml and "
                             "the files export wrote there, never another file)");
@@ -345,7 +365,8 @@ void AddCommands(CLI::App& app, CliCommands* c) {
       "--set", c->overrides,
       "override a value: section.key=value (TOML value), e.g. formation.rho=0.1, or replace a "
       "section's keys, keeping its sub-tables: 'attitude={plugin=\"pointmass_direct\"}'");
-  c->run->add_option("--plugin-path", c->plugin_path, "extra folder to search for plugins");
+  c->run->add_option("--plugin-path", c->plugin_path, "extra folder to search for plugins")
+      ->check(CLI::ExistingDirectory);
   c->run->add_flag("--overwrite", c->overwrite, "replace an existing run directory");
   c->run->add_flag(
       "--no-render", c->no_render,
@@ -361,10 +382,12 @@ void AddCommands(CLI::App& app, CliCommands* c) {
       "check", "Check an experiment file (config, model, plugins, topology) without running it");
   c->check->add_option("experiment", c->experiment, "experiment file (TOML)")->required();
   c->check->add_option("--set", c->overrides, "override a value: section.key=value");
-  c->check->add_option("--plugin-path", c->plugin_path, "extra folder to search for plugins");
+  c->check->add_option("--plugin-path", c->plugin_path, "extra folder to search for plugins")
+      ->check(CLI::ExistingDirectory);
 
   c->plugins = app.add_subcommand("plugins", "List the plugins found, with their attributes");
-  c->plugins->add_option("--plugin-path", c->plugin_path, "extra folder to search for plugins");
+  c->plugins->add_option("--plugin-path", c->plugin_path, "extra folder to search for plugins")
+      ->check(CLI::ExistingDirectory);
   c->keys = app.add_subcommand(
       "keys", "Every key of the experiment file: type, unit, default, range, what it does");
   c->keys->add_option("section", c->keys_section, "only this section (and its sub-tables)");

@@ -32,8 +32,10 @@ int ExecViewer(const std::vector<std::string>& args) {
                  viewer.c_str());
     return 1;
   }
+  // The name its usage and --help show: the command the user typed, not the helper's path.
+  std::string name = "mjformation view";
   std::vector<char*> argv;
-  argv.push_back(const_cast<char*>(viewer.c_str()));
+  argv.push_back(name.data());
   for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
   execv(viewer.c_str(), argv.data());
@@ -121,6 +123,10 @@ void RenderSnapshots(const Recording& rec, const std::vector<double>& times,
 // Offscreen (OSMesa), so here and not in replay.cc, which the window executable links.
 std::vector<std::string> RenderReplay(const Recording& rec, const std::vector<double>& times,
                                       const std::string& out_dir, const ReplayVideo& v) {
+  // Before the snapshots: a video without ffmpeg fails before anything is written.
+  if (!v.path.empty() && render::FfmpegPath().empty()) {
+    throw std::runtime_error("--video " + v.path + ": " + render::FfmpegMissing());
+  }
   ReplayScene scene(rec);
   std::vector<std::string> written;
   auto overlay = [&](const TrailBuffer& trails, int frame) {

@@ -63,7 +63,8 @@ void AddSweepCommand(CLI::App& app, CliCommands* c) {
   c->sweep->add_option("--jobs,-j", c->sweep_jobs, "simulations at once (threads)")
       ->capture_default_str()
       ->check(IntegerOption(1, 1024));
-  c->sweep->add_option("--plugin-path", c->plugin_path, "extra folder to search for plugins");
+  c->sweep->add_option("--plugin-path", c->plugin_path, "extra folder to search for plugins")
+      ->check(CLI::ExistingDirectory);
   c->sweep->add_flag("--overwrite", c->overwrite, "replace an existing sweep directory");
   c->sweep
       ->add_flag("--resume", c->sweep_resume,

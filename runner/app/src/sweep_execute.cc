@@ -91,7 +91,7 @@ RunOutcome ExecuteRun(const SweepPlan& plan, const RunSpec& run, bool render,
   } catch (const std::exception& e) {
     outcome.error = e.what();
   }
-  // A run cut short by Ctrl-C / SIGTERM is not finished: --resume runs it again.
+  // A run cut short by Ctrl-C / SIGTERM / SIGHUP is not finished: --resume runs it again.
   outcome.state =
       !outcome.error.empty() && InterruptRequested() ? RunOutcome::kNotRun : RunOutcome::kFinished;
   return outcome;

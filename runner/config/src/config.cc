@@ -184,11 +184,47 @@ PluginSection ReadPluginSection(const Reporter& reporter, const toml::table& roo
   return out;
 }
 
+// `text` with its control characters written as escapes (\n, \t, \x01), for a message.
+std::string WithControlCharactersEscaped(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    const auto u = static_cast<unsigned char>(c);
+    if (c == '\n') {
+      out += "\\n";
+    } else if (c == '\t') {
+      out += "\\t";
+    } else if (c == '\r') {
+      out += "\\r";
+    } else if (u < 0x20 || u == 0x7f) {
+      out += fmt::format("\\x{:02x}", u);
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+// One --set is one key: a line break would let its text carry further keys (applied or not) and
+// travel into config.toml's header comment as live lines; no value needs a raw control character
+// (a TOML string writes them as escapes: "\n").
+void RejectControlCharacters(const std::string& item) {
+  const bool control = std::any_of(item.begin(), item.end(), [](char c) {
+    const auto u = static_cast<unsigned char>(c);
+    return u < 0x20 || u == 0x7f;
+  });
+  if (control) {
+    throw ConfigError("override '" + WithControlCharactersEscaped(item) +
+                      "': holds a line break or other control character; give one "
+                      "section.key=value per --set (inside a TOML string, write \"\\n\")");
+  }
+}
+
 }  // namespace
 
 // Applies "section.key=value" overrides by parsing the value as TOML.
 void ApplyOverrides(toml::table& root, const std::vector<std::string>& overrides) {
   for (const std::string& item : overrides) {
+    RejectControlCharacters(item);
     const auto eq = item.find('=');
     if (eq == std::string::npos) {
       throw ConfigError("override '" + item + "': expected section.key=value");
@@ -201,6 +237,10 @@ void ApplyOverrides(toml::table& root, const std::vector<std::string>& overrides
     } catch (const toml::parse_error& e) {
       throw ConfigError("override '" + item + "': value is not TOML (" +
                         std::string(e.description()) + "); quote strings: key=\"text\"");
+    }
+    // The value alone: `v = <value>` must give the one key v (nothing after the value).
+    if (parsed.size() != 1 || !parsed.contains("v")) {
+      throw ConfigError("override '" + item + "': expected one value after '='");
     }
     toml::table* table = &root;
     std::size_t start = 0;
@@ -314,8 +354,27 @@ void CheckRunTiming(const SectionReader& run, const ExperimentConfig& c) {
   }
 }
 
+// [run] plugin_path: folders relative to the experiment file. With `must_exist`, a folder that
+// is not there is refused by name: a typo would otherwise go unnoticed until a plugin it holds is
+// "not found".
+void ReadPluginPath(const Reporter& reporter, SectionReader& run, const std::string& path,
+                    bool must_exist, ExperimentConfig& c) {
+  const toml::array* a = run.Array("plugin_path");
+  if (!a) return;
+  for (const toml::node& item : *a) {
+    auto v = item.value_exact<std::string>();
+    if (!v) reporter.Fail(&item, "[run] plugin_path", "expected strings (folders)");
+    const std::string folder = ResolveRelative(*v, path);
+    if (must_exist && !IsDirectory(folder)) {
+      reporter.Fail(&item, "[run] plugin_path",
+                    "'" + *v + "' is not a folder" + (folder == *v ? "" : " (" + folder + ")"));
+    }
+    c.plugin_path.push_back(folder);
+  }
+}
+
 void ParseRunSection(const Reporter& reporter, SectionReader run, const std::string& path,
-                     ExperimentConfig& c) {
+                     bool plugin_folders, ExperimentConfig& c) {
   c.name = run.String("name", "");
   c.duration = run.Number("duration", c.duration);
   c.timestep = run.Number("timestep", c.timestep);
@@ -333,13 +392,7 @@ void ParseRunSection(const Reporter& reporter, SectionReader run, const std::str
   c.record_leader_acceleration = run.Bool("record_leader_acceleration", false);
   run.MarkUsed("stop_on");  // read with [safety] (safety_config.cc)
   ReadThreads(run, c);
-  if (const toml::array* a = run.Array("plugin_path")) {
-    for (const toml::node& item : *a) {
-      auto v = item.value_exact<std::string>();
-      if (!v) reporter.Fail(&item, "[run] plugin_path", "expected strings (folders)");
-      c.plugin_path.push_back(ResolveRelative(*v, path));
-    }
-  }
+  ReadPluginPath(reporter, run, path, plugin_folders, c);
   run.RejectUnknown();
   CheckRunTiming(run, c);
   if (!(c.metric_window[0] < c.metric_window[1])) {
@@ -700,7 +753,8 @@ ExperimentConfig ParseExperiment(const std::string& text, const std::string& pat
     merged << root;
     c.effective_text = merged.str() + "\n";
   }
-  ParseRunSection(reporter, SectionReader(reporter.path(), table_of("run"), "run"), path, c);
+  ParseRunSection(reporter, SectionReader(reporter.path(), table_of("run"), "run"), path,
+                  checks.plugin_folders, c);
   ParseVehiclesSection(reporter, SectionReader(reporter.path(), table_of("vehicles"), "vehicles"),
                        path, c);
   ParseTopologySection(reporter, SectionReader(reporter.path(), table_of("topology"), "topology"),

@@ -178,6 +178,12 @@ void AddTopology(Keys& k) {
            });
 }
 
+// "a guidance", "an attitude": the article a family name takes.
+std::string WithArticle(const std::string& word) {
+  const bool vowel = !word.empty() && std::string("aeiou").find(word[0]) != std::string::npos;
+  return (vowel ? "an " : "a ") + word;
+}
+
 // A plugin section's own key; every other key of it is an attribute of the chosen plugin.
 KeyEntry PluginKey(const char* section, const std::string& fallback, const char* family) {
   return {section,
@@ -186,7 +192,7 @@ KeyEntry PluginKey(const char* section, const std::string& fallback, const char*
           "",
           fallback.empty() ? "" : "\"" + fallback + "\"",
           fallback.empty() ? "required" : "",
-          std::string("a ") + family + " plugin",
+          WithArticle(family) + " plugin",
           std::string("The ") + family +
               " plugin; the section's other keys are its attributes (`mjformation plugins` lists "
               "them with defaults).",

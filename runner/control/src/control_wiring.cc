@@ -37,8 +37,10 @@ const LoadedPlugin& FindPlugin(const PluginRegistry& registry, const ExperimentC
   for (mjfKind k : kinds) {
     if (p.descriptor->kind == k) return p;
   }
-  throw PluginError(Where(c, s) + " plugin: '" + s.plugin + "' is a " +
-                    KindName(p.descriptor->kind) + " plugin; " + need);
+  const std::string kind = KindName(p.descriptor->kind);
+  const bool vowel = std::string("aeiou").find(kind[0]) != std::string::npos;
+  throw PluginError(Where(c, s) + " plugin: '" + s.plugin + "' is " + (vowel ? "an " : "a ") +
+                    kind + " plugin; " + need);
 }
 
 ControlWiring::ControlWiring(const ExperimentConfig& config, const PluginRegistry& registry,

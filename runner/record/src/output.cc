@@ -2,6 +2,7 @@
 #include "mjformation/record/output.hpp"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <fmt/format.h>
 #include <openssl/evp.h>
 #include <sys/stat.h>
@@ -274,8 +275,8 @@ TimeseriesWriter::TimeseriesWriter(const std::string& path, int n_vehicles, bool
   // The header is in a resumed run's file already: Rewind opens it once the checkpoint has
   // been read whole, and places the next row.
   if (resume) return;
-  file_ = std::fopen(path.c_str(), "wb");
-  if (!file_) throw OutputError(path + ": cannot write: " + std::strerror(errno));
+  fd_ = open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+  if (fd_ < 0) throw OutputError(path + ": cannot write: " + std::strerror(errno));
   static const char* const kColumns[] = {"px",     "py",   "pz",    "vx",     "vy",
                                          "vz",     "roll", "pitch", "yaw",    "ax_cmd",
                                          "ay_cmd", "sx",   "sy",    "slot_x", "slot_y"};
@@ -313,9 +314,9 @@ TimeseriesWriter::TimeseriesWriter(const std::string& path, int n_vehicles, bool
 TimeseriesWriter::~TimeseriesWriter() {
   // Never throws: an unfinished writer (the run failed) keeps what it flushed; Close() is the
   // checked path.
-  if (!file_) return;
-  if (length_ > 0) std::fwrite(buffer_.data(), 1, length_, file_);
-  std::fclose(file_);
+  if (fd_ < 0) return;
+  WritePending();
+  close(fd_);
 }
 
 namespace {
@@ -464,45 +465,91 @@ void TimeseriesWriter::Write(const Simulation& sim, double sigma_f,
   if (length_ > (1u << 20)) Flush();
 }
 
-void TimeseriesWriter::Flush() {
-  if (length_ > 0 && std::fwrite(buffer_.data(), 1, length_, file_) != length_) {
-    const int error = errno;
-    length_ = 0;  // what did not fit is lost; the rows before it are on disk
-    throw OutputError(path_ + ": write failed: " + std::strerror(error));
+int TimeseriesWriter::WritePending() {
+  size_t done = 0;
+  while (done < length_) {
+    const ssize_t n = write(fd_, buffer_.data() + done, length_ - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const int error = n < 0 ? errno : EIO;
+      KeepWholeRows(done);
+      length_ = 0;  // what did not fit is lost; the whole rows before it are on disk
+      return error;
+    }
+    done += static_cast<size_t>(n);
   }
   length_ = 0;
-  if (std::fflush(file_) != 0) throw OutputError(path_ + ": write failed: " + std::strerror(errno));
+  written_ += done;
+  return 0;
+}
+
+void TimeseriesWriter::KeepWholeRows(size_t done) {
+  // The last line break among the bytes that reached the file ends the last whole row: a reader
+  // (replay, Run.timeseries) then meets a shorter file, never a row with cells missing.
+  const size_t whole = std::string_view(buffer_.data(), done).rfind('\n');
+  written_ += whole == std::string_view::npos ? 0 : whole + 1;
+  // A device (/dev/full) cannot be cut back and holds no rows to cut; a file can.
+  if (ftruncate(fd_, static_cast<off_t>(written_)) == 0) {
+    lseek(fd_, static_cast<off_t>(written_), SEEK_SET);
+  }
+}
+
+void TimeseriesWriter::Flush() {
+  const int error = WritePending();
+  if (error != 0) throw OutputError(path_ + ": write failed: " + std::strerror(error));
 }
 
 uint64_t TimeseriesWriter::Checkpoint() {
   Flush();
-  const off_t length = ftello(file_);
-  if (length < 0) throw OutputError(path_ + ": cannot tell its length: " + std::strerror(errno));
-  return static_cast<uint64_t>(length);
+  return written_;
 }
 
 void TimeseriesWriter::Rewind(uint64_t length) {
-  if (!file_) file_ = std::fopen(path_.c_str(), "r+b");
-  if (!file_) throw OutputError(path_ + ": cannot write: " + std::strerror(errno));
+  if (fd_ < 0) fd_ = open(path_.c_str(), O_RDWR | O_CLOEXEC);
+  if (fd_ < 0) throw OutputError(path_ + ": cannot write: " + std::strerror(errno));
   struct stat info {};
-  if (fstat(fileno(file_), &info) != 0 || static_cast<uint64_t>(info.st_size) < length) {
+  if (fstat(fd_, &info) != 0 || static_cast<uint64_t>(info.st_size) < length) {
     throw OutputError(path_ + ": shorter than the checkpoint recorded (" + std::to_string(length) +
                       " bytes): the run directory was changed since; start the run afresh "
                       "(--overwrite) instead of --resume");
   }
-  if (ftruncate(fileno(file_), static_cast<off_t>(length)) != 0 ||
-      fseeko(file_, static_cast<off_t>(length), SEEK_SET) != 0) {
+  if (ftruncate(fd_, static_cast<off_t>(length)) != 0 ||
+      lseek(fd_, static_cast<off_t>(length), SEEK_SET) < 0) {
     throw OutputError(path_ + ": cannot cut back to the checkpoint: " + std::strerror(errno));
   }
+  written_ = length;
 }
 
 void TimeseriesWriter::Close() {
-  if (!file_) return;
+  if (fd_ < 0) return;
   Flush();
-  std::FILE* f = file_;
-  file_ = nullptr;
-  if (std::fclose(f) != 0) throw OutputError(path_ + ": close failed: " + std::strerror(errno));
+  const int fd = fd_;
+  fd_ = -1;
+  if (close(fd) != 0) throw OutputError(path_ + ": close failed: " + std::strerror(errno));
 }
+
+namespace {
+
+// An override as one comment line: its control characters as escapes (\n, \x01), so no text
+// given on the command line can end the comment and become a line of TOML.
+std::string CommentLine(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    const auto u = static_cast<unsigned char>(c);
+    if (c == '\n') {
+      out += "\\n";
+    } else if (c == '\r') {
+      out += "\\r";
+    } else if (u < 0x20 || u == 0x7f) {
+      out += fmt::format("\\x{:02x}", u);
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+}  // namespace
 
 std::string ConfigEcho(const ExperimentConfig& config) {
   // The file's name only: the same experiment run from another folder gives the same bytes.
@@ -510,7 +557,7 @@ std::string ConfigEcho(const ExperimentConfig& config) {
   std::string echo = "# Experiment file " + name + " as run by mjformation.\n";
   if (config.overrides.empty()) return echo + config.source_text;
   // With --set overrides the merged table is what ran (comments of the original are lost).
-  for (const auto& o : config.overrides) echo += "# with --set " + o + "\n";
+  for (const auto& o : config.overrides) echo += "# with --set " + CommentLine(o) + "\n";
   return echo + config.effective_text;
 }
 

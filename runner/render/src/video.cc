@@ -87,18 +87,21 @@ std::vector<std::string> FfmpegArguments(const std::string& ffmpeg, int width, i
 
 }  // namespace
 
+std::string FfmpegPath() { return FindOnPath("ffmpeg"); }
+
+std::string FfmpegMissing() {
+  return "ffmpeg not found on PATH; install ffmpeg (Debian/Ubuntu: apt install ffmpeg; conda: "
+         "conda install -c conda-forge ffmpeg), or render without video";
+}
+
 VideoWriter::VideoWriter(const std::string& path, int width, int height, double fps)
     : path_(path), tmp_path_(path + ".tmp"), width_(width), height_(height) {
   if (width <= 0 || height <= 0 || !(fps > 0) || !std::isfinite(fps)) {
     throw std::runtime_error("VideoWriter " + path + ": invalid size " + std::to_string(width) +
                              "x" + std::to_string(height) + " or fps " + Number(fps));
   }
-  const std::string ffmpeg = FindOnPath("ffmpeg");
-  if (ffmpeg.empty()) {
-    throw std::runtime_error("VideoWriter " + path +
-                             ": ffmpeg not found on PATH (install the ffmpeg package, or render "
-                             "without video)");
-  }
+  const std::string ffmpeg = FfmpegPath();
+  if (ffmpeg.empty()) throw std::runtime_error("VideoWriter " + path + ": " + FfmpegMissing());
   RequireWritableDirectory(path);
 
   // ffmpeg's messages go to a temporary file, read back when it fails.

@@ -43,7 +43,7 @@ extern "C" void OnSignal(int signal) {
     // A second Ctrl-C: the user wants out now. _exit is async-signal-safe; nothing is flushed.
     _exit(128 + SIGINT);
   }
-  // Otherwise a duplicate of the first (or a SIGTERM after it): the clean stop goes on.
+  // Otherwise a duplicate of the first (or a SIGTERM / SIGHUP after it): the clean stop goes on.
 }
 
 }  // namespace
@@ -55,6 +55,8 @@ void InstallInterruptHandlers() {
   action.sa_flags = SA_RESTART;  // blocking writes resume; the loops poll the flag
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);
+  // A closed terminal or a dropped ssh session: the same clean stop, the rows kept.
+  sigaction(SIGHUP, &action, nullptr);
   // A file over RLIMIT_FSIZE then fails its write with EFBIG (reported, run marked incomplete)
   // instead of killing the process.
   std::signal(SIGXFSZ, SIG_IGN);

@@ -15,10 +15,12 @@
 #include <memory>
 #include <optional>
 
+#include "mjformation/config/config_error.hpp"
 #include "mjformation/record/engine_identity.hpp"
 #include "mjformation/record/metrics.hpp"
 #include "mjformation/record/output.hpp"
 #include "mjformation/record/recorders.hpp"
+#include "mjformation/render.hpp"
 #include "mjformation/run/checkpoint.hpp"
 #include "mjformation/run/interrupt.hpp"
 #include "mjformation/run/summary.hpp"
@@ -60,8 +62,27 @@ class ProgressLine {
   Clock::time_point last_{};
 };
 
+// A video is encoded by ffmpeg, started at the first frame: without it the run would stop
+// there, its folder written and in the way of the next attempt.
+void RequireVideoEncoder(const ExperimentConfig& config, const RunOptions& options) {
+  if (options.out_dir.empty() || !options.render || !config.render.video) return;
+  if (render::FfmpegPath().empty()) {
+    throw ConfigError("[render] video = true: " + render::FfmpegMissing() +
+                      " (render.video=false or --no-render)");
+  }
+}
+
 std::string SignalName(int signal) {
-  return signal == SIGINT ? "SIGINT" : signal == SIGTERM ? "SIGTERM" : std::to_string(signal);
+  switch (signal) {
+    case SIGINT:
+      return "SIGINT";
+    case SIGTERM:
+      return "SIGTERM";
+    case SIGHUP:
+      return "SIGHUP";
+    default:
+      return std::to_string(signal);
+  }
 }
 
 // The step loop: controls, frames for the recorders that want them, integration. Throws
@@ -176,6 +197,7 @@ std::string VersionString() {
 
 RunResult RunExperiment(const ExperimentConfig& config, const RunOptions& options) {
   // Everything that can be wrong with the input fails here, before a file is written.
+  RequireVideoEncoder(config, options);
   Simulation sim(config);
   if (options.warnings) {
     for (const auto& w : sim.warnings())

@@ -4,6 +4,7 @@
 // counts and the arithmetic of its ratios; bad input is exit code 1 before anything runs.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdint>
@@ -190,6 +191,39 @@ TEST(BenchTest, AnExistingJsonFileIsNeverReplaced) {
   EXPECT_EQ(mjf::testing::ReadFile(mine), "the user's figures\n");
   EXPECT_EQ(Cli({"bench", exp, "--json", dir + "/new.json"}), 0);
   EXPECT_TRUE(std::filesystem::exists(dir + "/new.json"));
+}
+
+// The JSON is written after the bench: a folder it cannot go into is refused before the bench
+// runs (nothing printed on stdout), naming the folder, rather than after minutes of work.
+struct Outcome {
+  int code;
+  std::string out, err;
+};
+Outcome BenchOutcome(const std::vector<std::string>& args) {
+  ::testing::internal::CaptureStdout();
+  ::testing::internal::CaptureStderr();
+  const int code = Cli(args);
+  std::string err = ::testing::internal::GetCapturedStderr();
+  return {code, ::testing::internal::GetCapturedStdout(), err};
+}
+
+TEST(BenchTest, AJsonFileInAMissingOrReadOnlyFolderIsRefusedFirst) {
+  const std::string dir = TempDir("bench_json_folder");
+  const std::string exp = WriteFile(dir + "/e.toml", HoverExperiment(1, 0.02));
+  Outcome r = BenchOutcome({"bench", exp, "--json", dir + "/none/b.json"});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_THAT(r.err, ::testing::HasSubstr("b.json: the folder " + dir + "/none does not exist"));
+  EXPECT_EQ(r.out, "");
+  std::filesystem::create_directory(dir + "/locked");
+  std::filesystem::permissions(
+      dir + "/locked", std::filesystem::perms::owner_read | std::filesystem::perms::owner_exec);
+  if (access((dir + "/locked").c_str(), W_OK) != 0) {  // root may write anyway
+    r = BenchOutcome({"bench", exp, "--json", dir + "/locked/b.json"});
+    EXPECT_EQ(r.code, 1);
+    EXPECT_THAT(r.err, ::testing::HasSubstr("the folder " + dir + "/locked is not writable"));
+    EXPECT_EQ(r.out, "");
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir + "/locked/b.json"));
 }
 
 }  // namespace

@@ -7,6 +7,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include "error_of.hpp"
 #include "test_util.hpp"
 
@@ -94,6 +96,25 @@ TEST(ConfigTest, OverridesApplyAndAreChecked) {
   EXPECT_THAT(ErrorOf([&] { LoadExperiment(path, {"run.duration=fast"}); }), HasSubstr("not TOML"));
 }
 
+// One --set is one key: a line break would carry a second key in (and into config.toml's header
+// comment as a live line). The message shows the break as an escape, on one line.
+TEST(ConfigTest, AnOverrideWithALineBreakOrControlCharacterIsRefused) {
+  const std::string dir = mjf::testing::TempDir("ovr_ctl");
+  const std::string path = mjf::testing::WriteFile(dir + "/e.toml", HoverExperiment());
+  EXPECT_THAT(ErrorOf([&] { LoadExperiment(path, {"run.seed=7\nduration=0.2"}); }),
+              HasSubstr("override 'run.seed=7\\nduration=0.2': holds a line break"));
+  EXPECT_THAT(ErrorOf([&] { LoadExperiment(path, {"run.seed\r=7"}); }),
+              HasSubstr("override 'run.seed\\r=7': holds a line break"));
+  EXPECT_THAT(ErrorOf([&] {
+                LoadExperiment(path, {"run.name=\"a\x01"
+                                      "b\""});
+              }),
+              HasSubstr("'run.name=\"a\\x01b\"': holds a line break or other control character"));
+  // A TOML escape inside a string is text, not a control character.
+  const ExperimentConfig c = LoadExperiment(path, {"formation.note=\"a\\tb\""});
+  EXPECT_THAT(c.formation.attributes.at("note").text, HasSubstr("a\tb"));
+}
+
 // A `section={...}` override replaces the section's plain keys but keeps its sub-tables, so the
 // README's `--set 'formation={plugin="consensus_linear"}'` keeps exp2's [formation.shape].
 TEST(ConfigTest, ReplacingASectionKeepsItsSubTables) {
@@ -122,6 +143,19 @@ TEST(ConfigTest, ReplacingASectionKeepsItsSubTables) {
 TEST(ConfigTest, NegativeReachingBandIsRefused) {
   EXPECT_THAT(ErrorOf([] { Parse(HoverExperiment(2, 2.0, "reaching_band = -0.5\n")); }),
               AllOf(HasSubstr("[run] reaching_band"), HasSubstr("must be >= 0")));
+}
+
+// A plugin folder that is not there is named, with where the file put it: a typo would otherwise
+// surface only as a plugin "not found".
+TEST(ConfigTest, APluginPathFolderThatIsNotThereIsRefused) {
+  const std::string dir = mjf::testing::TempDir("plugin_path_missing");
+  const std::string path = mjf::testing::WriteFile(
+      dir + "/e.toml", HoverExperiment(2, 2.0, "plugin_path = [\"plugins\", \"nope\"]\n"));
+  std::filesystem::create_directory(dir + "/plugins");
+  EXPECT_THAT(ErrorOf([&] { LoadExperiment(path); }),
+              HasSubstr("e.toml:4: [run] plugin_path: 'nope' is not a folder (" + dir + "/nope)"));
+  std::filesystem::create_directory(dir + "/nope");
+  EXPECT_EQ(LoadExperiment(path).plugin_path.back(), dir + "/nope");
 }
 
 // A folder opens as a stream that reads as empty: it was refused as "[formation] plugin: missing".

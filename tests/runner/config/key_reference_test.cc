@@ -145,6 +145,14 @@ TEST(KeyReferenceTest, DocumentIsCurrent) {
          "docs/EXPERIMENT_FILE.md";
 }
 
+TEST(KeyReferenceTest, PluginKeysTakeTheirArticle) {
+  const std::string all = KeyReferenceMarkdown();
+  EXPECT_THAT(all, ::testing::HasSubstr("| an attitude plugin |"));
+  EXPECT_THAT(all, ::testing::HasSubstr("| an estimator plugin |"));
+  EXPECT_THAT(all, ::testing::HasSubstr("| a guidance plugin |"));
+  EXPECT_THAT(all, ::testing::Not(::testing::HasSubstr("| a attitude")));
+}
+
 TEST(KeyReferenceTest, OneSectionAndItsSubTables) {
   const std::string formation = KeyReferenceMarkdown("formation");
   EXPECT_THAT(formation, ::testing::HasSubstr("## [formation.shape]"));

@@ -136,6 +136,11 @@ TEST(OutputTest, ConfigEchoNamesTheFileAloneAndTheOverrides) {
   EXPECT_EQ(ConfigEcho(c),
             "# Experiment file exp2.toml as run by mjformation.\n# with --set run.seed=3\n"
             "# with --set formation.rho=0.1\nmerged\n");
+  // No override's text can end the comment and become a line of TOML.
+  c.overrides = {"run.seed=7\nduration=0.2\r\x01"};
+  EXPECT_EQ(ConfigEcho(c),
+            "# Experiment file exp2.toml as run by mjformation.\n"
+            "# with --set run.seed=7\\nduration=0.2\\r\\x01\nmerged\n");
   // A path without a folder.
   c.source_path = "bare.toml";
   c.overrides.clear();

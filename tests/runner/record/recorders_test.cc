@@ -7,7 +7,11 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
+#include <csignal>
 #include <filesystem>
 
 #include "mjformation/record/output.hpp"
@@ -110,6 +114,48 @@ TEST(RecordersTest, FinishThrowsWhenTheDiskIsFullAndDestructorsStayQuiet) {
     auto recorders = MakeRecorders(sim, &run, {true, false});
     recorders.back()->Record(Frame{sim, 0, 0.0, slots});
   });
+}
+
+// Writes `rows` rows into `path` in a child process whose files may not exceed `limit` bytes;
+// returns the child's exit status: 3 when Close() reported the failed write, 0 when it did not.
+int WriteRowsUnderFileSizeLimit(const std::string& path, int rows, rlim_t limit) {
+  Simulation sim(Parse(PointMassExperiment(-2, 0, 2, 0)));
+  sim.ComputeControls();
+  const std::vector<double> slots(6, 0.0);
+  const pid_t child = fork();
+  if (child == 0) {
+    const rlimit cap{limit, limit};
+    setrlimit(RLIMIT_FSIZE, &cap);
+    std::signal(SIGXFSZ, SIG_IGN);  // as the CLI does: the write fails with EFBIG instead
+    TimeseriesWriter writer(path, sim.n_vehicles());
+    for (int k = 0; k < rows; ++k) writer.Write(sim, 0.5, slots);
+    try {
+      writer.Close();
+    } catch (const OutputError&) {
+      _exit(3);
+    }
+    _exit(0);
+  }
+  int status = 0;
+  waitpid(child, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+TEST(RecordersTest, AWriteCutShortLeavesOnlyWholeRows) {
+  const std::string dir = TempDir("rec_fsize");
+  // Unlimited first: the length of the header and of one row.
+  ASSERT_EQ(WriteRowsUnderFileSizeLimit(dir + "/whole.csv", 3, RLIM_INFINITY), 0);
+  const std::string whole = ReadFile(dir + "/whole.csv");
+  const size_t header = whole.find('\n') + 1;
+  const size_t row = (whole.size() - header) / 3;
+  ASSERT_EQ(header + 3 * row, whole.size());
+  // Room for the header, two rows and half of the third: the third must not be left cut off.
+  const rlim_t limit = header + 2 * row + row / 2;
+  ASSERT_EQ(WriteRowsUnderFileSizeLimit(dir + "/cut.csv", 3, limit), 3);
+  EXPECT_EQ(ReadFile(dir + "/cut.csv"), whole.substr(0, header + 2 * row));
+  // Not even the header fits: an empty file rather than part of a header.
+  ASSERT_EQ(WriteRowsUnderFileSizeLimit(dir + "/none.csv", 3, header / 2), 3);
+  EXPECT_EQ(ReadFile(dir + "/none.csv"), "");
 }
 
 }  // namespace

@@ -1,7 +1,7 @@
 // Copyright 2026 The mjformation Authors. Licensed under the Apache License, Version 2.0.
 //
-// runner/run/src/interrupt.cc: SIGINT / SIGTERM as a polled flag, the exit code, and the second
-// Ctrl-C that ends the process at once.
+// runner/run/src/interrupt.cc: SIGINT / SIGTERM / SIGHUP as a polled flag, the exit code, and the
+// second Ctrl-C that ends the process at once.
 #include "mjformation/run/interrupt.hpp"
 
 #include <gtest/gtest.h>
@@ -19,6 +19,7 @@ class InterruptTest : public ::testing::Test {
   void TearDown() override {
     std::signal(SIGINT, SIG_DFL);
     std::signal(SIGTERM, SIG_DFL);
+    std::signal(SIGHUP, SIG_DFL);
     std::signal(SIGXFSZ, SIG_DFL);
     ClearInterrupt();
   }
@@ -35,6 +36,8 @@ TEST_F(InterruptTest, FlagSignalAndExitCode) {
   EXPECT_EQ(InterruptExitCode(), 143);
   RequestInterrupt(SIGINT);
   EXPECT_EQ(InterruptExitCode(), 130);
+  RequestInterrupt(SIGHUP);
+  EXPECT_EQ(InterruptExitCode(), 129);
   ClearInterrupt();
   EXPECT_FALSE(InterruptRequested());
   EXPECT_EQ(InterruptExitCode(), 0);
@@ -54,6 +57,11 @@ TEST_F(InterruptTest, ARealSignalSetsTheFlagAndDoesNotEndTheProcess) {
   ASSERT_EQ(std::raise(SIGINT), 0);
   EXPECT_EQ(InterruptSignal(), SIGINT);
   EXPECT_EQ(InterruptExitCode(), 130);
+  // A closed terminal or a dropped ssh session: the same clean stop, not the default's death.
+  ClearInterrupt();
+  ASSERT_EQ(std::raise(SIGHUP), 0);
+  EXPECT_EQ(InterruptSignal(), SIGHUP);
+  EXPECT_EQ(InterruptExitCode(), 129);
 }
 
 TEST_F(InterruptTest, OversizedFileSignalIsIgnoredOnceInstalled) {

@@ -295,6 +295,14 @@ TEST(RunExperimentTest, SigintIsNamedToo) {
   EXPECT_EQ(r.summary["interrupted_by_signal"], SIGINT);
 }
 
+TEST(RunExperimentTest, SighupIsNamedToo) {
+  RequestInterrupt(SIGHUP);
+  const RunResult r = RunExperiment(Parse(PointMassExperiment(-2, 1, 2, 1, 0.05)), RunOptions{});
+  ClearInterrupt();
+  EXPECT_EQ(r.error, "interrupted by SIGHUP");
+  EXPECT_EQ(r.summary["interrupted_by_signal"], SIGHUP);
+}
+
 TEST(RunExperimentTest, WithoutARunDirectoryNothingIsWrittenAndTheSummaryIsReturned) {
   const std::string cwd = TempDir("run_nodir");
   const auto before = std::distance(std::filesystem::directory_iterator(cwd),

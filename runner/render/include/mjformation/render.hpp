@@ -120,6 +120,12 @@ class OffscreenRenderer {
 // is never half-written. Throws std::runtime_error naming the path.
 void WritePng(const std::string& path, const unsigned char* rgb, int width, int height);
 
+// The absolute path of the ffmpeg a VideoWriter starts, or "" when PATH holds none. Callers
+// that write files before their first video frame check it first.
+std::string FfmpegPath();
+// Why a video cannot be made without ffmpeg and what to install, for an error message.
+std::string FfmpegMissing();
+
 // Pipes raw RGB frames into ffmpeg (H.264 in mp4, yuv420p, -loglevel error). ffmpeg writes to
 // path + ".tmp", renamed to `path` when ffmpeg finishes successfully. Odd sizes are padded by one
 // pixel (yuv420p needs even sizes).

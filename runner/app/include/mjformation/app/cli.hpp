@@ -66,6 +66,9 @@ CLI::Option* AddIntegerListOption(CLI::App* app, const std::string& name, std::v
 // its ".tmp" sibling, which the PNG writer renames into place) is refused before any work, with
 // a ConfigError naming it. The write itself then creates the file exclusively (O_EXCL).
 void RefuseExistingFiles(const std::vector<std::string>& paths);
+// A file the command writes when its work is done (bench --json) goes into a folder that exists
+// and may be written to: checked before the work, with a ConfigError naming the folder.
+void RequireWritableFolderOf(const std::string& path);
 
 void AddCommands(CLI::App& app, CliCommands* commands);
 // Runs the chosen subcommand; returns the process exit code:

@@ -22,6 +22,9 @@ std::vector<ExperimentConfig::Edge> GeneratedEdges(int n, bool ring);
 // ([render] snapshots inside the run), since nothing is rendered.
 struct ExperimentChecks {
   bool render = true;
+  // [run] plugin_path's folders exist. An exported scene opened on another machine keeps the
+  // folders it was exported with, which need not be there (its plugins are built in).
+  bool plugin_folders = true;
   static ExperimentChecks Rendering(bool render) {
     ExperimentChecks checks;
     checks.render = render;

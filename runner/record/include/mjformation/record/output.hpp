@@ -4,6 +4,7 @@
 #ifndef MJFORMATION_RECORD_OUTPUT_HPP_
 #define MJFORMATION_RECORD_OUTPUT_HPP_
 
+#include <cstdint>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
@@ -75,10 +76,17 @@ class TimeseriesWriter {
   void Close();
 
  private:
+  // Writes the rows not yet written and returns 0, or the failed write's errno after cutting
+  // the file back to its last whole row (the file never ends in part of a row).
+  int WritePending();
+  // After a write that put only `done` of the pending bytes in the file.
+  void KeepWholeRows(size_t done);
+  // WritePending, throwing OutputError on a failed write.
   void Flush();
   std::string path_;
-  std::FILE* file_ = nullptr;
-  std::string buffer_;  // [0, length_): rows not yet written; the rest: room for the next row
+  int fd_ = -1;
+  uint64_t written_ = 0;  // the file's length: whole rows (and the header) only
+  std::string buffer_;    // [0, length_): rows not yet written; the rest: room for the next row
   size_t length_ = 0;
   // Partitioned physics: the partitions' cells of a block before they are joined (output.cc,
   // Block): [first vehicle of a range] its bytes and its vehicles.

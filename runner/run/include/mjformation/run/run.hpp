@@ -25,7 +25,7 @@ struct RunOptions {
 struct RunResult {
   bool complete = false;
   std::string error;          // why the run stopped early
-  int signal = 0;             // SIGINT / SIGTERM when the run was interrupted, else 0
+  int signal = 0;             // SIGINT / SIGTERM / SIGHUP when the run was interrupted, else 0
   std::string summary_error;  // summary.json could not be written (e.g. a full disk)
   double wall_time_s = 0;     // stepping loop only
   double sim_time_s = 0;
