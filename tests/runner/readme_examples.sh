@@ -5,14 +5,17 @@
 # Shortened only where a user's patience is not the point: runs and sweeps end at 21 s (the
 # replay's --snapshots 10,20 still fall inside) without rendering, at 2 video frames per second
 # for the replay; bench measures 0.2 s. Not run: `view` (a window: tests/runner/viewer_xvfb.sh),
-# `cmake --install` and what follows it (tests/runner/cmake_package.sh), scripts/*.sh (the
-# studies: minutes to hours), mpirun/srun and lines with "..." (placeholders).
+# MuJoCo's viewer (a window), `cmake --install` and what follows it
+# (tests/runner/cmake_package.sh), scripts/*.sh (the studies: minutes to hours), mpirun/srun and
+# lines with "..." (placeholders).
 # Usage: readme_examples.sh BUILD_DIR WORK_DIR
 set -uo pipefail
 build=$(cd "$1" && pwd) work=$2
 source=$(cd "$(dirname "$0")/../.." && pwd)
 rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
 for d in experiments examples analysis mjcf; do ln -s "$source/$d" "$d"; done
+# The project's environment (`mujoco` beside our module), as a checkout has it after setup.sh.
+[ -d "$source/.venv" ] && ln -s "$source/.venv" .venv
 ln -s "$build" build
 short_run=(--no-render --set run.duration=21 --set 'run.metric_window=[10.0,21.0]')
 # The commands, one per line, continuation lines joined and trailing comments dropped.
@@ -40,8 +43,8 @@ for inline in re.findall(r"`(build/runner/mjformation run [^`]+)`", text):
 for line in commands:
     if "..." in line or line.startswith(("mpirun", "srun", "bash ", "#")):
         continue
-    if line.startswith("build/runner/mjformation view"):
-        continue
+    if line.startswith("build/runner/mjformation view") or "mujoco.viewer" in line:
+        continue  # a window
     if line.startswith("build/runner/mjformation replay") and not ("--video" in line or "--snapshots" in line):
         continue  # a window
     if line.startswith(("build/runner/mjformation", "PYTHONPATH=")):
