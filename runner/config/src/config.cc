@@ -184,26 +184,6 @@ PluginSection ReadPluginSection(const Reporter& reporter, const toml::table& roo
   return out;
 }
 
-// `text` with its control characters written as escapes (\n, \t, \x01), for a message.
-std::string WithControlCharactersEscaped(const std::string& text) {
-  std::string out;
-  for (const char c : text) {
-    const auto u = static_cast<unsigned char>(c);
-    if (c == '\n') {
-      out += "\\n";
-    } else if (c == '\t') {
-      out += "\\t";
-    } else if (c == '\r') {
-      out += "\\r";
-    } else if (u < 0x20 || u == 0x7f) {
-      out += fmt::format("\\x{:02x}", u);
-    } else {
-      out += c;
-    }
-  }
-  return out;
-}
-
 // One --set is one key: a line break would let its text carry further keys (applied or not) and
 // travel into config.toml's header comment as live lines; no value needs a raw control character
 // (a TOML string writes them as escapes: "\n").
@@ -213,7 +193,7 @@ void RejectControlCharacters(const std::string& item) {
     return u < 0x20 || u == 0x7f;
   });
   if (control) {
-    throw ConfigError("override '" + WithControlCharactersEscaped(item) +
+    throw ConfigError("override '" + OneLineEscaped(item) +
                       "': holds a line break or other control character; give one "
                       "section.key=value per --set (inside a TOML string, write \"\\n\")");
   }

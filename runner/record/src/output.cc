@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <string_view>
 
+#include "mjformation/config/source_location.hpp"
 #include "mjformation/record/estimation_metrics.hpp"
 #include "mjformation/sim/simulation.hpp"
 
@@ -528,36 +529,15 @@ void TimeseriesWriter::Close() {
   if (close(fd) != 0) throw OutputError(path_ + ": close failed: " + std::strerror(errno));
 }
 
-namespace {
-
-// An override as one comment line: its control characters as escapes (\n, \x01), so no text
-// given on the command line can end the comment and become a line of TOML.
-std::string CommentLine(const std::string& text) {
-  std::string out;
-  for (const char c : text) {
-    const auto u = static_cast<unsigned char>(c);
-    if (c == '\n') {
-      out += "\\n";
-    } else if (c == '\r') {
-      out += "\\r";
-    } else if (u < 0x20 || u == 0x7f) {
-      out += fmt::format("\\x{:02x}", u);
-    } else {
-      out += c;
-    }
-  }
-  return out;
-}
-
-}  // namespace
-
 std::string ConfigEcho(const ExperimentConfig& config) {
   // The file's name only: the same experiment run from another folder gives the same bytes.
   const std::string name = config.source_path.substr(config.source_path.find_last_of('/') + 1);
   std::string echo = "# Experiment file " + name + " as run by mjformation.\n";
   if (config.overrides.empty()) return echo + config.source_text;
   // With --set overrides the merged table is what ran (comments of the original are lost).
-  for (const auto& o : config.overrides) echo += "# with --set " + CommentLine(o) + "\n";
+  // Each override on one comment line, whatever it holds: no text given on the command line can
+  // end the comment and become a line of TOML.
+  for (const auto& o : config.overrides) echo += "# with --set " + OneLineEscaped(o) + "\n";
   return echo + config.effective_text;
 }
 

@@ -33,6 +33,25 @@ inline std::string EscapeControl(const std::string& text) {
   return out;
 }
 
+// `text` on one line: newline, carriage return and tab as \n, \r, \t, every other control
+// character and DEL as \xNN. For text given on the command line that is quoted in a message or
+// in a comment of a written file, where a line break would end the comment.
+inline std::string OneLineEscaped(const std::string& text) {
+  std::string out;
+  for (char ch : text) {
+    if (ch == '\n') {
+      out += "\\n";
+    } else if (ch == '\r') {
+      out += "\\r";
+    } else if (ch == '\t') {
+      out += "\\t";
+    } else {
+      out += EscapeControl(std::string(1, ch));
+    }
+  }
+  return out;
+}
+
 // The file, the line (0: not known, e.g. a default or an override) and what is there
 // (usually SectionKey(...)).
 struct SourceLocation {
