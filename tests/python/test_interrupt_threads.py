@@ -3,6 +3,7 @@
 
 import json
 import os
+import signal
 import subprocess
 import sys
 import textwrap
@@ -30,6 +31,16 @@ INTERRUPTED = textwrap.dedent("""
 """)
 
 
+def assert_a_marked_partial_run(out, signum):
+    """A run stopped by `signum` during its 400 s: marked incomplete, named, its rows kept."""
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["complete"] is False and summary["interrupted_by_signal"] == signum
+    assert summary["error"] == f"interrupted by {signal.Signals(signum).name}"
+    assert 0 < summary["sim_time_s"] < 400.0  # stopped before the 400 s run ended
+    assert (out / ".mjformation-run").is_file()
+    assert len((out / "timeseries.csv").read_text().splitlines()) > 2  # rows before it are kept
+
+
 def test_keyboard_interrupt_during_run_leaves_a_marked_partial_run(exp2, tmp_path):
     out = tmp_path / "r"
     result = subprocess.run([sys.executable, "-c", INTERRUPTED, str(exp2), str(out), "1.5"],
@@ -37,13 +48,7 @@ def test_keyboard_interrupt_during_run_leaves_a_marked_partial_run(exp2, tmp_pat
     assert result.returncode == 0, result.stderr
     report = json.loads(result.stdout.strip().splitlines()[-1])
     assert "partial run kept" in report["raised"] and report["handler"] is True
-    summary = json.loads((out / "summary.json").read_text())
-    assert summary["complete"] is False and summary["interrupted_by_signal"] == 2
-    assert summary["error"] == "interrupted by SIGINT"
-    assert 0 < summary["sim_time_s"] < 400.0  # stopped before the 400 s run ended
-    assert (out / ".mjformation-run").is_file()
-    rows = (out / "timeseries.csv").read_text().splitlines()
-    assert len(rows) > 2  # the rows recorded before Ctrl-C are kept
+    assert_a_marked_partial_run(out, signal.SIGINT)
 
 
 HUNG_UP = textwrap.dedent("""
@@ -67,11 +72,7 @@ def test_hangup_during_run_leaves_a_marked_partial_run(exp2, tmp_path):
     assert result.returncode == 0, result.stderr
     report = json.loads(result.stdout.strip().splitlines()[-1])
     assert any("interrupted by SIGHUP" in w for w in report["warned"]) and report["handler"]
-    summary = json.loads((out / "summary.json").read_text())
-    assert summary["complete"] is False and summary["interrupted_by_signal"] == 1
-    assert summary["error"] == "interrupted by SIGHUP"
-    assert 0 < summary["sim_time_s"] < 400.0
-    assert len((out / "timeseries.csv").read_text().splitlines()) > 2
+    assert_a_marked_partial_run(out, signal.SIGHUP)
 
 
 class Law:
