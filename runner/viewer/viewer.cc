@@ -510,6 +510,19 @@ bool ScreenshotWouldReplace(const Options& o) {
   return false;
 }
 
+// Whether neither an X nor a Wayland display is set, said in a message that names the headless
+// alternatives (GLFW's own error would only say that it failed).
+bool NoDisplay() {
+  const char* display = std::getenv("DISPLAY");
+  const char* wayland = std::getenv("WAYLAND_DISPLAY");
+  if ((display && *display) || (wayland && *wayland)) return false;
+  std::fprintf(stderr,
+               "mjformation view: no display (DISPLAY is not set). The window needs an X "
+               "server; on a headless machine use `mjformation run` (snapshots, video) or "
+               "`xvfb-run mjformation view ...`\n");
+  return true;
+}
+
 int Main(int argc, char** argv) {
   CLI::App app("mjformation-view: fly an experiment live, or replay a run, in a window");
   Options o;
@@ -542,15 +555,8 @@ int Main(int argc, char** argv) {
 
   std::unique_ptr<Source> source = ScreenshotWouldReplace(o) ? nullptr : MakeSource(o);
   if (!source) return 1;
+  if (NoDisplay()) return 1;
   const char* display = std::getenv("DISPLAY");
-  const char* wayland = std::getenv("WAYLAND_DISPLAY");
-  if ((!display || !*display) && (!wayland || !*wayland)) {
-    std::fprintf(stderr,
-                 "mjformation view: no display (DISPLAY is not set). The window needs an X "
-                 "server; on a headless machine use `mjformation run` (snapshots, video) or "
-                 "`xvfb-run mjformation view ...`\n");
-    return 1;
-  }
   glfwSetErrorCallback([](int, const char* message) {
     std::fprintf(stderr, "mjformation view: GLFW: %s\n", message);
   });
