@@ -15,7 +15,6 @@ import json
 import os
 import shutil
 import signal
-import sys
 import tempfile
 import warnings
 import weakref
@@ -184,7 +183,15 @@ def _overrides(set) -> list[str]:
 
 
 def _user_plugin_path(plugin_path) -> list[str]:
+    """plugin_path= as folders: one (str or os.PathLike) or several. A folder that is not there
+    raises FileNotFoundError, as the CLI's --plugin-path refuses it: a misspelt folder would
+    otherwise be searched in silence and the plugin looked for in it never found there."""
     extra = [plugin_path] if isinstance(plugin_path, (str, os.PathLike)) else list(plugin_path or [])
+    for folder in extra:
+        if not os.path.isdir(folder):
+            where = os.path.abspath(folder)
+            raise FileNotFoundError(errno.ENOENT, f"plugin_path: {os.fspath(folder)} is not a "
+                                    f"folder (looked at {where})", os.fspath(folder))
     return [str(p) for p in extra]
 
 
@@ -356,8 +363,8 @@ def export(experiment, out, overwrite=False, set=None, plugin_path=None) -> Path
     plugins of native_plugin_library() (docs/PLUGINS.md), and beside it a copy of every file the
     scene names (vehicle model, data files), named relative to it: OUT can be moved. After
     `import mjformation`, mujoco.MjModel.from_xml_path(OUT/scene.xml) flies it. What the native
-    path cannot carry is refused naming the key; notes on what is not carried (e.g. [render])
-    go to stderr. overwrite=True replaces scene.xml and the files export wrote, no other file.
+    path cannot carry is refused naming the key; what is not carried (e.g. [render]) is said in
+    a UserWarning (warnings.filterwarnings silences it). overwrite=True replaces scene.xml and the files export wrote, no other file.
     out: a folder (str or os.PathLike); overwrite: True or False (anything else: TypeError);
     set and plugin_path: as for run() (the CLI's --set and --plugin-path)."""
     # The user's folders only: an export carries them, and the native library finds the
@@ -366,7 +373,7 @@ def export(experiment, out, overwrite=False, set=None, plugin_path=None) -> Path
                                 _require_bool("overwrite", overwrite), _overrides(set),
                                 _user_plugin_path(plugin_path))
     for note in notes:
-        print(f"note: {note}", file=sys.stderr)
+        warnings.warn(f"mjformation.export: {note}", UserWarning, stacklevel=2)
     return Path(scene)
 
 

@@ -4,6 +4,7 @@
 import json
 import math
 import subprocess
+import warnings
 
 import numpy as np
 import pytest
@@ -83,7 +84,23 @@ def test_a_missing_experiment_file_is_a_file_not_found_error_saying_where(exp2, 
         mjformation.check(tmp_path)
     with pytest.raises(TypeError, match="a file's path"):
         mjformation.check(None)
+    # A plugin folder that is not there, as the CLI's --plugin-path refuses it
+    for call in (lambda: mjformation.run(exp2, out=tmp_path / "never", plugin_path=missing),
+                 lambda: mjformation.check(exp2, plugin_path=[tmp_path, missing]),
+                 lambda: mjformation.Simulation(exp2, plugin_path=missing)):
+        with pytest.raises(FileNotFoundError, match="plugin_path: .*nope.toml is not a folder"):
+            call()
+    assert mjformation.check(exp2, plugin_path=tmp_path)  # an existing folder is searched
     assert not (tmp_path / "never").exists()  # nothing written
+
+
+def test_what_export_does_not_carry_is_a_warning_python_can_filter(exp2, tmp_path):
+    with pytest.warns(UserWarning, match=r"mjformation.export: \[render\] is not carried"):
+        mjformation.export(exp2, tmp_path / "scene")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # no warning escapes an explicit filter
+        warnings.filterwarnings("ignore", message="mjformation.export")
+        mjformation.export(exp2, tmp_path / "scene", overwrite=True)
 
 
 def test_timeseries_is_the_analysis_loader_in_numpy(exp2, tmp_path):
